@@ -1,0 +1,44 @@
+// What is in an image file: size, channels, mip levels with per-level statistics, and header attributes.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "heightpack/result.hpp"
+
+namespace heightpack {
+
+struct ChannelStats {
+    std::string name;
+    double min = 0.0;
+    double max = 0.0;
+    double mean = 0.0;
+};
+
+struct LevelInfo {
+    int width = 0;
+    int height = 0;
+    std::vector<ChannelStats> channels;
+};
+
+struct FileInfo {
+    std::string path;
+    std::string format;     // OpenImageIO's format name
+    std::string pixelType;  // of the file's channels: "float", "half", "uint16", ...
+    std::vector<std::string> channelNames;
+    bool tiled = false;
+    int tileWidth = 0;
+    int tileHeight = 0;
+    std::vector<LevelInfo> levels;  // level 0 first; one entry for a file without mip levels
+    std::vector<std::pair<std::string, std::string>> attributes;  // header metadata, as text
+};
+
+// Reads every level of the image at path through OpenImageIO and computes per-channel statistics.
+// Fails with BadInput when the file cannot be read. silenceDecoderMessages: see LoadOptions.
+Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages = false);
+
+// The value of the attribute called name, or empty.
+std::string findAttribute(const FileInfo& info, const std::string& name);
+
+}  // namespace heightpack

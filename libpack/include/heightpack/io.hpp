@@ -1,0 +1,98 @@
+// Reading height maps (any format OpenImageIO reads) and writing tiled, mip-mapped float EXRs, atomically.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "heightpack/image.hpp"
+#include "heightpack/result.hpp"
+
+namespace heightpack {
+
+// Which channel of a colour input holds the height.
+enum class ChannelSelect { Auto, R, G, B, A, Luma };
+std::optional<ChannelSelect> parseChannelSelect(std::string_view name);
+
+struct LoadOptions {
+    // Auto takes a one-channel image (or grey + alpha) as it is and refuses a colour image.
+    ChannelSelect channel = ChannelSelect::Auto;
+    // Images larger than this are refused from their header, before any pixel is allocated.
+    int maxSide = 32768;
+    int64_t maxTexels = int64_t(1) << 28;  // 1 GiB of floats
+    // Some decoders (libpng under OpenImageIO 2.4) print their own diagnostics on stderr; what they say
+    // also reaches the returned Error. When set, stderr (fd 2) of the whole process is sent to /dev/null
+    // while a file is decoded, so a command-line tool keeps its one-line error contract.
+    bool silenceDecoderMessages = false;
+};
+
+// What the input file held, for reports and metadata.
+struct SourceInfo {
+    std::string path;
+    std::string format;     // OpenImageIO's format name: "png", "openexr", "tiff", ...
+    std::string pixelType;  // "uint8", "uint16", "half", "float", ...
+    int width = 0;
+    int height = 0;
+    int channels = 0;
+    std::string channelUsed;  // the name of the channel the heights came from, or "luma"
+};
+
+struct LoadedHeights {
+    Image heights;  // one channel: 8-bit / 255, 16-bit / 65535, float as is
+    SourceInfo source;
+};
+
+// Loads the height map at path. Fails with BadInput for a missing, unreadable, corrupt or oversized file,
+// a colour image without a channel choice, or non-finite values.
+Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& options = {});
+
+// A 64-bit hash (XXH3) of an image's texel values, as 16 hex digits; identical pixels give the same hash.
+std::string hashPixels(const Image& image);
+
+// EXR compressions offered: the lossless ones, since heights must come back exactly as computed.
+enum class Compression { None, Rle, Zips, Zip, Piz };
+const char* compressionName(Compression compression);
+std::optional<Compression> parseCompression(std::string_view name);
+
+// A header attribute: a string or a float.
+struct ExrAttribute {
+    std::string name;
+    std::variant<std::string, float> value;
+};
+
+// A tiled, mip-mapped float EXR described by its level-0 size, channel names, and a function that fills
+// any band of rows of any level on demand, so the writer never holds more than a band of output.
+struct TiledExrContent {
+    int width = 0;
+    int height = 0;
+    std::vector<std::string> channelNames;  // interleaved in this order in the rows fillRows writes
+    // Writes `rows` rows of level `level` starting at y0 into dst (levelWidth * channels floats a row).
+    std::function<void(int level, int y0, int rows, float* dst)> fillRows;
+    std::vector<ExrAttribute> attributes;
+};
+
+struct ExrWriteOptions {
+    Compression compression = Compression::Zip;
+    int tileSize = 64;
+    // Called after each row of tiles with the fraction written so far; may be empty.
+    std::function<void(double fraction)> progress;
+};
+
+// Writes content as a tiled (tileSize^2), MIPMAP_LEVELS, ROUND_DOWN EXR of 32-bit float channels. The
+// file appears at path only once complete: it is written to a temporary file in the same folder and
+// renamed, so a failure or interruption leaves no partial file and any existing file untouched.
+Status writeTiledExr(const std::string& path, const TiledExrContent& content, const ExrWriteOptions& options);
+
+// Checks, before any work, that path can be written: its folder exists and is writable, and an existing
+// file there is not read-only. Fails with CannotWrite naming the problem.
+Status checkWritable(const std::string& path);
+
+// Removes every temporary file an unfinished write in this process has open. Async-signal-safe: meant
+// for a SIGINT/SIGTERM handler, so an interrupted run leaves nothing behind.
+void removePendingTemporaryFiles();
+
+}  // namespace heightpack

@@ -1,0 +1,120 @@
+#include "heightpack/pack_job.hpp"
+
+#include <chrono>
+#include <filesystem>
+
+#include "heightpack/pack.hpp"
+#include "heightpack/parallel.hpp"
+
+namespace heightpack {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::vector<ExrAttribute> heightAttributes(std::string_view layout, const PackOptions& options,
+                                           const SourceInfo& source, const std::string& sourceHash) {
+    const std::string wrap = wrapName(options.mip.wrap);
+    return {
+        {"heightpack:layout", std::string(layout)},
+        {"heightpack:wrap", wrap},
+        // The standard attribute OpenImageIO's texture system reads for its wrap modes.
+        {"wrapmodes", wrap + "," + wrap},
+        {"heightpack:filter", std::string(filterName(options.mip.filter))},
+        {"heightpack:heightScale", options.scale},
+        {"heightpack:heightOffset", options.offset},
+        {"heightpack:texelCentre", 0.5f},
+        // The file name only: the same input packed from another folder gives the same bytes.
+        {"heightpack:source", std::filesystem::path(source.path).filename().string()},
+        {"heightpack:sourceHash", sourceHash},
+        {"heightpack:version", options.version},
+    };
+}
+
+Result<PackReport> packHeightMap(const std::string& input, const std::string& output, const PackOptions& options) {
+    auto progress = [&](std::string_view stage, double fraction) {
+        if (options.progress) options.progress(stage, fraction);
+    };
+    // Fail on an unwritable output before spending any time on the input.
+    if (Status s = checkWritable(output); !s) return s.error();
+    if (!options.plainOutput.empty()) {
+        if (std::filesystem::path(options.plainOutput).lexically_normal() ==
+            std::filesystem::path(output).lexically_normal())
+            return cannotWrite(options.plainOutput, "is also the packed output", "give --emit-plain another name");
+        if (Status s = checkWritable(options.plainOutput); !s) return s.error();
+    }
+
+    PackReport report;
+    report.input = input;
+    report.output = output;
+    report.plainOutput = options.plainOutput;
+
+    auto start = std::chrono::steady_clock::now();
+    progress("load", 0.0);
+    auto loaded = loadHeightMap(input, options.load);
+    if (!loaded) return loaded.error();
+    report.source = loaded->source;
+    Image heights = std::move(loaded->heights);
+    report.sourceHash = hashPixels(heights);
+    progress("load", 1.0);
+    report.loadSeconds = secondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    progress("mip", 0.0);
+    if (!isPowerOfTwo(heights.width) || !isPowerOfTwo(heights.height)) {
+        const int w = nextPowerOfTwo(heights.width), h = nextPowerOfTwo(heights.height);
+        if (!options.resizeToPowerOfTwo) {
+            return badInput(input,
+                            "is " + std::to_string(heights.width) + "x" + std::to_string(heights.height) +
+                                ", but mip chains need power-of-two sides",
+                            "pass --resize pow2 to resample it to " + std::to_string(w) + "x" + std::to_string(h));
+        }
+        heights = resample(heights, w, h, options.mip);
+        report.resized = true;
+    }
+    if (options.scale != 1.0f || options.offset != 0.0f)
+        for (float& v : heights.pixels) v = options.offset + options.scale * v;
+    const std::vector<Image> chain = generateMipChain(heights, options.mip);
+    heights = Image();  // level 0 lives on in the chain
+    for (const Image& level : chain) report.levelSizes.emplace_back(level.width, level.height);
+    progress("mip", 1.0);
+    report.mipSeconds = secondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    ExrWriteOptions writeOptions;
+    writeOptions.compression = options.compression;
+    const bool plain = !options.plainOutput.empty();
+    writeOptions.progress = [&](double f) { progress("write", plain ? f * 0.8 : f); };
+
+    const Wrap wrap = options.mip.wrap;
+    TiledExrContent packed;
+    packed.width = chain[0].width;
+    packed.height = chain[0].height;
+    packed.channelNames = {"R", "G", "B", "A"};
+    packed.fillRows = [&](int level, int y0, int rows, float* dst) {
+        packNeighbour4Rows(chain[level], wrap, y0, rows, dst);
+    };
+    packed.attributes = heightAttributes("neighbour4", options, report.source, report.sourceHash);
+    if (Status s = writeTiledExr(output, packed, writeOptions); !s) return s.error();
+
+    if (plain) {
+        TiledExrContent unpacked = packed;
+        unpacked.channelNames = {"Y"};
+        unpacked.fillRows = [&](int level, int y0, int rows, float* dst) {
+            const Image& l = chain[level];
+            std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width, dst);
+        };
+        unpacked.attributes = heightAttributes("plain", options, report.source, report.sourceHash);
+        writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
+        if (Status s = writeTiledExr(options.plainOutput, unpacked, writeOptions); !s) return s.error();
+    }
+    progress("write", 1.0);
+    report.writeSeconds = secondsSince(start);
+    return report;
+}
+
+}  // namespace heightpack

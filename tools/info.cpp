@@ -1,0 +1,105 @@
+// heightpack info: what a texture file holds, level by level.
+#include <cstdio>
+#include <iostream>
+
+#include "command.hpp"
+#include "heightpack/info.hpp"
+#include "heightpack/parallel.hpp"
+
+namespace heightpack::cli {
+
+namespace {
+
+class InfoCommand final : public Command {
+public:
+    CLI::App* attach(CLI::App& app) override {
+        CLI::App* cmd = app.add_subcommand("info", "describe a texture: size, levels, layout, wrap, filter, "
+                                                   "scale/offset, min/max/mean per level");
+        cmd->add_option("input", input_, "an EXR heightpack wrote, or any image")->required();
+        addCommonOptions(*cmd);
+        cmd->footer("Examples:\n  heightpack info out/swell.exr\n  heightpack info out/swell.exr --json\n");
+        return cmd;
+    }
+
+    ExitCode run() override {
+        setLibraryThreads(common_.threads);
+        auto info = readFileInfo(input_, /*silenceDecoderMessages=*/true);
+        if (!info) return fail(info.error());
+        if (common_.json)
+            printJson(toJson(*info));
+        else if (!common_.quiet)
+            printText(*info);
+        return ExitCode::Ok;
+    }
+
+private:
+    static nlohmann::json toJson(const FileInfo& info) {
+        nlohmann::json attributes = nlohmann::json::object();
+        for (const auto& [k, v] : info.attributes) attributes[k] = v;
+        nlohmann::json levels = nlohmann::json::array();
+        for (size_t i = 0; i < info.levels.size(); ++i) {
+            nlohmann::json channels = nlohmann::json::array();
+            for (const ChannelStats& c : info.levels[i].channels)
+                channels.push_back({{"name", c.name}, {"min", c.min}, {"max", c.max}, {"mean", c.mean}});
+            levels.push_back({{"level", i}, {"width", info.levels[i].width}, {"height", info.levels[i].height},
+                              {"channels", channels}});
+        }
+        auto attr = [&](const char* name) {
+            const std::string v = findAttribute(info, name);
+            return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(v);
+        };
+        return {
+            {"command", "info"},
+            {"path", info.path},
+            {"format", info.format},
+            {"pixelType", info.pixelType},
+            {"channels", info.channelNames},
+            {"tiled", info.tiled},
+            {"tileWidth", info.tileWidth},
+            {"tileHeight", info.tileHeight},
+            {"width", info.levels.empty() ? 0 : info.levels[0].width},
+            {"height", info.levels.empty() ? 0 : info.levels[0].height},
+            {"levelCount", info.levels.size()},
+            {"layout", attr("heightpack:layout")},
+            {"wrap", attr("heightpack:wrap")},
+            {"filter", attr("heightpack:filter")},
+            {"heightScale", attr("heightpack:heightScale")},
+            {"heightOffset", attr("heightpack:heightOffset")},
+            {"levels", levels},
+            {"attributes", attributes},
+        };
+    }
+
+    static void printText(const FileInfo& info) {
+        const LevelInfo& top = info.levels.front();
+        std::printf("%s: %s, %dx%d, %zu level%s, %s", info.path.c_str(), info.format.c_str(), top.width, top.height,
+                    info.levels.size(), info.levels.size() == 1 ? "" : "s", info.pixelType.c_str());
+        std::string channels;
+        for (const auto& n : info.channelNames) channels += (channels.empty() ? "" : ",") + n;
+        std::printf(" %s", channels.c_str());
+        if (info.tiled) std::printf(", tiled %dx%d", info.tileWidth, info.tileHeight);
+        std::printf("\n");
+        for (const char* key : {"layout", "wrap", "filter", "heightScale", "heightOffset", "texelCentre", "source",
+                                "sourceHash", "version"}) {
+            const std::string v = findAttribute(info, std::string("heightpack:") + key);
+            if (!v.empty()) std::printf("  %-13s %s\n", key, v.c_str());
+        }
+        // Heights are channel 0 in every layout heightpack writes (R of a packed texel is H(i,j)).
+        std::printf("  %-5s %-11s %12s %12s %12s   (channel %s)\n", "level", "size", "min", "max", "mean",
+                    top.channels.front().name.c_str());
+        for (size_t i = 0; i < info.levels.size(); ++i) {
+            const LevelInfo& l = info.levels[i];
+            const ChannelStats& c = l.channels.front();
+            const std::string size = std::to_string(l.width) + "x" + std::to_string(l.height);
+            std::printf("  %-5zu %-11s %12.6g %12.6g %12.6g\n", i, size.c_str(), c.min, c.max, c.mean);
+        }
+    }
+
+    std::string input_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> makeInfoCommand() { return std::make_unique<InfoCommand>(); }
+
+}  // namespace heightpack::cli

@@ -1,0 +1,63 @@
+// heightpack: dispatches to one subcommand, turns every failure into a one-line error and an exit code.
+#include <csignal>
+#include <iostream>
+#include <vector>
+
+#include "command.hpp"
+#include "heightpack/io.hpp"
+#include "heightpack/version.hpp"
+
+namespace {
+
+// An interrupted run leaves no temporary file behind; outputs are only ever renamed into place whole.
+extern "C" void onSignal(int sig) {
+    heightpack::removePendingTemporaryFiles();
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace heightpack::cli;
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, onSignal);
+
+    CLI::App app{"heightpack: water height maps to tileable, mip-chained, 4-neighbour packed RGBA32F textures"};
+    app.set_version_flag("--version", std::string("heightpack ") + heightpack::kVersion);
+    app.require_subcommand(1);
+    app.footer(
+        "Examples:\n"
+        "  heightpack pack examples/maps/swell.png -o out/swell.exr\n"
+        "  heightpack info out/swell.exr\n"
+        "Run 'heightpack <command> --help' for a command's options.\n"
+        "Exit codes: 0 done, 1 a check failed, 2 usage error, 3 bad input, 4 cannot write output, 70 internal error.\n");
+
+    std::vector<std::unique_ptr<Command>> commands;
+    commands.push_back(makePackCommand());
+    commands.push_back(makeInfoCommand());
+    std::vector<CLI::App*> subcommands;
+    for (auto& command : commands) subcommands.push_back(command->attach(app));
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);  // --help, --version: printed by CLI11 for the chosen subcommand
+    } catch (const CLI::ParseError& e) {
+        std::string where = "heightpack";
+        for (CLI::App* sub : subcommands)
+            if (sub->parsed()) where += " " + sub->get_name();
+        printError({heightpack::ErrorKind::Internal, {}, e.what(), "see '" + where + " --help'"});
+        return static_cast<int>(ExitCode::Usage);
+    }
+
+    try {
+        for (size_t i = 0; i < commands.size(); ++i)
+            if (subcommands[i]->parsed()) return static_cast<int>(commands[i]->run());
+    } catch (const std::bad_alloc&) {
+        printError({heightpack::ErrorKind::Internal, {}, "out of memory", "try a smaller map or fewer --threads"});
+    } catch (const std::exception& e) {
+        printError({heightpack::ErrorKind::Internal, {}, std::string("internal error: ") + e.what(),
+                    "please report this with the command line"});
+    }
+    return static_cast<int>(ExitCode::Internal);
+}

@@ -1,0 +1,121 @@
+// heightpack pack: one height map in, one packed, mip-mapped RGBA32F EXR out.
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "command.hpp"
+#include "heightpack/pack_job.hpp"
+#include "heightpack/parallel.hpp"
+#include "heightpack/version.hpp"
+
+namespace heightpack::cli {
+
+namespace {
+
+class PackCommand final : public Command {
+public:
+    CLI::App* attach(CLI::App& app) override {
+        CLI::App* cmd = app.add_subcommand("pack", "pack a height map into a mip-mapped, 4-neighbour packed RGBA32F EXR");
+        cmd->add_option("input", input_, "height map: PNG, TIFF, EXR, JPEG, TGA, PSD (8/16-bit, half, float)")
+            ->required();
+        cmd->add_option("-o,--output", output_, "packed EXR to write (replaced atomically)")->required();
+        cmd->add_option("--channel", channel_, "which channel of a colour image holds the height")
+            ->check(CLI::IsMember({"r", "g", "b", "a", "luma"}));
+        cmd->add_option("--scale", options_.scale, "stored height = offset + scale * painted value")->capture_default_str();
+        cmd->add_option("--offset", options_.offset, "see --scale")->capture_default_str();
+        cmd->add_option("--wrap", wrap_, "how filters and neighbours see past the edge")->capture_default_str()
+            ->check(CLI::IsMember({"periodic", "clamp"}));
+        cmd->add_option("--filter", filter_, "mip filter")->capture_default_str()
+            ->check(CLI::IsMember({"box", "triangle", "lanczos3", "kaiser"}));
+        cmd->add_option("--compression", compression_, "EXR compression (lossless only)")->capture_default_str()
+            ->check(CLI::IsMember({"none", "rle", "zips", "zip", "piz"}));
+        cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two up to the "
+                                              "next ones, with the mip filter")
+            ->check(CLI::IsMember({"none", "pow2"}));
+        cmd->add_option("--emit-plain", options_.plainOutput, "also write the unpacked one-channel mip chain here");
+        addCommonOptions(*cmd);
+        cmd->footer(
+            "Examples:\n"
+            "  heightpack pack examples/maps/swell.png -o out/swell.exr\n"
+            "  heightpack pack swell.tif --channel r --scale 2.5 --offset -1.25 --filter lanczos3 "
+            "--compression none -o swell.exr\n"
+            "  heightpack pack big.png --resize pow2 -o big.exr\n"
+            "Texel (i,j) of every level holds R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1), wrapped or clamped.\n");
+        return cmd;
+    }
+
+    ExitCode run() override {
+        if (!std::isfinite(options_.scale) || !std::isfinite(options_.offset)) {
+            std::cerr << "heightpack: error: --scale and --offset must be finite numbers (see 'heightpack pack "
+                         "--help')\n";
+            return ExitCode::Usage;
+        }
+        options_.load.silenceDecoderMessages = true;  // errors come back in the result, as one line
+        options_.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);
+        options_.mip.wrap = wrap_ == "clamp" ? Wrap::Clamp : Wrap::Periodic;
+        options_.mip.filter = *parseFilter(filter_);
+        options_.mip.threads = common_.threads;
+        options_.compression = *parseCompression(compression_);
+        options_.resizeToPowerOfTwo = resize_ == "pow2";
+        options_.version = kVersion;
+        setLibraryThreads(common_.threads);
+
+        Progress progress(!common_.quiet, "pack " + std::filesystem::path(input_).filename().string());
+        options_.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
+        auto report = packHeightMap(input_, output_, options_);
+        if (!report) return fail(report.error());
+        const PackReport& r = *report;
+        const double seconds = r.loadSeconds + r.mipSeconds + r.writeSeconds;
+        std::error_code ec;
+        const auto bytes = std::filesystem::file_size(r.output, ec);
+
+        if (common_.json) {
+            nlohmann::json levels = nlohmann::json::array();
+            for (size_t i = 0; i < r.levelSizes.size(); ++i)
+                levels.push_back({{"level", i}, {"width", r.levelSizes[i].first}, {"height", r.levelSizes[i].second}});
+            printJson({
+                {"command", "pack"},
+                {"input", r.input},
+                {"output", r.output},
+                {"plainOutput", r.plainOutput.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.plainOutput)},
+                {"bytes", bytes},
+                {"source", {{"format", r.source.format}, {"pixelType", r.source.pixelType},
+                            {"width", r.source.width}, {"height", r.source.height},
+                            {"channels", r.source.channels}, {"channelUsed", r.source.channelUsed},
+                            {"hash", r.sourceHash}}},
+                {"resized", r.resized},
+                {"layout", "neighbour4"},
+                {"wrap", wrap_},
+                {"filter", filter_},
+                {"compression", compression_},
+                {"heightScale", options_.scale},
+                {"heightOffset", options_.offset},
+                {"levels", levels},
+                {"timings", {{"load", r.loadSeconds}, {"mip", r.mipSeconds}, {"write", r.writeSeconds},
+                             {"total", seconds}}},
+            });
+        } else if (chatty()) {
+            std::ostringstream line;
+            line << "wrote " << r.output << ": " << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " ("
+                 << r.levelSizes.size() << " levels) from " << r.source.width << "x" << r.source.height << " "
+                 << r.source.pixelType << " '" << r.source.channelUsed << "'" << (r.resized ? " resized" : "")
+                 << ", " << wrap_ << ", " << filter_ << ", " << compression_ << ", " << humanBytes(bytes) << ", "
+                 << std::fixed << std::setprecision(2) << seconds << " s";
+            std::cout << line.str() << "\n";
+            if (!r.plainOutput.empty()) std::cout << "wrote " << r.plainOutput << ": unpacked chain\n";
+        }
+        return ExitCode::Ok;
+    }
+
+private:
+    std::string input_, output_, channel_;
+    std::string wrap_ = "periodic", filter_ = "kaiser", compression_ = "zip", resize_ = "none";
+    PackOptions options_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> makePackCommand() { return std::make_unique<PackCommand>(); }
+
+}  // namespace heightpack::cli
