@@ -1,0 +1,256 @@
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfTiledInputFile.h>
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "heightpack/io.hpp"
+#include "heightpack/mip.hpp"
+#include "heightpack/pack.hpp"
+#include "heightpack/pack_job.hpp"
+#include "support/test_support.hpp"
+
+using namespace heightpack;
+using namespace heightpack::test;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A smooth field in [0.05, 0.95].
+float field(int x, int y) {
+    return static_cast<float>(0.5 + 0.3 * std::sin(2 * kPi * x / 64.0) * std::cos(2 * kPi * y / 32.0) +
+                              0.15 * std::sin(2 * kPi * (x + 2 * y) / 64.0));
+}
+
+Error loadError(const std::string& path, const LoadOptions& options = {}) {
+    auto r = loadHeightMap(path, options);
+    EXPECT_FALSE(r.ok()) << path << " loaded but should not";
+    return r.ok() ? Error{} : r.error();
+}
+
+}  // namespace
+
+TEST(Io, EightSixteenBitHalfAndFloatDecodeToTheSameHeights) {
+    ScratchDir dir;
+    const Image truth = makeImage(64, 32, field);
+    struct Case { const char* name; OIIO::TypeDesc type; double tolerance; };
+    const Case cases[] = {
+        {"h8.png", OIIO::TypeDesc::UINT8, 0.5 / 255 + 1e-6},
+        {"h16.png", OIIO::TypeDesc::UINT16, 0.5 / 65535 + 1e-7},
+        {"h16.tif", OIIO::TypeDesc::UINT16, 0.5 / 65535 + 1e-7},
+        {"h8.tga", OIIO::TypeDesc::UINT8, 0.5 / 255 + 1e-6},
+        {"hhalf.exr", OIIO::TypeDesc::HALF, 1.0 / 2048},  // 11 significant bits
+        {"hfloat.exr", OIIO::TypeDesc::FLOAT, 0.0},
+        {"hfloat.tif", OIIO::TypeDesc::FLOAT, 0.0},
+    };
+    for (const Case& c : cases) {
+        writeImage(dir.file(c.name), truth, c.type);
+        auto loaded = loadHeightMap(dir.file(c.name));
+        ASSERT_TRUE(loaded.ok()) << c.name << ": " << loaded.error().what;
+        ASSERT_EQ(loaded->heights.width, 64);
+        ASSERT_EQ(loaded->heights.height, 32);
+        ASSERT_EQ(loaded->heights.channels, 1);
+        double worst = 0.0;
+        for (size_t i = 0; i < truth.pixels.size(); ++i)
+            worst = std::max(worst, double(std::abs(loaded->heights.pixels[i] - truth.pixels[i])));
+        EXPECT_LE(worst, c.tolerance) << c.name;
+    }
+}
+
+TEST(Io, ColourNeedsAChannelAndEachChannelIsTakenAsStored) {
+    ScratchDir dir;
+    const int w = 8, h = 4;
+    std::vector<float> rgba(w * h * 4);
+    for (int i = 0; i < w * h; ++i) {
+        rgba[4 * i + 0] = (i % 7) / 7.0f;
+        rgba[4 * i + 1] = (i % 5) / 5.0f;
+        rgba[4 * i + 2] = (i % 3) / 3.0f;
+        rgba[4 * i + 3] = (i % 2) ? 1.0f : 0.0f;  // transparent texels must not darken the colour channels
+    }
+    const std::string path = dir.file("colour.png");
+    writeImage(path, w, h, 4, rgba, OIIO::TypeDesc::UINT16);
+
+    const Error e = loadError(path);
+    EXPECT_EQ(e.kind, ErrorKind::BadInput);
+    EXPECT_NE(e.hint.find("--channel"), std::string::npos) << e.hint;
+
+    const std::pair<ChannelSelect, int> channels[] = {
+        {ChannelSelect::R, 0}, {ChannelSelect::G, 1}, {ChannelSelect::B, 2}, {ChannelSelect::A, 3}};
+    for (const auto& [select, index] : channels) {
+        LoadOptions o;
+        o.channel = select;
+        auto r = loadHeightMap(path, o);
+        ASSERT_TRUE(r.ok()) << r.error().what;
+        for (int i = 0; i < w * h; ++i) ASSERT_NEAR(r->heights.pixels[i], rgba[4 * i + index], 1e-4) << index;
+    }
+    LoadOptions o;
+    o.channel = ChannelSelect::Luma;
+    auto luma = loadHeightMap(path, o);
+    ASSERT_TRUE(luma.ok());
+    for (int i = 0; i < w * h; ++i)
+        ASSERT_NEAR(luma->heights.pixels[i], 0.2126 * rgba[4 * i] + 0.7152 * rgba[4 * i + 1] + 0.0722 * rgba[4 * i + 2],
+                    1e-4);
+}
+
+TEST(Io, BadInputsAreRefusedWithAReason) {
+    ScratchDir dir;
+    EXPECT_NE(loadError(dir.file("missing.png")).what.find("no such file"), std::string::npos);
+
+    writeBytes(dir.file("empty.png"), {});
+    EXPECT_NE(loadError(dir.file("empty.png")).what.find("empty"), std::string::npos);
+
+    const std::string text = "this is not an image\n";
+    writeBytes(dir.file("text.png"), std::vector<unsigned char>(text.begin(), text.end()));
+    EXPECT_EQ(loadError(dir.file("text.png")).kind, ErrorKind::BadInput);
+
+    writeImage(dir.file("full.png"), randomImage(256, 256, 1), OIIO::TypeDesc::UINT8);
+    auto bytes = readBytes(dir.file("full.png"));
+    bytes.resize(bytes.size() / 2);
+    writeBytes(dir.file("truncated.png"), bytes);
+    EXPECT_EQ(loadError(dir.file("truncated.png")).kind, ErrorKind::BadInput);
+
+    writeBytes(dir.file("huge.png"), pngWithClaimedSize(100000, 100000));
+    const Error huge = loadError(dir.file("huge.png"));
+    EXPECT_NE(huge.what.find("100000x100000"), std::string::npos) << huge.what;
+
+    Image nan = makeImage(8, 8, field);
+    nan.at(3, 5) = std::numeric_limits<float>::quiet_NaN();
+    writeImage(dir.file("nan.exr"), nan, OIIO::TypeDesc::FLOAT);
+    const Error nanError = loadError(dir.file("nan.exr"));
+    EXPECT_NE(nanError.what.find("NaN at texel 3,5"), std::string::npos) << nanError.what;
+
+    Image inf = makeImage(8, 8, field);
+    inf.at(0, 0) = std::numeric_limits<float>::infinity();
+    writeImage(dir.file("inf.exr"), inf, OIIO::TypeDesc::FLOAT);
+    EXPECT_NE(loadError(dir.file("inf.exr")).what.find("infinite"), std::string::npos);
+}
+
+TEST(Io, WrittenExrIsATiledMipMappedFloatTextureHoldingThePackedChain) {
+    ScratchDir dir;
+    const Image map = makeImage(64, 32, field);
+    writeImage(dir.file("map.exr"), map, OIIO::TypeDesc::FLOAT);
+    PackOptions options;
+    options.mip.filter = Filter::Lanczos3;
+    options.scale = 2.0f;
+    options.offset = -1.0f;
+    options.plainOutput = dir.file("plain.exr");
+    options.version = "test";
+    auto report = packHeightMap(dir.file("map.exr"), dir.file("packed.exr"), options);
+    ASSERT_TRUE(report.ok()) << report.error().what;
+
+    // What libpack computes, independently of the file.
+    Image scaled = map;
+    for (float& v : scaled.pixels) v = -1.0f + 2.0f * v;
+    const auto chain = generateMipChain(scaled, Filter::Lanczos3);
+    const auto packed = packMipChain(chain, Wrap::Periodic);
+
+    // Read back through OpenImageIO.
+    auto in = OIIO::ImageInput::open(dir.file("packed.exr"));
+    ASSERT_TRUE(in) << OIIO::geterror();
+    EXPECT_EQ(in->spec().tile_width, 64);
+    EXPECT_EQ(in->spec().tile_height, 64);
+    EXPECT_EQ(in->spec().nchannels, 4);
+    EXPECT_EQ(in->spec().format, OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:layout"), "neighbour4");
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:wrap"), "periodic");
+    EXPECT_EQ(in->spec().get_string_attribute("wrapmodes"), "periodic,periodic");
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:filter"), "lanczos3");
+    EXPECT_FLOAT_EQ(in->spec().get_float_attribute("heightpack:heightScale"), 2.0f);
+    EXPECT_FLOAT_EQ(in->spec().get_float_attribute("heightpack:heightOffset"), -1.0f);
+    EXPECT_FLOAT_EQ(in->spec().get_float_attribute("heightpack:texelCentre"), 0.5f);
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:source"), "map.exr");
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:sourceHash"), hashPixels(map));
+    int levels = 0;
+    for (; in->seek_subimage(0, levels); ++levels) {
+        ASSERT_LT(size_t(levels), packed.size());
+        const Image& expected = packed[levels];
+        ASSERT_EQ(in->spec().width, expected.width);
+        ASSERT_EQ(in->spec().height, expected.height);
+        std::vector<float> pixels(expected.pixels.size());
+        ASSERT_TRUE(in->read_image(0, levels, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data()));
+        EXPECT_EQ(pixels, expected.pixels) << "level " << levels;
+    }
+    EXPECT_EQ(levels, 7);
+    EXPECT_FALSE(in->seek_subimage(1, 0));  // one subimage: the levels are mip levels
+
+    // OpenEXR's own reader agrees on the tiling.
+    Imf::TiledInputFile exr(dir.file("packed.exr").c_str());
+    EXPECT_EQ(exr.levelMode(), Imf::MIPMAP_LEVELS);
+    EXPECT_EQ(exr.levelRoundingMode(), Imf::ROUND_DOWN);
+    EXPECT_EQ(exr.numLevels(), 7);
+    EXPECT_EQ(exr.header().compression(), Imf::ZIP_COMPRESSION);
+
+    // The plain chain: one channel, the unpacked levels.
+    auto plain = OIIO::ImageInput::open(dir.file("plain.exr"));
+    ASSERT_TRUE(plain);
+    EXPECT_EQ(plain->spec().nchannels, 1);
+    EXPECT_EQ(plain->spec().get_string_attribute("heightpack:layout"), "plain");
+    for (int level = 0; plain->seek_subimage(0, level); ++level) {
+        std::vector<float> pixels(chain[level].pixels.size());
+        ASSERT_TRUE(plain->read_image(0, level, 0, 1, OIIO::TypeDesc::FLOAT, pixels.data()));
+        EXPECT_EQ(pixels, chain[level].pixels) << "plain level " << level;
+    }
+    EXPECT_EQ(dir.listing(), (std::vector<std::string>{"map.exr", "packed.exr", "plain.exr"}));
+}
+
+TEST(Io, SizesThatAreNotPowersOfTwoAreRefusedOrResized) {
+    ScratchDir dir;
+    writeImage(dir.file("odd.png"), makeImage(100, 60, field), OIIO::TypeDesc::UINT8);
+    auto refused = packHeightMap(dir.file("odd.png"), dir.file("odd.exr"), {});
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().kind, ErrorKind::BadInput);
+    EXPECT_NE(refused.error().hint.find("--resize pow2"), std::string::npos);
+    EXPECT_NE(refused.error().hint.find("128x64"), std::string::npos);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("odd.exr")));
+
+    PackOptions resize;
+    resize.resizeToPowerOfTwo = true;
+    auto resized = packHeightMap(dir.file("odd.png"), dir.file("odd.exr"), resize);
+    ASSERT_TRUE(resized.ok()) << resized.error().what;
+    EXPECT_TRUE(resized->resized);
+    EXPECT_EQ(resized->levelSizes.front(), std::make_pair(128, 64));
+}
+
+TEST(Io, OutputsThatCannotBeWrittenAreRefusedAndLeftAlone) {
+    ScratchDir dir;
+    writeImage(dir.file("map.png"), makeImage(16, 16, field), OIIO::TypeDesc::UINT8);
+
+    auto noFolder = packHeightMap(dir.file("map.png"), dir.file("nowhere/out.exr"), {});
+    ASSERT_FALSE(noFolder.ok());
+    EXPECT_EQ(noFolder.error().kind, ErrorKind::CannotWrite);
+    EXPECT_NE(noFolder.error().what.find("does not exist"), std::string::npos);
+
+    const std::vector<unsigned char> old = {'o', 'l', 'd'};
+    writeBytes(dir.file("locked.exr"), old);
+    ::chmod(dir.file("locked.exr").c_str(), 0444);
+    auto locked = packHeightMap(dir.file("map.png"), dir.file("locked.exr"), {});
+    ASSERT_FALSE(locked.ok());
+    EXPECT_EQ(locked.error().kind, ErrorKind::CannotWrite);
+    EXPECT_EQ(readBytes(dir.file("locked.exr")), old);
+    EXPECT_EQ(dir.listing(), (std::vector<std::string>{"locked.exr", "map.png"}));  // no temporary file left
+}
+
+TEST(Io, ReplacingAnOutputKeepsItsPermissions) {
+    ScratchDir dir;
+    writeImage(dir.file("map.png"), makeImage(16, 16, field), OIIO::TypeDesc::UINT8);
+    writeBytes(dir.file("out.exr"), {'x'});
+    ::chmod(dir.file("out.exr").c_str(), 0640);
+    ASSERT_TRUE(packHeightMap(dir.file("map.png"), dir.file("out.exr"), {}).ok());
+    struct stat st {};
+    ASSERT_EQ(::stat(dir.file("out.exr").c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, 0640u);
+    EXPECT_GT(st.st_size, 100);
+}
+
+TEST(Io, PixelHashFollowsThePixels) {
+    Image a = makeImage(8, 8, field), b = a;
+    EXPECT_EQ(hashPixels(a), hashPixels(b));
+    b.at(7, 7) += 1e-6f;
+    EXPECT_NE(hashPixels(a), hashPixels(b));
+    EXPECT_EQ(hashPixels(a).size(), 16u);
+}

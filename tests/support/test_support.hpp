@@ -1,0 +1,56 @@
+// Helpers shared by the tests: scratch folders, fields, writing images through OpenImageIO, and
+// reference computations written independently of libpack.
+#pragma once
+
+#include <OpenImageIO/typedesc.h>
+
+#include <filesystem>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "heightpack/image.hpp"
+
+namespace heightpack::test {
+
+// A fresh, empty folder under the system temp folder, removed when the object goes.
+class ScratchDir {
+public:
+    ScratchDir();
+    ~ScratchDir();
+    ScratchDir(const ScratchDir&) = delete;
+    ScratchDir& operator=(const ScratchDir&) = delete;
+    std::string file(const std::string& name) const { return (path_ / name).string(); }
+    const std::filesystem::path& path() const { return path_; }
+    // Names of the files in the folder, sorted.
+    std::vector<std::string> listing() const;
+
+private:
+    std::filesystem::path path_;
+};
+
+// An image whose texel (x, y) is f(x, y).
+Image makeImage(int width, int height, const std::function<float(int x, int y)>& f);
+// Uniform random values in [lo, hi) from a fixed seed.
+Image randomImage(int width, int height, unsigned seed, float lo = 0.0f, float hi = 1.0f);
+
+// Writes pixels (width * height * channels floats in [0,1] for integer types) with OpenImageIO in the
+// format the file name says, stored as `type` (uint8, uint16, half, float). Fails the test on error.
+void writeImage(const std::string& path, int width, int height, int channels, const std::vector<float>& pixels,
+                OIIO::TypeDesc type);
+void writeImage(const std::string& path, const Image& image, OIIO::TypeDesc type);
+
+std::vector<unsigned char> readBytes(const std::string& path);
+void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes);
+
+// A PNG whose header claims width x height, followed by a tiny, valid data stream.
+std::vector<unsigned char> pngWithClaimedSize(unsigned width, unsigned height);
+
+// Reference lookups written from the definitions, sharing no code with libpack.
+// Texel index i brought into [0, n) periodically or by clamping.
+int referenceWrap(long long i, int n, bool periodic);
+// Plain bilinear filtering of channel 0 at texture coordinate (u, v), as GL_LINEAR does it.
+double referenceBilinear(const Image& level, double u, double v, bool periodic);
+
+}  // namespace heightpack::test
