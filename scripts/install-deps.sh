@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs heightpack's build, test and demo dependencies from Debian 12's packages (apt-get, as root or
+# through sudo). Installs only what is missing, so a second run is quick.
+set -euo pipefail
+
+packages=(
+  cmake ninja-build g++ pkg-config              # build
+  libopenimageio-dev openimageio-tools          # reading images; oiiotool for previews and the benchmark
+  libopenexr-dev                                # writing tiled, mip-mapped EXRs
+  libcli11-dev nlohmann-json3-dev               # command line, --json
+  libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
+  libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks
+  time                                          # peak memory in tests/bench/bench_pack.sh
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+as_root=()
+if [ "$(id -u)" -ne 0 ]; then as_root=(sudo); fi
+echo "install-deps: installing ${missing[*]}"
+"${as_root[@]}" apt-get update -q
+"${as_root[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"

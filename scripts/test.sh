@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds heightpack with warnings as errors, and runs every test.
+#   scripts/test.sh             release build in build-test/
+#   scripts/test.sh --sanitize  AddressSanitizer + UndefinedBehaviorSanitizer build in build-asan/
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install-deps.sh
+if [ "${1:-}" = "--sanitize" ]; then
+  dir=build-asan
+  flags=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DHEIGHTPACK_SANITIZE=address,undefined -DHEIGHTPACK_BUILD_BENCHMARKS=OFF)
+  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:halt_on_error=1
+  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0"
+else
+  dir=build-test
+  flags=(-DCMAKE_BUILD_TYPE=Release)
+fi
+cmake -S . -B "$dir" -G Ninja -DHEIGHTPACK_WERROR=ON "${flags[@]}"
+cmake --build "$dir"
+ctest --test-dir "$dir" --output-on-failure -j 2

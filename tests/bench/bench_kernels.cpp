@@ -1,0 +1,47 @@
+// Google Benchmark timings of libpack's kernels on a 2048x2048 map.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "heightpack/io.hpp"
+#include "heightpack/mip.hpp"
+#include "heightpack/pack.hpp"
+
+using namespace heightpack;
+
+namespace {
+
+const Image& map2048() {
+    static const Image image = [] {
+        Image img(2048, 2048);
+        std::mt19937 rng(1);
+        std::uniform_real_distribution<float> d(0, 1);
+        for (float& v : img.pixels) v = d(rng);
+        return img;
+    }();
+    return image;
+}
+
+void BM_MipChain(benchmark::State& state) {
+    MipOptions options;
+    options.filter = static_cast<Filter>(state.range(0));
+    options.threads = static_cast<int>(state.range(1));
+    for (auto _ : state) benchmark::DoNotOptimize(generateMipChain(map2048(), options));
+    state.SetLabel(std::string(filterName(options.filter)) + ", threads " + std::to_string(options.threads));
+    state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(map2048().pixels.size() * sizeof(float)));
+}
+BENCHMARK(BM_MipChain)->ArgsProduct({{0, 1, 2, 3}, {1, 2}})->Unit(benchmark::kMillisecond);
+
+void BM_Pack(benchmark::State& state) {
+    for (auto _ : state) benchmark::DoNotOptimize(packNeighbour4(map2048(), Wrap::Periodic));
+    state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(map2048().pixels.size() * sizeof(float) * 4));
+}
+BENCHMARK(BM_Pack)->Unit(benchmark::kMillisecond);
+
+void BM_Hash(benchmark::State& state) {
+    for (auto _ : state) benchmark::DoNotOptimize(hashPixels(map2048()));
+    state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(map2048().pixels.size() * sizeof(float)));
+}
+BENCHMARK(BM_Hash)->Unit(benchmark::kMillisecond);
+
+}  // namespace
