@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config              # build
   libopenimageio-dev openimageio-tools          # reading images; oiiotool for previews and the benchmark
-  libopenexr-dev                                # writing tiled, mip-mapped EXRs
+  libopenexr-dev libdeflate-dev                 # writing tiled, mip-mapped EXRs; fast deflate for zip tiles
   libcli11-dev nlohmann-json3-dev               # command line, --json
   libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks

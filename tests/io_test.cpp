@@ -254,3 +254,85 @@ TEST(Io, PixelHashFollowsThePixels) {
     EXPECT_NE(hashPixels(a), hashPixels(b));
     EXPECT_EQ(hashPixels(a).size(), 16u);
 }
+
+TEST(Io, FastPngDecoderMatchesOpenImageIOExactly) {
+    // Grey PNGs take heightpack's own decoder; the same samples in single-channel TIFFs go through
+    // OpenImageIO. The heights must be identical to the bit, for 8 and 16 bits, grey and grey + alpha,
+    // every PNG filter (random data makes libpng choose all five).
+    ScratchDir dir;
+    const Image noise = randomImage(97, 61, 17);  // odd sizes: rows that are not a multiple of anything
+    const Image smooth = makeImage(128, 64, field);
+    struct Case { const Image* image; int channels; OIIO::TypeDesc type; };
+    const Case cases[] = {{&noise, 1, OIIO::TypeDesc::UINT8}, {&noise, 1, OIIO::TypeDesc::UINT16},
+                          {&smooth, 1, OIIO::TypeDesc::UINT16}, {&smooth, 2, OIIO::TypeDesc::UINT8},
+                          {&noise, 2, OIIO::TypeDesc::UINT16}};
+    int n = 0;
+    for (const Case& c : cases) {
+        const Image& grey = *c.image;
+        const Image alpha = makeImage(grey.width, grey.height, [&](int x, int y) {
+            return 1.0f - grey.at((x * 7 + 3) % grey.width, (y * 5 + 1) % grey.height);
+        });
+        std::vector<float> pixels;
+        for (size_t i = 0; i < grey.pixels.size(); ++i) {
+            pixels.push_back(grey.pixels[i]);
+            if (c.channels == 2) pixels.push_back(alpha.pixels[i]);
+        }
+        const std::string name = "c" + std::to_string(n++);
+        {
+            // A PNG with two channels is grey + alpha.
+            auto out = OIIO::ImageOutput::create(dir.file(name + ".png"));
+            OIIO::ImageSpec spec(grey.width, grey.height, c.channels, c.type);
+            if (c.channels == 2) {
+                spec.channelnames = {"Y", "A"};
+                spec.alpha_channel = 1;
+                spec.attribute("oiio:UnassociatedAlpha", 1);
+            }
+            ASSERT_TRUE(out->open(dir.file(name + ".png"), spec));
+            ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+            ASSERT_TRUE(out->close());
+        }
+        writeImage(dir.file(name + "_grey.tif"), grey, c.type);
+        writeImage(dir.file(name + "_alpha.tif"), alpha, c.type);
+        for (ChannelSelect select : {ChannelSelect::Auto, ChannelSelect::A}) {
+            if (select == ChannelSelect::A && c.channels == 1) continue;
+            LoadOptions o;
+            o.channel = select;
+            auto fast = loadHeightMap(dir.file(name + ".png"), o);
+            auto reference =
+                loadHeightMap(dir.file(name + (select == ChannelSelect::A ? "_alpha.tif" : "_grey.tif")));
+            ASSERT_TRUE(fast.ok()) << fast.error().what;
+            ASSERT_TRUE(reference.ok()) << reference.error().what;
+            EXPECT_EQ(fast->source.decoder, "heightpack-png");
+            EXPECT_EQ(reference->source.decoder, "openimageio");
+            EXPECT_EQ(fast->heights.pixels, reference->heights.pixels) << name;
+        }
+    }
+}
+
+TEST(Io, DamagedPngsFallBackToOpenImageIOAndAreRefused) {
+    ScratchDir dir;
+    writeImage(dir.file("good.png"), randomImage(64, 64, 2), OIIO::TypeDesc::UINT16);
+    auto bytes = readBytes(dir.file("good.png"));
+    // One flipped bit inside the image data: the chunk CRC no longer matches.
+    auto flipped = bytes;
+    flipped[bytes.size() / 2] ^= 0x10;
+    writeBytes(dir.file("flipped.png"), flipped);
+    auto r = loadHeightMap(dir.file("flipped.png"), {});
+    ASSERT_FALSE(r.ok()) << "a corrupted PNG decoded";
+    EXPECT_EQ(r.error().kind, ErrorKind::BadInput);
+}
+
+TEST(Io, FastPngDecoderReadsTheExamplesAsOpenImageIODoes) {
+    // The example maps use every PNG row filter (choppy.png: sub, up, average and Paeth).
+    for (const char* name : {"swell.png", "choppy.png", "ripple.png", "painted_not_tileable.png"}) {
+        const std::string path = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/" + name;
+        auto fast = loadHeightMap(path);
+        ASSERT_TRUE(fast.ok()) << fast.error().what;
+        EXPECT_EQ(fast->source.decoder, "heightpack-png") << name;
+        auto in = OIIO::ImageInput::open(path);
+        ASSERT_TRUE(in);
+        std::vector<float> reference(in->spec().image_pixels());
+        ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, reference.data()));
+        EXPECT_EQ(fast->heights.pixels, reference) << name;
+    }
+}

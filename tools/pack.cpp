@@ -83,6 +83,7 @@ public:
                 {"source", {{"format", r.source.format}, {"pixelType", r.source.pixelType},
                             {"width", r.source.width}, {"height", r.source.height},
                             {"channels", r.source.channels}, {"channelUsed", r.source.channelUsed},
+                            {"decoder", r.source.decoder},
                             {"hash", r.sourceHash}}},
                 {"resized", r.resized},
                 {"layout", "neighbour4"},

@@ -1,26 +1,13 @@
 #include "heightpack/io.hpp"
 
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfStandardAttributes.h>
-#include <OpenEXR/ImfStringAttribute.h>
-#include <OpenEXR/ImfTiledOutputFile.h>
 #include <OpenImageIO/imageio.h>
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <xxhash.h>
 
-#include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <mutex>
 
+#include "png_fast.hpp"
 #include "stderr_silencer.hpp"
 
 namespace heightpack {
@@ -130,6 +117,15 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     }
     src.channelUsed = luma ? "luma" : spec.channelnames[channel];
 
+    if (!luma && src.format == "png" && spec.nchannels <= 2) {
+        if (auto fast = detail::decodeGreyPng(path, spec.width, spec.height, channel, options.threads)) {
+            out.heights = std::move(*fast);
+            src.decoder = "heightpack-png";
+            return out;  // integer samples: always finite
+        }
+    }
+    src.decoder = "openimageio";
+
     const int chBegin = luma ? 0 : channel;
     const int chCount = luma ? 3 : 1;
     std::vector<float> pixels;
@@ -188,157 +184,6 @@ std::optional<Compression> parseCompression(std::string_view name) {
     for (Compression c : {Compression::None, Compression::Rle, Compression::Zips, Compression::Zip, Compression::Piz})
         if (name == compressionName(c)) return c;
     return std::nullopt;
-}
-
-// ---- Atomic output ------------------------------------------------------------------------------
-
-namespace {
-
-// Paths of temporary files being written, kept in plain arrays so a signal handler can unlink them
-// without allocating or locking.
-constexpr int kMaxPending = 32;
-constexpr size_t kMaxPath = 4096;
-char pendingPath[kMaxPending][kMaxPath];
-std::atomic<bool> pendingUsed[kMaxPending];
-std::mutex pendingMutex;
-
-// A temporary file beside the final output; renamed over it by commit(), removed otherwise.
-class TemporaryFile {
-public:
-    explicit TemporaryFile(const std::string& finalPath) : finalPath_(finalPath) {
-        static std::atomic<unsigned> counter{0};
-        const fs::path target(finalPath);
-        // Keep the extension last: libraries that choose a format by file name must still see it.
-        // Built with append: GCC 12 gives a false -Wrestrict on a chain of operator+ here.
-        std::string name = ".";
-        name.append(target.stem().string()).append(".hptmp-").append(std::to_string(::getpid()));
-        name.append("-").append(std::to_string(counter++)).append(target.extension().string());
-        path_ = (target.parent_path() / name).string();
-        std::lock_guard<std::mutex> lock(pendingMutex);
-        for (int i = 0; i < kMaxPending && path_.size() < kMaxPath; ++i) {
-            if (!pendingUsed[i].load()) {
-                std::memcpy(pendingPath[i], path_.c_str(), path_.size() + 1);
-                pendingUsed[i].store(true);
-                slot_ = i;
-                break;
-            }
-        }
-    }
-    TemporaryFile(const TemporaryFile&) = delete;
-    TemporaryFile& operator=(const TemporaryFile&) = delete;
-    ~TemporaryFile() {
-        if (!committed_) ::unlink(path_.c_str());
-        if (slot_ >= 0) pendingUsed[slot_].store(false);
-    }
-
-    const std::string& path() const { return path_; }
-
-    Status commit() {
-        // Keep the permissions a replaced file had (the temporary file gets the default mode).
-        struct stat st {};
-        if (::stat(finalPath_.c_str(), &st) == 0) ::chmod(path_.c_str(), st.st_mode & 07777);
-        if (::rename(path_.c_str(), finalPath_.c_str()) != 0)
-            return cannotWrite(finalPath_, std::string("cannot move the finished file into place: ") + std::strerror(errno),
-                               "check the folder's permissions");
-        committed_ = true;
-        return Done{};
-    }
-
-private:
-    std::string finalPath_;
-    std::string path_;
-    int slot_ = -1;
-    bool committed_ = false;
-};
-
-Imf::Compression toImf(Compression compression) {
-    switch (compression) {
-        case Compression::None: return Imf::NO_COMPRESSION;
-        case Compression::Rle: return Imf::RLE_COMPRESSION;
-        case Compression::Zips: return Imf::ZIPS_COMPRESSION;
-        case Compression::Zip: return Imf::ZIP_COMPRESSION;
-        case Compression::Piz: return Imf::PIZ_COMPRESSION;
-    }
-    return Imf::ZIP_COMPRESSION;
-}
-
-}  // namespace
-
-void removePendingTemporaryFiles() {
-    for (int i = 0; i < kMaxPending; ++i)
-        if (pendingUsed[i].load()) ::unlink(pendingPath[i]);
-}
-
-Status checkWritable(const std::string& path) {
-    std::error_code ec;
-    const fs::path target(path);
-    if (target.filename().empty()) return cannotWrite(path, "names a folder, not a file", "give an output file name");
-    const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    if (!fs::exists(folder, ec))
-        return cannotWrite(path, "folder " + folder.string() + " does not exist", "create it first");
-    if (!fs::is_directory(folder, ec))
-        return cannotWrite(path, folder.string() + " is not a folder", "choose another output path");
-    if (::access(folder.c_str(), W_OK) != 0)
-        return cannotWrite(path, "folder " + folder.string() + " is not writable", "choose another output folder");
-    struct stat st {};
-    if (::stat(path.c_str(), &st) == 0) {
-        if (S_ISDIR(st.st_mode)) return cannotWrite(path, "is a folder", "give an output file name");
-        // Checked by mode bits too: root passes access(W_OK) on any file, but a read-only output was
-        // made read-only on purpose.
-        if ((st.st_mode & 0222) == 0 || ::access(path.c_str(), W_OK) != 0)
-            return cannotWrite(path, "exists and is read-only", "make it writable or choose another output");
-    }
-    return Done{};
-}
-
-Status writeTiledExr(const std::string& path, const TiledExrContent& content, const ExrWriteOptions& options) {
-    assert(content.width > 0 && content.height > 0 && !content.channelNames.empty() && content.fillRows);
-    if (Status writable = checkWritable(path); !writable) return writable;
-
-    Imf::Header header(content.width, content.height);
-    header.compression() = toImf(options.compression);
-    header.setTileDescription(
-        Imf::TileDescription(options.tileSize, options.tileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
-    for (const std::string& name : content.channelNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    for (const ExrAttribute& a : content.attributes) {
-        if (const auto* s = std::get_if<std::string>(&a.value))
-            header.insert(a.name, Imf::StringAttribute(*s));
-        else
-            header.insert(a.name, Imf::FloatAttribute(std::get<float>(a.value)));
-    }
-
-    TemporaryFile temp(path);
-    try {
-        Imf::TiledOutputFile file(temp.path().c_str(), header);
-        const int channels = static_cast<int>(content.channelNames.size());
-        const size_t texelBytes = sizeof(float) * channels;
-        long long rowsTotal = 0, rowsDone = 0;
-        for (int level = 0; level < file.numLevels(); ++level) rowsTotal += file.levelHeight(level);
-        std::vector<float> band;
-        for (int level = 0; level < file.numLevels(); ++level) {
-            const int w = file.levelWidth(level), h = file.levelHeight(level);
-            band.resize(static_cast<size_t>(w) * options.tileSize * channels);
-            for (int ty = 0; ty < file.numYTiles(level); ++ty) {
-                const int y0 = ty * options.tileSize;
-                const int rows = std::min(options.tileSize, h - y0);
-                content.fillRows(level, y0, rows, band.data());
-                Imf::FrameBuffer frame;
-                for (int c = 0; c < channels; ++c) {
-                    frame.insert(content.channelNames[c],
-                                 Imf::Slice::Make(Imf::FLOAT, band.data() + c, IMATH_NAMESPACE::V2i(0, y0), w, rows,
-                                                  texelBytes, texelBytes * w));
-                }
-                file.setFrameBuffer(frame);
-                // A whole row of tiles per call lets OpenEXR compress them in parallel.
-                file.writeTiles(0, file.numXTiles(level) - 1, ty, ty, level);
-                rowsDone += rows;
-                if (options.progress) options.progress(double(rowsDone) / rowsTotal);
-            }
-        }
-    } catch (const std::exception& e) {
-        return cannotWrite(path, "writing failed: " + firstLine(e.what()), "check free disk space and permissions");
-    }
-    return temp.commit();
 }
 
 }  // namespace heightpack

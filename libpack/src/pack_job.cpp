@@ -55,7 +55,9 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
 
     auto start = std::chrono::steady_clock::now();
     progress("load", 0.0);
-    auto loaded = loadHeightMap(input, options.load);
+    LoadOptions load = options.load;
+    load.threads = options.mip.threads;
+    auto loaded = loadHeightMap(input, load);
     if (!loaded) return loaded.error();
     report.source = loaded->source;
     Image heights = std::move(loaded->heights);
@@ -87,6 +89,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     start = std::chrono::steady_clock::now();
     ExrWriteOptions writeOptions;
     writeOptions.compression = options.compression;
+    writeOptions.threads = options.mip.threads;
     const bool plain = !options.plainOutput.empty();
     writeOptions.progress = [&](double f) { progress("write", plain ? f * 0.8 : f); };
 

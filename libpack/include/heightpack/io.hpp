@@ -28,6 +28,7 @@ struct LoadOptions {
     // also reaches the returned Error. When set, stderr (fd 2) of the whole process is sent to /dev/null
     // while a file is decoded, so a command-line tool keeps its one-line error contract.
     bool silenceDecoderMessages = false;
+    int threads = 0;  // 0 = all cores; the decoded heights do not depend on it
 };
 
 // What the input file held, for reports and metadata.
@@ -39,6 +40,7 @@ struct SourceInfo {
     int height = 0;
     int channels = 0;
     std::string channelUsed;  // the name of the channel the heights came from, or "luma"
+    std::string decoder;      // "heightpack-png" (fast path for grey PNGs) or "openimageio"
 };
 
 struct LoadedHeights {
@@ -78,6 +80,7 @@ struct TiledExrContent {
 struct ExrWriteOptions {
     Compression compression = Compression::Zip;
     int tileSize = 64;
+    int threads = 0;  // for packing and compressing tiles; 0 = all cores; the bytes do not depend on it
     // Called after each row of tiles with the fraction written so far; may be empty.
     std::function<void(double fraction)> progress;
 };

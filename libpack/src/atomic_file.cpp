@@ -1,0 +1,94 @@
+#include "atomic_file.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <mutex>
+
+#include "heightpack/io.hpp"
+
+namespace heightpack {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Paths of temporary files being written, kept in plain arrays so a signal handler can unlink them
+// without allocating or locking.
+constexpr int kMaxPending = 32;
+constexpr size_t kMaxPath = 4096;
+char pendingPath[kMaxPending][kMaxPath];
+std::atomic<bool> pendingUsed[kMaxPending];
+std::mutex pendingMutex;
+
+}  // namespace
+
+void removePendingTemporaryFiles() {
+    for (int i = 0; i < kMaxPending; ++i)
+        if (pendingUsed[i].load()) ::unlink(pendingPath[i]);
+}
+
+Status checkWritable(const std::string& path) {
+    std::error_code ec;
+    const fs::path target(path);
+    if (target.filename().empty()) return cannotWrite(path, "names a folder, not a file", "give an output file name");
+    const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    if (!fs::exists(folder, ec))
+        return cannotWrite(path, "folder " + folder.string() + " does not exist", "create it first");
+    if (!fs::is_directory(folder, ec))
+        return cannotWrite(path, folder.string() + " is not a folder", "choose another output path");
+    if (::access(folder.c_str(), W_OK) != 0)
+        return cannotWrite(path, "folder " + folder.string() + " is not writable", "choose another output folder");
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0) {
+        if (S_ISDIR(st.st_mode)) return cannotWrite(path, "is a folder", "give an output file name");
+        // Checked by mode bits too: root passes access(W_OK) on any file, but a read-only output was
+        // made read-only on purpose.
+        if ((st.st_mode & 0222) == 0 || ::access(path.c_str(), W_OK) != 0)
+            return cannotWrite(path, "exists and is read-only", "make it writable or choose another output");
+    }
+    return Done{};
+}
+
+namespace detail {
+
+TemporaryFile::TemporaryFile(const std::string& finalPath) : finalPath_(finalPath) {
+    static std::atomic<unsigned> counter{0};
+    const fs::path target(finalPath);
+    // Built with append: GCC 12 gives a false -Wrestrict on a chain of operator+ here.
+    std::string name = ".";
+    name.append(target.stem().string()).append(".hptmp-").append(std::to_string(::getpid()));
+    name.append("-").append(std::to_string(counter++)).append(target.extension().string());
+    path_ = (target.parent_path() / name).string();
+    std::lock_guard<std::mutex> lock(pendingMutex);
+    for (int i = 0; i < kMaxPending && path_.size() < kMaxPath; ++i) {
+        if (!pendingUsed[i].load()) {
+            std::memcpy(pendingPath[i], path_.c_str(), path_.size() + 1);
+            pendingUsed[i].store(true);
+            slot_ = i;
+            break;
+        }
+    }
+}
+
+TemporaryFile::~TemporaryFile() {
+    if (!committed_) ::unlink(path_.c_str());
+    if (slot_ >= 0) pendingUsed[slot_].store(false);
+}
+
+Status TemporaryFile::commit() {
+    struct stat st {};
+    if (::stat(finalPath_.c_str(), &st) == 0) ::chmod(path_.c_str(), st.st_mode & 07777);
+    if (::rename(path_.c_str(), finalPath_.c_str()) != 0)
+        return cannotWrite(finalPath_, std::string("cannot move the finished file into place: ") + std::strerror(errno),
+                           "check the folder's permissions");
+    committed_ = true;
+    return Done{};
+}
+
+}  // namespace detail
+}  // namespace heightpack
