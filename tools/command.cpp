@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 namespace heightpack::cli {
@@ -28,6 +31,7 @@ void printError(const Error& error) {
 }
 
 void Command::addCommonOptions(CLI::App& cmd) {
+    name_ = cmd.get_name();
     cmd.add_flag("--json", common_.json, "print one JSON object on stdout instead of text");
     cmd.add_flag("-q,--quiet", common_.quiet, "print nothing but errors");
     cmd.add_option("--threads", common_.threads, "worker threads; 0 = all cores (output is identical either way)")
@@ -37,6 +41,11 @@ void Command::addCommonOptions(CLI::App& cmd) {
 ExitCode Command::fail(const Error& error) const {
     printError(error);
     return exitCodeFor(error.kind);
+}
+
+ExitCode Command::usage(const std::string& what) const {
+    printError({ErrorKind::Internal, {}, what, "see 'heightpack " + name_ + " --help'"});
+    return ExitCode::Usage;
 }
 
 void Command::printJson(const nlohmann::json& document) { std::cout << document.dump(2) << std::endl; }
@@ -70,6 +79,71 @@ std::string humanBytes(unsigned long long bytes) {
     else
         std::snprintf(text, sizeof text, "%llu B", bytes);
     return text;
+}
+
+std::optional<double> parseLength(const std::string& text) {
+    const char* begin = text.c_str();
+    char* end = nullptr;
+    const double value = std::strtod(begin, &end);
+    if (end == begin || !std::isfinite(value) || value <= 0) return std::nullopt;
+    const std::string unit(end);
+    if (unit.empty() || unit == "m") return value;
+    if (unit == "cm") return value / 100;
+    if (unit == "mm") return value / 1000;
+    if (unit == "km") return value * 1000;
+    return std::nullopt;
+}
+
+CLI::Validator lengthValidator() {
+    return CLI::Validator(
+        [](std::string& text) {
+            return parseLength(text) ? std::string() : "'" + text + "' is not a positive length like 8m, 15cm or 2km";
+        },
+        "LENGTH");
+}
+
+CLI::Validator lengthPairValidator() {
+    return CLI::Validator(
+        [](std::string& text) {
+            const auto comma = text.find(',');
+            const bool ok = comma == std::string::npos
+                                ? parseLength(text).has_value()
+                                : parseLength(text.substr(0, comma)) && parseLength(text.substr(comma + 1));
+            return ok ? std::string() : "'" + text + "' is not a positive length like 8m, or a pair like 8m,4m";
+        },
+        "LENGTH[,LENGTH]");
+}
+
+std::optional<std::array<double, 3>> parseColour(const std::string& text) {
+    std::array<double, 3> rgb{};
+    const char* p = text.c_str();
+    for (int i = 0; i < 3; ++i) {
+        char* end = nullptr;
+        rgb[i] = std::strtod(p, &end);
+        if (end == p || !std::isfinite(rgb[i]) || rgb[i] < 0 || rgb[i] > 1) return std::nullopt;
+        p = end;
+        if (i < 2) {
+            if (*p != ',') return std::nullopt;
+            ++p;
+        }
+    }
+    if (*p != '\0') return std::nullopt;
+    return rgb;
+}
+
+CLI::Validator colourValidator() {
+    return CLI::Validator(
+        [](std::string& text) {
+            return parseColour(text) ? std::string() : "'" + text + "' is not a colour r,g,b with each in [0,1]";
+        },
+        "R,G,B");
+}
+
+std::string outputFormat(const std::string& requested, const std::string& output) {
+    std::string ext = std::filesystem::path(output).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string byName = ext == ".png" ? "png8" : ext == ".exr" ? "exr" : "";
+    return requested.empty() || requested == byName ? byName : "";
 }
 
 }  // namespace heightpack::cli

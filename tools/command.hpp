@@ -4,7 +4,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -46,16 +48,21 @@ protected:
     void addCommonOptions(CLI::App& cmd);
     // Prints the error and returns its exit code.
     ExitCode fail(const Error& error) const;
+    // Prints a usage error about this command ("... (see 'heightpack NAME --help')") and returns 2.
+    ExitCode usage(const std::string& what) const;
     // Prints a JSON document on stdout, one object, newline-terminated.
     static void printJson(const nlohmann::json& document);
     // Whether a human-readable summary should go to stdout.
     bool chatty() const { return !common_.quiet && !common_.json; }
 
     CommonOptions common_;
+    std::string name_;  // the subcommand's name, for messages
 };
 
 std::unique_ptr<Command> makePackCommand();
 std::unique_ptr<Command> makeInfoCommand();
+std::unique_ptr<Command> makeNormalCommand();
+std::unique_ptr<Command> makeFresnelCommand();
 
 // A one-line progress display on stderr, shown only on a terminal and never with --quiet.
 class Progress {
@@ -75,5 +82,19 @@ private:
 
 // "1.5 MiB", "312 KiB": a size for people.
 std::string humanBytes(unsigned long long bytes);
+
+// Validators for option values; a bad value is a usage error (exit 2) naming the option.
+// A positive length with an optional unit: "8m", "8" (metres), "15cm", "150mm", "2km".
+std::optional<double> parseLength(const std::string& text);
+CLI::Validator lengthValidator();
+// One or two positive lengths: "8m" or "8m,4m".
+CLI::Validator lengthPairValidator();
+// A linear colour "r,g,b", each in [0,1].
+std::optional<std::array<double, 3>> parseColour(const std::string& text);
+CLI::Validator colourValidator();
+
+// The output format the output's extension says ("exr" for .exr, "png8" for .png), checked against an
+// explicit --format value. Empty when the extension is neither or the two disagree.
+std::string outputFormat(const std::string& requested, const std::string& output);
 
 }  // namespace heightpack::cli

@@ -79,11 +79,10 @@ private:
         std::printf(" %s", channels.c_str());
         if (info.tiled) std::printf(", tiled %dx%d", info.tileWidth, info.tileHeight);
         std::printf("\n");
-        for (const char* key : {"layout", "wrap", "filter", "heightScale", "heightOffset", "texelCentre", "source",
-                                "sourceHash", "version"}) {
-            const std::string v = findAttribute(info, std::string("heightpack:") + key);
-            if (!v.empty()) std::printf("  %-13s %s\n", key, v.c_str());
-        }
+        // Every heightpack attribute, in the order the file lists them.
+        const std::string prefix = "heightpack:";
+        for (const auto& [key, value] : info.attributes)
+            if (key.rfind(prefix, 0) == 0) std::printf("  %-13s %s\n", key.substr(prefix.size()).c_str(), value.c_str());
         // Heights are channel 0 in every layout heightpack writes (R of a packed texel is H(i,j)).
         std::printf("  %-5s %-11s %12s %12s %12s   (channel %s)\n", "level", "size", "min", "max", "mean",
                     top.channels.front().name.c_str());

@@ -28,12 +28,16 @@ int main(int argc, char** argv) {
     app.footer(
         "Examples:\n"
         "  heightpack pack examples/maps/swell.png -o out/swell.exr\n"
+        "  heightpack normal examples/maps/ripple.png --tile-size 8m --height 0.15m -o out/ripple_n.exr\n"
+        "  heightpack fresnel --ior 1.333 -o out/fresnel.exr\n"
         "  heightpack info out/swell.exr\n"
         "Run 'heightpack <command> --help' for a command's options.\n"
         "Exit codes: 0 done, 1 a check failed, 2 usage error, 3 bad input, 4 cannot write output, 70 internal error.\n");
 
     std::vector<std::unique_ptr<Command>> commands;
     commands.push_back(makePackCommand());
+    commands.push_back(makeNormalCommand());
+    commands.push_back(makeFresnelCommand());
     commands.push_back(makeInfoCommand());
     std::vector<CLI::App*> subcommands;
     for (auto& command : commands) subcommands.push_back(command->attach(app));

@@ -46,11 +46,8 @@ public:
     }
 
     ExitCode run() override {
-        if (!std::isfinite(options_.scale) || !std::isfinite(options_.offset)) {
-            std::cerr << "heightpack: error: --scale and --offset must be finite numbers (see 'heightpack pack "
-                         "--help')\n";
-            return ExitCode::Usage;
-        }
+        if (!std::isfinite(options_.scale) || !std::isfinite(options_.offset))
+            return usage("--scale and --offset must be finite numbers");
         options_.load.silenceDecoderMessages = true;  // errors come back in the result, as one line
         options_.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);
         options_.mip.wrap = wrap_ == "clamp" ? Wrap::Clamp : Wrap::Periodic;

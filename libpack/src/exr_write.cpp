@@ -21,6 +21,7 @@
 #include "atomic_file.hpp"
 #include "heightpack/io.hpp"
 #include "heightpack/parallel.hpp"
+#include "strings.hpp"
 
 namespace heightpack {
 
@@ -30,11 +31,6 @@ namespace {
 // (zlib level 4), in about half the CPU time. Fixed, so outputs are reproducible.
 constexpr int kDeflateLevel = 4;
 
-std::string firstLine(std::string text) {
-    const auto end = text.find('\n');
-    if (end != std::string::npos) text.resize(end);
-    return text;
-}
 
 int levelSize(int size, int level) { return std::max(1, size >> level); }
 
@@ -95,7 +91,7 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
     exr_context_t ctxt = nullptr;
     auto fail = [&](const char* step, exr_result_t rv) -> Status {
         const std::string why = errors.last.empty() ? exr_get_default_error_message(rv) : errors.last;
-        return cannotWrite(finalPath, std::string(step) + " failed: " + firstLine(why),
+        return cannotWrite(finalPath, std::string(step) + " failed: " + detail::firstLine(why),
                            "check free disk space and permissions");
     };
     exr_result_t rv = exr_start_write(&ctxt, path.c_str(), EXR_WRITE_FILE_DIRECTLY, &init);
@@ -225,7 +221,7 @@ Status writeWithImf(const std::string& finalPath, const std::string& path, const
             }
         }
     } catch (const std::exception& e) {
-        return cannotWrite(finalPath, "writing failed: " + firstLine(e.what()), "check free disk space and permissions");
+        return cannotWrite(finalPath, "writing failed: " + detail::firstLine(e.what()), "check free disk space and permissions");
     }
     return Done{};
 }

@@ -7,16 +7,12 @@
 #include <limits>
 
 #include "stderr_silencer.hpp"
+#include "strings.hpp"
 
 namespace heightpack {
 
 namespace {
 
-std::string firstLine(std::string text) {
-    const auto end = text.find('\n');
-    if (end != std::string::npos) text.resize(end);
-    return text;
-}
 
 }  // namespace
 
@@ -27,7 +23,7 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) return badInput(path, "cannot be read as an image: " + firstLine(OIIO::geterror()), "check the file");
+    if (!in) return badInput(path, "cannot be read as an image: " + detail::firstLine(OIIO::geterror()), "check the file");
 
     FileInfo info;
     info.path = path;
@@ -46,7 +42,7 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
         const int nch = spec.nchannels;
         pixels.resize(spec.image_pixels() * nch);
         if (!in->read_image(0, mip, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data()))
-            return badInput(path, "level " + std::to_string(mip) + " is damaged: " + firstLine(in->geterror()),
+            return badInput(path, "level " + std::to_string(mip) + " is damaged: " + detail::firstLine(in->geterror()),
                             "write the file again");
         LevelInfo level;
         level.width = spec.width;

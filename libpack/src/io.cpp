@@ -9,6 +9,7 @@
 
 #include "png_fast.hpp"
 #include "stderr_silencer.hpp"
+#include "strings.hpp"
 
 namespace heightpack {
 
@@ -16,12 +17,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string firstLine(std::string text) {
-    const auto end = text.find('\n');
-    if (end != std::string::npos) text.resize(end);
-    while (!text.empty() && (text.back() == ' ' || text.back() == '.')) text.pop_back();
-    return text;
-}
 
 std::string lower(std::string s) {
     for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -66,7 +61,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto in = OIIO::ImageInput::open(path, &config);
     if (!in) {
-        return badInput(path, "cannot be read as an image: " + firstLine(OIIO::geterror()),
+        return badInput(path, "cannot be read as an image: " + detail::firstLine(OIIO::geterror()),
                         "export it as PNG, TIFF or EXR");
     }
     const OIIO::ImageSpec spec = in->spec();
@@ -136,7 +131,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
                         "split or downsize the map");
     }
     if (!in->read_image(0, 0, chBegin, chBegin + chCount, OIIO::TypeDesc::FLOAT, pixels.data())) {
-        return badInput(path, "is damaged or truncated: " + firstLine(in->geterror()),
+        return badInput(path, "is damaged or truncated: " + detail::firstLine(in->geterror()),
                         "export the height map again");
     }
     in->close();

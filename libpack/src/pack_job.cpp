@@ -5,6 +5,7 @@
 
 #include "heightpack/pack.hpp"
 #include "heightpack/parallel.hpp"
+#include "job_steps.hpp"
 
 namespace heightpack {
 
@@ -18,21 +19,11 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 std::vector<ExrAttribute> heightAttributes(std::string_view layout, const PackOptions& options,
                                            const SourceInfo& source, const std::string& sourceHash) {
-    const std::string wrap = wrapName(options.mip.wrap);
-    return {
-        {"heightpack:layout", std::string(layout)},
-        {"heightpack:wrap", wrap},
-        // The standard attribute OpenImageIO's texture system reads for its wrap modes.
-        {"wrapmodes", wrap + "," + wrap},
-        {"heightpack:filter", std::string(filterName(options.mip.filter))},
-        {"heightpack:heightScale", options.scale},
-        {"heightpack:heightOffset", options.offset},
-        {"heightpack:texelCentre", 0.5f},
-        // The file name only: the same input packed from another folder gives the same bytes.
-        {"heightpack:source", std::filesystem::path(source.path).filename().string()},
-        {"heightpack:sourceHash", sourceHash},
-        {"heightpack:version", options.version},
-    };
+    auto attributes =
+        detail::commonAttributes(layout, options.mip.wrap, options.mip.filter, source, sourceHash, options.version);
+    attributes.push_back({"heightpack:heightScale", options.scale});
+    attributes.push_back({"heightpack:heightOffset", options.offset});
+    return attributes;
 }
 
 Result<PackReport> packHeightMap(const std::string& input, const std::string& output, const PackOptions& options) {
@@ -55,29 +46,19 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
 
     auto start = std::chrono::steady_clock::now();
     progress("load", 0.0);
-    LoadOptions load = options.load;
-    load.threads = options.mip.threads;
-    auto loaded = loadHeightMap(input, load);
+    auto loaded = detail::loadInput(input, options.load, options.mip.threads);
     if (!loaded) return loaded.error();
     report.source = loaded->source;
+    report.sourceHash = loaded->hash;
     Image heights = std::move(loaded->heights);
-    report.sourceHash = hashPixels(heights);
     progress("load", 1.0);
     report.loadSeconds = secondsSince(start);
 
     start = std::chrono::steady_clock::now();
     progress("mip", 0.0);
-    if (!isPowerOfTwo(heights.width) || !isPowerOfTwo(heights.height)) {
-        const int w = nextPowerOfTwo(heights.width), h = nextPowerOfTwo(heights.height);
-        if (!options.resizeToPowerOfTwo) {
-            return badInput(input,
-                            "is " + std::to_string(heights.width) + "x" + std::to_string(heights.height) +
-                                ", but mip chains need power-of-two sides",
-                            "pass --resize pow2 to resample it to " + std::to_string(w) + "x" + std::to_string(h));
-        }
-        heights = resample(heights, w, h, options.mip);
-        report.resized = true;
-    }
+    auto resized = detail::ensurePowerOfTwo(heights, input, options.resizeToPowerOfTwo, options.mip);
+    if (!resized) return resized.error();
+    report.resized = *resized;
     if (options.scale != 1.0f || options.offset != 0.0f)
         for (float& v : heights.pixels) v = options.offset + options.scale * v;
     const std::vector<Image> chain = generateMipChain(heights, options.mip);

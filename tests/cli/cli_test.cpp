@@ -1,5 +1,6 @@
 // End-to-end runs of the heightpack binary: exit codes, one-line errors, nothing left behind, --json,
 // byte-identical outputs whatever --threads.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <fcntl.h>
 #include <spawn.h>
@@ -14,7 +15,9 @@
 #include <sstream>
 
 #include "heightpack/io.hpp"
+#include "heightpack/fresnel.hpp"
 #include "heightpack/mip.hpp"
+#include "heightpack/normal.hpp"
 #include "support/test_support.hpp"
 
 extern char** environ;
@@ -214,7 +217,7 @@ TEST(Cli, UsageErrorsExitTwoAndPointAtHelp) {
 }
 
 TEST(Cli, HelpShowsAnExample) {
-    for (const char* command : {"pack", "info"}) {
+    for (const char* command : {"pack", "normal", "fresnel", "info"}) {
         const CliRun run = heightpackRun({command, "--help"});
         EXPECT_EQ(run.code, 0);
         EXPECT_NE(run.out.find("Example"), std::string::npos) << run.out;
@@ -233,4 +236,122 @@ TEST(Cli, ExampleMapsPack) {
         const CliRun run = heightpackRun({"pack", input, "-q", "-o", dir.file(std::string(name) + ".exr")});
         EXPECT_EQ(run.code, 0) << name << ": " << run.err;
     }
+}
+
+TEST(Cli, NormalWritesTheNormalsOfEveryLevel) {
+    ScratchDir dir;
+    writeImage(dir.file("map.png"), makeImage(64, 32, smooth), OIIO::TypeDesc::UINT16);
+    const CliRun run = heightpackRun({"normal", dir.file("map.png"), "--tile-size", "8m", "--height", "15cm",
+                                      "--kernel", "sobel3", "-o", dir.file("n.exr")});
+    ASSERT_EQ(run.code, 0) << run.err;
+
+    auto loaded = loadHeightMap(dir.file("map.png"));
+    ASSERT_TRUE(loaded.ok());
+    NormalOptions o;
+    o.tileWidth = 8.0;
+    o.heightRange = 0.15;
+    o.kernel = SlopeKernel::Sobel3;
+    const auto expected = generateNormalChain(generateMipChain(loaded->heights, Filter::Kaiser), o);
+
+    auto in = OIIO::ImageInput::open(dir.file("n.exr"));
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().nchannels, 3);
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:layout"), "normal");
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:kernel"), "sobel3");
+    EXPECT_FLOAT_EQ(in->spec().get_float_attribute("heightpack:tileHeight"), 4.0f);  // square texels
+    int levels = 0;
+    for (; in->seek_subimage(0, levels); ++levels) {
+        std::vector<float> pixels(expected[levels].pixels.size());
+        ASSERT_TRUE(in->read_image(0, levels, 0, 3, OIIO::TypeDesc::FLOAT, pixels.data()));
+        EXPECT_EQ(pixels, expected[levels].pixels) << "level " << levels;
+    }
+    EXPECT_EQ(levels, 7);
+}
+
+TEST(Cli, NormalPngDirectXFlipsOnlyGreen) {
+    ScratchDir dir;
+    writeImage(dir.file("map.png"), makeImage(64, 64, smooth), OIIO::TypeDesc::UINT16);
+    for (const char* convention : {"opengl", "directx"}) {
+        const CliRun run = heightpackRun({"normal", dir.file("map.png"), "--tile-size", "4m", "--height", "0.5m",
+                                          "--convention", convention, "-o", dir.file(std::string(convention) + ".png")});
+        ASSERT_EQ(run.code, 0) << run.err;
+    }
+    auto read = [&](const std::string& name) {
+        auto in = OIIO::ImageInput::open(dir.file(name));
+        EXPECT_TRUE(in);
+        EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT8);
+        std::vector<unsigned char> px(in->spec().image_pixels() * 3);
+        EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, px.data()));
+        return px;
+    };
+    const auto gl = read("opengl.png"), dx = read("directx.png");
+    ASSERT_EQ(gl.size(), dx.size());
+    for (size_t i = 0; i < gl.size(); i += 3) {
+        ASSERT_EQ(gl[i], dx[i]);
+        ASSERT_LE(std::abs(int(gl[i + 1]) + int(dx[i + 1]) - 255), 1);  // 0.5 + 0.5 g and 0.5 - 0.5 g
+        ASSERT_EQ(gl[i + 2], dx[i + 2]);
+    }
+}
+
+TEST(Cli, FresnelPngHasSrgbColoursAndLinearReflectance) {
+    ScratchDir dir;
+    const CliRun run = heightpackRun({"fresnel", "--ior", "1.333", "--deep", "0.02,0.10,0.16", "--shallow",
+                                      "0.10,0.40,0.45", "--size", "64", "-o", dir.file("f.png")});
+    ASSERT_EQ(run.code, 0) << run.err;
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);  // PNG alpha is unassociated: read the colours as stored
+    auto in = OIIO::ImageInput::open(dir.file("f.png"), &config);
+    ASSERT_TRUE(in);
+    ASSERT_EQ(in->spec().width, 64);
+    ASSERT_EQ(in->spec().height, 1);
+    ASSERT_EQ(in->spec().nchannels, 4);
+    std::vector<unsigned char> px(64 * 4);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, px.data()));
+    auto srgb = [](double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055; };
+    const double deep[3] = {0.02, 0.10, 0.16}, shallow[3] = {0.10, 0.40, 0.45};
+    for (int i = 0; i < 64; ++i) {
+        const double c = (i + 0.5) / 64;
+        for (int ch = 0; ch < 3; ++ch)
+            EXPECT_NEAR(px[4 * i + ch], std::lround(255 * srgb(shallow[ch] + (deep[ch] - shallow[ch]) * c)), 1) << i;
+        EXPECT_NEAR(px[4 * i + 3], std::lround(255 * fresnelReflectance(c, 1.333, FresnelModel::Exact)), 1) << i;
+    }
+}
+
+TEST(Cli, NormalAndFresnelRefuseBadValues) {
+    ScratchDir dir;
+    writeImage(dir.file("map.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    const std::string map = dir.file("map.png"), out = dir.file("out.exr");
+    const std::vector<std::vector<std::string>> usage = {
+        {"normal", map, "--height", "1m", "-o", out},                         // no tile size
+        {"normal", map, "--tile-size", "abc", "--height", "1m", "-o", out},   // not a number
+        {"normal", map, "--tile-size", "0m", "--height", "1m", "-o", out},    // zero
+        {"normal", map, "--tile-size", "-8m", "--height", "1m", "-o", out},   // negative
+        {"normal", map, "--tile-size", "8furlongs", "--height", "1m", "-o", out},
+        {"normal", map, "--tile-size", "8m", "-o", out},                       // no height
+        {"normal", map, "--tile-size", "8m", "--height", "1m", "--height-in-alpha", "--variance-in-alpha", "-o", out},
+        {"normal", map, "--tile-size", "8m", "--height", "1m", "-o", dir.file("out.jpg")},
+        {"fresnel", "--ior", "0.9", "-o", out},
+        {"fresnel", "--ior", "water", "-o", out},
+        {"fresnel", "--deep", "0.1,0.2,1.5", "-o", out},
+        {"fresnel", "--shallow", "0.1,0.2", "-o", out},
+        {"fresnel", "--size", "0", "-o", out},
+        {"fresnel", "--format", "png8", "-o", out},  // .exr named, png8 asked
+    };
+    for (const auto& args : usage) {
+        const CliRun run = heightpackRun(args);
+        EXPECT_EQ(run.code, 2) << args[0] << " " << args[2] << ": " << run.err;
+        expectOneLineError(run, "");
+    }
+    Image nan = makeImage(16, 16, smooth);
+    nan.at(1, 1) = std::numeric_limits<float>::quiet_NaN();
+    writeImage(dir.file("nan.exr"), nan, OIIO::TypeDesc::FLOAT);
+    const CliRun bad = heightpackRun({"normal", dir.file("nan.exr"), "--tile-size", "8m", "--height", "1m", "-o", out});
+    EXPECT_EQ(bad.code, 3);
+    expectOneLineError(bad, dir.file("nan.exr"));
+    const CliRun missing = heightpackRun({"normal", dir.file("nope.png"), "--tile-size", "8m", "--height", "1m", "-o", out});
+    EXPECT_EQ(missing.code, 3);
+    const CliRun noFolder = heightpackRun({"fresnel", "-o", dir.file("no/f.exr")});
+    EXPECT_EQ(noFolder.code, 4);
+    expectOneLineError(noFolder, dir.file("no/f.exr"));
+    EXPECT_EQ(dir.listing(), (std::vector<std::string>{"map.png", "nan.exr"}));
 }

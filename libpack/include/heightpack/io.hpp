@@ -90,6 +90,17 @@ struct ExrWriteOptions {
 // renamed, so a failure or interruption leaves no partial file and any existing file untouched.
 Status writeTiledExr(const std::string& path, const TiledExrContent& content, const ExrWriteOptions& options);
 
+// A flat (single-level, scanline) image file: a PNG, a TIFF, a scanline EXR, chosen by the extension.
+struct FlatImageOptions {
+    int bits = 32;          // 8 or 16 (unsigned integer) or 32 (float)
+    int srgbChannels = 0;   // the first this many channels are linear colours to encode as sRGB (8/16-bit)
+    std::vector<ExrAttribute> attributes;  // metadata, written where the format can hold it
+};
+
+// Writes image (1 to 4 channels: Y, RGB or RGBA) atomically, as writeTiledExr does. Integer formats clamp
+// to [0,1] and round to nearest; alpha is stored unassociated.
+Status writeFlatImage(const std::string& path, const Image& image, const FlatImageOptions& options);
+
 // Checks, before any work, that path can be written: its folder exists and is writable, and an existing
 // file there is not read-only. Fails with CannotWrite naming the problem.
 Status checkWritable(const std::string& path);

@@ -1,0 +1,60 @@
+// Flat image files through OpenImageIO, written to a temporary file and renamed into place.
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "atomic_file.hpp"
+#include "heightpack/io.hpp"
+
+namespace heightpack {
+
+namespace {
+
+// The sRGB transfer function (IEC 61966-2-1), linear [0,1] to encoded [0,1].
+double encodeSrgb(double linear) {
+    const double v = std::clamp(linear, 0.0, 1.0);
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+}
+
+}  // namespace
+
+Status writeFlatImage(const std::string& path, const Image& image, const FlatImageOptions& options) {
+    assert(image.channels >= 1 && image.channels <= 4 && !image.empty());
+    if (Status writable = checkWritable(path); !writable) return writable;
+    detail::TemporaryFile temp(path);
+
+    const OIIO::TypeDesc type = options.bits == 8    ? OIIO::TypeDesc::UINT8
+                                : options.bits == 16 ? OIIO::TypeDesc::UINT16
+                                                     : OIIO::TypeDesc::FLOAT;
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
+    if (image.channels == 1) spec.channelnames = {"Y"};
+    if (image.channels == 4) spec.alpha_channel = 3;
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (options.srgbChannels > 0 && options.bits != 32) spec.attribute("oiio:ColorSpace", "sRGB");
+    for (const ExrAttribute& a : options.attributes) {
+        if (const auto* s = std::get_if<std::string>(&a.value))
+            spec.attribute(a.name, *s);
+        else
+            spec.attribute(a.name, std::get<float>(a.value));
+    }
+
+    std::vector<float> pixels = image.pixels;
+    if (options.bits != 32) {
+        for (size_t i = 0; i < pixels.size(); ++i) {
+            const int channel = static_cast<int>(i % image.channels);
+            double v = pixels[i];
+            if (channel < options.srgbChannels) v = encodeSrgb(v);
+            pixels[i] = static_cast<float>(std::clamp(v, 0.0, 1.0));
+        }
+    }
+
+    auto out = OIIO::ImageOutput::create(temp.path());
+    if (!out) return cannotWrite(path, "no writer for this file type: " + OIIO::geterror(), "use .png, .tif or .exr");
+    if (!out->open(temp.path(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close())
+        return cannotWrite(path, "writing failed: " + out->geterror(), "check free disk space and permissions");
+    out.reset();
+    return temp.commit();
+}
+
+}  // namespace heightpack

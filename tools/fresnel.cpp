@@ -1,0 +1,80 @@
+// heightpack fresnel: the 1D Fresnel / water-colour ramp a water shader indexes by N.V.
+#include <iostream>
+#include <sstream>
+
+#include "command.hpp"
+#include "heightpack/fresnel_job.hpp"
+#include "heightpack/version.hpp"
+
+namespace heightpack::cli {
+
+namespace {
+
+class FresnelCommand final : public Command {
+public:
+    CLI::App* attach(CLI::App& app) override {
+        CLI::App* cmd = app.add_subcommand("fresnel", "make a 1D Fresnel reflectance and water-colour ramp indexed by N.V");
+        cmd->add_option("-o,--output", output_, "ramp to write: .exr (float) or .png (8-bit, sRGB colours)")->required();
+        cmd->add_option("--ior", options_.ior, "index of refraction of the water (air is 1)")
+            ->capture_default_str()
+            ->check(CLI::Range(1.0, 10.0));
+        cmd->add_option("--model", model_, "exact: unpolarised Fresnel equations; schlick: Schlick's approximation")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"exact", "schlick"}));
+        cmd->add_option("--index", index_, "nv: u = N.V; 2nv: u = saturate(2 N.V), as the Isidoro shader indexes it")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"nv", "2nv"}));
+        cmd->add_option("--deep", deep_, "linear colour seen looking straight down")
+            ->capture_default_str()
+            ->check(colourValidator());
+        cmd->add_option("--shallow", shallow_, "linear colour seen at grazing angles")
+            ->capture_default_str()
+            ->check(colourValidator());
+        cmd->add_option("--size", options_.size, "texels in the ramp")->capture_default_str()->check(CLI::Range(2, 65536));
+        cmd->add_option("--format", format_, "exr or png8 (default: from the output's extension)")
+            ->check(CLI::IsMember({"exr", "png8"}));
+        addCommonOptions(*cmd);
+        cmd->footer(
+            "Examples:\n"
+            "  heightpack fresnel --ior 1.333 --deep 0.02,0.10,0.16 --shallow 0.10,0.40,0.45 --size 256 -o out/fresnel.exr\n"
+            "  heightpack fresnel --ior 1.333 --model schlick --format png8 -o fresnel.png\n"
+            "Texel i stands for N.V = (i + 0.5) / size (half that with --index 2nv); rgb = mix(shallow, deep, N.V),\n"
+            "alpha = the reflectance F, so a shader does mix(rgb, reflection, F) with one fetch.\n");
+        return cmd;
+    }
+
+    ExitCode run() override {
+        const std::string format = outputFormat(format_, output_);
+        if (format.empty()) return usage("the output must end in .exr or .png, matching --format if given");
+        options_.model = model_ == "schlick" ? FresnelModel::Schlick : FresnelModel::Exact;
+        options_.index = index_ == "2nv" ? FresnelIndex::TwoNdotV : FresnelIndex::NdotV;
+        options_.deep = *parseColour(deep_);
+        options_.shallow = *parseColour(shallow_);
+        const Status written = writeFresnelRamp(output_, options_, format == "png8" ? RampFormat::Png8 : RampFormat::Exr,
+                                                kVersion);
+        if (!written) return fail(written.error());
+        const double f0 = fresnelReflectance(1.0, options_.ior, options_.model);
+        if (common_.json) {
+            printJson({{"command", "fresnel"}, {"output", output_}, {"format", format}, {"ior", options_.ior},
+                       {"model", model_}, {"index", index_}, {"size", options_.size}, {"deep", options_.deep},
+                       {"shallow", options_.shallow}, {"reflectanceAtNormalIncidence", f0}});
+        } else if (chatty()) {
+            std::ostringstream line;
+            line << "wrote " << output_ << ": " << options_.size << "x1 " << format << ", ior " << options_.ior << ", "
+                 << model_ << ", index " << index_ << ", F(0 deg) = " << std::setprecision(4) << f0;
+            std::cout << line.str() << "\n";
+        }
+        return ExitCode::Ok;
+    }
+
+private:
+    std::string output_, format_;
+    std::string model_ = "exact", index_ = "nv", deep_ = "0.02,0.10,0.16", shallow_ = "0.10,0.40,0.45";
+    FresnelOptions options_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> makeFresnelCommand() { return std::make_unique<FresnelCommand>(); }
+
+}  // namespace heightpack::cli

@@ -1,0 +1,140 @@
+// heightpack normal: a height map in, a tangent-space normal map (mip-mapped EXR or 8-bit PNG) out.
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "command.hpp"
+#include "heightpack/normal_job.hpp"
+#include "heightpack/parallel.hpp"
+#include "heightpack/version.hpp"
+
+namespace heightpack::cli {
+
+namespace {
+
+class NormalCommand final : public Command {
+public:
+    CLI::App* attach(CLI::App& app) override {
+        CLI::App* cmd = app.add_subcommand("normal", "derive a tangent-space normal map from a height map, in world units");
+        cmd->add_option("input", input_, "height map (any format pack reads)")->required();
+        cmd->add_option("-o,--output", output_, "normal map to write: .exr (float, mip-mapped) or .png (8-bit)")
+            ->required();
+        cmd->add_option("--tile-size", tileSize_, "the tile's width in metres, or width,height (square texels if "
+                                                  "only the width is given)")
+            ->required()
+            ->check(lengthPairValidator());
+        cmd->add_option("--height", height_, "how far a stored 1.0 stands above a stored 0.0, in metres (the "
+                                             "viewer's displacement amplitude)")
+            ->required()
+            ->check(lengthValidator());
+        cmd->add_option("--kernel", kernel_, "slope kernel; each measures a plane's slope exactly")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"central", "sobel3", "scharr"}));
+        cmd->add_option("--wrap", wrap_, "periodic: no seam at the tile edge; clamp: one-sided at the border")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"periodic", "clamp"}));
+        cmd->add_option("--filter", filter_, "filter of the height mip chain each level's normals come from")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"box", "triangle", "lanczos3", "kaiser"}));
+        cmd->add_option("--convention", convention_, "opengl: green toward the top of the image; directx: flipped")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"opengl", "directx"}));
+        CLI::Option* heightAlpha = cmd->add_flag("--height-in-alpha", heightInAlpha_,
+                                                 "store the height (stored value) in alpha, as the D3D11 demo does");
+        cmd->add_flag("--variance-in-alpha", varianceInAlpha_,
+                      "store the slope variance each level lost to filtering in alpha (Toksvig-style)")
+            ->excludes(heightAlpha);
+        cmd->add_option("--format", format_, "exr or png8 (default: from the output's extension)")
+            ->check(CLI::IsMember({"exr", "png8"}));
+        cmd->add_option("--compression", compression_, "EXR compression")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"none", "rle", "zips", "zip", "piz"}));
+        cmd->add_option("--channel", channel_, "which channel of a colour image holds the height")
+            ->check(CLI::IsMember({"r", "g", "b", "a", "luma"}));
+        cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two (EXR)")
+            ->check(CLI::IsMember({"none", "pow2"}));
+        addCommonOptions(*cmd);
+        cmd->footer(
+            "Examples:\n"
+            "  heightpack normal examples/maps/ripple.png --tile-size 8m --height 0.15m -o out/ripple_n.exr\n"
+            "  heightpack normal ripple.png --tile-size 8m --height 0.15m --format png8 --convention directx "
+            "-o ripple_n.png\n"
+            "  heightpack normal ripple.png --tile-size 8m --height 0.15m --height-in-alpha -o ripple_nh.exr\n"
+            "Normals are unit xyz in tangent space, z up; the PNG stores 0.5 + 0.5 n.\n");
+        return cmd;
+    }
+
+    ExitCode run() override {
+        const std::string format = outputFormat(format_, output_);
+        if (format.empty()) return usage("the output must end in .exr or .png, matching --format if given");
+        NormalJobOptions o;
+        NormalOptions& n = o.normal;
+        const auto comma = tileSize_.find(',');
+        n.tileWidth = *parseLength(tileSize_.substr(0, comma));
+        n.tileHeight = comma == std::string::npos ? 0.0 : *parseLength(tileSize_.substr(comma + 1));
+        n.heightRange = *parseLength(height_);
+        n.kernel = *parseSlopeKernel(kernel_);
+        n.wrap = wrap_ == "clamp" ? Wrap::Clamp : Wrap::Periodic;
+        n.convention = convention_ == "directx" ? NormalConvention::DirectX : NormalConvention::OpenGL;
+        n.alpha = heightInAlpha_ ? NormalAlpha::Height : varianceInAlpha_ ? NormalAlpha::Variance : NormalAlpha::None;
+        n.threads = common_.threads;
+        if (format == "png8" && varianceInAlpha_)
+            return usage("--variance-in-alpha describes mip levels, which a PNG does not have; write .exr");
+        o.filter = *parseFilter(filter_);
+        o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
+        o.compression = *parseCompression(compression_);
+        o.resizeToPowerOfTwo = resize_ == "pow2";
+        o.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);
+        o.load.silenceDecoderMessages = true;
+        o.version = kVersion;
+        setLibraryThreads(common_.threads);
+
+        Progress progress(!common_.quiet, "normal " + std::filesystem::path(input_).filename().string());
+        o.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
+        auto report = makeNormalMap(input_, output_, o);
+        if (!report) return fail(report.error());
+        const NormalReport& r = *report;
+        if (common_.json) {
+            nlohmann::json levels = nlohmann::json::array();
+            for (size_t i = 0; i < r.levelSizes.size(); ++i)
+                levels.push_back({{"level", i}, {"width", r.levelSizes[i].first}, {"height", r.levelSizes[i].second}});
+            printJson({{"command", "normal"},
+                       {"input", r.input},
+                       {"output", r.output},
+                       {"format", format},
+                       {"tileWidth", n.tileWidth},
+                       {"tileHeight", n.tileHeight > 0 ? n.tileHeight : n.tileWidth * r.levelSizes[0].second /
+                                                                            r.levelSizes[0].first},
+                       {"heightRange", n.heightRange},
+                       {"kernel", kernel_},
+                       {"convention", convention_},
+                       {"wrap", wrap_},
+                       {"sourceHash", r.sourceHash},
+                       {"resized", r.resized},
+                       {"maxSlopeDegrees", r.maxSlopeDegrees},
+                       {"levels", levels},
+                       {"seconds", r.seconds}});
+        } else if (chatty()) {
+            std::ostringstream line;
+            line << "wrote " << r.output << ": " << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " ("
+                 << r.levelSizes.size() << (r.levelSizes.size() == 1 ? " level" : " levels") << "), "
+                 << format << ", tile " << n.tileWidth << " m, height " << n.heightRange << " m, " << kernel_ << ", "
+                 << convention_ << ", steepest " << std::fixed << std::setprecision(1) << r.maxSlopeDegrees
+                 << " deg, " << std::setprecision(2) << r.seconds << " s";
+            std::cout << line.str() << "\n";
+        }
+        return ExitCode::Ok;
+    }
+
+private:
+    std::string input_, output_, tileSize_, height_, channel_, format_;
+    std::string kernel_ = "central", wrap_ = "periodic", filter_ = "kaiser", convention_ = "opengl";
+    std::string compression_ = "zip", resize_ = "none";
+    bool heightInAlpha_ = false, varianceInAlpha_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> makeNormalCommand() { return std::make_unique<NormalCommand>(); }
+
+}  // namespace heightpack::cli
