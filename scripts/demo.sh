@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 bash scripts/install-deps.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DHEIGHTPACK_BUILD_TESTS=OFF -DHEIGHTPACK_BUILD_BENCHMARKS=OFF >/dev/null
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build --target heightpack
 
 mkdir -p out
@@ -15,6 +15,21 @@ for map in examples/maps/*.png; do
   # A picture of level 0 (R = the height) for people without an EXR viewer.
   oiiotool "out/$name.exr" --ch R --ch R,R,R -d uint8 -o "out/${name}_preview.png"
 done
+
+# Normal maps in world units (tile width, and how many metres a stored 1.0 stands above 0.0), and the
+# Fresnel / water-colour ramp the water shader indexes by N.V.
+./build/heightpack normal examples/maps/swell.png --tile-size 256m --height 6m -o out/swell_n.exr
+./build/heightpack normal examples/maps/choppy.png --tile-size 64m --height 1.5m -o out/choppy_n.exr
+./build/heightpack normal examples/maps/ripple.png --tile-size 8m --height 0.05m -o out/ripple_n.exr
+for name in swell choppy ripple; do
+  oiiotool "out/${name}_n.exr" --mulc 0.5 --addc 0.5 -d uint8 -o "out/${name}_n_preview.png"
+done
+./build/heightpack fresnel --ior 1.333 --deep 0.02,0.10,0.16 --shallow 0.10,0.40,0.45 -o out/fresnel.exr
+./build/heightpack fresnel --ior 1.333 --format png8 -o out/fresnel.png
+# The 256x1 ramp stretched into two strips a person can see: the colour, and the reflectance as grey.
+oiiotool out/fresnel.exr --ch R,G,B --resize 256x32 --colorconvert linear sRGB out/fresnel.exr --ch A,A,A \
+  --resize 256x32 --mosaic 1x2 -d uint8 -o out/fresnel_preview.png
+
 echo
 ./build/heightpack info out/swell.exr
 echo
