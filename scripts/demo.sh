@@ -30,6 +30,13 @@ done
 oiiotool out/fresnel.exr --ch R,G,B --resize 256x32 --colorconvert linear sRGB out/fresnel.exr --ch A,A,A \
   --resize 256x32 --mosaic 1x2 -d uint8 -o out/fresnel_preview.png
 
+# Does a map tile? The painting does not (exit 1, a verdict per edge); the periodic + smooth method fixes
+# it; the previews show both tiled 2x2, failing seams marked.
+./build/heightpack check examples/maps/painted_not_tileable.png --preview out/painted_check_before.png || true
+./build/heightpack tile examples/maps/painted_not_tileable.png -o out/painted_tiled.png
+./build/heightpack check out/painted_tiled.png --preview out/painted_check_after.png
+./build/heightpack check examples/maps/swell.png --quiet && echo "examples/maps/swell.png tiles"
+
 echo
 ./build/heightpack info out/swell.exr
 echo

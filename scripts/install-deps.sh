@@ -9,6 +9,7 @@ packages=(
   libopenexr-dev libdeflate-dev                 # writing tiled, mip-mapped EXRs; fast deflate for zip tiles
   libcli11-dev nlohmann-json3-dev               # command line, --json
   libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
+  libopencv-core-dev                            # the DFT behind `tile` (periodic + smooth)
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks
   time                                          # peak memory in tests/bench/bench_pack.sh
 )

@@ -63,6 +63,8 @@ std::unique_ptr<Command> makePackCommand();
 std::unique_ptr<Command> makeInfoCommand();
 std::unique_ptr<Command> makeNormalCommand();
 std::unique_ptr<Command> makeFresnelCommand();
+std::unique_ptr<Command> makeCheckCommand();
+std::unique_ptr<Command> makeTileCommand();
 
 // A one-line progress display on stderr, shown only on a terminal and never with --quiet.
 class Progress {

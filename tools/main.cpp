@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
         "  heightpack pack examples/maps/swell.png -o out/swell.exr\n"
         "  heightpack normal examples/maps/ripple.png --tile-size 8m --height 0.15m -o out/ripple_n.exr\n"
         "  heightpack fresnel --ior 1.333 -o out/fresnel.exr\n"
+        "  heightpack check examples/maps/painted_not_tileable.png --preview out/painted_check.png\n"
+        "  heightpack tile examples/maps/painted_not_tileable.png -o out/painted_tiled.png\n"
         "  heightpack info out/swell.exr\n"
         "Run 'heightpack <command> --help' for a command's options.\n"
         "Exit codes: 0 done, 1 a check failed, 2 usage error, 3 bad input, 4 cannot write output, 70 internal error.\n");
@@ -38,6 +40,8 @@ int main(int argc, char** argv) {
     commands.push_back(makePackCommand());
     commands.push_back(makeNormalCommand());
     commands.push_back(makeFresnelCommand());
+    commands.push_back(makeCheckCommand());
+    commands.push_back(makeTileCommand());
     commands.push_back(makeInfoCommand());
     std::vector<CLI::App*> subcommands;
     for (auto& command : commands) subcommands.push_back(command->attach(app));

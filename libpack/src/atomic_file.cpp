@@ -54,6 +54,15 @@ Status checkWritable(const std::string& path) {
     return Done{};
 }
 
+Status copyFile(const std::string& from, const std::string& to) {
+    if (Status s = checkWritable(to); !s) return s;
+    detail::TemporaryFile temp(to);
+    std::error_code ec;
+    fs::copy_file(from, temp.path(), fs::copy_options::overwrite_existing, ec);
+    if (ec) return cannotWrite(to, "copying " + from + " failed: " + ec.message(), "check free disk space");
+    return temp.commit();
+}
+
 namespace detail {
 
 TemporaryFile::TemporaryFile(const std::string& finalPath) : finalPath_(finalPath) {

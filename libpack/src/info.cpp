@@ -11,12 +11,7 @@
 
 namespace heightpack {
 
-namespace {
-
-
-}  // namespace
-
-Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages) {
+Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoderMessages) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return badInput(path, "no such file", "check the path");
     detail::StderrSilencer quiet(silenceDecoderMessages);
@@ -25,40 +20,55 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
     auto in = OIIO::ImageInput::open(path, &config);
     if (!in) return badInput(path, "cannot be read as an image: " + detail::firstLine(OIIO::geterror()), "check the file");
 
-    FileInfo info;
-    info.path = path;
-    info.format = in->format_name();
+    TextureFile file;
+    file.path = path;
+    file.format = in->format_name();
     const OIIO::ImageSpec& top = in->spec();
-    info.pixelType = top.format.c_str();
-    info.channelNames = top.channelnames;
-    info.tiled = top.tile_width > 0;
-    info.tileWidth = top.tile_width;
-    info.tileHeight = top.tile_height;
-    for (const OIIO::ParamValue& p : top.extra_attribs) info.attributes.emplace_back(p.name().string(), p.get_string());
-
-    std::vector<float> pixels;
+    file.pixelType = top.format.c_str();
+    file.channelNames = top.channelnames;
+    file.tiled = top.tile_width > 0;
+    file.tileWidth = top.tile_width;
+    file.tileHeight = top.tile_height;
+    for (const OIIO::ParamValue& p : top.extra_attribs) file.attributes.emplace_back(p.name().string(), p.get_string());
     for (int mip = 0; in->seek_subimage(0, mip); ++mip) {
         const OIIO::ImageSpec spec = in->spec();
-        const int nch = spec.nchannels;
-        pixels.resize(spec.image_pixels() * nch);
-        if (!in->read_image(0, mip, 0, nch, OIIO::TypeDesc::FLOAT, pixels.data()))
+        Image level(spec.width, spec.height, spec.nchannels);
+        if (!in->read_image(0, mip, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, level.pixels.data()))
             return badInput(path, "level " + std::to_string(mip) + " is damaged: " + detail::firstLine(in->geterror()),
                             "write the file again");
+        file.levels.push_back(std::move(level));
+    }
+    return file;
+}
+
+Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages) {
+    auto file = readTextureFile(path, silenceDecoderMessages);
+    if (!file) return file.error();
+    FileInfo info;
+    info.path = file->path;
+    info.format = file->format;
+    info.pixelType = file->pixelType;
+    info.channelNames = file->channelNames;
+    info.tiled = file->tiled;
+    info.tileWidth = file->tileWidth;
+    info.tileHeight = file->tileHeight;
+    info.attributes = file->attributes;
+    for (const Image& image : file->levels) {
         LevelInfo level;
-        level.width = spec.width;
-        level.height = spec.height;
-        for (int c = 0; c < nch; ++c) {
+        level.width = image.width;
+        level.height = image.height;
+        for (int c = 0; c < image.channels; ++c) {
             ChannelStats stats;
-            stats.name = spec.channelnames[c];
+            stats.name = c < int(file->channelNames.size()) ? file->channelNames[c] : std::to_string(c);
             stats.min = std::numeric_limits<double>::infinity();
             stats.max = -stats.min;
             double sum = 0.0;
-            for (size_t i = c; i < pixels.size(); i += nch) {
-                stats.min = std::min<double>(stats.min, pixels[i]);
-                stats.max = std::max<double>(stats.max, pixels[i]);
-                sum += pixels[i];
+            for (size_t i = c; i < image.pixels.size(); i += image.channels) {
+                stats.min = std::min<double>(stats.min, image.pixels[i]);
+                stats.max = std::max<double>(stats.max, image.pixels[i]);
+                sum += image.pixels[i];
             }
-            stats.mean = sum / double(spec.image_pixels());
+            stats.mean = sum / double(image.texelCount());
             level.channels.push_back(stats);
         }
         info.levels.push_back(std::move(level));
@@ -66,8 +76,8 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
     return info;
 }
 
-std::string findAttribute(const FileInfo& info, const std::string& name) {
-    for (const auto& [key, value] : info.attributes)
+std::string findAttribute(const Attributes& attributes, const std::string& name) {
+    for (const auto& [key, value] : attributes)
         if (key == name) return value;
     return {};
 }

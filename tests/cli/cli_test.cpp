@@ -217,7 +217,7 @@ TEST(Cli, UsageErrorsExitTwoAndPointAtHelp) {
 }
 
 TEST(Cli, HelpShowsAnExample) {
-    for (const char* command : {"pack", "normal", "fresnel", "info"}) {
+    for (const char* command : {"pack", "normal", "fresnel", "check", "tile", "info"}) {
         const CliRun run = heightpackRun({command, "--help"});
         EXPECT_EQ(run.code, 0);
         EXPECT_NE(run.out.find("Example"), std::string::npos) << run.out;
@@ -354,4 +354,88 @@ TEST(Cli, NormalAndFresnelRefuseBadValues) {
     EXPECT_EQ(noFolder.code, 4);
     expectOneLineError(noFolder, dir.file("no/f.exr"));
     EXPECT_EQ(dir.listing(), (std::vector<std::string>{"map.png", "nan.exr"}));
+}
+
+TEST(Cli, CheckGivesAVerdictPerEdgeAndExitsOneOnASeam) {
+    ScratchDir dir;
+    const std::string painted = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/painted_not_tileable.png";
+    const std::string swell = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/swell.png";
+    const CliRun bad = heightpackRun({"check", painted, "--preview", dir.file("painted_check.png")});
+    EXPECT_EQ(bad.code, 1) << bad.err;
+    EXPECT_NE(bad.out.find("does NOT tile"), std::string::npos) << bad.out;
+    EXPECT_NE(bad.out.find("left/right edges: SEAM"), std::string::npos) << bad.out;
+    EXPECT_NE(bad.out.find("top/bottom edges: SEAM"), std::string::npos) << bad.out;
+    auto preview = OIIO::ImageInput::open(dir.file("painted_check.png"));
+    ASSERT_TRUE(preview);
+    EXPECT_EQ(preview->spec().width, 1024);  // 2 x 512, the documented 512..1024
+    EXPECT_EQ(preview->spec().height, 1024);
+
+    const CliRun good = heightpackRun({"check", swell, "--json"});
+    EXPECT_EQ(good.code, 0) << good.err;
+    const auto j = nlohmann::json::parse(good.out);
+    EXPECT_EQ(j["tiles"], true);
+    EXPECT_EQ(j["levels"].size(), 10u);
+    EXPECT_EQ(j["levels"][0]["leftRight"]["pass"], true);
+    EXPECT_LT(j["worst"]["leftRight"]["value"].get<double>(), 1.5);
+
+    // A packed texture is checked level by level as stored, and its packing verified.
+    ASSERT_EQ(heightpackRun({"pack", swell, "-q", "-o", dir.file("swell.exr")}).code, 0);
+    const CliRun packed = heightpackRun({"check", dir.file("swell.exr"), "--json"});
+    EXPECT_EQ(packed.code, 0) << packed.err;
+    const auto p = nlohmann::json::parse(packed.out);
+    EXPECT_EQ(p["kind"], "neighbour4");
+    EXPECT_EQ(p["packing"]["consistent"], true);
+}
+
+TEST(Cli, TileMakesThePaintingTileAndLeavesATilingMapAlone) {
+    ScratchDir dir;
+    const std::string painted = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/painted_not_tileable.png";
+    const std::string swell = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/swell.png";
+    for (const std::vector<std::string>& method :
+         {std::vector<std::string>{}, {"--method", "crossfade", "--width", "0.25"}}) {
+        std::vector<std::string> args = {"tile", painted, "-o", dir.file("tiled.png")};
+        args.insert(args.end(), method.begin(), method.end());
+        const CliRun tile = heightpackRun(args);
+        ASSERT_EQ(tile.code, 0) << tile.err;
+        const CliRun check = heightpackRun({"check", dir.file("tiled.png")});
+        EXPECT_EQ(check.code, 0) << check.out;
+        auto in = OIIO::ImageInput::open(dir.file("tiled.png"));
+        ASSERT_TRUE(in);
+        EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT8);  // the input's depth
+        EXPECT_EQ(in->spec().get_string_attribute("heightpack:tileMethod"), method.empty() ? "periodic" : "crossfade");
+    }
+
+    const CliRun already = heightpackRun({"tile", swell, "-o", dir.file("swell.png")});
+    EXPECT_EQ(already.code, 0) << already.err;
+    EXPECT_NE(already.out.find("already tiles"), std::string::npos) << already.out;
+    EXPECT_EQ(readBytes(dir.file("swell.png")), readBytes(swell));
+    const CliRun forced = heightpackRun({"tile", swell, "--force", "-o", dir.file("forced.png")});
+    EXPECT_EQ(forced.code, 0) << forced.err;
+    EXPECT_NE(readBytes(dir.file("forced.png")), readBytes(swell));
+
+    const CliRun mirror = heightpackRun({"tile", painted, "--method", "mirror", "--json", "-o", dir.file("m.png")});
+    ASSERT_EQ(mirror.code, 0) << mirror.err;
+    EXPECT_EQ(nlohmann::json::parse(mirror.out)["width"], 1024);
+}
+
+TEST(Cli, CheckAndTileRefuseBadInput) {
+    ScratchDir dir;
+    writeImage(dir.file("map.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    const std::string map = dir.file("map.png");
+    for (const char* width : {"0", "0.7", "-0.1", "wide"}) {
+        const CliRun run = heightpackRun({"tile", map, "--method", "crossfade", "--width", width, "-o", dir.file("o.png")});
+        EXPECT_EQ(run.code, 2) << width << ": " << run.err;
+        expectOneLineError(run, "");
+    }
+    const CliRun widthAlone = heightpackRun({"tile", map, "--width", "0.2", "-o", dir.file("o.png")});
+    EXPECT_EQ(widthAlone.code, 2);
+    EXPECT_EQ(heightpackRun({"check", map, "--threshold", "0.5"}).code, 2);
+    const CliRun missing = heightpackRun({"check", dir.file("nope.png")});
+    EXPECT_EQ(missing.code, 3);
+    expectOneLineError(missing, dir.file("nope.png"));
+    writeBytes(dir.file("text.png"), {'h', 'i'});
+    EXPECT_EQ(heightpackRun({"tile", dir.file("text.png"), "-o", dir.file("o.png")}).code, 3);
+    EXPECT_EQ(heightpackRun({"tile", map, "--force", "-o", dir.file("no/o.png")}).code, 4);
+    EXPECT_EQ(heightpackRun({"check", map, "--preview", dir.file("no/p.png")}).code, 4);
+    EXPECT_EQ(dir.listing(), (std::vector<std::string>{"map.png", "text.png"}));
 }

@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "heightpack/image.hpp"
 #include "heightpack/result.hpp"
 
 namespace heightpack {
@@ -34,11 +35,32 @@ struct FileInfo {
     std::vector<std::pair<std::string, std::string>> attributes;  // header metadata, as text
 };
 
-// Reads every level of the image at path through OpenImageIO and computes per-channel statistics.
-// Fails with BadInput when the file cannot be read. silenceDecoderMessages: see LoadOptions.
+using Attributes = std::vector<std::pair<std::string, std::string>>;
+
+// Every level of a texture file as float images, all channels, with the header.
+struct TextureFile {
+    std::string path;
+    std::string format;     // OpenImageIO's format name
+    std::string pixelType;  // of the file's channels: "float", "half", "uint16", ...
+    std::vector<std::string> channelNames;
+    bool tiled = false;
+    int tileWidth = 0;
+    int tileHeight = 0;
+    std::vector<Image> levels;  // level 0 first; one entry for a file without mip levels
+    Attributes attributes;      // header metadata, as text
+};
+
+// Reads every level of the image at path through OpenImageIO. Fails with BadInput when the file cannot
+// be read. silenceDecoderMessages: see LoadOptions.
+Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoderMessages = false);
+
+// readTextureFile, summarised: per-level, per-channel statistics instead of pixels.
 Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages = false);
 
 // The value of the attribute called name, or empty.
-std::string findAttribute(const FileInfo& info, const std::string& name);
+std::string findAttribute(const Attributes& attributes, const std::string& name);
+inline std::string findAttribute(const FileInfo& info, const std::string& name) {
+    return findAttribute(info.attributes, name);
+}
 
 }  // namespace heightpack

@@ -101,6 +101,9 @@ struct FlatImageOptions {
 // to [0,1] and round to nearest; alpha is stored unassociated.
 Status writeFlatImage(const std::string& path, const Image& image, const FlatImageOptions& options);
 
+// Copies the file at from to to, atomically (to appears whole or not at all).
+Status copyFile(const std::string& from, const std::string& to);
+
 // Checks, before any work, that path can be written: its folder exists and is writable, and an existing
 // file there is not read-only. Fails with CannotWrite naming the problem.
 Status checkWritable(const std::string& path);

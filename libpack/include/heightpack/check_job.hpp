@@ -1,0 +1,38 @@
+// The whole `check` operation: does a map, or a texture heightpack wrote, tile at every mip level?
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heightpack/io.hpp"
+#include "heightpack/mip.hpp"
+#include "heightpack/result.hpp"
+#include "heightpack/tileable.hpp"
+
+namespace heightpack {
+
+struct CheckOptions {
+    LoadOptions load;
+    MipOptions mip;  // the chain `pack` would make from a flat image (a texture's own levels are used as they are)
+    double threshold = kDefaultSeamThreshold;
+    std::string previewPath;  // write the 2x2 seam preview PNG here, if not empty
+};
+
+struct CheckReport {
+    std::string input;
+    std::string kind;   // "image" (levels made as pack would), "neighbour4", "plain", "normal" or "texture"
+    std::string note;   // e.g. why only level 0 was scored
+    double threshold = kDefaultSeamThreshold;
+    std::vector<LevelSeams> levels;
+    LevelSeams worst;  // per edge pair, the highest scores over the measured levels
+    std::optional<PackingCheck> packing;  // for neighbour4 textures
+    bool tiles = true;  // every measured level passes (and the packing is consistent)
+};
+
+// Scores the seams of the file at path at every level. A flat image gets the mip chain pack would make;
+// an EXR with mip levels is scored level by level as stored, on its first channel (the height R of a
+// packed texel). Fails only when the file cannot be read or the preview cannot be written.
+Result<CheckReport> checkFile(const std::string& path, const CheckOptions& options);
+
+}  // namespace heightpack

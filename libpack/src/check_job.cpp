@@ -1,0 +1,85 @@
+#include "heightpack/check_job.hpp"
+
+#include <algorithm>
+
+#include "heightpack/info.hpp"
+#include "job_steps.hpp"
+
+namespace heightpack {
+
+namespace {
+
+Image channelZero(const Image& image) {
+    if (image.channels == 1) return image;
+    Image out(image.width, image.height, 1);
+    for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = image.pixels[i * image.channels];
+    return out;
+}
+
+void keepWorst(SeamScore& worst, const SeamScore& s) {
+    if (!s.measured) return;
+    if (!worst.measured) {
+        worst = s;
+        return;
+    }
+    worst.value = std::max(worst.value, s.value);
+    worst.slope = std::max(worst.slope, s.slope);
+}
+
+}  // namespace
+
+Result<CheckReport> checkFile(const std::string& path, const CheckOptions& options) {
+    if (!options.previewPath.empty())
+        if (Status s = checkWritable(options.previewPath); !s) return s.error();
+    CheckReport report;
+    report.input = path;
+    report.threshold = options.threshold;
+
+    // A texture with mip levels is checked as stored; anything else gets the chain pack would make.
+    std::vector<Image> chain;
+    auto texture = readTextureFile(path, options.load.silenceDecoderMessages);
+    if (texture && texture->levels.size() > 1) {
+        const std::string layout = findAttribute(texture->attributes, "heightpack:layout");
+        report.kind = layout.empty() ? "texture" : layout;
+        if (layout == "neighbour4" && texture->levels[0].channels == 4) {
+            const Wrap wrap = findAttribute(texture->attributes, "heightpack:wrap") == "clamp" ? Wrap::Clamp : Wrap::Periodic;
+            report.packing = checkPacking(texture->levels, wrap);
+        }
+        for (const Image& level : texture->levels) chain.push_back(channelZero(level));
+    } else {
+        auto loaded = detail::loadInput(path, options.load, options.mip.threads);
+        if (!loaded) return loaded.error();
+        report.kind = "image";
+        if (isPowerOfTwo(loaded->heights.width) && isPowerOfTwo(loaded->heights.height)) {
+            chain = generateMipChain(loaded->heights, options.mip);
+        } else {
+            report.note = "sides are not powers of two: level 0 only (pack would need --resize pow2)";
+            chain.push_back(std::move(loaded->heights));
+        }
+    }
+
+    for (const Image& level : chain) {
+        report.levels.push_back(measureSeams(level));
+        const LevelSeams& s = report.levels.back();
+        keepWorst(report.worst.leftRight, s.leftRight);
+        keepWorst(report.worst.topBottom, s.topBottom);
+        report.tiles = report.tiles && levelTiles(s, options.threshold);
+    }
+    report.worst.width = chain[0].width;
+    report.worst.height = chain[0].height;
+    if (report.packing && !report.packing->consistent) report.tiles = false;
+
+    if (!options.previewPath.empty()) {
+        FlatImageOptions flat;
+        flat.bits = 8;
+        flat.attributes = {{"heightpack:layout", std::string("seamPreview")},
+                           {"heightpack:source", path},
+                           {"heightpack:threshold", static_cast<float>(options.threshold)}};
+        if (Status s = writeFlatImage(options.previewPath, seamPreview(chain[0], report.worst, options.threshold), flat);
+            !s)
+            return s.error();
+    }
+    return report;
+}
+
+}  // namespace heightpack

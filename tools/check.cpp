@@ -1,0 +1,132 @@
+// heightpack check: does a map tile, at every mip level? Exit 0 when it does, 1 when it does not.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "command.hpp"
+#include "heightpack/check_job.hpp"
+#include "heightpack/parallel.hpp"
+
+namespace heightpack::cli {
+
+namespace {
+
+std::string scoreText(double v) {
+    if (std::isinf(v)) return "inf";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", v);
+    return text;
+}
+
+nlohmann::json scoreJson(const SeamScore& s, double threshold) {
+    if (!s.measured) return {{"measured", false}};
+    auto number = [](double v) { return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v); };
+    return {{"measured", true}, {"value", number(s.value)}, {"slope", number(s.slope)},
+            {"pass", seamPasses(s, threshold)}};
+}
+
+class CheckCommand final : public Command {
+public:
+    CLI::App* attach(CLI::App& app) override {
+        CLI::App* cmd = app.add_subcommand("check", "tell whether a height map tiles, per edge and mip level (exit 1 if not)");
+        cmd->add_option("input", input_, "a height map, or a texture heightpack wrote (packed, plain, normal)")->required();
+        cmd->add_option("--threshold", options_.threshold,
+                        "largest seam score that passes: boundary differences over the interior's median column")
+            ->capture_default_str()
+            ->check(CLI::Range(1.0, 1e6));
+        cmd->add_option("--preview", options_.previewPath, "write a PNG of the map tiled 2x2 with failing seams marked");
+        cmd->add_option("--wrap", wrap_, "wrap of the mip chain made from a flat image, as pack would")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"periodic", "clamp"}));
+        cmd->add_option("--filter", filter_, "filter of that chain")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"box", "triangle", "lanczos3", "kaiser"}));
+        cmd->add_option("--channel", channel_, "which channel of a colour image holds the height")
+            ->check(CLI::IsMember({"r", "g", "b", "a", "luma"}));
+        addCommonOptions(*cmd);
+        cmd->footer(
+            "Examples:\n"
+            "  heightpack check examples/maps/painted_not_tileable.png\n"
+            "  heightpack check examples/maps/swell.png --json\n"
+            "  heightpack check swell.png --preview out/swell_check.png\n"
+            "  heightpack check out/swell.exr\n"
+            "Scores are about 1 where the tile edge is like any other place; value compares jumps in height,\n"
+            "slope compares kinks. Exit codes: 0 tiles, 1 does not, 2 usage, 3 bad input, 4 cannot write.\n");
+        return cmd;
+    }
+
+    ExitCode run() override {
+        options_.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);
+        options_.load.silenceDecoderMessages = true;
+        options_.mip.wrap = wrap_ == "clamp" ? Wrap::Clamp : Wrap::Periodic;
+        options_.mip.filter = *parseFilter(filter_);
+        options_.mip.threads = common_.threads;
+        setLibraryThreads(common_.threads);
+        auto report = checkFile(input_, options_);
+        if (!report) return fail(report.error());
+        const CheckReport& r = *report;
+        const double t = r.threshold;
+        if (common_.json) {
+            nlohmann::json levels = nlohmann::json::array();
+            for (size_t i = 0; i < r.levels.size(); ++i)
+                levels.push_back({{"level", i}, {"width", r.levels[i].width}, {"height", r.levels[i].height},
+                                  {"leftRight", scoreJson(r.levels[i].leftRight, t)},
+                                  {"topBottom", scoreJson(r.levels[i].topBottom, t)},
+                                  {"pass", levelTiles(r.levels[i], t)}});
+            nlohmann::json doc = {{"command", "check"}, {"input", r.input}, {"kind", r.kind}, {"tiles", r.tiles},
+                                  {"threshold", t}, {"levels", levels},
+                                  {"worst", {{"leftRight", scoreJson(r.worst.leftRight, t)},
+                                             {"topBottom", scoreJson(r.worst.topBottom, t)}}}};
+            if (!r.note.empty()) doc["note"] = r.note;
+            if (r.packing)
+                doc["packing"] = {{"consistent", r.packing->consistent}, {"maxError", r.packing->maxError},
+                                  {"firstBadLevel", r.packing->firstBadLevel}};
+            if (!options_.previewPath.empty()) doc["preview"] = options_.previewPath;
+            printJson(doc);
+        } else if (!common_.quiet) {
+            printText(r);
+        }
+        return r.tiles ? ExitCode::Ok : ExitCode::CheckFailed;
+    }
+
+private:
+    void printText(const CheckReport& r) const {
+        const double t = r.threshold;
+        std::printf("%s: %s (threshold %.2f; scores near 1 are like the interior)\n", r.input.c_str(),
+                    r.tiles ? "tiles" : "does NOT tile", t);
+        if (!r.note.empty()) std::printf("  note: %s\n", r.note.c_str());
+        std::printf("  %-5s %-11s %-26s %-26s\n", "level", "size", "left/right value  slope", "top/bottom value  slope");
+        auto cell = [&](const SeamScore& s) {
+            if (!s.measured) return std::string("(too small)");
+            std::string text = scoreText(s.value) + " / " + scoreText(s.slope);
+            return text + (seamPasses(s, t) ? "" : "  FAIL");
+        };
+        for (size_t i = 0; i < r.levels.size(); ++i) {
+            const LevelSeams& l = r.levels[i];
+            const std::string size = std::to_string(l.width) + "x" + std::to_string(l.height);
+            std::printf("  %-5zu %-11s %-26s %-26s\n", i, size.c_str(), cell(l.leftRight).c_str(), cell(l.topBottom).c_str());
+        }
+        auto verdict = [&](const char* name, const SeamScore& s) {
+            if (!s.measured) return std::printf("  %s: not measured (map too small)\n", name), void();
+            if (seamPasses(s, t)) return std::printf("  %s: tiles\n", name), void();
+            std::printf("  %s: SEAM: %s\n", name,
+                        s.value > t ? ("heights jump " + scoreText(s.value) + "x the interior's typical step").c_str()
+                                    : ("slopes break " + scoreText(s.slope) + "x the interior's typical bend").c_str());
+        };
+        verdict("left/right edges", r.worst.leftRight);
+        verdict("top/bottom edges", r.worst.topBottom);
+        if (r.packing)
+            std::printf("  packing: %s (largest difference %.3g)\n", r.packing->consistent ? "consistent" : "INCONSISTENT",
+                        r.packing->maxError);
+        if (!options_.previewPath.empty()) std::printf("  preview: %s\n", options_.previewPath.c_str());
+    }
+
+    std::string input_, channel_, wrap_ = "periodic", filter_ = "kaiser";
+    CheckOptions options_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> makeCheckCommand() { return std::make_unique<CheckCommand>(); }
+
+}  // namespace heightpack::cli
