@@ -1,0 +1,197 @@
+#include "app.hpp"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "heightpack/io.hpp"
+#include "panel.hpp"
+
+namespace heightpack::view {
+
+namespace {
+
+void onGlfwError(int code, const char* description) { std::fprintf(stderr, "heightpack-view: GLFW error %d: %s\n", code, description); }
+
+int fail(const std::string& what, const std::string& hint, int code = 70) {
+    std::fprintf(stderr, "heightpack: error: %s (%s)\n", what.c_str(), hint.c_str());
+    return code;
+}
+
+// Where the ray through a window pixel meets the water plane, if it does.
+bool pickWater(const Camera& camera, double x, double y, int width, int height, float level, glm::vec2& hit) {
+    const glm::mat4 inverse = glm::inverse(camera.projection(float(width) / height) * camera.view());
+    const glm::vec2 ndc(2.0 * x / width - 1.0, 1.0 - 2.0 * y / height);
+    glm::vec4 a = inverse * glm::vec4(ndc, -1.0f, 1.0f), b = inverse * glm::vec4(ndc, 1.0f, 1.0f);
+    const glm::vec3 from = glm::vec3(a) / a.w, to = glm::vec3(b) / b.w, dir = to - from;
+    if (std::abs(dir.z) < 1e-6f) return false;
+    const float t = (level - from.z) / dir.z;
+    if (t <= 0.0f) return false;
+    hit = glm::vec2(from + dir * t);
+    return true;
+}
+
+int renderOffscreen(ViewerOptions& o, Renderer& renderer) {
+    RenderTarget target;
+    if (!target.create(o.width, o.height, GL_RGBA8)) return fail("cannot create a " + std::to_string(o.width) + "x" +
+                                                                     std::to_string(o.height) + " render target", "try a smaller --size");
+    const float time = o.time.value_or(0.0f);
+    if (o.bench > 0) {
+        PassTimes total;
+        renderer.render(o.camera, o.settings, time, o.width, o.height, target.framebuffer, true);  // warm up
+        for (int i = 0; i < o.bench; ++i) {
+            renderer.render(o.camera, o.settings, time + i / 60.0f, o.width, o.height, target.framebuffer, true);
+            total.water += renderer.times().water;
+            total.combine += renderer.times().combine;
+            total.tiled += renderer.times().tiled;
+        }
+        const double n = o.bench;
+        const long long vertices = renderer.times().vertices;
+        if (o.json)
+            std::printf("{\"frames\": %d, \"waterMs\": %.4f, \"combineMs\": %.4f, \"tiledMs\": %.4f, \"vertices\": %lld, "
+                        "\"renderer\": \"%s\"}\n",
+                        o.bench, total.water / n, total.combine / n, total.tiled / n, vertices,
+                        reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+        else
+            std::printf("%d frames at %dx%d on %s: water pass %.3f ms, combine pass %.3f ms, tiled view %.3f ms, %lld grid "
+                        "vertices\n",
+                        o.bench, o.width, o.height, reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+                        total.water / n, total.combine / n, total.tiled / n, vertices);
+    }
+    if (!o.screenshot.empty()) {
+        renderer.render(o.camera, o.settings, time, o.width, o.height, target.framebuffer, false);
+        const std::vector<unsigned char> rgb = target.readRgb();
+        Image image(o.width, o.height, 3);
+        for (size_t i = 0; i < rgb.size(); ++i) image.pixels[i] = rgb[i] / 255.0f;
+        FlatImageOptions flat;
+        flat.bits = 8;
+        flat.attributes = {{"heightpack:layout", std::string("screenshot")}, {"heightpack:time", time}};
+        const Status written = writeFlatImage(o.screenshot, image, flat);
+        target.destroy();
+        if (!written)
+            return fail(written.error().path + ": " + written.error().what, written.error().hint, 4);
+        if (!o.json && o.bench == 0) std::printf("wrote %s: %dx%d at t = %.2f s\n", o.screenshot.c_str(), o.width, o.height, time);
+    }
+    target.destroy();
+    return 0;
+}
+
+int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& renderer) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 330");
+    PanelState panel;
+    float time = o.time.value_or(0.0f);
+    auto last = std::chrono::steady_clock::now();
+    auto lastCheck = last;
+    auto watched = fileTimes(o.files);
+    double mouseX = 0, mouseY = 0;
+    glfwGetCursorPos(window, &mouseX, &mouseY);
+    bool explodeKeyWasDown = false;
+    while (!glfwWindowShouldClose(window)) {
+        glfwPollEvents();
+        const auto now = std::chrono::steady_clock::now();
+        const float dt = std::chrono::duration<float>(now - last).count();
+        last = now;
+        if (!panel.paused) time += dt * panel.timeScale;
+
+        // Reload what changed on disk: an artist saves, the water changes.
+        if (now - lastCheck > std::chrono::milliseconds(500)) {
+            lastCheck = now;
+            const auto current = fileTimes(o.files);
+            if (current != watched) {
+                watched = current;
+                auto reloaded = loadScene(o.files);
+                if (reloaded) {
+                    scene = std::move(*reloaded);
+                    renderer.upload(scene);
+                    std::fprintf(stderr, "heightpack-view: reloaded\n");
+                } else {
+                    std::fprintf(stderr, "heightpack-view: not reloaded: %s: %s\n", reloaded.error().path.c_str(),
+                                 reloaded.error().what.c_str());
+                }
+            }
+        }
+
+        const ImGuiIO& io = ImGui::GetIO();
+        double x = 0, y = 0;
+        glfwGetCursorPos(window, &x, &y);
+        int width = 0, height = 0;
+        glfwGetFramebufferSize(window, &width, &height);
+        if (!io.WantCaptureKeyboard) {
+            auto key = [&](int k) { return glfwGetKey(window, k) == GLFW_PRESS ? 1.0f : 0.0f; };
+            o.camera.fly({key(GLFW_KEY_W) - key(GLFW_KEY_S), key(GLFW_KEY_D) - key(GLFW_KEY_A),
+                          key(GLFW_KEY_SPACE) - key(GLFW_KEY_LEFT_CONTROL)},
+                         dt);
+            if (glfwGetKey(window, GLFW_KEY_F1) == GLFW_PRESS) panel.showPanel = !panel.showPanel;
+            if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
+        }
+        if (!io.WantCaptureMouse && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
+            o.camera.look(float(x - mouseX), float(y - mouseY));
+        const bool explode = (!io.WantCaptureKeyboard && glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS) ||
+                             (!io.WantCaptureMouse && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS);
+        glm::vec2 hit;
+        if (explode && !explodeKeyWasDown && height > 0 && pickWater(o.camera, x, y, width, height, o.settings.waterLevel, hit)) {
+            if (o.settings.explosions.size() >= 8) o.settings.explosions.erase(o.settings.explosions.begin());
+            o.settings.explosions.push_back({hit, time, 40.0f});
+        }
+        explodeKeyWasDown = explode;
+        mouseX = x;
+        mouseY = y;
+
+        if (width > 0 && height > 0) renderer.render(o.camera, o.settings, time, width, height, 0, true);
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        if (panel.showPanel) drawPanel(o.settings, panel, o.camera, scene, renderer.times(), time);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        glfwSwapBuffers(window);
+    }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    return 0;
+}
+
+}  // namespace
+
+int runViewer(ViewerOptions& o, Scene& scene) {
+    glfwSetErrorCallback(onGlfwError);
+    if (!glfwInit()) return fail("cannot start GLFW", "is there a display? run headless under xvfb-run");
+    const bool offscreen = !o.screenshot.empty() || o.bench > 0;
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_VISIBLE, offscreen ? GLFW_FALSE : GLFW_TRUE);
+    GLFWwindow* window = glfwCreateWindow(offscreen ? 64 : o.width, offscreen ? 64 : o.height, "heightpack-view", nullptr, nullptr);
+    if (!window) {
+        glfwTerminate();
+        return fail("cannot create an OpenGL 3.3 core context", "is there a display? run headless under xvfb-run");
+    }
+    glfwMakeContextCurrent(window);
+    glfwSwapInterval(1);
+    int code = 0;
+    {
+        Renderer renderer;
+        std::string error;
+        if (!renderer.init(error)) {
+            code = fail("shader build failed: " + error, "please report this with the GL_RENDERER string");
+        } else {
+            renderer.upload(scene);
+            code = offscreen ? renderOffscreen(o, renderer) : interactive(window, o, scene, renderer);
+        }
+    }
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return code;
+}
+
+}  // namespace heightpack::view

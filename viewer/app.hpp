@@ -1,0 +1,28 @@
+// The viewer application: a window (visible, or hidden for --screenshot and --bench), the frame loop,
+// input, the panel, and reloading inputs when they change on disk.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "camera.hpp"
+#include "renderer.hpp"
+#include "scene.hpp"
+
+namespace heightpack::view {
+
+struct ViewerOptions {
+    SceneFiles files;
+    std::string screenshot;       // render one frame offscreen to this PNG and exit
+    int width = 1280, height = 720;
+    std::optional<float> time;    // fixed animation clock
+    int bench = 0;                // render this many frames offscreen, print GPU time per pass, exit
+    bool json = false;
+    Camera camera;
+    RenderSettings settings;
+};
+
+// Runs the viewer on a loaded scene. Returns the process exit code.
+int runViewer(ViewerOptions& options, Scene& scene);
+
+}  // namespace heightpack::view

@@ -1,0 +1,34 @@
+// Small OpenGL helpers: programs with their logs, textures from libpack images, an offscreen target.
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <string>
+#include <vector>
+
+#include "heightpack/image.hpp"
+
+namespace heightpack::view {
+
+// Compiles and links "#version 330 core" + common + each stage. Returns 0 and fills log on failure (the
+// compile or link log, naming the program and stage).
+GLuint buildProgram(const std::string& name, const char* common, const char* vertex, const char* fragment,
+                    std::string& log);
+
+// A mip-mapped float texture of 1 to 4 channels from a chain of levels (one level: no mip-maps).
+GLuint uploadChain(const std::vector<Image>& levels, bool linear, Wrap wrap);
+
+// Prints any pending GL errors with where they were noticed; compiled out of release builds.
+void checkGl(const char* where);
+
+// An offscreen colour + depth target.
+struct RenderTarget {
+    GLuint framebuffer = 0, colour = 0, depth = 0;
+    int width = 0, height = 0;
+    bool create(int w, int h, GLenum colourFormat);
+    void destroy();
+    // RGB 8-bit pixels, top row first.
+    std::vector<unsigned char> readRgb() const;
+};
+
+}  // namespace heightpack::view

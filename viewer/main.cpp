@@ -1,0 +1,124 @@
+// heightpack-view: loads what the tools wrote (or a painted map, packed in memory) and renders it on the
+// chapter 18 radial grid. Everything is loaded before a window opens, so bad input never shows one.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+#include "app.hpp"
+#include "heightpack/version.hpp"
+
+namespace {
+
+bool parseFloats(const std::string& text, std::vector<float>& out) {
+    out.clear();
+    const char* p = text.c_str();
+    while (*p) {
+        char* end = nullptr;
+        const float v = std::strtof(p, &end);
+        if (end == p || !std::isfinite(v)) return false;
+        out.push_back(v);
+        p = end;
+        if (*p == ',') ++p;
+        else if (*p) return false;
+    }
+    return !out.empty();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace heightpack::view;
+    ViewerOptions o;
+    std::string size = "1280x720", camera, tiled, lookup = "trilinear", view = "shaded", tileSizes, amplitudes;
+    bool frustumOff = false;
+    float time = -1.0f;
+    CLI::App app{"heightpack-view: water height maps on the GPU Gems 2 chapter 18 radial-grid renderer"};
+    app.set_version_flag("--version", std::string("heightpack-view ") + heightpack::kVersion);
+    app.add_option("maps", o.files.heights, "height maps: packed EXRs from heightpack pack, or painted images")->required();
+    app.add_option("--normals", o.files.normals, "normal map from heightpack normal (else derived from the heights)");
+    app.add_option("--fresnel", o.files.fresnel, "Fresnel ramp from heightpack fresnel (else Schlick and fixed colours)");
+    app.add_option("--foam", o.files.foam, "foam texture, grey (else procedural)");
+    app.add_option("--tiled", tiled, "flat view of the first map tiled NxM, to look for seams (e.g. 3x3)");
+    app.add_flag("--seams", o.settings.seamLines, "draw the tile lines in the tiled view");
+    app.add_option("--screenshot", o.screenshot, "render one frame offscreen to this PNG and exit (works under xvfb-run)");
+    app.add_option("--size", size, "window or screenshot size WxH")->capture_default_str();
+    app.add_option("--time", time, "fix the animation clock at this many seconds");
+    app.add_option("--camera", camera, "x,y,z,yaw,pitch (metres, degrees; z up)");
+    app.add_option("--bench", o.bench, "render N frames offscreen, print GPU time per pass (timer queries), exit");
+    app.add_option("--lookup", lookup, "height lookup in the vertex shader")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"bilinear", "trilinear", "reference-bilinear", "reference-trilinear"}));
+    app.add_option("--view", view, "shaded, height (grey), lod (colour per level)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"shaded", "height", "lod"}));
+    app.add_flag("--two-pass", o.settings.twoPass, "combine the maps into an fp32 texture first (render-to-texture)");
+    app.add_flag("--no-frustum-branch", frustumOff, "sample every vertex, even outside the guard-banded frustum");
+    app.add_flag("--wireframe", o.settings.wireframe, "draw the grid as lines");
+    app.add_option("--tile-size", tileSizes, "metres each map's tile spans, e.g. 64,16");
+    app.add_option("--amplitude", amplitudes, "metres per stored unit for each map, e.g. 1.5,0.4");
+    app.add_option("--grid", o.settings.rings, "rings N of the radial grid (segments M follow --segments)");
+    app.add_option("--segments", o.settings.segments, "segments M of the radial grid");
+    app.add_flag("--json", o.json, "print --bench figures as JSON");
+    app.footer(
+        "Examples:\n"
+        "  heightpack-view out/swell.exr out/choppy.exr --normals out/ripple_n.exr --fresnel out/fresnel.exr\n"
+        "  heightpack-view out/swell.exr --tiled 3x3\n"
+        "  heightpack-view out/swell.exr --screenshot shot.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10\n"
+        "  heightpack-view out/swell.exr --bench 300\n"
+        "Keys: WASD fly, Space/Ctrl up/down, right mouse look, E or left click drops an explosion, F1 panel.\n");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "heightpack: error: %s (see 'heightpack-view --help')\n", e.what());
+        return 2;
+    }
+    auto usage = [](const std::string& what) {
+        std::fprintf(stderr, "heightpack: error: %s (see 'heightpack-view --help')\n", what.c_str());
+        return 2;
+    };
+    if (std::sscanf(size.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 16 || o.height < 16 ||
+        o.width > 8192 || o.height > 8192)
+        return usage("--size must be WxH between 16 and 8192, e.g. 1280x720");
+    std::vector<float> v;
+    if (!camera.empty()) {
+        if (!parseFloats(camera, v) || v.size() != 5) return usage("--camera must be x,y,z,yaw,pitch");
+        o.camera.position = {v[0], v[1], v[2]};
+        o.camera.yaw = v[3];
+        o.camera.pitch = v[4];
+    }
+    if (!tiled.empty()) {
+        if (std::sscanf(tiled.c_str(), "%dx%d", &o.settings.tiles.x, &o.settings.tiles.y) != 2 || o.settings.tiles.x < 1 ||
+            o.settings.tiles.y < 1 || o.settings.tiles.x > 64 || o.settings.tiles.y > 64)
+            return usage("--tiled must be NxM, e.g. 3x3");
+        o.settings.tiledView = true;
+    }
+    if (!tileSizes.empty()) {
+        if (!parseFloats(tileSizes, v) || v.size() > 2 || v[0] <= 0 || (v.size() > 1 && v[1] <= 0))
+            return usage("--tile-size must be one or two positive lengths in metres, e.g. 64,16");
+        for (size_t k = 0; k < v.size(); ++k) o.settings.layers[k].tileSize = v[k];
+    }
+    if (!amplitudes.empty()) {
+        if (!parseFloats(amplitudes, v) || v.size() > 2) return usage("--amplitude must be one or two numbers, e.g. 1.5,0.4");
+        for (size_t k = 0; k < v.size(); ++k) o.settings.layers[k].amplitude = v[k];
+    }
+    if (o.settings.rings < 2 || o.settings.segments < 3 || o.settings.rings > 4096 || o.settings.segments > 4096)
+        return usage("--grid and --segments must be 2..4096 and 3..4096");
+    if (o.bench < 0) return usage("--bench takes a number of frames");
+    if (time >= 0) o.time = time;
+    o.settings.lookup = lookup == "bilinear"             ? Lookup::PackedBilinear
+                        : lookup == "trilinear"          ? Lookup::PackedTrilinear
+                        : lookup == "reference-bilinear" ? Lookup::ReferenceBilinear
+                                                         : Lookup::ReferenceTrilinear;
+    o.settings.view = view == "height" ? ViewMode::Height : view == "lod" ? ViewMode::Lod : ViewMode::Shaded;
+    o.settings.frustumBranch = !frustumOff;
+
+    auto scene = loadScene(o.files);
+    if (!scene) {
+        const heightpack::Error& e = scene.error();
+        std::fprintf(stderr, "heightpack: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(), e.hint.c_str());
+        return 3;
+    }
+    return runViewer(o, *scene);
+}

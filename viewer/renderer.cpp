@@ -1,0 +1,314 @@
+#include "renderer.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "shaders.hpp"
+
+namespace heightpack::view {
+
+namespace {
+
+// Texture units: height layers first, then the shading textures.
+enum Unit { kPacked0 = 0, kPacked1, kPlain0, kPlain1, kNormal, kFresnel, kFoam, kCombined, kTiledMap };
+
+void set(GLuint p, const char* name, int v) { glUniform1i(glGetUniformLocation(p, name), v); }
+void set(GLuint p, const char* name, float v) { glUniform1f(glGetUniformLocation(p, name), v); }
+void set(GLuint p, const char* name, glm::vec2 v) { glUniform2fv(glGetUniformLocation(p, name), 1, glm::value_ptr(v)); }
+void set(GLuint p, const char* name, glm::vec3 v) { glUniform3fv(glGetUniformLocation(p, name), 1, glm::value_ptr(v)); }
+void set(GLuint p, const char* name, const glm::mat4& m) {
+    glUniformMatrix4fv(glGetUniformLocation(p, name), 1, GL_FALSE, glm::value_ptr(m));
+}
+
+// "name[k]", without string concatenation (GCC 12 warns falsely about it at -O3).
+std::string indexed(const char* name, int k) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%s[%d]", name, k);
+    return text;
+}
+
+// Trilinear filtering for the bound texture: shading textures seen at a distance must not sparkle.
+void enableMipmaps() {
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 1000);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+}
+
+void bindTexture(int unit, GLuint texture) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, texture);
+}
+
+}  // namespace
+
+bool Renderer::init(std::string& error) {
+    using namespace shaders;
+    waterProgram_ = buildProgram("water", kCommonGlsl, kGridVert, kWaterFrag, error);
+    if (!waterProgram_) return false;
+    combineProgram_ = buildProgram("combine", kCommonGlsl, kCombineVert, kCombineFrag, error);
+    if (!combineProgram_) return false;
+    tiledProgram_ = buildProgram("tiled", kCommonGlsl, kCombineVert, kTiledFrag, error);
+    if (!tiledProgram_) return false;
+    skyProgram_ = buildProgram("sky", kCommonGlsl, kCombineVert, kSkyFrag, error);
+    if (!skyProgram_) return false;
+    glGenVertexArrays(1, &emptyVao_);
+    glGenQueries(3, queries_);
+    // Bound to unused samplers so every sampler has a complete texture.
+    dummyTexture_ = uploadChain({Image(1, 1, 4, 0.0f)}, false, Wrap::Periodic);
+    checkGl("Renderer::init");
+    return true;
+}
+
+Renderer::~Renderer() {
+    for (const LayerTextures& l : layers_) {
+        glDeleteTextures(1, &l.packed);
+        glDeleteTextures(1, &l.plain);
+    }
+    for (GLuint t : {normalTexture_, fresnelTexture_, foamTexture_, dummyTexture_})
+        if (t) glDeleteTextures(1, &t);
+    combined_.destroy();
+    if (gridVao_) glDeleteVertexArrays(1, &gridVao_);
+    if (gridVbo_) glDeleteBuffers(1, &gridVbo_);
+    if (gridIbo_) glDeleteBuffers(1, &gridIbo_);
+    if (emptyVao_) glDeleteVertexArrays(1, &emptyVao_);
+    glDeleteQueries(3, queries_);
+    for (GLuint p : {waterProgram_, combineProgram_, tiledProgram_, skyProgram_})
+        if (p) glDeleteProgram(p);
+}
+
+void Renderer::upload(const Scene& scene) {
+    scene_ = &scene;
+    for (const LayerTextures& l : layers_) {
+        glDeleteTextures(1, &l.packed);
+        glDeleteTextures(1, &l.plain);
+    }
+    layers_.clear();
+    for (const HeightLayer& layer : scene.layers) {
+        LayerTextures t;
+        // Packed: nearest, since the shader does the filtering from one fetch. Plain: GL_LINEAR, the reference.
+        t.packed = uploadChain(layer.packed, false, layer.wrap);
+        t.plain = uploadChain(layer.plain, true, layer.wrap);
+        t.levels = static_cast<int>(layer.packed.size());
+        layers_.push_back(t);
+    }
+    for (GLuint* t : {&normalTexture_, &fresnelTexture_, &foamTexture_})
+        if (*t) glDeleteTextures(1, t), *t = 0;
+    if (scene.normals) {
+        const Image& n = scene.normals->level0;
+        normalTexture_ = uploadChain({n}, true, Wrap::Periodic);
+        enableMipmaps();
+    }
+    if (scene.fresnel) {
+        fresnelTexture_ = uploadChain({scene.fresnel->ramp}, true, Wrap::Clamp);
+    }
+    if (scene.foam) {
+        foamTexture_ = uploadChain({*scene.foam}, true, Wrap::Periodic);
+        enableMipmaps();
+    }
+    checkGl("Renderer::upload");
+}
+
+void Renderer::buildGrid(int rings, int segments) {
+    if (rings == gridRings_ && segments == gridSegments_) return;
+    gridRings_ = rings;
+    gridSegments_ = segments;
+    // Listing 18-1's vertex: (cos, sin, ring index); the shader makes r = a0 + a1 i^4.
+    std::vector<float> vertices;
+    vertices.reserve(static_cast<size_t>(rings) * segments * 3);
+    for (int i = 0; i < rings; ++i) {
+        for (int j = 0; j < segments; ++j) {
+            const double angle = 2.0 * 3.14159265358979323846 * j / segments;
+            vertices.insert(vertices.end(), {float(std::cos(angle)), float(std::sin(angle)), float(i)});
+        }
+    }
+    std::vector<GLuint> indices;
+    for (int i = 0; i + 1 < rings; ++i) {
+        for (int j = 0; j < segments; ++j) {
+            const GLuint a = i * segments + j, b = i * segments + (j + 1) % segments;
+            const GLuint c = a + segments, d = b + segments;
+            indices.insert(indices.end(), {a, c, b, b, c, d});
+        }
+    }
+    gridIndexCount_ = static_cast<GLsizei>(indices.size());
+    if (!gridVao_) {
+        glGenVertexArrays(1, &gridVao_);
+        glGenBuffers(1, &gridVbo_);
+        glGenBuffers(1, &gridIbo_);
+    }
+    glBindVertexArray(gridVao_);
+    glBindBuffer(GL_ARRAY_BUFFER, gridVbo_);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gridIbo_);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)), indices.data(),
+                 GL_STATIC_DRAW);
+    glBindVertexArray(0);
+    combined_.create(segments, rings, GL_R32F);
+    checkGl("Renderer::buildGrid");
+}
+
+void Renderer::bindLayers(GLuint program) {
+    set(program, "uPacked0", int(kPacked0));
+    set(program, "uPacked1", int(kPacked1));
+    set(program, "uPlain0", int(kPlain0));
+    set(program, "uPlain1", int(kPlain1));
+    for (int k = 0; k < 2; ++k) {
+        const bool has = k < int(layers_.size());
+        bindTexture(kPacked0 + k, has ? layers_[k].packed : dummyTexture_);
+        bindTexture(kPlain0 + k, has ? layers_[k].plain : dummyTexture_);
+    }
+}
+
+void Renderer::setCommonUniforms(GLuint p, const Camera& camera, const RenderSettings& s, float time, int height) {
+    const int count = std::min<int>(2, static_cast<int>(layers_.size()));
+    set(p, "uLayerCount", count);
+    for (int k = 0; k < 2; ++k) {
+        const LayerSettings& l = s.layers[k];
+        const glm::vec4 xform(1.0f / l.tileSize, l.scroll.x, l.scroll.y, l.amplitude);
+        glUniform4fv(glGetUniformLocation(p, indexed("uLayerXform", k).c_str()), 1, glm::value_ptr(xform));
+        const bool has = k < count;
+        const glm::vec2 stored(has ? scene_->layers[k].midStored : 0.0f,
+                               has && scene_->layers[k].wrap == Wrap::Clamp ? 1.0f : 0.0f);
+        glUniform2fv(glGetUniformLocation(p, indexed("uLayerStored", k).c_str()), 1, glm::value_ptr(stored));
+        glUniform1i(glGetUniformLocation(p, indexed("uLayerLevels", k).c_str()), has ? layers_[k].levels : 1);
+        glUniform2i(glGetUniformLocation(p, indexed("uLayerSize", k).c_str()), has ? scene_->layers[k].packed[0].width : 1,
+                    has ? scene_->layers[k].packed[0].height : 1);
+    }
+    set(p, "uLookup", static_cast<int>(s.lookup));
+    set(p, "uBands", s.bands);
+    set(p, "uPixelAngle", glm::radians(camera.fovY) / float(height));
+    set(p, "uTime", time);
+    set(p, "uWaterLevel", s.waterLevel);
+    set(p, "uGridRadius", glm::vec2(s.innerRadius, (s.outerRadius - s.innerRadius) / std::pow(float(s.rings - 1), 4.0f)));
+    set(p, "uCameraPos", camera.position);
+    const int explosions = std::min<int>(8, static_cast<int>(s.explosions.size()));
+    set(p, "uExplosionCount", explosions);
+    for (int e = 0; e < explosions; ++e) {
+        const Explosion& x = s.explosions[e];
+        const glm::vec4 v(x.centre, x.start, x.strength);
+        glUniform4fv(glGetUniformLocation(p, indexed("uExplosion", e).c_str()), 1, glm::value_ptr(v));
+    }
+    set(p, "uExplosionShape", s.explosionShape);
+    bindLayers(p);
+}
+
+void Renderer::render(const Camera& camera, const RenderSettings& s, float time, int width, int height,
+                      GLuint framebuffer, bool measure) {
+    times_ = PassTimes{};
+    const float aspect = float(width) / float(height);
+    const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
+    if (!s.tiledView) buildGrid(s.rings, s.segments);  // first: it binds framebuffers of its own
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(0, 0, width, height);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+    if (s.tiledView) {
+        if (layers_.empty()) return;
+        if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[2]);
+        glUseProgram(tiledProgram_);
+        bindTexture(kTiledMap, layers_[0].plain);
+        set(tiledProgram_, "uMap", int(kTiledMap));
+        set(tiledProgram_, "uTiles", glm::vec2(s.tiles));
+        set(tiledProgram_, "uRange", glm::vec2(scene_->layers[0].minStored, scene_->layers[0].maxStored));
+        set(tiledProgram_, "uSeamLines", int(s.seamLines));
+        set(tiledProgram_, "uViewport", glm::vec2(width, height));
+        glDisable(GL_DEPTH_TEST);
+        glBindVertexArray(emptyVao_);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        if (measure) {
+            glEndQuery(GL_TIME_ELAPSED);
+            GLuint64 ns = 0;
+            glGetQueryObjectui64v(queries_[2], GL_QUERY_RESULT, &ns);
+            times_.tiled = ns / 1e6;
+        }
+        return;
+    }
+
+    if (s.twoPass) {
+        // Pass one: the height of every grid vertex into an fp32 texture.
+        if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[0]);
+        glBindFramebuffer(GL_FRAMEBUFFER, combined_.framebuffer);
+        glViewport(0, 0, s.segments, s.rings);
+        glDisable(GL_DEPTH_TEST);
+        glUseProgram(combineProgram_);
+        setCommonUniforms(combineProgram_, camera, s, time, height);
+        set(combineProgram_, "uViewProj", viewProj);
+        set(combineProgram_, "uFrustumBranch", int(s.frustumBranch));
+        set(combineProgram_, "uGuardBand", s.guardBand);
+        set(combineProgram_, "uSegments", s.segments);
+        set(combineProgram_, "uRings", s.rings);
+        glBindVertexArray(emptyVao_);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        if (measure) glEndQuery(GL_TIME_ELAPSED);
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glViewport(0, 0, width, height);
+    }
+
+    if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[1]);
+    const glm::vec3 sun = glm::normalize(s.sunDirection), sunColour(1.0f, 0.93f, 0.8f);
+    if (s.view == ViewMode::Shaded) {
+        glDisable(GL_DEPTH_TEST);
+        glUseProgram(skyProgram_);
+        set(skyProgram_, "uInverseViewProj", glm::inverse(viewProj));
+        set(skyProgram_, "uSunDir", sun);
+        set(skyProgram_, "uSunColour", sunColour);
+        glBindVertexArray(emptyVao_);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glEnable(GL_DEPTH_TEST);
+    glUseProgram(waterProgram_);
+    setCommonUniforms(waterProgram_, camera, s, time, height);
+    set(waterProgram_, "uViewProj", viewProj);
+    set(waterProgram_, "uFrustumBranch", int(s.frustumBranch));
+    set(waterProgram_, "uGuardBand", s.guardBand);
+    set(waterProgram_, "uUseCombined", int(s.twoPass));
+    set(waterProgram_, "uCombined", int(kCombined));
+    bindTexture(kCombined, combined_.colour);
+    set(waterProgram_, "uSegments", s.segments);
+    set(waterProgram_, "uView", static_cast<int>(s.view));
+    set(waterProgram_, "uHeightRange", s.heightRange);
+    set(waterProgram_, "uHasNormalMap", int(normalTexture_ != 0));
+    set(waterProgram_, "uNormalMap", int(kNormal));
+    bindTexture(kNormal, normalTexture_ ? normalTexture_ : dummyTexture_);
+    set(waterProgram_, "uNormalGreen", scene_ && scene_->normals ? scene_->normals->greenSign : 1.0f);
+    for (int k = 0; k < 4; ++k)
+        glUniform4fv(glGetUniformLocation(waterProgram_, indexed("uNormalOctave", k).c_str()), 1,
+                     glm::value_ptr(s.normalOctaves[k]));
+    set(waterProgram_, "uHasFresnel", int(fresnelTexture_ != 0));
+    set(waterProgram_, "uFresnel", int(kFresnel));
+    bindTexture(kFresnel, fresnelTexture_ ? fresnelTexture_ : dummyTexture_);
+    set(waterProgram_, "uFresnelIndexScale", scene_ && scene_->fresnel ? scene_->fresnel->indexScale : 1.0f);
+    set(waterProgram_, "uIor", s.ior);
+    set(waterProgram_, "uDeep", s.deep);
+    set(waterProgram_, "uShallow", s.shallow);
+    set(waterProgram_, "uSunDir", sun);
+    set(waterProgram_, "uSunColour", sunColour);
+    set(waterProgram_, "uTilt", s.tilt);
+    set(waterProgram_, "uFoamRange", s.foamRange);
+    set(waterProgram_, "uHasFoam", int(foamTexture_ != 0));
+    set(waterProgram_, "uFoam", int(kFoam));
+    bindTexture(kFoam, foamTexture_ ? foamTexture_ : dummyTexture_);
+    set(waterProgram_, "uFoamScale", 1.0f / s.foamTileSize);
+    glPolygonMode(GL_FRONT_AND_BACK, s.wireframe ? GL_LINE : GL_FILL);
+    glBindVertexArray(gridVao_);
+    glDrawElements(GL_TRIANGLES, gridIndexCount_, GL_UNSIGNED_INT, nullptr);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glBindVertexArray(0);
+    times_.vertices = static_cast<long long>(s.rings) * s.segments;
+    if (measure) {
+        glEndQuery(GL_TIME_ELAPSED);
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(queries_[1], GL_QUERY_RESULT, &ns);
+        times_.water = ns / 1e6;
+        if (s.twoPass) {
+            glGetQueryObjectui64v(queries_[0], GL_QUERY_RESULT, &ns);
+            times_.combine = ns / 1e6;
+        }
+    }
+    checkGl("Renderer::render");
+}
+
+}  // namespace heightpack::view

@@ -1,0 +1,106 @@
+// The chapter 18 renderer: the radial grid displaced in the vertex shader from packed height maps, the
+// optional render-to-texture combine pass, per-pixel water shading, and the flat tiled view.
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <array>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+#include "camera.hpp"
+#include "gl_util.hpp"
+#include "scene.hpp"
+
+namespace heightpack::view {
+
+enum class Lookup { PackedBilinear = 0, PackedTrilinear = 1, ReferenceBilinear = 2, ReferenceTrilinear = 3 };
+enum class ViewMode { Shaded = 0, Height = 1, Lod = 2 };
+
+struct LayerSettings {
+    float tileSize = 64.0f;       // metres a tile spans (scale A = 1 / tileSize)
+    glm::vec2 scroll{0.01f, 0.004f};  // tiles per second (B)
+    float amplitude = 1.0f;       // metres per stored unit
+};
+
+struct Explosion {
+    glm::vec2 centre{0.0f};
+    float start = 0.0f;
+    float strength = 40.0f;
+};
+
+// Every parameter the panel edits; defaults are the chapter's where it gives them.
+struct RenderSettings {
+    // Grid (18.2.3)
+    int rings = 256;
+    int segments = 256;
+    float innerRadius = 0.1f;     // r0 = 10 cm
+    float outerRadius = 40000.0f; // r(N-1) = 40 km
+    // Sampling (18.2.4)
+    Lookup lookup = Lookup::PackedTrilinear;
+    glm::vec2 bands{0.3f, 0.7f};
+    bool frustumBranch = true;
+    glm::vec2 guardBand{1.2f, 2.0f};  // C0, C1
+    bool twoPass = false;         // combine into an fp32 texture first (render-to-texture)
+    // Water model (18.2.1)
+    std::array<LayerSettings, 2> layers{LayerSettings{64.0f, {0.010f, 0.004f}, 1.5f},
+                                        LayerSettings{16.0f, {-0.006f, 0.011f}, 0.4f}};
+    float waterLevel = 0.0f;
+    // Shading
+    ViewMode view = ViewMode::Shaded;
+    bool wireframe = false;
+    std::array<glm::vec4, 4> normalOctaves{glm::vec4(1.0f / 8, 0.02f, 0.01f, 1.0f), glm::vec4(1.0f / 8, -0.015f, 0.02f, 1.0f),
+                                           glm::vec4(1.0f / 2, 0.05f, -0.03f, 0.5f), glm::vec4(1.0f / 2, -0.04f, -0.05f, 0.5f)};
+    float ior = 1.333f;
+    glm::vec3 deep{0.02f, 0.10f, 0.16f}, shallow{0.10f, 0.40f, 0.45f};
+    glm::vec3 sunDirection{0.3f, 0.6f, 0.35f};
+    float tilt = 0.08f;
+    glm::vec2 foamRange{1.2f, 2.2f};  // H0, Hmax
+    float foamTileSize = 4.0f;
+    // Perturbations (18.2.5)
+    std::vector<Explosion> explosions;
+    glm::vec3 explosionShape{1.2f, 6.0f, 0.35f};  // k, w, b
+    // Checking aids
+    bool tiledView = false;
+    glm::ivec2 tiles{3, 3};
+    bool seamLines = false;
+    glm::vec2 heightRange{-2.0f, 2.0f};  // heights shown as grey in the height view
+};
+
+// GPU time per pass, from timer queries (milliseconds of the last frame measured).
+struct PassTimes {
+    double combine = 0.0, water = 0.0, tiled = 0.0;
+    long long vertices = 0;
+};
+
+class Renderer {
+public:
+    // Compiles the programs. Returns false with a message (the shader log) on failure.
+    bool init(std::string& error);
+    void upload(const Scene& scene);
+    void render(const Camera& camera, const RenderSettings& settings, float time, int width, int height,
+                GLuint framebuffer, bool measure);
+    const PassTimes& times() const { return times_; }
+    const Scene* scene() const { return scene_; }
+    ~Renderer();
+
+private:
+    void buildGrid(int rings, int segments);
+    void setCommonUniforms(GLuint program, const Camera& camera, const RenderSettings& s, float time, int height);
+    void bindLayers(GLuint program);
+
+    GLuint waterProgram_ = 0, combineProgram_ = 0, tiledProgram_ = 0, skyProgram_ = 0;
+    GLuint gridVao_ = 0, gridVbo_ = 0, gridIbo_ = 0, emptyVao_ = 0;
+    GLsizei gridIndexCount_ = 0;
+    int gridRings_ = 0, gridSegments_ = 0;
+    struct LayerTextures { GLuint packed = 0, plain = 0; int levels = 0; };
+    std::vector<LayerTextures> layers_;
+    GLuint normalTexture_ = 0, fresnelTexture_ = 0, foamTexture_ = 0, dummyTexture_ = 0;
+    RenderTarget combined_;
+    GLuint queries_[3] = {0, 0, 0};
+    PassTimes times_;
+    const Scene* scene_ = nullptr;
+};
+
+}  // namespace heightpack::view

@@ -1,0 +1,58 @@
+// What the viewer shows, loaded on the CPU with libpack before any window exists: height layers (packed
+// textures, or painted maps packed in memory by the same code as `heightpack pack`), a normal map, a
+// Fresnel ramp, a foam texture.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heightpack/image.hpp"
+#include "heightpack/result.hpp"
+
+namespace heightpack::view {
+
+struct HeightLayer {
+    std::string path;
+    std::string source;           // "packed texture", "plain texture" or "painted map, packed in memory"
+    std::vector<Image> packed;    // RGBA per level
+    std::vector<Image> plain;     // R per level, for the reference path
+    Wrap wrap = Wrap::Periodic;
+    float midStored = 0.5f;       // the stored value of a painted 0.5: subtracted so waves sit on the level
+    float minStored = 0.0f, maxStored = 1.0f;
+};
+
+struct NormalMap {
+    std::string path;
+    Image level0;                 // xyz in [-1, 1] (and alpha, if any)
+    float greenSign = -1.0f;      // world +y runs down the stored image: an OpenGL map's green flips
+};
+
+struct FresnelRamp {
+    std::string path;
+    Image ramp;                   // linear rgb, reflectance in alpha
+    float indexScale = 1.0f;      // 2 for a ramp indexed by saturate(2 N.V)
+};
+
+struct SceneFiles {
+    std::vector<std::string> heights;
+    std::string normals, fresnel, foam;
+};
+
+struct Scene {
+    std::vector<HeightLayer> layers;
+    std::optional<NormalMap> normals;
+    std::optional<FresnelRamp> fresnel;
+    std::optional<Image> foam;
+};
+
+Result<HeightLayer> loadHeightLayer(const std::string& path);
+Result<NormalMap> loadNormalMap(const std::string& path);
+Result<FresnelRamp> loadFresnelRamp(const std::string& path);
+Result<Scene> loadScene(const SceneFiles& files);
+
+// Modification times of the files, to reload what changed on disk.
+std::vector<std::filesystem::file_time_type> fileTimes(const SceneFiles& files);
+
+}  // namespace heightpack::view

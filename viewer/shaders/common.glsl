@@ -1,0 +1,116 @@
+// Shared by every pass: the height field H(x, y, t) of chapter 18, a sum of scrolling height maps, read
+// either through 4-neighbour packed textures (one nearest fetch per level) or, for comparison, through
+// plain R32F textures with hardware bilinear filtering.
+
+const int kMaxLayers = 2;  // the two largest maps displace the grid (18.2.1)
+
+uniform int uLayerCount;
+uniform sampler2D uPacked0, uPacked1;   // RGBA32F, nearest, mip-mapped: R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1)
+uniform sampler2D uPlain0, uPlain1;     // R32F, GL_LINEAR, mip-mapped: the reference path
+uniform vec4 uLayerXform[kMaxLayers];   // tiles per metre, scroll u and v (tiles per second), amplitude (m)
+uniform vec2 uLayerStored[kMaxLayers];  // the stored value of a mid height (subtracted), and 1 if clamp-wrapped
+uniform int uLayerLevels[kMaxLayers];   // mip levels in each layer's chain
+uniform int uLookup;                    // 0 packed bilinear, 1 packed trilinear, 2 reference bilinear, 3 reference trilinear
+uniform vec2 uBands;                    // Listing 18-3's snapped LOD band, (0.3, 0.7)
+uniform float uPixelAngle;              // radians a pixel subtends, for the LOD from distance
+uniform float uTime;
+uniform float uWaterLevel;
+
+// Explosions (18.2.5): I(r) = I0 sin(k r + w t) exp(-b t) / r^2, several at once.
+const int kMaxExplosions = 8;
+uniform int uExplosionCount;
+uniform vec4 uExplosion[kMaxExplosions];  // centre x, y, start time, strength I0
+uniform vec3 uExplosionShape;             // k, w, b
+
+uniform ivec2 uLayerSize[kMaxLayers];  // level 0 size of each layer
+
+// The size of a level, from level 0's: textureSize with a level that differs between vertices of one
+// SIMD batch is not reliable on every driver (llvmpipe's vertex stage), so it is not used.
+vec2 levelSize(int layer, int level) {
+    return vec2(max(ivec2(1), uLayerSize[layer] >> level));
+}
+
+// Listing 18-2 with the design's lookup: p = uv * size - 0.5, one nearest fetch at floor(p).
+float packedBilinear(sampler2D tex, int layer, vec2 uv, int level, bool clampMode) {
+    vec2 size = levelSize(layer, level);
+    vec2 p = (clampMode ? clamp(uv, 0.0, 1.0) : fract(uv)) * size - 0.5;  // fract keeps far coordinates precise
+    if (clampMode) p = clamp(p, vec2(0.0), size - 1.0);
+    vec2 i = floor(p);
+    vec2 f = p - i;
+    vec4 t = texelFetch(tex, ivec2(mod(i, size)), level);
+    return mix(mix(t.r, t.g, f.x), mix(t.b, t.a, f.x), f.y);
+}
+
+float referenceBilinear(sampler2D tex, vec2 uv, int level, bool clampMode) {
+    return textureLod(tex, clampMode ? uv : fract(uv), float(level)).r;
+}
+
+float levelLookup(sampler2D packedTex, sampler2D plainTex, int layer, vec2 uv, int level, bool clampMode) {
+    return uLookup >= 2 ? referenceBilinear(plainTex, uv, level, clampMode)
+                        : packedBilinear(packedTex, layer, uv, level, clampMode);
+}
+
+// Listing 18-3: one level below the band, the next above it, a blend inside it.
+float layerHeight(sampler2D packedTex, sampler2D plainTex, int layer, vec2 uv, float lod, bool clampMode) {
+    int last = uLayerLevels[layer] - 1;
+    if (uLookup == 0 || uLookup == 2) return levelLookup(packedTex, plainTex, layer, uv, 0, clampMode);
+    lod = clamp(lod, 0.0, float(last));
+    int level = min(int(floor(lod)), last);
+    float fr = lod - float(level);
+    if (level == last || fr < uBands.x) return levelLookup(packedTex, plainTex, layer, uv, level, clampMode);
+    float coarse = levelLookup(packedTex, plainTex, layer, uv, level + 1, clampMode);
+    if (fr > uBands.y) return coarse;
+    float fine = levelLookup(packedTex, plainTex, layer, uv, level, clampMode);
+    return mix(fine, coarse, (fr - uBands.x) / (uBands.y - uBands.x));
+}
+
+// The level of detail of layer k seen from distance d: log2 of texels per pixel.
+float layerLod(int k, float d) {
+    float texelsPerMetre = uLayerXform[k].x * float(uLayerSize[k].x);
+    return log2(max(d * uPixelAngle * texelsPerMetre, 1.0));
+}
+
+vec2 layerUv(int k, vec2 world) {
+    return world * uLayerXform[k].x + uLayerXform[k].yz * uTime;
+}
+
+// Height above the water level at world position xy, seen from distance d; lod0 receives layer 0's LOD.
+float waterHeight(vec2 xy, float d, out float lod0) {
+    float h = 0.0;
+    lod0 = 0.0;
+    if (uLayerCount > 0) {
+        lod0 = layerLod(0, d);
+        h += uLayerXform[0].w * (layerHeight(uPacked0, uPlain0, 0, layerUv(0, xy), lod0, uLayerStored[0].y > 0.5) - uLayerStored[0].x);
+    }
+    if (uLayerCount > 1) {
+        float lod1 = layerLod(1, d);
+        h += uLayerXform[1].w * (layerHeight(uPacked1, uPlain1, 1, layerUv(1, xy), lod1, uLayerStored[1].y > 0.5) - uLayerStored[1].x);
+    }
+    for (int e = 0; e < kMaxExplosions; ++e) {
+        if (e >= uExplosionCount) break;
+        float age = uTime - uExplosion[e].z;
+        if (age < 0.0) continue;
+        float r = max(distance(xy, uExplosion[e].xy), 1.0);
+        h += uExplosion[e].w * sin(uExplosionShape.x * r - uExplosionShape.y * age) * exp(-uExplosionShape.z * age) / (r * r);
+    }
+    return h;
+}
+
+// The radial grid (Listing 18-1): ring i at r = a0 + a1 i^4 around the camera, segment j at angle 2 pi j / M.
+uniform vec2 uGridRadius;   // a0, a1
+uniform vec3 uCameraPos;
+
+vec2 gridWorldXY(vec2 direction, float ring) {
+    return uCameraPos.xy + direction * (uGridRadius.x + uGridRadius.y * pow(ring, 4.0));
+}
+
+// The procedural sky the water reflects: a gradient from a pale horizon to a deeper zenith, and a sun.
+uniform vec3 uSunDir;
+uniform vec3 uSunColour;
+
+vec3 sky(vec3 dir) {
+    float up = clamp(dir.z, 0.0, 1.0);
+    vec3 base = mix(vec3(0.62, 0.72, 0.82), vec3(0.16, 0.33, 0.62), pow(up, 0.5));
+    float sun = max(dot(dir, uSunDir), 0.0);
+    return base + uSunColour * (pow(sun, 900.0) * 8.0 + pow(sun, 12.0) * 0.15);
+}

@@ -1,0 +1,22 @@
+// The flat tiled view: one map (level 0, plain, hardware bilinear) repeated N x M across the window, as
+// grey from its min to max, with the tile lines drawn on demand.
+in vec2 vUv;
+uniform sampler2D uMap;
+uniform vec2 uTiles;
+uniform vec2 uRange;
+uniform bool uSeamLines;
+uniform vec2 uViewport;
+
+layout(location = 0) out vec4 outColour;
+
+void main() {
+    vec2 t = vUv * uTiles;
+    float h = textureLod(uMap, fract(t), 0.0).r;
+    float g = clamp((h - uRange.x) / (uRange.y - uRange.x), 0.0, 1.0);
+    vec3 colour = vec3(g);
+    if (uSeamLines) {
+        vec2 distance = abs(t - floor(t + 0.5)) * uViewport / uTiles;  // pixels to the nearest tile line
+        if (min(distance.x, distance.y) < 1.0) colour = mix(colour, vec3(1.0, 0.2, 0.1), 0.6);
+    }
+    outColour = vec4(colour, 1.0);
+}

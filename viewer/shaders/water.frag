@@ -1,0 +1,98 @@
+// Per-pixel water shading: four normal-map octaves, back-side tilt, Fresnel ramp, sky, sun glint, foam.
+in vec3 vWorld;
+in float vHeight;
+in float vLod;
+
+uniform int uView;                  // 0 shaded, 1 height as grey, 2 LOD as colour
+uniform vec2 uHeightRange;          // heights mapped to grey in view 1
+uniform bool uHasNormalMap;
+uniform sampler2D uNormalMap;       // RGB(A)32F, xyz in [-1, 1]
+uniform float uNormalGreen;         // +1: green along +v; -1: an OpenGL map (green toward row 0)
+uniform vec4 uNormalOctave[4];      // tiles per metre, scroll u, scroll v, strength
+uniform bool uHasFresnel;
+uniform sampler2D uFresnel;         // rgb water colour, a reflectance, indexed by N.V
+uniform float uFresnelIndexScale;   // 1 for N.V, 2 for saturate(2 N.V)
+uniform float uIor;
+uniform vec3 uDeep, uShallow;
+uniform float uTilt;                // how far back-facing normals lean toward the viewer
+uniform vec2 uFoamRange;            // H0, Hmax
+uniform bool uHasFoam;
+uniform sampler2D uFoam;
+uniform float uFoamScale;           // tiles per metre
+
+layout(location = 0) out vec4 outColour;
+
+
+vec3 normalFromHeights(vec2 xy, float d) {
+    float e = max(0.02, d * uPixelAngle);
+    float lod;
+    float hx = waterHeight(xy + vec2(e, 0.0), d, lod) - waterHeight(xy - vec2(e, 0.0), d, lod);
+    float hy = waterHeight(xy + vec2(0.0, e), d, lod) - waterHeight(xy - vec2(0.0, e), d, lod);
+    return normalize(vec3(-hx, -hy, 2.0 * e));
+}
+
+// The surface's own slope from the displaced heights, plus the detail of four normal-map octaves.
+vec3 normalFromMap(vec2 xy, vec3 base) {
+    vec3 sum = vec3(base.xy / base.z, 0.0);
+    for (int k = 0; k < 4; ++k) {
+        vec2 uv = xy * uNormalOctave[k].x + uNormalOctave[k].yz * uTime;
+        if (k % 2 == 1) uv = uv.yx;  // the ATI shader's swap: the two scrolling maps never line up
+        vec3 n = texture(uNormalMap, uv).xyz;
+        sum += vec3(n.x, uNormalGreen * n.y, 0.0) * uNormalOctave[k].w;
+    }
+    return normalize(vec3(sum.xy, 1.0));
+}
+
+float foamPattern(vec2 xy) {
+    if (uHasFoam) return texture(uFoam, xy * uFoamScale).r;
+    vec2 p = xy * 3.0;  // procedural: interfering ripples
+    return clamp(0.5 + 0.25 * (sin(p.x * 1.7 + sin(p.y * 2.3)) + sin(p.y * 1.3 + sin(p.x * 2.9))), 0.0, 1.0);
+}
+
+vec3 lodColour(float lod) {
+    const vec3 palette[6] = vec3[6](vec3(0.9, 0.1, 0.1), vec3(0.9, 0.6, 0.1), vec3(0.8, 0.9, 0.1),
+                                    vec3(0.1, 0.8, 0.2), vec3(0.1, 0.6, 0.9), vec3(0.5, 0.2, 0.9));
+    int level = int(floor(lod));
+    return mix(palette[level % 6], palette[(level + 1) % 6], fract(lod));
+}
+
+void main() {
+    if (uView == 1) {
+        float g = clamp((vHeight - uHeightRange.x) / (uHeightRange.y - uHeightRange.x), 0.0, 1.0);
+        outColour = vec4(vec3(0.1 + 0.8 * g), 1.0);
+        return;
+    }
+    if (uView == 2) {
+        outColour = vec4(lodColour(vLod), 1.0);
+        return;
+    }
+    vec3 toEye = uCameraPos - vWorld;
+    float d = length(toEye);
+    vec3 v = toEye / d;
+    vec3 n = normalFromHeights(vWorld.xy, d);
+    if (uHasNormalMap) n = normalFromMap(vWorld.xy, n);
+    // 18.2.4, back sides of waves: lighting assumes a flat surface, so normals facing away from the viewer
+    // are tilted toward it.
+    float facing = dot(n, v);
+    if (facing < uTilt) n = normalize(n + v * (uTilt - facing));
+    float nv = clamp(dot(n, v), 0.0, 1.0);
+    vec3 waterColour;
+    float fresnel;
+    if (uHasFresnel) {
+        vec4 ramp = texture(uFresnel, vec2(clamp(nv * uFresnelIndexScale, 0.0, 1.0), 0.5));
+        waterColour = ramp.rgb;
+        fresnel = ramp.a;
+    } else {
+        float r0 = (uIor - 1.0) / (uIor + 1.0);
+        r0 *= r0;
+        fresnel = r0 + (1.0 - r0) * pow(1.0 - nv, 5.0);
+        waterColour = mix(uShallow, uDeep, nv);
+    }
+    vec3 r = reflect(-v, n);
+    r.z = abs(r.z);
+    vec3 colour = mix(waterColour, sky(r), fresnel);
+    float foam = clamp((vHeight - uFoamRange.x) / max(uFoamRange.y - uFoamRange.x, 1e-4), 0.0, 1.0);
+    colour = mix(colour, vec3(0.92), foam * foamPattern(vWorld.xy));
+    colour = mix(colour, sky(normalize(vec3(-v.xy, 0.02))), 1.0 - exp(-d / 30000.0));  // haze toward the horizon
+    outColour = vec4(pow(colour, vec3(1.0 / 2.2)), 1.0);
+}
