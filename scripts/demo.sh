@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 bash scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build --target heightpack
+cmake --build build --target heightpack heightpack-view
 
 mkdir -p out
 for map in examples/maps/*.png; do
@@ -36,6 +36,17 @@ oiiotool out/fresnel.exr --ch R,G,B --resize 256x32 --colorconvert linear sRGB o
 ./build/heightpack tile examples/maps/painted_not_tileable.png -o out/painted_tiled.png
 ./build/heightpack check out/painted_tiled.png --preview out/painted_check_after.png
 ./build/heightpack check examples/maps/swell.png --quiet && echo "examples/maps/swell.png tiles"
+
+# The water as the game will show it, rendered headlessly (Xvfb + Mesa) by the chapter 18 viewer:
+# the swell and choppy maps displacing the radial grid, the ripple normal map, the Fresnel ramp.
+xvfb-run -a -s "-screen 0 1280x1024x24" ./build/viewer/heightpack-view out/swell.exr out/choppy.exr \
+  --normals out/ripple_n.exr --fresnel out/fresnel.exr --screenshot out/view.png --size 1280x720 --time 12.5 \
+  --camera 0,0,8,30,-10
+# And the seams a 3x3 tiling shows, before and after tile.
+xvfb-run -a ./build/viewer/heightpack-view examples/maps/painted_not_tileable.png --tiled 3x3 --size 768x768 \
+  --screenshot out/painted_tiled3x3.png
+xvfb-run -a ./build/viewer/heightpack-view out/painted_tiled.png --tiled 3x3 --size 768x768 \
+  --screenshot out/painted_fixed_tiled3x3.png
 
 echo
 ./build/heightpack info out/swell.exr

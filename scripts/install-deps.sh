@@ -10,6 +10,9 @@ packages=(
   libcli11-dev nlohmann-json3-dev               # command line, --json
   libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
   libopencv-core-dev                            # the DFT behind `tile` (periodic + smooth)
+  libglfw3-dev libglm-dev libepoxy-dev          # heightpack-view: window and GL context, maths, GL loader
+  libimgui-dev libstb-dev                       # heightpack-view: the panel (imgui.pc requires stb)
+  xvfb xauth libgl1-mesa-dri                    # headless screenshots and viewer tests (Mesa llvmpipe)
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks
   time                                          # peak memory in tests/bench/bench_pack.sh
 )

@@ -93,7 +93,7 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
     auto watched = fileTimes(o.files);
     double mouseX = 0, mouseY = 0;
     glfwGetCursorPos(window, &mouseX, &mouseY);
-    bool explodeKeyWasDown = false;
+    bool explodeKeyWasDown = false, f1WasDown = false;
     while (!glfwWindowShouldClose(window)) {
         glfwPollEvents();
         const auto now = std::chrono::steady_clock::now();
@@ -129,7 +129,9 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
             o.camera.fly({key(GLFW_KEY_W) - key(GLFW_KEY_S), key(GLFW_KEY_D) - key(GLFW_KEY_A),
                           key(GLFW_KEY_SPACE) - key(GLFW_KEY_LEFT_CONTROL)},
                          dt);
-            if (glfwGetKey(window, GLFW_KEY_F1) == GLFW_PRESS) panel.showPanel = !panel.showPanel;
+            const bool f1 = glfwGetKey(window, GLFW_KEY_F1) == GLFW_PRESS;
+            if (f1 && !f1WasDown) panel.showPanel = !panel.showPanel;
+            f1WasDown = f1;
             if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
         }
         if (!io.WantCaptureMouse && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)

@@ -9,7 +9,8 @@ namespace heightpack::view {
 void drawPanel(RenderSettings& s, PanelState& state, Camera& camera, const Scene& scene, const PassTimes& times,
                float time) {
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(360, 640), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(470, 680), ImGuiCond_FirstUseEver);
+    ImGui::PushItemWidth(-190);
     ImGui::Begin("heightpack-view (F1 hides)");
     ImGui::Text("t = %.2f s   water %.2f ms   combine %.2f ms", time, times.water, times.combine);
     ImGui::Text("camera %.1f %.1f %.1f  yaw %.0f pitch %.0f", camera.position.x, camera.position.y, camera.position.z,
@@ -80,6 +81,7 @@ void drawPanel(RenderSettings& s, PanelState& state, Camera& camera, const Scene
         ImGui::SliderInt2("tiles", glm::value_ptr(s.tiles), 1, 8);
         ImGui::Checkbox("seam lines", &s.seamLines);
     }
+    ImGui::PopItemWidth();
     ImGui::End();
 }
 

@@ -10,7 +10,7 @@ uniform vec2 uViewport;
 layout(location = 0) out vec4 outColour;
 
 void main() {
-    vec2 t = vUv * uTiles;
+    vec2 t = vec2(vUv.x, 1.0 - vUv.y) * uTiles;  // row 0 of the map at the top, as an image viewer shows it
     float h = textureLod(uMap, fract(t), 0.0).r;
     float g = clamp((h - uRange.x) / (uRange.y - uRange.x), 0.0, 1.0);
     vec3 colour = vec3(g);

@@ -1,0 +1,226 @@
+// heightpack-view under Xvfb with Mesa's software GL: screenshots read back and compared, so a wrong
+// lookup, pass or camera shows up as wrong pixels.
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "support/test_support.hpp"
+
+extern char** environ;
+
+using namespace heightpack;
+using namespace heightpack::test;
+
+namespace {
+
+struct ViewRun {
+    int code = -1;
+    std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Runs heightpack-view under its own virtual X server.
+ViewRun view(const std::vector<std::string>& args) {
+    ScratchDir io;
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, io.file("out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, io.file("err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<std::string> all = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", HEIGHTPACK_VIEW_EXE};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    ViewRun run;
+    if (posix_spawnp(&pid, "xvfb-run", &actions, nullptr, argv.data(), environ) != 0) return run;
+    posix_spawn_file_actions_destroy(&actions);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    run.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    run.out = slurp(io.file("out"));
+    run.err = slurp(io.file("err"));
+    return run;
+}
+
+struct Picture {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;
+    int at(int x, int y, int c = 0) const { return rgb[(size_t(y) * width + x) * 3 + c]; }
+};
+
+Picture readPicture(const std::string& path) {
+    Picture p;
+    auto in = OIIO::ImageInput::open(path);
+    EXPECT_TRUE(in) << path;
+    if (!in) return p;
+    p.width = in->spec().width;
+    p.height = in->spec().height;
+    p.rgb.resize(size_t(p.width) * p.height * 3);
+    EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, p.rgb.data()));
+    return p;
+}
+
+Picture screenshot(const ScratchDir& dir, const std::string& name, std::vector<std::string> args) {
+    args.insert(args.end(), {"--screenshot", dir.file(name)});
+    const ViewRun run = view(args);
+    EXPECT_EQ(run.code, 0) << run.err;
+    return readPicture(dir.file(name));
+}
+
+struct Difference {
+    int max = 0;
+    double fractionOver = 0.0;  // of pixels differing by more than `tolerance`
+};
+
+Difference compare(const Picture& a, const Picture& b, int tolerance) {
+    Difference d;
+    EXPECT_EQ(a.rgb.size(), b.rgb.size());
+    size_t over = 0;
+    for (size_t i = 0; i < std::min(a.rgb.size(), b.rgb.size()); ++i) {
+        const int diff = std::abs(int(a.rgb[i]) - int(b.rgb[i]));
+        d.max = std::max(d.max, diff);
+        over += diff > tolerance;
+    }
+    d.fractionOver = double(over) / std::max<size_t>(1, a.rgb.size());
+    return d;
+}
+
+const std::string kExamples = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/";
+
+// The first row from the top that is not the black background, in column x.
+int horizonRow(const Picture& p, int x) {
+    for (int y = 0; y < p.height; ++y)
+        if (p.at(x, y, 0) > 8 || p.at(x, y, 1) > 8 || p.at(x, y, 2) > 8) return y;
+    return p.height;
+}
+
+}  // namespace
+
+TEST(Viewer, PackedLookupEqualsHardwareBilinearOfThePlainMap) {
+    // Looking straight down, the height shown as grey: the packed path and GL_LINEAR on the R32F map.
+    ScratchDir dir;
+    const std::vector<std::string> common = {kExamples + "swell.png", "--view", "height", "--size", "320x240",
+                                             "--time", "3", "--camera", "0,0,40,0,-89.9", "--amplitude", "4",
+                                             "--tile-size", "64"};
+    for (const auto& [packed, reference] : {std::pair<std::string, std::string>{"bilinear", "reference-bilinear"},
+                                            {"trilinear", "reference-trilinear"}}) {
+        auto a = common, b = common;
+        a.insert(a.end(), {"--lookup", packed});
+        b.insert(b.end(), {"--lookup", reference});
+        const Picture pa = screenshot(dir, packed + ".png", a), pb = screenshot(dir, reference + ".png", b);
+        const Difference d = compare(pa, pb, 2);
+        EXPECT_LE(d.max, 4) << packed;
+        EXPECT_LT(d.fractionOver, 0.01) << packed;
+    }
+    // From high above the far water uses coarse levels: trilinear against its reference there too.
+    auto high = common;
+    high[8] = "0,0,400,0,-30";
+    auto a = high, b = high;
+    a.insert(a.end(), {"--lookup", "trilinear"});
+    b.insert(b.end(), {"--lookup", "reference-trilinear"});
+    const Difference far = compare(screenshot(dir, "far_a.png", a), screenshot(dir, "far_b.png", b), 2);
+    EXPECT_LE(far.max, 6);
+    EXPECT_LT(far.fractionOver, 0.01);
+    // And the picture is not blank: the waves vary the grey.
+    const Picture p = readPicture(dir.file("bilinear.png"));
+    int lo = 255, hi = 0;
+    for (size_t i = 0; i < p.rgb.size(); i += 3) lo = std::min<int>(lo, p.rgb[i]), hi = std::max<int>(hi, p.rgb[i]);
+    EXPECT_GT(hi - lo, 60);
+}
+
+TEST(Viewer, FrustumBranchAndTwoPassesDoNotChangeThePicture) {
+    ScratchDir dir;
+    const std::vector<std::string> common = {kExamples + "swell.png", kExamples + "choppy.png", "--size", "320x180",
+                                             "--time", "7", "--camera", "5,-3,6,40,-12"};
+    const Picture base = screenshot(dir, "base.png", common);
+    auto noBranch = common;
+    noBranch.push_back("--no-frustum-branch");
+    const Difference branch = compare(base, screenshot(dir, "nobranch.png", noBranch), 2);
+    EXPECT_LE(branch.max, 3);
+    auto twoPass = common;
+    twoPass.push_back("--two-pass");
+    const Difference passes = compare(base, screenshot(dir, "twopass.png", twoPass), 4);
+    EXPECT_LT(passes.fractionOver, 0.005);
+}
+
+TEST(Viewer, FlatWaterPutsTheHorizonWhereTheCameraSaysAndWavesBreakIt) {
+    ScratchDir dir;
+    writeImage(dir.file("flat.png"), makeImage(64, 64, [](int, int) { return 0.5f; }), OIIO::TypeDesc::UINT8);
+    // 60 degree vertical field of view, 400 rows, looking 10 degrees down: the horizon is
+    // 200 * tan(10 deg) / tan(30 deg) = 61.1 rows above the middle.
+    const double expected = 200.0 - 200.0 * std::tan(10 * M_PI / 180) / std::tan(30 * M_PI / 180);
+    const Picture flat = screenshot(dir, "flat_shot.png", {dir.file("flat.png"), "--view", "height", "--size",
+                                                            "400x400", "--camera", "0,0,2,0,-10"});
+    for (int x = 0; x < flat.width; x += 13) EXPECT_NEAR(horizonRow(flat, x), expected, 1.5) << "column " << x;
+    const Picture waves = screenshot(dir, "waves_shot.png", {kExamples + "painted_not_tileable.png", "--view", "height",
+                                                              "--size", "400x400", "--camera", "0,0,2,0,-10",
+                                                              "--amplitude", "6", "--tile-size", "40"});
+    int lowest = waves.height, highest = 0;
+    for (int x = 0; x < waves.width; ++x) {
+        lowest = std::min(lowest, horizonRow(waves, x));
+        highest = std::max(highest, horizonRow(waves, x));
+    }
+    EXPECT_GT(highest - lowest, 3) << "a displaced sea has a ragged skyline";
+}
+
+TEST(Viewer, TiledViewShowsTheSeamsOfANonTileableMapOnly) {
+    ScratchDir dir;
+    auto jumpRatio = [&](const std::string& map) {
+        const Picture p = screenshot(dir, "tiled.png", {map, "--tiled", "3x3", "--size", "600x600"});
+        // Mean step between neighbouring columns at the tile lines (x = 200, 400) against everywhere.
+        double lines = 0, all = 0;
+        int lineCount = 0, allCount = 0;
+        for (int y = 0; y < p.height; ++y) {
+            for (int x = 1; x < p.width; ++x) {
+                const double step = std::abs(p.at(x, y) - p.at(x - 1, y));
+                all += step;
+                ++allCount;
+                if (x == 200 || x == 400) lines += step, ++lineCount;
+            }
+        }
+        return (lines / lineCount) / (all / allCount);
+    };
+    EXPECT_GT(jumpRatio(kExamples + "painted_not_tileable.png"), 5.0);
+    EXPECT_LT(jumpRatio(kExamples + "swell.png"), 2.0);
+}
+
+TEST(Viewer, BadInputGivesTheDocumentedErrorAndNoWindow) {
+    ScratchDir dir;
+    writeBytes(dir.file("broken.exr"), {'n', 'o', 'p', 'e'});
+    for (const std::string& input : {dir.file("missing.exr"), dir.file("broken.exr")}) {
+        const ViewRun run = view({input, "--screenshot", dir.file("shot.png")});
+        EXPECT_EQ(run.code, 3) << run.err;
+        EXPECT_EQ(run.err.rfind("heightpack: error: " + input, 0), 0u) << run.err;
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    }
+    const ViewRun badNormals = view({kExamples + "swell.png", "--normals", dir.file("missing_n.exr"), "--screenshot",
+                                     dir.file("shot.png")});
+    EXPECT_EQ(badNormals.code, 3);
+    EXPECT_EQ(view({kExamples + "swell.png", "--size", "huge"}).code, 2);
+    EXPECT_EQ(dir.listing(), (std::vector<std::string>{"broken.exr"}));  // no screenshot written
+}
+
+TEST(Viewer, BenchReportsGpuTimePerPass) {
+    const ViewRun run = view({kExamples + "swell.png", "--bench", "3", "--json", "--two-pass", "--grid", "64",
+                              "--segments", "128", "--size", "160x90"});
+    ASSERT_EQ(run.code, 0) << run.err;
+    const auto j = nlohmann::json::parse(run.out);
+    EXPECT_EQ(j["frames"], 3);
+    EXPECT_EQ(j["vertices"], 64 * 128);
+    EXPECT_GT(j["waterMs"].get<double>(), 0.0);
+    EXPECT_GT(j["combineMs"].get<double>(), 0.0);
+}
