@@ -20,10 +20,11 @@ public:
         cmd->add_option("input", input_, "the height map")->required();
         cmd->add_option("-o,--output", output_, "the tiling map to write (.png, .tif, .exr)")->required();
         cmd->add_option("--method", method_,
-                        "periodic: subtract the smooth field behind the seams (Moisan); crossfade: offset and blend "
-                        "keeping contrast (Heitz-Neyret); mirror: mirror tiling, twice the size")
+                        "periodic: subtract the smooth field behind the seams, heights and slopes; moisan: the "
+                        "same for heights only (Moisan 2011); crossfade: offset and blend keeping contrast "
+                        "(Heitz-Neyret); mirror: mirror tiling, twice the size")
             ->capture_default_str()
-            ->check(CLI::IsMember({"periodic", "crossfade", "mirror"}));
+            ->check(CLI::IsMember({"periodic", "moisan", "crossfade", "mirror"}));
         widthOption_ = cmd->add_option("--width", options_.width, "crossfade band as a fraction of the tile, in (0, 0.5]")
             ->capture_default_str()
             ->check(CLI::Validator(
@@ -59,6 +60,7 @@ public:
         if (method_ != "crossfade" && widthGiven()) return usage("--width goes with --method crossfade");
         options_.method = method_ == "crossfade" ? TileMethod::Crossfade
                           : method_ == "mirror"  ? TileMethod::Mirror
+                          : method_ == "moisan"  ? TileMethod::Moisan
                                                  : TileMethod::Periodic;
         options_.bits = depth_ == "uint8" ? 8 : depth_ == "uint16" ? 16 : depth_ == "float" ? 32 : 0;
         options_.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);

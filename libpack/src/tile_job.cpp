@@ -12,6 +12,7 @@ namespace heightpack {
 const char* tileMethodName(TileMethod method) {
     switch (method) {
         case TileMethod::Periodic: return "periodic";
+        case TileMethod::Moisan: return "moisan";
         case TileMethod::Crossfade: return "crossfade";
         case TileMethod::Mirror: return "mirror";
     }
@@ -55,6 +56,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
 
     Image result = report.alreadyTiled                        ? map
                    : options.method == TileMethod::Periodic   ? periodicComponent(map)
+                   : options.method == TileMethod::Moisan     ? periodicComponent(map, PeriodicContinuity::Heights)
                    : options.method == TileMethod::Crossfade  ? crossfadeTile(map, options.width)
                                                               : mirrorTile(map);
     report.after = measureSeams(result);

@@ -413,6 +413,13 @@ TEST(Cli, TileMakesThePaintingTileAndLeavesATilingMapAlone) {
     EXPECT_EQ(forced.code, 0) << forced.err;
     EXPECT_NE(readBytes(dir.file("forced.png")), readBytes(swell));
 
+    // Moisan's original: heights meet at the edges; its slope kink is what the default method removes.
+    ASSERT_EQ(heightpackRun({"tile", painted, "--method", "moisan", "-q", "-o", dir.file("moisan.exr"), "--depth",
+                             "float"}).code, 0);
+    const auto moisan = nlohmann::json::parse(heightpackRun({"check", dir.file("moisan.exr"), "--json"}).out);
+    EXPECT_LT(moisan["levels"][0]["leftRight"]["value"].get<double>(), 2.0);
+    EXPECT_LT(moisan["levels"][0]["topBottom"]["value"].get<double>(), 2.0);
+
     const CliRun mirror = heightpackRun({"tile", painted, "--method", "mirror", "--json", "-o", dir.file("m.png")});
     ASSERT_EQ(mirror.code, 0) << mirror.err;
     EXPECT_EQ(nlohmann::json::parse(mirror.out)["width"], 1024);

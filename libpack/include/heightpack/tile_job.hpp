@@ -10,7 +10,8 @@
 namespace heightpack {
 
 enum class TileMethod {
-    Periodic,   // Moisan's periodic component: only a smooth field is subtracted
+    Periodic,   // periodic + smooth with slopes continued across the edges: only a smooth field is subtracted
+    Moisan,     // Moisan's original periodic component: heights meet, slopes may kink at the edges
     Crossfade,  // offset and blend with a histogram-preserving blend over a band
     Mirror,     // mirror tiling: twice the size, symmetric
 };
