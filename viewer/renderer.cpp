@@ -1,5 +1,6 @@
 #include "renderer.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/type_ptr.hpp>
@@ -34,6 +35,20 @@ void enableMipmaps() {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 1000);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
 }
+
+// Wall time of a pass: everything before it finished first, everything in it finished after.
+struct WallClock {
+    bool on;
+    std::chrono::steady_clock::time_point start;
+    explicit WallClock(bool measure) : on(measure) {
+        if (on) glFinish(), start = std::chrono::steady_clock::now();
+    }
+    double stop() const {
+        if (!on) return 0.0;
+        glFinish();
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+};
 
 void bindTexture(int unit, GLuint texture) {
     glActiveTexture(GL_TEXTURE0 + unit);
@@ -207,6 +222,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
 
     if (s.tiledView) {
         if (layers_.empty()) return;
+        const WallClock wall(measure);
         if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[2]);
         glUseProgram(tiledProgram_);
         bindTexture(kTiledMap, layers_[0].plain);
@@ -223,12 +239,14 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
             GLuint64 ns = 0;
             glGetQueryObjectui64v(queries_[2], GL_QUERY_RESULT, &ns);
             times_.tiled = ns / 1e6;
+            times_.tiledWall = wall.stop();
         }
         return;
     }
 
     if (s.twoPass) {
         // Pass one: the height of every grid vertex into an fp32 texture.
+        const WallClock wall(measure);
         if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[0]);
         glBindFramebuffer(GL_FRAMEBUFFER, combined_.framebuffer);
         glViewport(0, 0, s.segments, s.rings);
@@ -243,10 +261,12 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
         glBindVertexArray(emptyVao_);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         if (measure) glEndQuery(GL_TIME_ELAPSED);
+        times_.combineWall = wall.stop();
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
         glViewport(0, 0, width, height);
     }
 
+    const WallClock wall(measure);
     if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[1]);
     const glm::vec3 sun = glm::normalize(s.sunDirection), sunColour(1.0f, 0.93f, 0.8f);
     if (s.view == ViewMode::Shaded) {
@@ -303,6 +323,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
         GLuint64 ns = 0;
         glGetQueryObjectui64v(queries_[1], GL_QUERY_RESULT, &ns);
         times_.water = ns / 1e6;
+        times_.waterWall = wall.stop();
         if (s.twoPass) {
             glGetQueryObjectui64v(queries_[0], GL_QUERY_RESULT, &ns);
             times_.combine = ns / 1e6;

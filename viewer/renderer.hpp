@@ -68,9 +68,12 @@ struct RenderSettings {
     glm::vec2 heightRange{-2.0f, 2.0f};  // heights shown as grey in the height view
 };
 
-// GPU time per pass, from timer queries (milliseconds of the last frame measured).
+// Time per pass of the last frame measured, in milliseconds: GPU time from timer queries, and wall time
+// with the pass bracketed by glFinish. A software renderer (llvmpipe) defers its work past the queries,
+// so there only the wall times mean anything; on a GPU the two agree closely.
 struct PassTimes {
     double combine = 0.0, water = 0.0, tiled = 0.0;
+    double combineWall = 0.0, waterWall = 0.0, tiledWall = 0.0;
     long long vertices = 0;
 };
 
