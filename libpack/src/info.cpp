@@ -45,14 +45,7 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
     auto file = readTextureFile(path, silenceDecoderMessages);
     if (!file) return file.error();
     FileInfo info;
-    info.path = file->path;
-    info.format = file->format;
-    info.pixelType = file->pixelType;
-    info.channelNames = file->channelNames;
-    info.tiled = file->tiled;
-    info.tileWidth = file->tileWidth;
-    info.tileHeight = file->tileHeight;
-    info.attributes = file->attributes;
+    static_cast<TextureHeader&>(info) = *file;
     for (const Image& image : file->levels) {
         LevelInfo level;
         level.width = image.width;

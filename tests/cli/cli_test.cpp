@@ -2,10 +2,7 @@
 // byte-identical outputs whatever --threads.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -20,48 +17,18 @@
 #include "heightpack/normal.hpp"
 #include "support/test_support.hpp"
 
-extern char** environ;
-
 using namespace heightpack;
 using namespace heightpack::test;
 
 namespace {
 
-struct CliRun {
-    int code = -1;
-    std::string out, err;
-};
+using CliRun = ProcessResult;
 
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// Runs heightpack with args, capturing stdout and stderr.
+// Runs heightpack with args.
 CliRun heightpackRun(const std::vector<std::string>& args) {
-    ScratchDir io;
-    const std::string outPath = io.file("stdout"), errPath = io.file("stderr");
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<std::string> all = {HEIGHTPACK_EXE};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    CliRun run;
-    if (posix_spawn(&pid, HEIGHTPACK_EXE, &actions, nullptr, argv.data(), environ) != 0) return run;
-    posix_spawn_file_actions_destroy(&actions);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    run.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    run.out = slurp(outPath);
-    run.err = slurp(errPath);
-    return run;
+    std::vector<std::string> argv = {HEIGHTPACK_EXE};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return runProcess(argv);
 }
 
 // The error contract: exactly one line, prefixed, naming the file.

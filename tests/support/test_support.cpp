@@ -2,6 +2,9 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -10,6 +13,9 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <sstream>
+
+extern char** environ;
 
 namespace heightpack::test {
 
@@ -101,6 +107,38 @@ std::vector<unsigned char> pngWithClaimedSize(unsigned width, unsigned height) {
     chunk("IDAT", packed);
     chunk("IEND", {});
     return png;
+}
+
+ProcessResult runProcess(const std::vector<std::string>& argv, const std::vector<std::string>& environment) {
+    ScratchDir io;
+    const std::string outPath = io.file("stdout"), errPath = io.file("stderr");
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<std::string> args = argv, env = environment;
+    std::vector<char*> argp, envp;
+    for (auto& a : args) argp.push_back(a.data());
+    argp.push_back(nullptr);
+    for (auto& e : env) envp.push_back(e.data());
+    envp.push_back(nullptr);
+    ProcessResult result;
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, argp[0], &actions, nullptr, argp.data(), env.empty() ? environ : envp.data());
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0) return result;
+    int status = 0;
+    waitpid(pid, &status, 0);
+    result.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    auto slurp = [](const std::string& path) {
+        std::ifstream in(path);
+        std::stringstream text;
+        text << in.rdbuf();
+        return text.str();
+    };
+    result.out = slurp(outPath);
+    result.err = slurp(errPath);
+    return result;
 }
 
 int referenceWrap(long long i, int n, bool periodic) {

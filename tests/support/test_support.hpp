@@ -47,6 +47,16 @@ void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes
 // A PNG whose header claims width x height, followed by a tiny, valid data stream.
 std::vector<unsigned char> pngWithClaimedSize(unsigned width, unsigned height);
 
+// A finished child process: its exit code (128 + signal if killed) and what it printed.
+struct ProcessResult {
+    int code = -1;
+    std::string out, err;
+};
+
+// Runs argv (argv[0] looked up on PATH) with the given environment (this process's when empty),
+// capturing stdout and stderr.
+ProcessResult runProcess(const std::vector<std::string>& argv, const std::vector<std::string>& environment = {});
+
 // Reference lookups written from the definitions, sharing no code with libpack.
 // Texel index i brought into [0, n) periodically or by clamping.
 int referenceWrap(long long i, int n, bool periodic);

@@ -1,10 +1,7 @@
 // heightpack-view under Xvfb with Mesa's software GL: screenshots read back and compared, so a wrong
 // lookup, pass or camera shows up as wrong pixels.
 #include <OpenImageIO/imageio.h>
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <fstream>
@@ -20,30 +17,12 @@ using namespace heightpack::test;
 
 namespace {
 
-struct ViewRun {
-    int code = -1;
-    std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using ViewRun = ProcessResult;
 
 // Runs heightpack-view under its own virtual X server.
 ViewRun view(const std::vector<std::string>& args) {
-    ScratchDir io;
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, io.file("out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, io.file("err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<std::string> all = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", HEIGHTPACK_VIEW_EXE};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
+    std::vector<std::string> argv = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", HEIGHTPACK_VIEW_EXE};
+    argv.insert(argv.end(), args.begin(), args.end());
     // Mesa's GL driver keeps small allocations until it is unloaded at exit, where LeakSanitizer cannot
     // even name them; leak checking stays on for everything else, address and UB checks stay on here.
     std::vector<std::string> env;
@@ -57,19 +36,7 @@ ViewRun view(const std::vector<std::string>& args) {
         env.push_back(entry);
     }
     if (!sawAsan) env.push_back("ASAN_OPTIONS=detect_leaks=0");
-    std::vector<char*> envp;
-    for (auto& e : env) envp.push_back(e.data());
-    envp.push_back(nullptr);
-    pid_t pid = 0;
-    ViewRun run;
-    if (posix_spawnp(&pid, "xvfb-run", &actions, nullptr, argv.data(), envp.data()) != 0) return run;
-    posix_spawn_file_actions_destroy(&actions);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    run.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    run.out = slurp(io.file("out"));
-    run.err = slurp(io.file("err"));
-    return run;
+    return runProcess(argv, env);
 }
 
 struct Picture {

@@ -23,22 +23,10 @@ struct LevelInfo {
     std::vector<ChannelStats> channels;
 };
 
-struct FileInfo {
-    std::string path;
-    std::string format;     // OpenImageIO's format name
-    std::string pixelType;  // of the file's channels: "float", "half", "uint16", ...
-    std::vector<std::string> channelNames;
-    bool tiled = false;
-    int tileWidth = 0;
-    int tileHeight = 0;
-    std::vector<LevelInfo> levels;  // level 0 first; one entry for a file without mip levels
-    std::vector<std::pair<std::string, std::string>> attributes;  // header metadata, as text
-};
-
 using Attributes = std::vector<std::pair<std::string, std::string>>;
 
-// Every level of a texture file as float images, all channels, with the header.
-struct TextureFile {
+// What a texture file's header says.
+struct TextureHeader {
     std::string path;
     std::string format;     // OpenImageIO's format name
     std::string pixelType;  // of the file's channels: "float", "half", "uint16", ...
@@ -46,8 +34,17 @@ struct TextureFile {
     bool tiled = false;
     int tileWidth = 0;
     int tileHeight = 0;
+    Attributes attributes;  // header metadata, as text
+};
+
+// A file's header and per-level statistics.
+struct FileInfo : TextureHeader {
+    std::vector<LevelInfo> levels;  // level 0 first; one entry for a file without mip levels
+};
+
+// Every level of a texture file as float images, all channels, with the header.
+struct TextureFile : TextureHeader {
     std::vector<Image> levels;  // level 0 first; one entry for a file without mip levels
-    Attributes attributes;      // header metadata, as text
 };
 
 // Reads every level of the image at path through OpenImageIO. Fails with BadInput when the file cannot
