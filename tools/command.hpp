@@ -65,6 +65,7 @@ std::unique_ptr<Command> makeNormalCommand();
 std::unique_ptr<Command> makeFresnelCommand();
 std::unique_ptr<Command> makeCheckCommand();
 std::unique_ptr<Command> makeTileCommand();
+std::unique_ptr<Command> makeSynthCommand();
 
 // A one-line progress display on stderr, shown only on a terminal and never with --quiet.
 class Progress {

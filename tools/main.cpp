@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
     commands.push_back(makeFresnelCommand());
     commands.push_back(makeCheckCommand());
     commands.push_back(makeTileCommand());
+    commands.push_back(makeSynthCommand());
     commands.push_back(makeInfoCommand());
     std::vector<CLI::App*> subcommands;
     for (auto& command : commands) subcommands.push_back(command->attach(app));

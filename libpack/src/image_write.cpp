@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 
 #include "atomic_file.hpp"
 #include "heightpack/io.hpp"
@@ -32,11 +34,20 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
     if (image.channels == 4) spec.alpha_channel = 3;
     spec.attribute("oiio:UnassociatedAlpha", 1);
     if (options.srgbChannels > 0 && options.bits != 32) spec.attribute("oiio:ColorSpace", "sRGB");
+    // PNG keeps text chunks only: numbers go in as text there, so nothing recorded is lost.
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool textOnly = ext == ".png";
     for (const ExrAttribute& a : options.attributes) {
-        if (const auto* s = std::get_if<std::string>(&a.value))
+        if (const auto* s = std::get_if<std::string>(&a.value)) {
             spec.attribute(a.name, *s);
-        else
+        } else if (textOnly) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.9g", std::get<float>(a.value));
+            spec.attribute(a.name, std::string(text));
+        } else {
             spec.attribute(a.name, std::get<float>(a.value));
+        }
     }
 
     std::vector<float> pixels = image.pixels;

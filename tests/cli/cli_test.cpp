@@ -184,7 +184,7 @@ TEST(Cli, UsageErrorsExitTwoAndPointAtHelp) {
 }
 
 TEST(Cli, HelpShowsAnExample) {
-    for (const char* command : {"pack", "normal", "fresnel", "check", "tile", "info"}) {
+    for (const char* command : {"pack", "normal", "fresnel", "check", "tile", "synth", "info"}) {
         const CliRun run = heightpackRun({command, "--help"});
         EXPECT_EQ(run.code, 0);
         EXPECT_NE(run.out.find("Example"), std::string::npos) << run.out;
@@ -412,4 +412,56 @@ TEST(Cli, CheckAndTileRefuseBadInput) {
     EXPECT_EQ(heightpackRun({"tile", map, "--force", "-o", dir.file("no/o.png")}).code, 4);
     EXPECT_EQ(heightpackRun({"check", map, "--preview", dir.file("no/p.png")}).code, 4);
     EXPECT_EQ(dir.listing(), (std::vector<std::string>{"map.png", "text.png"}));
+}
+
+TEST(Cli, SynthWritesTileableSeasAndLoopingFrames) {
+    ScratchDir dir;
+    const CliRun one = heightpackRun({"synth", "--spectrum", "phillips", "--wind", "12m/s", "--direction", "30",
+                                      "--tile-size", "256m", "--size", "128", "--json", "-o", dir.file("swell.png")});
+    ASSERT_EQ(one.code, 0) << one.err;
+    const auto j = nlohmann::json::parse(one.out);
+    EXPECT_GT(j["significantWaveHeight"].get<double>(), 0.5);
+    EXPECT_EQ(heightpackRun({"check", dir.file("swell.png")}).code, 0);
+    auto in = OIIO::ImageInput::open(dir.file("swell.png"));
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT16);
+    // The stored [0,1] maps back to metres through the recorded scale and offset.
+    EXPECT_NEAR(std::stod(in->spec().get_string_attribute("heightpack:heightOffset")), j["minHeight"].get<double>(), 1e-4);
+    EXPECT_NEAR(std::stod(in->spec().get_string_attribute("heightpack:heightScale")),
+                j["maxHeight"].get<double>() - j["minHeight"].get<double>(), 1e-4);
+
+    // The same seed gives the same bytes.
+    ASSERT_EQ(heightpackRun({"synth", "--spectrum", "phillips", "--wind", "12m/s", "--direction", "30", "--tile-size",
+                             "256m", "--size", "128", "-q", "-o", dir.file("again.png")}).code, 0);
+    EXPECT_EQ(readBytes(dir.file("swell.png")), readBytes(dir.file("again.png")));
+
+    const CliRun frames = heightpackRun({"synth", "--wind", "8m/s", "--tile-size", "64m", "--size", "64", "--frames",
+                                         "4", "--loop", "8s", "-q", "-o", dir.file("seq.exr")});
+    ASSERT_EQ(frames.code, 0) << frames.err;
+    for (const char* name : {"seq.0000.exr", "seq.0001.exr", "seq.0002.exr", "seq.0003.exr"}) {
+        EXPECT_TRUE(std::filesystem::exists(dir.file(name))) << name;
+        EXPECT_EQ(heightpackRun({"pack", dir.file(name), "-q", "-o", dir.file(std::string("packed_") + name)}).code, 0);
+    }
+}
+
+TEST(Cli, SynthRefusesBadValues) {
+    ScratchDir dir;
+    const std::string out = dir.file("s.exr");
+    const std::vector<std::vector<std::string>> usage = {
+        {"synth", "--wind", "10m/s", "--tile-size", "64m", "--size", "0", "-o", out},
+        {"synth", "--wind", "10m/s", "--tile-size", "64m", "--size", "300", "-o", out},
+        {"synth", "--wind", "10m/s", "--tile-size", "64m", "--size", "-64", "-o", out},
+        {"synth", "--wind", "10m/s", "--tile-size", "-64m", "-o", out},
+        {"synth", "--wind", "0m/s", "--tile-size", "64m", "-o", out},
+        {"synth", "--wind", "10m/s", "--tile-size", "64m", "--frames", "8", "-o", out},
+        {"synth", "--wind", "10m/s", "--tile-size", "64m", "--spectrum", "pierson", "-o", out},
+        {"synth", "--wind", "10m/s", "--tile-size", "64m", "--frames", "8", "--loop", "0s", "-o", out},
+    };
+    for (const auto& args : usage) {
+        const CliRun run = heightpackRun(args);
+        EXPECT_EQ(run.code, 2) << run.err;
+        expectOneLineError(run, "");
+    }
+    EXPECT_EQ(heightpackRun({"synth", "--wind", "10m/s", "--tile-size", "64m", "-o", dir.file("no/s.exr")}).code, 4);
+    EXPECT_TRUE(dir.listing().empty());
 }

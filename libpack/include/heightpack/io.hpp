@@ -94,7 +94,7 @@ Status writeTiledExr(const std::string& path, const TiledExrContent& content, co
 struct FlatImageOptions {
     int bits = 32;          // 8 or 16 (unsigned integer) or 32 (float)
     int srgbChannels = 0;   // the first this many channels are linear colours to encode as sRGB (8/16-bit)
-    std::vector<ExrAttribute> attributes;  // metadata, written where the format can hold it
+    std::vector<ExrAttribute> attributes;  // metadata; a PNG holds numbers as text
 };
 
 // Writes image (1 to 4 channels: Y, RGB or RGBA) atomically, as writeTiledExr does. Integer formats clamp

@@ -1,0 +1,33 @@
+// The whole `synth` operation: a sea from a spectrum, written as one map or a looping sequence of frames.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "heightpack/result.hpp"
+#include "heightpack/spectrum.hpp"
+
+namespace heightpack {
+
+struct SynthOptions {
+    SpectrumOptions spectrum;
+    int frames = 1;  // more than one needs spectrum.loopPeriod: frame f is the sea at f * loopPeriod / frames
+    std::string version;
+};
+
+struct SynthReport {
+    std::vector<std::string> outputs;  // one file, or NAME.0000.EXT ... for frames
+    double significantWaveHeight = 0.0;          // 4 x the standard deviation of frame 0's heights (m)
+    double expectedSignificantWaveHeight = 0.0;  // 4 x sqrt(the resolved spectrum's variance)
+    double minHeight = 0.0, maxHeight = 0.0;     // over all frames (m)
+};
+
+// The file a frame goes to: output itself for one frame, else NAME.FFFF.EXT.
+std::string frameFileName(const std::string& output, int frame, int frames);
+
+// Writes the sea at output: an .exr holds heights in metres (float); a .png or .tif holds them mapped
+// onto [0,1] at 16 bits, with heightpack:heightScale and heightpack:heightOffset giving metres back
+// (the same mapping for every frame of a sequence). Every file is written atomically.
+Result<SynthReport> synthesise(const std::string& output, const SynthOptions& options);
+
+}  // namespace heightpack

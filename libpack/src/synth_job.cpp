@@ -1,0 +1,80 @@
+#include "heightpack/synth_job.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "heightpack/io.hpp"
+
+namespace heightpack {
+
+std::string frameFileName(const std::string& output, int frame, int frames) {
+    if (frames <= 1) return output;
+    const std::filesystem::path p(output);
+    char number[16];
+    std::snprintf(number, sizeof number, ".%04d", frame);
+    return (p.parent_path() / (p.stem().string() + number + p.extension().string())).string();
+}
+
+Result<SynthReport> synthesise(const std::string& output, const SynthOptions& options) {
+    for (int f = 0; f < options.frames; ++f)
+        if (Status s = checkWritable(frameFileName(output, f, options.frames)); !s) return s.error();
+    std::string ext = std::filesystem::path(output).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool metres = ext == ".exr";
+
+    const Ocean ocean(options.spectrum);
+    const double period = options.spectrum.loopPeriod;
+    std::vector<Image> frames;
+    for (int f = 0; f < options.frames; ++f) frames.push_back(ocean.heights(options.frames > 1 ? f * period / options.frames : 0.0));
+
+    SynthReport report;
+    report.expectedSignificantWaveHeight = 4.0 * std::sqrt(ocean.resolvedVariance());
+    double sum = 0, sq = 0;
+    for (float v : frames[0].pixels) sum += v, sq += double(v) * v;
+    const double n = double(frames[0].pixels.size());
+    report.significantWaveHeight = 4.0 * std::sqrt(std::max(0.0, sq / n - (sum / n) * (sum / n)));
+    report.minHeight = report.maxHeight = frames[0].pixels[0];
+    for (const Image& frame : frames) {
+        const auto [lo, hi] = std::minmax_element(frame.pixels.begin(), frame.pixels.end());
+        report.minHeight = std::min(report.minHeight, double(*lo));
+        report.maxHeight = std::max(report.maxHeight, double(*hi));
+    }
+    // Integer files: one mapping onto [0,1] for the whole sequence, so frames compare.
+    const double offset = metres ? 0.0 : report.minHeight;
+    const double scale = metres ? 1.0 : std::max(report.maxHeight - report.minHeight, 1e-9);
+
+    const SpectrumOptions& s = options.spectrum;
+    char wind[64];
+    std::snprintf(wind, sizeof wind, "%.4g m/s from %.4g deg", s.windSpeed, s.windDirection);
+    for (int f = 0; f < options.frames; ++f) {
+        Image image = frames[f];
+        if (!metres)
+            for (float& v : image.pixels) v = static_cast<float>((v - offset) / scale);
+        FlatImageOptions flat;
+        flat.bits = metres ? 32 : 16;
+        flat.attributes = {
+            {"heightpack:layout", std::string("synthesised")},
+            {"heightpack:spectrum", std::string(spectrumModelName(s.model))},
+            {"heightpack:wind", std::string(wind)},
+            {"heightpack:tileWidth", static_cast<float>(s.tileSize)},
+            {"heightpack:seed", std::to_string(s.seed)},
+            {"heightpack:heightScale", static_cast<float>(scale)},
+            {"heightpack:heightOffset", static_cast<float>(offset)},
+            {"heightpack:version", options.version},
+        };
+        if (s.model == SpectrumModel::Jonswap) flat.attributes.push_back({"heightpack:fetch", static_cast<float>(s.fetch)});
+        if (options.frames > 1) {
+            flat.attributes.push_back({"heightpack:frame", std::to_string(f) + "/" + std::to_string(options.frames)});
+            flat.attributes.push_back({"heightpack:loopPeriod", static_cast<float>(period)});
+            flat.attributes.push_back({"heightpack:time", static_cast<float>(f * period / options.frames)});
+        }
+        const std::string path = frameFileName(output, f, options.frames);
+        if (Status w = writeFlatImage(path, image, flat); !w) return w.error();
+        report.outputs.push_back(path);
+    }
+    return report;
+}
+
+}  // namespace heightpack

@@ -1,0 +1,152 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/core.hpp>
+
+#include "heightpack/mip.hpp"
+#include "heightpack/spectrum.hpp"
+#include "heightpack/tileable.hpp"
+
+using namespace heightpack;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+SpectrumOptions windSea(SpectrumModel model, uint64_t seed = 1) {
+    SpectrumOptions o;
+    o.model = model;
+    o.windSpeed = 10.0;
+    o.fetch = 50000.0;
+    o.windDirection = 30.0;
+    o.tileSize = 512.0;
+    o.size = 256;
+    o.seed = seed;
+    return o;
+}
+
+double stddev(const Image& image) {
+    double sum = 0, sq = 0;
+    for (float v : image.pixels) sum += v, sq += double(v) * v;
+    const double n = double(image.pixels.size());
+    return std::sqrt(sq / n - (sum / n) * (sum / n));
+}
+
+}  // namespace
+
+TEST(Spectrum, JonswapMatchesTheFetchLawsItWasFittedTo) {
+    // Fetch-limited growth (Hasselmann et al. 1973, as in the Shore Protection Manual): Hs ~ 1.6e-3 U
+    // sqrt(F / g), peak frequency wp = 22 (g^2 / (U F))^(1/3).
+    SpectrumOptions o = windSea(SpectrumModel::Jonswap);
+    const double hs = 4 * std::sqrt(spectrumVariance(o));
+    EXPECT_NEAR(hs, 1.6e-3 * o.windSpeed * std::sqrt(o.fetch / kGravity), 0.25 * hs);
+    double best = 0, bestK = 0;
+    for (double k = 0.001; k < 2.0; k *= 1.001)
+        if (omnidirectionalSpectrum(o, k) * std::sqrt(k) > best)  // S(w) is S(k) dk/dw, and dk/dw ~ sqrt(k)
+            best = omnidirectionalSpectrum(o, k) * std::sqrt(k), bestK = k;
+    const double wp = 22.0 * std::pow(kGravity * kGravity / (o.windSpeed * o.fetch), 1.0 / 3.0);
+    EXPECT_NEAR(std::sqrt(kGravity * bestK), wp, 0.01 * wp);
+}
+
+TEST(Spectrum, PhillipsVarianceIsAlphaLw2Over4) {
+    // The integral of (alpha/2) k^-3 exp(-1/(k Lw)^2) dk is alpha Lw^2 / 4 (small-wave cut-off aside).
+    SpectrumOptions o = windSea(SpectrumModel::Phillips);
+    o.smallWaveLength = 1e-6;
+    const double lw = o.windSpeed * o.windSpeed / kGravity;
+    EXPECT_NEAR(spectrumVariance(o), o.phillipsAlpha * lw * lw / 4, 1e-3 * o.phillipsAlpha * lw * lw / 4);
+}
+
+TEST(Spectrum, SynthesisedSeasTileAtEveryLevel) {
+    for (SpectrumModel m : {SpectrumModel::Phillips, SpectrumModel::Jonswap}) {
+        const Image h = Ocean(windSea(m)).heights(3.0);
+        for (const Image& level : generateMipChain(h, Filter::Kaiser))
+            EXPECT_TRUE(levelTiles(measureSeams(level))) << spectrumModelName(m) << " " << level.width;
+    }
+}
+
+TEST(Spectrum, MeasuredPowerSpectrumFollowsTheRequestedOne) {
+    // The forward DFT of the map (an independent transform) gives N^2 h(k); its power, summed over rings
+    // of |k|, against the spectrum's expected power in the same rings.
+    for (SpectrumModel m : {SpectrumModel::Phillips, SpectrumModel::Jonswap}) {
+        const SpectrumOptions o = windSea(m, 11);
+        const int n = o.size;
+        const Image h = Ocean(o).heights(0.0);
+        cv::Mat field(n, n, CV_64F);
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) field.at<double>(y, x) = h.at(x, y);
+        cv::Mat f;
+        cv::dft(field, f, cv::DFT_COMPLEX_OUTPUT);
+        const double dk = 2 * kPi / o.tileSize;
+        const int rings = n / 2;
+        std::vector<double> measured(rings, 0.0), expected(rings, 0.0);
+        std::vector<int> modes(rings, 0);
+        for (int r = 0; r < n; ++r) {
+            for (int q = 0; q < n; ++q) {
+                const int mx = q < n / 2 ? q : q - n, my = r < n / 2 ? r : r - n;
+                const int ring = static_cast<int>(std::hypot(mx, my) / 2);
+                if (ring >= rings || (mx == 0 && my == 0)) continue;
+                const cv::Vec2d z = f.at<cv::Vec2d>(r, q);
+                measured[ring] += (z[0] * z[0] + z[1] * z[1]) / (double(n) * n * n * n);
+                const double s = directionalSpectrum(o, mx * dk, my * dk) + directionalSpectrum(o, -mx * dk, -my * dk);
+                expected[ring] += 0.5 * s * dk * dk;
+                ++modes[ring];
+            }
+        }
+        const double peak = *std::max_element(expected.begin(), expected.end());
+        std::vector<double> ratios;
+        for (int i = 0; i < rings; ++i) {
+            if (expected[i] < 0.01 * peak || modes[i] < 30) continue;
+            ratios.push_back(measured[i] / expected[i]);
+            EXPECT_GT(ratios.back(), 0.5) << spectrumModelName(m) << " ring " << i;
+            EXPECT_LT(ratios.back(), 1.8) << spectrumModelName(m) << " ring " << i;
+        }
+        ASSERT_GT(ratios.size(), 8u);
+        std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+        EXPECT_NEAR(ratios[ratios.size() / 2], 1.0, 0.15) << spectrumModelName(m);
+    }
+}
+
+TEST(Spectrum, SignificantWaveHeightMatchesTheSpectrumsIntegral) {
+    for (SpectrumModel m : {SpectrumModel::Phillips, SpectrumModel::Jonswap}) {
+        double measured = 0;
+        const int seeds = 4;
+        for (int seed = 1; seed <= seeds; ++seed) measured += 4 * stddev(Ocean(windSea(m, seed)).heights(0.0)) / seeds;
+        const double expected = 4 * std::sqrt(spectrumVariance(windSea(m)));
+        EXPECT_NEAR(measured, expected, 0.1 * expected) << spectrumModelName(m);
+    }
+}
+
+TEST(Spectrum, TheAnimationLoops) {
+    SpectrumOptions o = windSea(SpectrumModel::Jonswap);
+    o.size = 128;
+    o.tileSize = 128;
+    o.loopPeriod = 8.0;
+    const Ocean ocean(o);
+    const Image start = ocean.heights(0.0), end = ocean.heights(8.0);
+    for (size_t i = 0; i < start.pixels.size(); ++i) ASSERT_NEAR(end.pixels[i], start.pixels[i], 1e-5);
+    // Frames change smoothly: a shorter step changes the sea less, and a 1/64 loop step only a little.
+    auto maxChange = [&](double dt) {
+        const Image a = ocean.heights(2.0), b = ocean.heights(2.0 + dt);
+        double worst = 0;
+        for (size_t i = 0; i < a.pixels.size(); ++i) worst = std::max(worst, double(std::abs(a.pixels[i] - b.pixels[i])));
+        return worst;
+    };
+    const double range = 8 * stddev(start);
+    EXPECT_LT(maxChange(8.0 / 64), 0.2 * range);
+    EXPECT_LT(maxChange(8.0 / 256), 0.5 * maxChange(8.0 / 64));
+    EXPECT_GT(maxChange(8.0 / 64), 0.0);
+}
+
+TEST(Spectrum, SameSeedSameSeaOtherSeedsUncorrelated) {
+    const SpectrumOptions a = windSea(SpectrumModel::Phillips, 7);
+    EXPECT_EQ(Ocean(a).heights(1.5).pixels, Ocean(a).heights(1.5).pixels);
+    const Image x = Ocean(a).heights(0.0), y = Ocean(windSea(SpectrumModel::Phillips, 8)).heights(0.0);
+    double sxy = 0, sxx = 0, syy = 0;
+    for (size_t i = 0; i < x.pixels.size(); ++i) {
+        sxy += double(x.pixels[i]) * y.pixels[i];
+        sxx += double(x.pixels[i]) * x.pixels[i];
+        syy += double(y.pixels[i]) * y.pixels[i];
+    }
+    EXPECT_LT(std::abs(sxy / std::sqrt(sxx * syy)), 0.15);
+}
