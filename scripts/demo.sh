@@ -42,6 +42,18 @@ oiiotool out/fresnel.exr --ch R,G,B --resize 256x32 --colorconvert linear sRGB o
 xvfb-run -a -s "-screen 0 1280x1024x24" ./build/viewer/heightpack-view out/swell.exr out/choppy.exr \
   --normals out/ripple_n.exr --fresnel out/fresnel.exr --screenshot out/view.png --size 1280x720 --time 12.5 \
   --camera 0,0,8,30,-10
+# A material made entirely of synthesised maps: a JONSWAP swell and a Phillips chop (heights in metres),
+# a looping ripple sequence for the normals, packed and rendered.
+./build/heightpack synth --spectrum jonswap --wind 14m/s --fetch 200km --direction 20 --tile-size 256m --size 512 \
+  --seed 3 -o out/synth_swell.exr
+./build/heightpack synth --spectrum phillips --wind 7m/s --direction 40 --tile-size 32m --size 256 --seed 5 \
+  -o out/synth_chop.exr
+./build/heightpack pack out/synth_swell.exr -o out/synth_swell_packed.exr
+./build/heightpack pack out/synth_chop.exr -o out/synth_chop_packed.exr
+./build/heightpack normal out/synth_chop.exr --tile-size 32m --height 1m -o out/synth_chop_n.exr
+xvfb-run -a -s "-screen 0 1280x1024x24" ./build/viewer/heightpack-view out/synth_swell_packed.exr \
+  out/synth_chop_packed.exr --normals out/synth_chop_n.exr --fresnel out/fresnel.exr --tile-size 256,32 \
+  --amplitude 1,1 --screenshot out/synth_view.png --size 1280x720 --time 4 --camera 0,0,12,20,-8
 # And the seams a 3x3 tiling shows, before and after tile.
 xvfb-run -a ./build/viewer/heightpack-view examples/maps/painted_not_tileable.png --tiled 3x3 --size 768x768 \
   --screenshot out/painted_tiled3x3.png

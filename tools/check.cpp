@@ -62,9 +62,22 @@ public:
         options_.mip.filter = *parseFilter(filter_);
         options_.mip.threads = common_.threads;
         setLibraryThreads(common_.threads);
-        auto report = checkFile(input_, options_);
-        if (!report) return fail(report.error());
-        const CheckReport& r = *report;
+        // A sequence is checked frame by frame; it tiles when every frame does.
+        const std::vector<std::string> inputs = expandSequence(input_);
+        bool all = true;
+        const std::string preview = options_.previewPath;
+        for (size_t f = 0; f < inputs.size(); ++f) {
+            options_.previewPath = preview.empty() ? preview : frameFileName(preview, int(f), int(inputs.size()));
+            auto report = checkFile(inputs[f], options_);
+            if (!report) return fail(report.error());
+            all = all && report->tiles;
+            print(*report);
+        }
+        return all ? ExitCode::Ok : ExitCode::CheckFailed;
+    }
+
+private:
+    void print(const CheckReport& r) const {
         const double t = r.threshold;
         if (common_.json) {
             nlohmann::json levels = nlohmann::json::array();
@@ -86,10 +99,8 @@ public:
         } else if (!common_.quiet) {
             printText(r);
         }
-        return r.tiles ? ExitCode::Ok : ExitCode::CheckFailed;
     }
 
-private:
     void printText(const CheckReport& r) const {
         const double t = r.threshold;
         std::printf("%s: %s (threshold %.2f; scores near 1 are like the interior)\n", r.input.c_str(),

@@ -89,9 +89,21 @@ public:
         o.version = kVersion;
         setLibraryThreads(common_.threads);
 
-        Progress progress(!common_.quiet, "normal " + std::filesystem::path(input_).filename().string());
+        // A sequence gets a normal map per frame, numbered like it.
+        const std::vector<std::string> inputs = expandSequence(input_);
+        for (size_t f = 0; f < inputs.size(); ++f) {
+            const ExitCode code = normalOne(inputs[f], frameFileName(output_, int(f), int(inputs.size())), o, format);
+            if (code != ExitCode::Ok) return code;
+        }
+        return ExitCode::Ok;
+    }
+
+private:
+    ExitCode normalOne(const std::string& input, const std::string& output, NormalJobOptions& o, const std::string& format) {
+        const NormalOptions& n = o.normal;
+        Progress progress(!common_.quiet, "normal " + std::filesystem::path(input).filename().string());
         o.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
-        auto report = makeNormalMap(input_, output_, o);
+        auto report = makeNormalMap(input, output, o);
         if (!report) return fail(report.error());
         const NormalReport& r = *report;
         if (common_.json) {
@@ -126,7 +138,6 @@ public:
         return ExitCode::Ok;
     }
 
-private:
     std::string input_, output_, tileSize_, height_, channel_, format_;
     std::string kernel_ = "central", wrap_ = "periodic", filter_ = "kaiser", convention_ = "opengl";
     std::string compression_ = "zip", resize_ = "none";

@@ -58,9 +58,26 @@ public:
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
 
-        Progress progress(!common_.quiet, "pack " + std::filesystem::path(input_).filename().string());
+        // A sequence (NAME.0000.EXT ...) packs frame by frame into numbered outputs.
+        const std::vector<std::string> inputs = expandSequence(input_);
+        const int frames = static_cast<int>(inputs.size());
+        const std::string plain = options_.plainOutput;
+        nlohmann::json sequence = nlohmann::json::array();
+        for (int f = 0; f < frames; ++f) {
+            options_.plainOutput = plain.empty() ? plain : frameFileName(plain, f, frames);
+            const ExitCode code = packOne(inputs[f], frameFileName(output_, f, frames), frames > 1 ? &sequence : nullptr);
+            if (code != ExitCode::Ok) return code;
+        }
+        if (frames > 1 && common_.json) printJson({{"command", "pack"}, {"frames", sequence}});
+        return ExitCode::Ok;
+    }
+
+private:
+    // Packs one map; its JSON report goes to stdout, or into sequence when packing frames.
+    ExitCode packOne(const std::string& input, const std::string& output, nlohmann::json* sequence) {
+        Progress progress(!common_.quiet, "pack " + std::filesystem::path(input).filename().string());
         options_.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
-        auto report = packHeightMap(input_, output_, options_);
+        auto report = packHeightMap(input, output, options_);
         if (!report) return fail(report.error());
         const PackReport& r = *report;
         const double seconds = r.loadSeconds + r.mipSeconds + r.writeSeconds;
@@ -71,7 +88,7 @@ public:
             nlohmann::json levels = nlohmann::json::array();
             for (size_t i = 0; i < r.levelSizes.size(); ++i)
                 levels.push_back({{"level", i}, {"width", r.levelSizes[i].first}, {"height", r.levelSizes[i].second}});
-            printJson({
+            const nlohmann::json doc = {
                 {"command", "pack"},
                 {"input", r.input},
                 {"output", r.output},
@@ -92,7 +109,11 @@ public:
                 {"levels", levels},
                 {"timings", {{"load", r.loadSeconds}, {"mip", r.mipSeconds}, {"write", r.writeSeconds},
                              {"total", seconds}}},
-            });
+            };
+            if (sequence)
+                sequence->push_back(doc);
+            else
+                printJson(doc);
         } else if (chatty()) {
             std::ostringstream line;
             line << "wrote " << r.output << ": " << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " ("
@@ -106,7 +127,6 @@ public:
         return ExitCode::Ok;
     }
 
-private:
     std::string input_, output_, channel_;
     std::string wrap_ = "periodic", filter_ = "kaiser", compression_ = "zip", resize_ = "none";
     PackOptions options_;

@@ -12,7 +12,10 @@ namespace heightpack::view {
 namespace {
 
 // Texture units: height layers first, then the shading textures.
-enum Unit { kPacked0 = 0, kPacked1, kPlain0, kPlain1, kNormal, kFresnel, kFoam, kCombined, kTiledMap };
+enum Unit {
+    kPacked0 = 0, kPacked1, kPlain0, kPlain1, kPacked0Next, kPacked1Next, kPlain0Next, kPlain1Next,
+    kNormal, kFresnel, kFoam, kCombined, kTiledMap
+};
 
 void set(GLuint p, const char* name, int v) { glUniform1i(glGetUniformLocation(p, name), v); }
 void set(GLuint p, const char* name, float v) { glUniform1f(glGetUniformLocation(p, name), v); }
@@ -75,11 +78,18 @@ bool Renderer::init(std::string& error) {
     return true;
 }
 
-Renderer::~Renderer() {
+void Renderer::releaseLayers() {
     for (const LayerTextures& l : layers_) {
-        glDeleteTextures(1, &l.packed);
-        glDeleteTextures(1, &l.plain);
+        for (const FrameTextures& f : l.frames) {
+            glDeleteTextures(1, &f.packed);
+            glDeleteTextures(1, &f.plain);
+        }
     }
+    layers_.clear();
+}
+
+Renderer::~Renderer() {
+    releaseLayers();
     for (GLuint t : {normalTexture_, fresnelTexture_, foamTexture_, dummyTexture_})
         if (t) glDeleteTextures(1, &t);
     combined_.destroy();
@@ -94,17 +104,15 @@ Renderer::~Renderer() {
 
 void Renderer::upload(const Scene& scene) {
     scene_ = &scene;
-    for (const LayerTextures& l : layers_) {
-        glDeleteTextures(1, &l.packed);
-        glDeleteTextures(1, &l.plain);
-    }
-    layers_.clear();
+    releaseLayers();
     for (const HeightLayer& layer : scene.layers) {
         LayerTextures t;
-        // Packed: nearest, since the shader does the filtering from one fetch. Plain: GL_LINEAR, the reference.
-        t.packed = uploadChain(layer.packed, false, layer.wrap);
-        t.plain = uploadChain(layer.plain, true, layer.wrap);
-        t.levels = static_cast<int>(layer.packed.size());
+        for (const HeightFrame& frame : layer.frames) {
+            // Packed: nearest, since the shader does the filtering from one fetch. Plain: GL_LINEAR, the reference.
+            t.frames.push_back({uploadChain(frame.packed, false, layer.wrap), uploadChain(frame.plain, true, layer.wrap)});
+        }
+        t.levels = static_cast<int>(layer.frames[0].packed.size());
+        t.loopPeriod = layer.loopPeriod;
         layers_.push_back(t);
     }
     for (GLuint* t : {&normalTexture_, &fresnelTexture_, &foamTexture_})
@@ -164,15 +172,33 @@ void Renderer::buildGrid(int rings, int segments) {
     checkGl("Renderer::buildGrid");
 }
 
-void Renderer::bindLayers(GLuint program) {
+void Renderer::bindLayers(GLuint program, float time) {
     set(program, "uPacked0", int(kPacked0));
     set(program, "uPacked1", int(kPacked1));
     set(program, "uPlain0", int(kPlain0));
     set(program, "uPlain1", int(kPlain1));
+    set(program, "uPacked0Next", int(kPacked0Next));
+    set(program, "uPacked1Next", int(kPacked1Next));
+    set(program, "uPlain0Next", int(kPlain0Next));
+    set(program, "uPlain1Next", int(kPlain1Next));
     for (int k = 0; k < 2; ++k) {
         const bool has = k < int(layers_.size());
-        bindTexture(kPacked0 + k, has ? layers_[k].packed : dummyTexture_);
-        bindTexture(kPlain0 + k, has ? layers_[k].plain : dummyTexture_);
+        // A sequence plays its loop: frame f covers [f, f+1) * period / frames, blended into the next.
+        size_t current = 0, next = 0;
+        float blend = 0.0f;
+        if (has && layers_[k].frames.size() > 1) {
+            const double frames = double(layers_[k].frames.size());
+            double position = std::fmod(time / layers_[k].loopPeriod * frames, frames);
+            if (position < 0) position += frames;
+            current = static_cast<size_t>(position) % layers_[k].frames.size();
+            next = (current + 1) % layers_[k].frames.size();
+            blend = static_cast<float>(position - std::floor(position));
+        }
+        bindTexture(kPacked0 + k, has ? layers_[k].frames[current].packed : dummyTexture_);
+        bindTexture(kPlain0 + k, has ? layers_[k].frames[current].plain : dummyTexture_);
+        bindTexture(kPacked0Next + k, has ? layers_[k].frames[next].packed : dummyTexture_);
+        bindTexture(kPlain0Next + k, has ? layers_[k].frames[next].plain : dummyTexture_);
+        glUniform1f(glGetUniformLocation(program, indexed("uLayerBlend", k).c_str()), blend);
     }
 }
 
@@ -188,8 +214,8 @@ void Renderer::setCommonUniforms(GLuint p, const Camera& camera, const RenderSet
                                has && scene_->layers[k].wrap == Wrap::Clamp ? 1.0f : 0.0f);
         glUniform2fv(glGetUniformLocation(p, indexed("uLayerStored", k).c_str()), 1, glm::value_ptr(stored));
         glUniform1i(glGetUniformLocation(p, indexed("uLayerLevels", k).c_str()), has ? layers_[k].levels : 1);
-        glUniform2i(glGetUniformLocation(p, indexed("uLayerSize", k).c_str()), has ? scene_->layers[k].packed[0].width : 1,
-                    has ? scene_->layers[k].packed[0].height : 1);
+        glUniform2i(glGetUniformLocation(p, indexed("uLayerSize", k).c_str()), has ? scene_->layers[k].frames[0].packed[0].width : 1,
+                    has ? scene_->layers[k].frames[0].packed[0].height : 1);
     }
     set(p, "uLookup", static_cast<int>(s.lookup));
     set(p, "uBands", s.bands);
@@ -206,7 +232,7 @@ void Renderer::setCommonUniforms(GLuint p, const Camera& camera, const RenderSet
         glUniform4fv(glGetUniformLocation(p, indexed("uExplosion", e).c_str()), 1, glm::value_ptr(v));
     }
     set(p, "uExplosionShape", s.explosionShape);
-    bindLayers(p);
+    bindLayers(p, time);
 }
 
 void Renderer::render(const Camera& camera, const RenderSettings& s, float time, int width, int height,
@@ -225,7 +251,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
         const WallClock wall(measure);
         if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[2]);
         glUseProgram(tiledProgram_);
-        bindTexture(kTiledMap, layers_[0].plain);
+        bindTexture(kTiledMap, layers_[0].frames[0].plain);
         set(tiledProgram_, "uMap", int(kTiledMap));
         set(tiledProgram_, "uTiles", glm::vec2(s.tiles));
         set(tiledProgram_, "uRange", glm::vec2(scene_->layers[0].minStored, scene_->layers[0].maxStored));

@@ -91,14 +91,16 @@ public:
 private:
     void buildGrid(int rings, int segments);
     void setCommonUniforms(GLuint program, const Camera& camera, const RenderSettings& s, float time, int height);
-    void bindLayers(GLuint program);
+    void bindLayers(GLuint program, float time);
 
     GLuint waterProgram_ = 0, combineProgram_ = 0, tiledProgram_ = 0, skyProgram_ = 0;
     GLuint gridVao_ = 0, gridVbo_ = 0, gridIbo_ = 0, emptyVao_ = 0;
     GLsizei gridIndexCount_ = 0;
     int gridRings_ = 0, gridSegments_ = 0;
-    struct LayerTextures { GLuint packed = 0, plain = 0; int levels = 0; };
+    struct FrameTextures { GLuint packed = 0, plain = 0; };
+    struct LayerTextures { std::vector<FrameTextures> frames; int levels = 0; double loopPeriod = 0.0; };
     std::vector<LayerTextures> layers_;
+    void releaseLayers();
     GLuint normalTexture_ = 0, fresnelTexture_ = 0, foamTexture_ = 0, dummyTexture_ = 0;
     RenderTarget combined_;
     GLuint queries_[3] = {0, 0, 0};

@@ -18,54 +18,83 @@ Image channel(const Image& image, int c) {
     return out;
 }
 
-float attributeFloat(const Attributes& attributes, const char* name, float fallback) {
-    const std::string v = findAttribute(attributes, name);
-    return v.empty() ? fallback : std::stof(v);
-}
 
 double srgbToLinear(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
+
+}  // namespace
+
+namespace {
+
+// One file's chain into frame; fills the layer's wrap, mid value and timing from the first file.
+Status loadFrame(const std::string& path, HeightLayer& layer, HeightFrame& frame, bool first) {
+    auto file = readTextureFile(path, true);
+    if (!file) return file.error();
+    const std::string layout = findAttribute(file->attributes, "heightpack:layout");
+    if (first) {
+        const std::string period = findAttribute(file->attributes, "heightpack:loopPeriod");
+        layer.loopPeriod = period.empty() ? 0.0 : std::stod(period);
+    }
+    if (layout == "neighbour4" || layout == "plain") {
+        if (first) {
+            layer.wrap = findAttribute(file->attributes, "heightpack:wrap") == "clamp" ? Wrap::Clamp : Wrap::Periodic;
+            layer.source = layout == "neighbour4" ? "packed texture" : "plain texture, packed in memory";
+        }
+        for (const Image& level : file->levels) {
+            if (layout == "neighbour4") {
+                if (level.channels != 4) return badInput(path, "is marked neighbour4 but has no 4 channels", "pack it again");
+                frame.packed.push_back(level);
+                frame.plain.push_back(channel(level, 0));
+            } else {
+                frame.plain.push_back(channel(level, 0));
+                frame.packed.push_back(packNeighbour4(frame.plain.back(), layer.wrap));
+            }
+        }
+        return Done{};
+    }
+    // A painted map: the same load, mip and pack as `heightpack pack` (periodic, kaiser).
+    LoadOptions load;
+    load.silenceDecoderMessages = true;
+    auto loaded = loadHeightMap(path, load);
+    if (!loaded) return loaded.error();
+    Image heights = std::move(loaded->heights);
+    MipOptions mip;
+    if (!isPowerOfTwo(heights.width) || !isPowerOfTwo(heights.height))
+        heights = resample(heights, nextPowerOfTwo(heights.width), nextPowerOfTwo(heights.height), mip);
+    frame.plain = generateMipChain(heights, mip);
+    frame.packed = packMipChain(frame.plain, layer.wrap);
+    if (first) layer.source = "painted map, packed in memory";
+    return Done{};
+}
 
 }  // namespace
 
 Result<HeightLayer> loadHeightLayer(const std::string& path) {
     HeightLayer layer;
     layer.path = path;
-    auto file = readTextureFile(path, true);
-    if (!file) return file.error();
-    const std::string layout = findAttribute(file->attributes, "heightpack:layout");
-    if (layout == "neighbour4" || layout == "plain") {
-        layer.wrap = findAttribute(file->attributes, "heightpack:wrap") == "clamp" ? Wrap::Clamp : Wrap::Periodic;
-        const float scale = attributeFloat(file->attributes, "heightpack:heightScale", 1.0f);
-        const float offset = attributeFloat(file->attributes, "heightpack:heightOffset", 0.0f);
-        layer.midStored = offset + 0.5f * scale;
-        for (const Image& level : file->levels) {
-            if (layout == "neighbour4") {
-                if (level.channels != 4) return badInput(path, "is marked neighbour4 but has no 4 channels", "pack it again");
-                layer.packed.push_back(level);
-                layer.plain.push_back(channel(level, 0));
-            } else {
-                layer.plain.push_back(channel(level, 0));
-                layer.packed.push_back(packNeighbour4(layer.plain.back(), layer.wrap));
-            }
-        }
-        layer.source = layout == "neighbour4" ? "packed texture" : "plain texture, packed in memory";
-    } else {
-        // A painted map: the same load, mip and pack as `heightpack pack` (periodic, kaiser).
-        LoadOptions load;
-        load.silenceDecoderMessages = true;
-        auto loaded = loadHeightMap(path, load);
-        if (!loaded) return loaded.error();
-        Image heights = std::move(loaded->heights);
-        MipOptions mip;
-        if (!isPowerOfTwo(heights.width) || !isPowerOfTwo(heights.height))
-            heights = resample(heights, nextPowerOfTwo(heights.width), nextPowerOfTwo(heights.height), mip);
-        layer.plain = generateMipChain(heights, mip);
-        layer.packed = packMipChain(layer.plain, layer.wrap);
-        layer.source = "painted map, packed in memory";
+    const std::vector<std::string> files = expandSequence(path);
+    for (size_t f = 0; f < files.size(); ++f) {
+        HeightFrame frame;
+        if (Status s = loadFrame(files[f], layer, frame, f == 0); !s) return s.error();
+        if (f > 0 && (frame.packed.size() != layer.frames[0].packed.size() ||
+                      frame.packed[0].width != layer.frames[0].packed[0].width ||
+                      frame.packed[0].height != layer.frames[0].packed[0].height))
+            return badInput(files[f], "differs in size from the sequence's first frame", "make every frame the same size");
+        layer.frames.push_back(std::move(frame));
     }
-    const auto [lo, hi] = std::minmax_element(layer.plain[0].pixels.begin(), layer.plain[0].pixels.end());
-    layer.minStored = *lo;
-    layer.maxStored = *hi;
+    if (files.size() > 1) {
+        layer.source += ", " + std::to_string(files.size()) + " frames";
+        if (layer.loopPeriod <= 0.0) layer.loopPeriod = files.size() / 4.0;  // untimed: 4 frames a second
+    }
+    float lo = layer.frames[0].plain[0].pixels[0], hi = lo;
+    for (const HeightFrame& frame : layer.frames) {
+        const auto [a, b] = std::minmax_element(frame.plain[0].pixels.begin(), frame.plain[0].pixels.end());
+        lo = std::min(lo, *a);
+        hi = std::max(hi, *b);
+    }
+    layer.minStored = lo;
+    layer.maxStored = hi;
+    // Waves move about the map's mean: the 1x1 level of the first frame, whatever the map's units.
+    layer.midStored = layer.frames[0].plain.back().pixels[0];
     return layer;
 }
 
@@ -131,7 +160,8 @@ std::vector<std::filesystem::file_time_type> fileTimes(const SceneFiles& files) 
         std::error_code ec;
         times.push_back(path.empty() ? std::filesystem::file_time_type{} : std::filesystem::last_write_time(path, ec));
     };
-    for (const auto& p : files.heights) add(p);
+    for (const auto& p : files.heights)
+        for (const auto& frame : expandSequence(p)) add(frame);
     add(files.normals);
     add(files.fresnel);
     add(files.foam);

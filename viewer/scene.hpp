@@ -13,13 +13,19 @@
 
 namespace heightpack::view {
 
+// One map's mip chain, packed and plain.
+struct HeightFrame {
+    std::vector<Image> packed;    // RGBA per level
+    std::vector<Image> plain;     // R per level, for the reference path
+};
+
 struct HeightLayer {
     std::string path;
     std::string source;           // "packed texture", "plain texture" or "painted map, packed in memory"
-    std::vector<Image> packed;    // RGBA per level
-    std::vector<Image> plain;     // R per level, for the reference path
+    std::vector<HeightFrame> frames;  // one, or a looping sequence (NAME.0000.EXT ...)
+    double loopPeriod = 0.0;      // seconds the frames span (heightpack:loopPeriod), for sequences
     Wrap wrap = Wrap::Periodic;
-    float midStored = 0.5f;       // the stored value of a painted 0.5: subtracted so waves sit on the level
+    float midStored = 0.5f;       // the map's mean (its 1x1 level): subtracted so waves sit on the water level
     float minStored = 0.0f, maxStored = 1.0f;
 };
 
@@ -47,6 +53,7 @@ struct Scene {
     std::optional<Image> foam;
 };
 
+// Loads a map, or every frame of a sequence when path names one (see expandSequence).
 Result<HeightLayer> loadHeightLayer(const std::string& path);
 Result<NormalMap> loadNormalMap(const std::string& path);
 Result<FresnelRamp> loadFresnelRamp(const std::string& path);

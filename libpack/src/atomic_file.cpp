@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -52,6 +53,22 @@ Status checkWritable(const std::string& path) {
             return cannotWrite(path, "exists and is read-only", "make it writable or choose another output");
     }
     return Done{};
+}
+
+std::string frameFileName(const std::string& path, int frame, int frames) {
+    if (frames <= 1) return path;
+    const fs::path p(path);
+    char number[16];
+    std::snprintf(number, sizeof number, ".%04d", frame);
+    return (p.parent_path() / (p.stem().string() + number + p.extension().string())).string();
+}
+
+std::vector<std::string> expandSequence(const std::string& path) {
+    std::error_code ec;
+    if (fs::exists(path, ec) || !fs::exists(frameFileName(path, 0, 2), ec)) return {path};
+    std::vector<std::string> frames;
+    for (int f = 0; f < 100000 && fs::exists(frameFileName(path, f, 2), ec); ++f) frames.push_back(frameFileName(path, f, 2));
+    return frames;
 }
 
 Status copyFile(const std::string& from, const std::string& to) {

@@ -83,6 +83,9 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     src.width = spec.width;
     src.height = spec.height;
     src.channels = spec.nchannels;
+    // Float in an EXR, text in a PNG: read either as text.
+    if (const OIIO::ParamValue* p = spec.find_attribute("heightpack:loopPeriod")) src.loopPeriod = p->get_string();
+    if (const OIIO::ParamValue* p = spec.find_attribute("heightpack:time")) src.time = p->get_string();
 
     const int colourChannels = spec.nchannels - (spec.alpha_channel >= 0 ? 1 : 0);
     const bool colour = colourChannels > 1;

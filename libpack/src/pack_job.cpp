@@ -23,6 +23,10 @@ std::vector<ExrAttribute> heightAttributes(std::string_view layout, const PackOp
         detail::commonAttributes(layout, options.mip.wrap, options.mip.filter, source, sourceHash, options.version);
     attributes.push_back({"heightpack:heightScale", options.scale});
     attributes.push_back({"heightpack:heightOffset", options.offset});
+    if (!source.loopPeriod.empty()) {
+        attributes.push_back({"heightpack:loopPeriod", std::stof(source.loopPeriod)});
+        attributes.push_back({"heightpack:time", source.time.empty() ? 0.0f : std::stof(source.time)});
+    }
     return attributes;
 }
 

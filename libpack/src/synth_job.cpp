@@ -9,14 +9,6 @@
 
 namespace heightpack {
 
-std::string frameFileName(const std::string& output, int frame, int frames) {
-    if (frames <= 1) return output;
-    const std::filesystem::path p(output);
-    char number[16];
-    std::snprintf(number, sizeof number, ".%04d", frame);
-    return (p.parent_path() / (p.stem().string() + number + p.extension().string())).string();
-}
-
 Result<SynthReport> synthesise(const std::string& output, const SynthOptions& options) {
     for (int f = 0; f < options.frames; ++f)
         if (Status s = checkWritable(frameFileName(output, f, options.frames)); !s) return s.error();

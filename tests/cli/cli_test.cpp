@@ -438,10 +438,20 @@ TEST(Cli, SynthWritesTileableSeasAndLoopingFrames) {
     const CliRun frames = heightpackRun({"synth", "--wind", "8m/s", "--tile-size", "64m", "--size", "64", "--frames",
                                          "4", "--loop", "8s", "-q", "-o", dir.file("seq.exr")});
     ASSERT_EQ(frames.code, 0) << frames.err;
-    for (const char* name : {"seq.0000.exr", "seq.0001.exr", "seq.0002.exr", "seq.0003.exr"}) {
+    for (const char* name : {"seq.0000.exr", "seq.0001.exr", "seq.0002.exr", "seq.0003.exr"})
         EXPECT_TRUE(std::filesystem::exists(dir.file(name))) << name;
-        EXPECT_EQ(heightpackRun({"pack", dir.file(name), "-q", "-o", dir.file(std::string("packed_") + name)}).code, 0);
-    }
+    // The sequence by its name: packed, checked and given normals frame by frame, numbered alike.
+    const CliRun packed = heightpackRun({"pack", dir.file("seq.exr"), "--json", "-o", dir.file("packed.exr")});
+    ASSERT_EQ(packed.code, 0) << packed.err;
+    EXPECT_EQ(nlohmann::json::parse(packed.out)["frames"].size(), 4u);
+    auto third = OIIO::ImageInput::open(dir.file("packed.0002.exr"));
+    ASSERT_TRUE(third);
+    EXPECT_FLOAT_EQ(third->spec().get_float_attribute("heightpack:loopPeriod"), 8.0f);
+    EXPECT_FLOAT_EQ(third->spec().get_float_attribute("heightpack:time"), 4.0f);
+    EXPECT_EQ(heightpackRun({"check", dir.file("seq.exr"), "-q"}).code, 0);
+    ASSERT_EQ(heightpackRun({"normal", dir.file("seq.exr"), "--tile-size", "64m", "--height", "1m", "-q", "-o",
+                             dir.file("n.exr")}).code, 0);
+    EXPECT_TRUE(std::filesystem::exists(dir.file("n.0003.exr")));
 }
 
 TEST(Cli, SynthRefusesBadValues) {

@@ -207,3 +207,33 @@ TEST(Viewer, BenchReportsGpuTimePerPass) {
     EXPECT_GT(j["waterMs"].get<double>(), 0.0);
     EXPECT_GT(j["combineMs"].get<double>(), 0.0);
 }
+
+TEST(Viewer, PlaysASequenceFrameByFrame) {
+    // synth writes frames, pack packs them as a numbered sequence; at t = f * loop / frames the viewer
+    // shows frame f, exactly as if that frame's file were opened alone (same t, so the same scroll).
+    ScratchDir dir;
+    ASSERT_EQ(runProcess({HEIGHTPACK_EXE, "synth", "--wind", "8m/s", "--tile-size", "64m", "--size", "64", "--frames",
+                          "4", "--loop", "8s", "-q", "-o", dir.file("seq.exr")})
+                  .code,
+              0);
+    ASSERT_EQ(runProcess({HEIGHTPACK_EXE, "pack", dir.file("seq.exr"), "-q", "-o", dir.file("packed.exr")}).code, 0);
+    const std::vector<std::string> common = {"--view", "height", "--size", "160x120", "--camera", "0,0,60,0,-89.9",
+                                             "--tile-size", "64", "--amplitude", "1"};
+    for (const auto& [frame, time] : {std::pair<const char*, const char*>{"0000", "0"}, {"0002", "4"}}) {
+        auto sequence = common, single = common;
+        sequence.insert(sequence.begin(), dir.file("packed.exr"));
+        sequence.insert(sequence.end(), {"--time", time});
+        single.insert(single.begin(), dir.file(std::string("packed.") + frame + ".exr"));
+        single.insert(single.end(), {"--time", time});
+        const Difference d = compare(screenshot(dir, "seq.png", sequence), screenshot(dir, "one.png", single), 0);
+        EXPECT_EQ(d.max, 0) << "frame " << frame;
+    }
+    // Between frames the picture is neither frame: the viewer blends.
+    auto between = common;
+    between.insert(between.begin(), dir.file("packed.exr"));
+    between.insert(between.end(), {"--time", "1"});
+    auto first = common;
+    first.insert(first.begin(), dir.file("packed.0000.exr"));
+    first.insert(first.end(), {"--time", "1"});
+    EXPECT_GT(compare(screenshot(dir, "between.png", between), screenshot(dir, "first.png", first), 2).max, 2);
+}

@@ -7,6 +7,8 @@ const int kMaxLayers = 2;  // the two largest maps displace the grid (18.2.1)
 uniform int uLayerCount;
 uniform sampler2D uPacked0, uPacked1;   // RGBA32F, nearest, mip-mapped: R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1)
 uniform sampler2D uPlain0, uPlain1;     // R32F, GL_LINEAR, mip-mapped: the reference path
+uniform sampler2D uPacked0Next, uPacked1Next, uPlain0Next, uPlain1Next;  // a sequence's next frame
+uniform float uLayerBlend[kMaxLayers];  // how far between this frame and the next (0 for a single map)
 uniform vec4 uLayerXform[kMaxLayers];   // tiles per metre, scroll u and v (tiles per second), amplitude (m)
 uniform vec2 uLayerStored[kMaxLayers];  // the stored value of a mid height (subtracted), and 1 if clamp-wrapped
 uniform int uLayerLevels[kMaxLayers];   // mip levels in each layer's chain
@@ -80,11 +82,21 @@ float waterHeight(vec2 xy, float d, out float lod0) {
     lod0 = 0.0;
     if (uLayerCount > 0) {
         lod0 = layerLod(0, d);
-        h += uLayerXform[0].w * (layerHeight(uPacked0, uPlain0, 0, layerUv(0, xy), lod0, uLayerStored[0].y > 0.5) - uLayerStored[0].x);
+        vec2 uv = layerUv(0, xy);
+        bool clampMode = uLayerStored[0].y > 0.5;
+        float stored = layerHeight(uPacked0, uPlain0, 0, uv, lod0, clampMode);
+        if (uLayerBlend[0] > 0.0)
+            stored = mix(stored, layerHeight(uPacked0Next, uPlain0Next, 0, uv, lod0, clampMode), uLayerBlend[0]);
+        h += uLayerXform[0].w * (stored - uLayerStored[0].x);
     }
     if (uLayerCount > 1) {
         float lod1 = layerLod(1, d);
-        h += uLayerXform[1].w * (layerHeight(uPacked1, uPlain1, 1, layerUv(1, xy), lod1, uLayerStored[1].y > 0.5) - uLayerStored[1].x);
+        vec2 uv = layerUv(1, xy);
+        bool clampMode = uLayerStored[1].y > 0.5;
+        float stored = layerHeight(uPacked1, uPlain1, 1, uv, lod1, clampMode);
+        if (uLayerBlend[1] > 0.0)
+            stored = mix(stored, layerHeight(uPacked1Next, uPlain1Next, 1, uv, lod1, clampMode), uLayerBlend[1]);
+        h += uLayerXform[1].w * (stored - uLayerStored[1].x);
     }
     for (int e = 0; e < kMaxExplosions; ++e) {
         if (e >= uExplosionCount) break;

@@ -41,6 +41,9 @@ struct SourceInfo {
     int channels = 0;
     std::string channelUsed;  // the name of the channel the heights came from, or "luma"
     std::string decoder;      // "heightpack-png" (fast path for grey PNGs) or "openimageio"
+    // Where the map sits in an animation, if its file says (heightpack:loopPeriod, heightpack:time):
+    // carried into what is made from it, so a packed sequence still knows its timing.
+    std::string loopPeriod, time;
 };
 
 struct LoadedHeights {
@@ -107,6 +110,14 @@ Status copyFile(const std::string& from, const std::string& to);
 // Checks, before any work, that path can be written: its folder exists and is writable, and an existing
 // file there is not read-only. Fails with CannotWrite naming the problem.
 Status checkWritable(const std::string& path);
+
+// Sequences of frames are numbered files: NAME.0000.EXT, NAME.0001.EXT, ... The file frame f of n goes
+// to: path itself when n is 1, else NAME.FFFF.EXT.
+std::string frameFileName(const std::string& path, int frame, int frames);
+
+// The files a path names: itself when it exists; else, when NAME.0000.EXT exists, every consecutive
+// frame from there; else itself (so that loading it reports the missing file).
+std::vector<std::string> expandSequence(const std::string& path);
 
 // Removes every temporary file an unfinished write in this process has open. Async-signal-safe: meant
 // for a SIGINT/SIGTERM handler, so an interrupted run leaves nothing behind.

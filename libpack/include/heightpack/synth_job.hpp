@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "heightpack/io.hpp"
 #include "heightpack/result.hpp"
 #include "heightpack/spectrum.hpp"
 
@@ -21,9 +22,6 @@ struct SynthReport {
     double expectedSignificantWaveHeight = 0.0;  // 4 x sqrt(the resolved spectrum's variance)
     double minHeight = 0.0, maxHeight = 0.0;     // over all frames (m)
 };
-
-// The file a frame goes to: output itself for one frame, else NAME.FFFF.EXT.
-std::string frameFileName(const std::string& output, int frame, int frames);
 
 // Writes the sea at output: an .exr holds heights in metres (float); a .png or .tif holds them mapped
 // onto [0,1] at 16 bits, with heightpack:heightScale and heightpack:heightOffset giving metres back
