@@ -150,3 +150,40 @@ TEST(Spectrum, SameSeedSameSeaOtherSeedsUncorrelated) {
     }
     EXPECT_LT(std::abs(sxy / std::sqrt(sxx * syy)), 0.15);
 }
+
+TEST(Spectrum, DisplacementIsTheHeightTurnedAlongEachWave) {
+    // D(k) = -i k/|k| h(k): by Parseval, var(Dx) + var(Dy) = var(h) exactly (k = 0 carries nothing), and
+    // the DFT of Dx is the height's DFT times -i kx/|k|, checked on an independent transform.
+    SpectrumOptions o = windSea(SpectrumModel::Jonswap, 5);
+    o.size = 64;
+    o.tileSize = 256;
+    const Ocean ocean(o);
+    const Image h = ocean.heights(1.25), d = ocean.displacement(1.25);
+    double vh = 0, vx = 0, vy = 0;
+    for (size_t i = 0; i < h.texelCount(); ++i) {
+        vh += double(h.pixels[i]) * h.pixels[i];
+        vx += double(d.pixels[2 * i]) * d.pixels[2 * i];
+        vy += double(d.pixels[2 * i + 1]) * d.pixels[2 * i + 1];
+    }
+    EXPECT_NEAR(vx + vy, vh, 1e-4 * vh);
+    const int n = o.size;
+    cv::Mat hf(n, n, CV_64F), dxf(n, n, CV_64F);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) hf.at<double>(y, x) = h.at(x, y), dxf.at<double>(y, x) = d.at(x, y, 0);
+    cv::Mat H, DX;
+    cv::dft(hf, H, cv::DFT_COMPLEX_OUTPUT);
+    cv::dft(dxf, DX, cv::DFT_COMPLEX_OUTPUT);
+    double peak = 0;
+    for (int r = 0; r < n; ++r)
+        for (int q = 0; q < n; ++q) peak = std::max(peak, cv::norm(H.at<cv::Vec2d>(r, q)));
+    for (int r = 0; r < n; ++r) {
+        for (int q = 0; q < n; ++q) {
+            const cv::Vec2d z = H.at<cv::Vec2d>(r, q);
+            if (cv::norm(z) < 0.01 * peak) continue;
+            const int mx = q < n / 2 ? q : q - n, my = r < n / 2 ? r : r - n;
+            const double f = mx / std::hypot(double(mx), double(my));
+            const cv::Vec2d expected(z[1] * f, -z[0] * f);  // (re + i im)(-i f)
+            EXPECT_LT(cv::norm(DX.at<cv::Vec2d>(r, q) - expected), 1e-3 * peak) << mx << "," << my;
+        }
+    }
+}

@@ -55,6 +55,8 @@ public:
         cmd->add_option("--size", options_.spectrum.size, "texels across (a power of two)")->capture_default_str();
         cmd->add_option("--seed", options_.spectrum.seed, "random seed: the same seed gives the same bytes")->capture_default_str();
         cmd->add_option("--frames", options_.frames, "write this many frames of a loop (needs --loop)")->capture_default_str();
+        cmd->add_flag("--displacement", options_.displacement,
+                      "also write Tessendorf's horizontal displacement (choppiness) as channels Dx, Dy (.exr)");
         cmd->add_option("--loop", loop_, "loop period: 8s; the sea at t + period is the sea at t")->check(unitValidator(kTimeUnits, "8s"));
         addCommonOptions(*cmd);
         cmd->footer(
@@ -73,6 +75,7 @@ public:
         if (options_.frames > 1 && loop_.empty()) return usage("--frames needs --loop: the period the frames cover");
         std::string ext = std::filesystem::path(output_).extension().string();
         if (ext != ".exr" && ext != ".png" && ext != ".tif" && ext != ".tiff") return usage("the output must end in .exr, .png or .tif");
+        if (options_.displacement && ext != ".exr") return usage("--displacement needs an .exr output (channels Y, Dx, Dy)");
         s.model = *parseSpectrumModel(spectrum_);
         s.windSpeed = *parseWithUnit(wind_, kSpeedUnits);
         s.tileSize = *parseLength(tileSize_);

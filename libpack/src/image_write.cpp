@@ -32,6 +32,11 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
     OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
     if (image.channels == 1) spec.channelnames = {"Y"};
     if (image.channels == 4) spec.alpha_channel = 3;
+    if (!options.channelNames.empty()) {
+        assert(int(options.channelNames.size()) == image.channels);
+        spec.channelnames = options.channelNames;
+        spec.alpha_channel = -1;
+    }
     spec.attribute("oiio:UnassociatedAlpha", 1);
     if (options.srgbChannels > 0 && options.bits != 32) spec.attribute("oiio:ColorSpace", "sRGB");
     // PNG keeps text chunks only: numbers go in as text there, so nothing recorded is lost.

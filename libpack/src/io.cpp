@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 #include <xxhash.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -93,6 +94,12 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     bool luma = false;
     switch (options.channel) {
         case ChannelSelect::Auto:
+            // A height with companions (synth's displacement) names its height channel Y.
+            if (const auto y = std::find(spec.channelnames.begin(), spec.channelnames.end(), "Y");
+                colour && y != spec.channelnames.end()) {
+                channel = static_cast<int>(y - spec.channelnames.begin());
+                break;
+            }
             if (colour) {
                 return badInput(path,
                                 "is a colour image with " + std::to_string(spec.nchannels) + " channels",

@@ -128,17 +128,27 @@ Ocean::Ocean(const SpectrumOptions& options) : options_(options) {
     }
 }
 
-Image Ocean::heights(double t) const {
+Image Ocean::transform(double t, int component) const {
     const int n = options_.size;
-    // h(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t}: Hermitian in k, so the sea is real.
+    const double dk = 2 * kPi / options_.tileSize;
+    // h(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t}: Hermitian in k, so the sea is real. Component 1
+    // and 2 multiply it by -i kx / |k| and -i ky / |k|, odd and imaginary: still Hermitian.
     cv::Mat spectrum(n, n, CV_64FC2, cv::Scalar(0, 0));
     for (int r = 0; r < n; ++r) {
         for (int q = 0; q < n; ++q) {
             const size_t i = size_t(r) * n + q;
             const size_t j = size_t((n - r) % n) * n + (n - q) % n;  // -k
             const double c = std::cos(omega_[i] * t), s = std::sin(omega_[i] * t);
-            const double re = amplitudeRe_[i] * c - amplitudeIm_[i] * s + amplitudeRe_[j] * c - amplitudeIm_[j] * s;
-            const double im = amplitudeRe_[i] * s + amplitudeIm_[i] * c - (amplitudeRe_[j] * s + amplitudeIm_[j] * c);
+            double re = amplitudeRe_[i] * c - amplitudeIm_[i] * s + amplitudeRe_[j] * c - amplitudeIm_[j] * s;
+            double im = amplitudeRe_[i] * s + amplitudeIm_[i] * c - (amplitudeRe_[j] * s + amplitudeIm_[j] * c);
+            if (component > 0) {
+                const int m = q < n / 2 ? q : q - n, p = r < n / 2 ? r : r - n;
+                const double kx = m * dk, ky = p * dk, k = std::hypot(kx, ky);
+                const double f = k > 0 ? (component == 1 ? kx : ky) / k : 0.0;
+                const double newRe = im * f, newIm = -re * f;  // (re + i im) * (-i f)
+                re = newRe;
+                im = newIm;
+            }
             spectrum.at<cv::Vec2d>(r, q) = cv::Vec2d(re, im);
         }
     }
@@ -147,6 +157,18 @@ Image Ocean::heights(double t) const {
     Image out(n, n, 1);
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) out.at(x, y) = static_cast<float>(field.at<double>(y, x));
+    return out;
+}
+
+Image Ocean::heights(double t) const { return transform(t, 0); }
+
+Image Ocean::displacement(double t) const {
+    const Image dx = transform(t, 1), dy = transform(t, 2);
+    Image out(dx.width, dx.height, 2);
+    for (size_t i = 0; i < dx.pixels.size(); ++i) {
+        out.pixels[2 * i] = dx.pixels[i];
+        out.pixels[2 * i + 1] = dy.pixels[i];
+    }
     return out;
 }
 

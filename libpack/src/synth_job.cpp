@@ -45,6 +45,17 @@ Result<SynthReport> synthesise(const std::string& output, const SynthOptions& op
         if (!metres)
             for (float& v : image.pixels) v = static_cast<float>((v - offset) / scale);
         FlatImageOptions flat;
+        if (options.displacement && metres) {
+            const Image d = ocean.displacement(options.frames > 1 ? f * period / options.frames : 0.0);
+            Image withD(image.width, image.height, 3);
+            for (size_t i = 0; i < image.texelCount(); ++i) {
+                withD.pixels[3 * i] = image.pixels[i];
+                withD.pixels[3 * i + 1] = d.pixels[2 * i];
+                withD.pixels[3 * i + 2] = d.pixels[2 * i + 1];
+            }
+            image = std::move(withD);
+            flat.channelNames = {"Y", "Dx", "Dy"};
+        }
         flat.bits = metres ? 32 : 16;
         flat.attributes = {
             {"heightpack:layout", std::string("synthesised")},

@@ -430,6 +430,14 @@ TEST(Cli, SynthWritesTileableSeasAndLoopingFrames) {
     EXPECT_NEAR(std::stod(in->spec().get_string_attribute("heightpack:heightScale")),
                 j["maxHeight"].get<double>() - j["minHeight"].get<double>(), 1e-4);
 
+    // Displacement rides along as channels Dx, Dy; pack still finds the height in Y.
+    ASSERT_EQ(heightpackRun({"synth", "--wind", "10m/s", "--tile-size", "64m", "--size", "64", "--displacement", "-q",
+                             "-o", dir.file("chop.exr")}).code, 0);
+    auto chop = OIIO::ImageInput::open(dir.file("chop.exr"));
+    ASSERT_TRUE(chop);
+    EXPECT_EQ(chop->spec().nchannels, 3);
+    EXPECT_EQ(heightpackRun({"pack", dir.file("chop.exr"), "-q", "-o", dir.file("chop_packed.exr")}).code, 0);
+
     // The same seed gives the same bytes.
     ASSERT_EQ(heightpackRun({"synth", "--spectrum", "phillips", "--wind", "12m/s", "--direction", "30", "--tile-size",
                              "256m", "--size", "128", "-q", "-o", dir.file("again.png")}).code, 0);
@@ -466,6 +474,7 @@ TEST(Cli, SynthRefusesBadValues) {
         {"synth", "--wind", "10m/s", "--tile-size", "64m", "--frames", "8", "-o", out},
         {"synth", "--wind", "10m/s", "--tile-size", "64m", "--spectrum", "pierson", "-o", out},
         {"synth", "--wind", "10m/s", "--tile-size", "64m", "--frames", "8", "--loop", "0s", "-o", out},
+        {"synth", "--wind", "10m/s", "--tile-size", "64m", "--displacement", "-o", dir.file("s.png")},
     };
     for (const auto& args : usage) {
         const CliRun run = heightpackRun(args);

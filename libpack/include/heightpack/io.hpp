@@ -19,7 +19,8 @@ enum class ChannelSelect { Auto, R, G, B, A, Luma };
 std::optional<ChannelSelect> parseChannelSelect(std::string_view name);
 
 struct LoadOptions {
-    // Auto takes a one-channel image (or grey + alpha) as it is and refuses a colour image.
+    // Auto takes a one-channel image (or grey + alpha), or the channel named Y of any image, and
+    // refuses a colour image.
     ChannelSelect channel = ChannelSelect::Auto;
     // Images larger than this are refused from their header, before any pixel is allocated.
     int maxSide = 32768;
@@ -98,6 +99,7 @@ struct FlatImageOptions {
     int bits = 32;          // 8 or 16 (unsigned integer) or 32 (float)
     int srgbChannels = 0;   // the first this many channels are linear colours to encode as sRGB (8/16-bit)
     std::vector<ExrAttribute> attributes;  // metadata; a PNG holds numbers as text
+    std::vector<std::string> channelNames; // empty: Y, RGB or RGBA by count
 };
 
 // Writes image (1 to 4 channels: Y, RGB or RGBA) atomically, as writeTiledExr does. Integer formats clamp

@@ -53,11 +53,16 @@ public:
     explicit Ocean(const SpectrumOptions& options);
     // Heights in metres at time t (seconds), size x size; real by construction (Hermitian spectrum).
     Image heights(double t) const;
+    // Tessendorf's horizontal displacement (choppiness) at time t: two channels, x and y, in metres per
+    // unit of choppiness, D(k) = -i k / |k| h(k). An engine moves each vertex by lambda * D.
+    Image displacement(double t) const;
     // The variance the grid carries on average: the spectrum summed over the resolved wave vectors.
     double resolvedVariance() const { return resolvedVariance_; }
     const SpectrumOptions& options() const { return options_; }
 
 private:
+    // The spectrum at time t, times `factor(kx, ky)` (a complex multiplier that keeps it Hermitian).
+    Image transform(double t, int component) const;
     SpectrumOptions options_;
     std::vector<double> amplitudeRe_, amplitudeIm_;  // h0(k), row-major over the DFT grid
     std::vector<double> omega_;

@@ -13,6 +13,7 @@ namespace heightpack {
 struct SynthOptions {
     SpectrumOptions spectrum;
     int frames = 1;  // more than one needs spectrum.loopPeriod: frame f is the sea at f * loopPeriod / frames
+    bool displacement = false;  // EXR only: add Tessendorf's horizontal displacement as channels Dx, Dy
     std::string version;
 };
 
@@ -25,7 +26,8 @@ struct SynthReport {
 
 // Writes the sea at output: an .exr holds heights in metres (float); a .png or .tif holds them mapped
 // onto [0,1] at 16 bits, with heightpack:heightScale and heightpack:heightOffset giving metres back
-// (the same mapping for every frame of a sequence). Every file is written atomically.
+// (the same mapping for every frame of a sequence). With displacement, an .exr holds channels Y (height),
+// Dx and Dy (metres per unit of choppiness). Every file is written atomically.
 Result<SynthReport> synthesise(const std::string& output, const SynthOptions& options);
 
 }  // namespace heightpack
