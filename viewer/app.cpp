@@ -43,9 +43,9 @@ int renderOffscreen(ViewerOptions& o, Renderer& renderer) {
     const float time = o.time.value_or(0.0f);
     if (o.bench > 0) {
         PassTimes total;
-        renderer.render(o.camera, o.settings, time, o.width, o.height, target.framebuffer, true);  // warm up
+        renderer.render(o.camera, o.settings, time, o.width, o.height, target.framebuffer, true, true);  // warm up
         for (int i = 0; i < o.bench; ++i) {
-            renderer.render(o.camera, o.settings, time + i / 60.0f, o.width, o.height, target.framebuffer, true);
+            renderer.render(o.camera, o.settings, time + i / 60.0f, o.width, o.height, target.framebuffer, true, true);
             const PassTimes& t = renderer.times();
             total.water += t.water, total.combine += t.combine, total.tiled += t.tiled;
             total.waterWall += t.waterWall, total.combineWall += t.combineWall, total.tiledWall += t.tiledWall;

@@ -236,7 +236,7 @@ void Renderer::setCommonUniforms(GLuint p, const Camera& camera, const RenderSet
 }
 
 void Renderer::render(const Camera& camera, const RenderSettings& s, float time, int width, int height,
-                      GLuint framebuffer, bool measure) {
+                      GLuint framebuffer, bool measure, bool wallClock) {
     times_ = PassTimes{};
     const float aspect = float(width) / float(height);
     const glm::mat4 viewProj = camera.projection(aspect) * camera.view();
@@ -248,7 +248,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
 
     if (s.tiledView) {
         if (layers_.empty()) return;
-        const WallClock wall(measure);
+        const WallClock wall(measure && wallClock);
         if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[2]);
         glUseProgram(tiledProgram_);
         bindTexture(kTiledMap, layers_[0].frames[0].plain);
@@ -272,7 +272,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
 
     if (s.twoPass) {
         // Pass one: the height of every grid vertex into an fp32 texture.
-        const WallClock wall(measure);
+        const WallClock wall(measure && wallClock);
         if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[0]);
         glBindFramebuffer(GL_FRAMEBUFFER, combined_.framebuffer);
         glViewport(0, 0, s.segments, s.rings);
@@ -292,7 +292,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
         glViewport(0, 0, width, height);
     }
 
-    const WallClock wall(measure);
+    const WallClock wall(measure && wallClock);
     if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[1]);
     const glm::vec3 sun = glm::normalize(s.sunDirection), sunColour(1.0f, 0.93f, 0.8f);
     if (s.view == ViewMode::Shaded) {

@@ -82,8 +82,10 @@ public:
     // Compiles the programs. Returns false with a message (the shader log) on failure.
     bool init(std::string& error);
     void upload(const Scene& scene);
+    // measure: read timer queries into times(); wallClock: also bracket each pass with glFinish (for
+    // --bench; it stalls the pipeline, so the interactive loop does not).
     void render(const Camera& camera, const RenderSettings& settings, float time, int width, int height,
-                GLuint framebuffer, bool measure);
+                GLuint framebuffer, bool measure, bool wallClock = false);
     const PassTimes& times() const { return times_; }
     const Scene* scene() const { return scene_; }
     ~Renderer();
