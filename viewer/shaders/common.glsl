@@ -76,28 +76,25 @@ vec2 layerUv(int k, vec2 world) {
     return world * uLayerXform[k].x + uLayerXform[k].yz * uTime;
 }
 
+// Layer k's height above its mean at xy, seen from distance d: this frame, blended into the next frame
+// of a sequence; lod receives the layer's level of detail.
+float layerContribution(int k, sampler2D packedTex, sampler2D plainTex, sampler2D packedNext, sampler2D plainNext,
+                        vec2 xy, float d, out float lod) {
+    lod = layerLod(k, d);
+    vec2 uv = layerUv(k, xy);
+    bool clampMode = uLayerStored[k].y > 0.5;
+    float stored = layerHeight(packedTex, plainTex, k, uv, lod, clampMode);
+    if (uLayerBlend[k] > 0.0) stored = mix(stored, layerHeight(packedNext, plainNext, k, uv, lod, clampMode), uLayerBlend[k]);
+    return uLayerXform[k].w * (stored - uLayerStored[k].x);
+}
+
 // Height above the water level at world position xy, seen from distance d; lod0 receives layer 0's LOD.
 float waterHeight(vec2 xy, float d, out float lod0) {
     float h = 0.0;
     lod0 = 0.0;
-    if (uLayerCount > 0) {
-        lod0 = layerLod(0, d);
-        vec2 uv = layerUv(0, xy);
-        bool clampMode = uLayerStored[0].y > 0.5;
-        float stored = layerHeight(uPacked0, uPlain0, 0, uv, lod0, clampMode);
-        if (uLayerBlend[0] > 0.0)
-            stored = mix(stored, layerHeight(uPacked0Next, uPlain0Next, 0, uv, lod0, clampMode), uLayerBlend[0]);
-        h += uLayerXform[0].w * (stored - uLayerStored[0].x);
-    }
-    if (uLayerCount > 1) {
-        float lod1 = layerLod(1, d);
-        vec2 uv = layerUv(1, xy);
-        bool clampMode = uLayerStored[1].y > 0.5;
-        float stored = layerHeight(uPacked1, uPlain1, 1, uv, lod1, clampMode);
-        if (uLayerBlend[1] > 0.0)
-            stored = mix(stored, layerHeight(uPacked1Next, uPlain1Next, 1, uv, lod1, clampMode), uLayerBlend[1]);
-        h += uLayerXform[1].w * (stored - uLayerStored[1].x);
-    }
+    float lod1;
+    if (uLayerCount > 0) h += layerContribution(0, uPacked0, uPlain0, uPacked0Next, uPlain0Next, xy, d, lod0);
+    if (uLayerCount > 1) h += layerContribution(1, uPacked1, uPlain1, uPacked1Next, uPlain1Next, xy, d, lod1);
     for (int e = 0; e < kMaxExplosions; ++e) {
         if (e >= uExplosionCount) break;
         float age = uTime - uExplosion[e].z;
