@@ -53,6 +53,13 @@ struct WallClock {
     }
 };
 
+// The GPU time a finished GL_TIME_ELAPSED query measured, in milliseconds (waits for the result).
+double queryMilliseconds(GLuint query) {
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
+    return ns / 1e6;
+}
+
 void bindTexture(int unit, GLuint texture) {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(GL_TEXTURE_2D, texture);
@@ -262,9 +269,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
         glDrawArrays(GL_TRIANGLES, 0, 3);
         if (measure) {
             glEndQuery(GL_TIME_ELAPSED);
-            GLuint64 ns = 0;
-            glGetQueryObjectui64v(queries_[2], GL_QUERY_RESULT, &ns);
-            times_.tiled = ns / 1e6;
+            times_.tiled = queryMilliseconds(queries_[2]);
             times_.tiledWall = wall.stop();
         }
         return;
@@ -346,14 +351,9 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
     times_.vertices = static_cast<long long>(s.rings) * s.segments;
     if (measure) {
         glEndQuery(GL_TIME_ELAPSED);
-        GLuint64 ns = 0;
-        glGetQueryObjectui64v(queries_[1], GL_QUERY_RESULT, &ns);
-        times_.water = ns / 1e6;
+        times_.water = queryMilliseconds(queries_[1]);
         times_.waterWall = wall.stop();
-        if (s.twoPass) {
-            glGetQueryObjectui64v(queries_[0], GL_QUERY_RESULT, &ns);
-            times_.combine = ns / 1e6;
-        }
+        if (s.twoPass) times_.combine = queryMilliseconds(queries_[0]);
     }
     checkGl("Renderer::render");
 }
