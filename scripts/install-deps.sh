@@ -8,6 +8,7 @@ packages=(
   libopenimageio-dev openimageio-tools          # reading images; oiiotool for previews and the benchmark
   libopenexr-dev libdeflate-dev                 # writing tiled, mip-mapped EXRs; fast deflate for zip tiles
   libcli11-dev nlohmann-json3-dev               # command line, --json
+  libtomlplusplus-dev                           # material manifests (heightpack build)
   libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
   libopencv-core-dev                            # the DFT behind `tile` (periodic + smooth)
   libglfw3-dev libglm-dev libepoxy-dev          # heightpack-view: window and GL context, maths, GL loader

@@ -18,13 +18,6 @@ std::string scoreText(double v) {
     return text;
 }
 
-nlohmann::json scoreJson(const SeamScore& s, double threshold) {
-    if (!s.measured) return {{"measured", false}};
-    auto number = [](double v) { return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v); };
-    return {{"measured", true}, {"value", number(s.value)}, {"slope", number(s.slope)},
-            {"pass", seamPasses(s, threshold)}};
-}
-
 class CheckCommand final : public Command {
 public:
     CLI::App* attach(CLI::App& app) override {
@@ -83,13 +76,13 @@ private:
             nlohmann::json levels = nlohmann::json::array();
             for (size_t i = 0; i < r.levels.size(); ++i)
                 levels.push_back({{"level", i}, {"width", r.levels[i].width}, {"height", r.levels[i].height},
-                                  {"leftRight", scoreJson(r.levels[i].leftRight, t)},
-                                  {"topBottom", scoreJson(r.levels[i].topBottom, t)},
+                                  {"leftRight", seamScoreJson(r.levels[i].leftRight, t)},
+                                  {"topBottom", seamScoreJson(r.levels[i].topBottom, t)},
                                   {"pass", levelTiles(r.levels[i], t)}});
             nlohmann::json doc = {{"command", "check"}, {"input", r.input}, {"kind", r.kind}, {"tiles", r.tiles},
                                   {"threshold", t}, {"levels", levels},
-                                  {"worst", {{"leftRight", scoreJson(r.worst.leftRight, t)},
-                                             {"topBottom", scoreJson(r.worst.topBottom, t)}}}};
+                                  {"worst", {{"leftRight", seamScoreJson(r.worst.leftRight, t)},
+                                             {"topBottom", seamScoreJson(r.worst.topBottom, t)}}}};
             if (!r.note.empty()) doc["note"] = r.note;
             if (r.packing)
                 doc["packing"] = {{"consistent", r.packing->consistent}, {"maxError", r.packing->maxError},

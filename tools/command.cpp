@@ -53,8 +53,19 @@ void Command::printJson(const nlohmann::json& document) { std::cout << document.
 Progress::Progress(bool enabled, std::string label)
     : enabled_(enabled && ::isatty(STDERR_FILENO)), label_(std::move(label)) {}
 
-Progress::~Progress() {
+Progress::~Progress() { clear(); }
+
+void Progress::clear() {
     if (enabled_ && lastPercent_ >= 0) std::fprintf(stderr, "\r\033[K");
+    lastPercent_ = -1;
+    lastStage_.clear();
+}
+
+nlohmann::json seamScoreJson(const SeamScore& s, double threshold) {
+    if (!s.measured) return {{"measured", false}};
+    auto number = [](double v) { return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v); };
+    return {{"measured", true}, {"value", number(s.value)}, {"slope", number(s.slope)},
+            {"pass", seamPasses(s, threshold)}};
 }
 
 void Progress::update(std::string_view stage, double fraction) {

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "heightpack/result.hpp"
+#include "heightpack/tileable.hpp"
 
 namespace heightpack::cli {
 
@@ -66,6 +67,7 @@ std::unique_ptr<Command> makeFresnelCommand();
 std::unique_ptr<Command> makeCheckCommand();
 std::unique_ptr<Command> makeTileCommand();
 std::unique_ptr<Command> makeSynthCommand();
+std::unique_ptr<Command> makeBuildCommand();
 
 // A one-line progress display on stderr, shown only on a terminal and never with --quiet.
 class Progress {
@@ -75,6 +77,8 @@ public:
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;
     void update(std::string_view stage, double fraction);
+    // Removes the line, so ordinary output can follow; the next update draws it again.
+    void clear();
 
 private:
     bool enabled_;
@@ -82,6 +86,9 @@ private:
     int lastPercent_ = -1;
     std::string lastStage_;
 };
+
+// One edge pair's seam scores as JSON: measured, value, slope, pass.
+nlohmann::json seamScoreJson(const SeamScore& score, double threshold);
 
 // "1.5 MiB", "312 KiB": a size for people.
 std::string humanBytes(unsigned long long bytes);

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
         "  heightpack check examples/maps/painted_not_tileable.png --preview out/painted_check.png\n"
         "  heightpack tile examples/maps/painted_not_tileable.png -o out/painted_tiled.png\n"
         "  heightpack info out/swell.exr\n"
+        "  heightpack build examples/ocean.toml -o out/ocean\n"
         "Run 'heightpack <command> --help' for a command's options.\n"
         "Exit codes: 0 done, 1 a check failed, 2 usage error, 3 bad input, 4 cannot write output, 70 internal error.\n");
 
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
     commands.push_back(makeCheckCommand());
     commands.push_back(makeTileCommand());
     commands.push_back(makeSynthCommand());
+    commands.push_back(makeBuildCommand());
     commands.push_back(makeInfoCommand());
     std::vector<CLI::App*> subcommands;
     for (auto& command : commands) subcommands.push_back(command->attach(app));

@@ -3,8 +3,10 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 
 #include "app.hpp"
+#include "material_settings.hpp"
 #include "heightpack/version.hpp"
 
 namespace {
@@ -34,7 +36,9 @@ int main(int argc, char** argv) {
     float time = -1.0f;
     CLI::App app{"heightpack-view: water height maps on the GPU Gems 2 chapter 18 radial-grid renderer"};
     app.set_version_flag("--version", std::string("heightpack-view ") + heightpack::kVersion);
-    app.add_option("maps", o.files.heights, "height maps: packed EXRs from heightpack pack, or painted images")->required();
+    app.add_option("maps", o.files.heights,
+                   "height maps (packed EXRs from heightpack pack, or painted images), or one material.json from heightpack build")
+        ->required();
     app.add_option("--normals", o.files.normals, "normal map from heightpack normal (else derived from the heights)");
     app.add_option("--fresnel", o.files.fresnel, "Fresnel ramp from heightpack fresnel (else Schlick and fixed colours)");
     app.add_option("--foam", o.files.foam, "foam texture, grey (else procedural)");
@@ -61,6 +65,7 @@ int main(int argc, char** argv) {
     app.add_flag("--json", o.json, "print --bench figures as JSON");
     app.footer(
         "Examples:\n"
+        "  heightpack-view out/ocean/material.json\n"
         "  heightpack-view out/swell.exr out/choppy.exr --normals out/ripple_n.exr --fresnel out/fresnel.exr\n"
         "  heightpack-view out/swell.exr --tiled 3x3\n"
         "  heightpack-view out/swell.exr --screenshot shot.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10\n"
@@ -81,6 +86,19 @@ int main(int argc, char** argv) {
     if (std::sscanf(size.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 16 || o.height < 16 ||
         o.width > 8192 || o.height > 8192)
         return usage("--size must be WxH between 16 and 8192, e.g. 1280x720");
+    // A built material sets the files and parameters; options given as well override it.
+    const bool material = o.files.heights.size() == 1 && std::filesystem::path(o.files.heights[0]).extension() == ".json";
+    if (material) {
+        if (!o.files.normals.empty() || !o.files.fresnel.empty() || !o.files.foam.empty())
+            return usage("a material.json names its own textures; leave out --normals, --fresnel and --foam");
+        std::string note;
+        if (heightpack::Status s = applyMaterial(o.files.heights[0], o.files, o.settings, note); !s) {
+            const heightpack::Error& e = s.error();
+            std::fprintf(stderr, "heightpack: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(), e.hint.c_str());
+            return 3;
+        }
+        if (!note.empty()) std::fprintf(stderr, "heightpack-view: note: %s\n", note.c_str());
+    }
     std::vector<float> v;
     if (!camera.empty()) {
         if (!parseFloats(camera, v) || v.size() != 5) return usage("--camera must be x,y,z,yaw,pitch");

@@ -1,11 +1,13 @@
 #include "atomic_file.hpp"
 
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -53,6 +55,22 @@ Status checkWritable(const std::string& path) {
             return cannotWrite(path, "exists and is read-only", "make it writable or choose another output");
     }
     return Done{};
+}
+
+int removeStaleTemporaryFiles(const std::string& folder) {
+    std::error_code ec;
+    int removed = 0;
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
+        // .STEM.hptmp-PID-N.EXT, as TemporaryFile names them.
+        const std::string name = entry.path().filename().string();
+        const size_t mark = name.find(".hptmp-");
+        if (name.empty() || name[0] != '.' || mark == std::string::npos) continue;
+        const long pid = std::strtol(name.c_str() + mark + 7, nullptr, 10);
+        if (pid <= 0 || pid == ::getpid()) continue;
+        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // its writer still runs
+        if (fs::remove(entry.path(), ec)) ++removed;
+    }
+    return removed;
 }
 
 std::string frameFileName(const std::string& path, int frame, int frames) {

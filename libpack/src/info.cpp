@@ -5,40 +5,61 @@
 #include <algorithm>
 #include <filesystem>
 #include <limits>
+#include <memory>
 
 #include "stderr_silencer.hpp"
 #include "strings.hpp"
 
 namespace heightpack {
 
-Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoderMessages) {
+namespace {
+
+// Opens path and fills header from its first level; the caller walks the levels.
+Result<std::unique_ptr<OIIO::ImageInput>> openTexture(const std::string& path, TextureHeader& header) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return badInput(path, "no such file", "check the path");
-    detail::StderrSilencer quiet(silenceDecoderMessages);
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     auto in = OIIO::ImageInput::open(path, &config);
     if (!in) return badInput(path, "cannot be read as an image: " + detail::firstLine(OIIO::geterror()), "check the file");
-
-    TextureFile file;
-    file.path = path;
-    file.format = in->format_name();
+    header.path = path;
+    header.format = in->format_name();
     const OIIO::ImageSpec& top = in->spec();
-    file.pixelType = top.format.c_str();
-    file.channelNames = top.channelnames;
-    file.tiled = top.tile_width > 0;
-    file.tileWidth = top.tile_width;
-    file.tileHeight = top.tile_height;
-    for (const OIIO::ParamValue& p : top.extra_attribs) file.attributes.emplace_back(p.name().string(), p.get_string());
-    for (int mip = 0; in->seek_subimage(0, mip); ++mip) {
-        const OIIO::ImageSpec spec = in->spec();
+    header.pixelType = top.format.c_str();
+    header.channelNames = top.channelnames;
+    header.tiled = top.tile_width > 0;
+    header.tileWidth = top.tile_width;
+    header.tileHeight = top.tile_height;
+    for (const OIIO::ParamValue& p : top.extra_attribs) header.attributes.emplace_back(p.name().string(), p.get_string());
+    return in;
+}
+
+}  // namespace
+
+Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoderMessages) {
+    detail::StderrSilencer quiet(silenceDecoderMessages);
+    TextureFile file;
+    auto in = openTexture(path, file);
+    if (!in) return in.error();
+    for (int mip = 0; (*in)->seek_subimage(0, mip); ++mip) {
+        const OIIO::ImageSpec spec = (*in)->spec();
         Image level(spec.width, spec.height, spec.nchannels);
-        if (!in->read_image(0, mip, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, level.pixels.data()))
-            return badInput(path, "level " + std::to_string(mip) + " is damaged: " + detail::firstLine(in->geterror()),
+        if (!(*in)->read_image(0, mip, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, level.pixels.data()))
+            return badInput(path, "level " + std::to_string(mip) + " is damaged: " + detail::firstLine((*in)->geterror()),
                             "write the file again");
         file.levels.push_back(std::move(level));
     }
     return file;
+}
+
+Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDecoderMessages) {
+    detail::StderrSilencer quiet(silenceDecoderMessages);
+    TextureLayout layout;
+    auto in = openTexture(path, layout);
+    if (!in) return in.error();
+    for (int mip = 0; (*in)->seek_subimage(0, mip); ++mip)
+        layout.levelSizes.emplace_back((*in)->spec().width, (*in)->spec().height);
+    return layout;
 }
 
 Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages) {

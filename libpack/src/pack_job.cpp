@@ -36,7 +36,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     };
     // Fail on an unwritable output before spending any time on the input.
     if (Status s = checkWritable(output); !s) return s.error();
-    if (!options.plainOutput.empty()) {
+    if (options.packed && !options.plainOutput.empty()) {
         if (std::filesystem::path(options.plainOutput).lexically_normal() ==
             std::filesystem::path(output).lexically_normal())
             return cannotWrite(options.plainOutput, "is also the packed output", "give --emit-plain another name");
@@ -46,7 +46,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     PackReport report;
     report.input = input;
     report.output = output;
-    report.plainOutput = options.plainOutput;
+    report.plainOutput = options.packed ? options.plainOutput : output;
 
     auto start = std::chrono::steady_clock::now();
     progress("load", 0.0);
@@ -75,30 +75,32 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     ExrWriteOptions writeOptions;
     writeOptions.compression = options.compression;
     writeOptions.threads = options.mip.threads;
-    const bool plain = !options.plainOutput.empty();
-    writeOptions.progress = [&](double f) { progress("write", plain ? f * 0.8 : f); };
+    // The plain chain goes to plainOutput beside the packed one, or alone to output.
+    const std::string plainPath = options.packed ? options.plainOutput : output;
+    const bool both = options.packed && !plainPath.empty();
+    writeOptions.progress = [&](double f) { progress("write", both ? f * 0.8 : f); };
 
     const Wrap wrap = options.mip.wrap;
-    TiledExrContent packed;
-    packed.width = chain[0].width;
-    packed.height = chain[0].height;
-    packed.channelNames = {"R", "G", "B", "A"};
-    packed.fillRows = [&](int level, int y0, int rows, float* dst) {
-        packNeighbour4Rows(chain[level], wrap, y0, rows, dst);
-    };
-    packed.attributes = heightAttributes("neighbour4", options, report.source, report.sourceHash);
-    if (Status s = writeTiledExr(output, packed, writeOptions); !s) return s.error();
-
-    if (plain) {
-        TiledExrContent unpacked = packed;
-        unpacked.channelNames = {"Y"};
-        unpacked.fillRows = [&](int level, int y0, int rows, float* dst) {
+    TiledExrContent content;
+    content.width = chain[0].width;
+    content.height = chain[0].height;
+    if (options.packed) {
+        content.channelNames = {"R", "G", "B", "A"};
+        content.fillRows = [&](int level, int y0, int rows, float* dst) {
+            packNeighbour4Rows(chain[level], wrap, y0, rows, dst);
+        };
+        content.attributes = heightAttributes("neighbour4", options, report.source, report.sourceHash);
+        if (Status s = writeTiledExr(output, content, writeOptions); !s) return s.error();
+    }
+    if (!plainPath.empty()) {
+        content.channelNames = {"Y"};
+        content.fillRows = [&](int level, int y0, int rows, float* dst) {
             const Image& l = chain[level];
             std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width, dst);
         };
-        unpacked.attributes = heightAttributes("plain", options, report.source, report.sourceHash);
-        writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
-        if (Status s = writeTiledExr(options.plainOutput, unpacked, writeOptions); !s) return s.error();
+        content.attributes = heightAttributes("plain", options, report.source, report.sourceHash);
+        if (both) writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
+        if (Status s = writeTiledExr(plainPath, content, writeOptions); !s) return s.error();
     }
     progress("write", 1.0);
     report.writeSeconds = secondsSince(start);

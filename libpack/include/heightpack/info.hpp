@@ -51,6 +51,12 @@ struct TextureFile : TextureHeader {
 // be read. silenceDecoderMessages: see LoadOptions.
 Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoderMessages = false);
 
+// A file's header and the size of each level, without reading any pixels.
+struct TextureLayout : TextureHeader {
+    std::vector<std::pair<int, int>> levelSizes;  // level 0 first
+};
+Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDecoderMessages = false);
+
 // readTextureFile, summarised: per-level, per-channel statistics instead of pixels.
 Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages = false);
 

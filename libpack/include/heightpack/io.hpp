@@ -121,6 +121,10 @@ std::string frameFileName(const std::string& path, int frame, int frames);
 // frame from there; else itself (so that loading it reports the missing file).
 std::vector<std::string> expandSequence(const std::string& path);
 
+// Removes the temporary files in folder that a heightpack process killed mid-write (SIGKILL, power
+// loss) left behind: those whose writing process no longer runs. Returns how many it removed.
+int removeStaleTemporaryFiles(const std::string& folder);
+
 // Removes every temporary file an unfinished write in this process has open. Async-signal-safe: meant
 // for a SIGINT/SIGTERM handler, so an interrupted run leaves nothing behind.
 void removePendingTemporaryFiles();

@@ -20,6 +20,7 @@ struct PackOptions {
     bool resizeToPowerOfTwo = false;   // else a size that is not a power of two is refused
     Compression compression = Compression::Zip;
     std::string plainOutput;           // also write the unpacked one-channel chain here, if not empty
+    bool packed = true;                // false: write only the unpacked chain, at output (foam, masks)
     std::string version;               // recorded as heightpack:version
     // Reports progress: the stage ("load", "mip", "write") and the fraction of it done.
     std::function<void(std::string_view stage, double fraction)> progress;

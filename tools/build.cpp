@@ -1,0 +1,233 @@
+// heightpack build: every texture of one or more water material manifests, rebuilt only where inputs
+// or options changed, with material.json for the viewer and engines.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+
+#include "command.hpp"
+#include "heightpack/build_job.hpp"
+#include "heightpack/parallel.hpp"
+#include "heightpack/version.hpp"
+
+namespace heightpack::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json assetJson(const AssetReport& a, double threshold) {
+    nlohmann::json j = {{"name", a.name},
+                        {"kind", a.kind},
+                        {"line", a.line},
+                        {"input", a.input.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.input)},
+                        {"inputHash", a.inputHash.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.inputHash)},
+                        {"output", a.output},
+                        {"key", a.key},
+                        {"status", assetStatusName(a.status)},
+                        {"seconds", a.seconds}};
+    if (a.frame >= 0) j["frame"] = a.frame;
+    if (a.check) {
+        const AssetCheck& c = *a.check;
+        j["check"] = {{"ran", c.ran}, {"passedEarlier", c.earlier}, {"tiles", c.tiles}};
+        if (c.ran)
+            j["check"]["worst"] = {{"leftRight", seamScoreJson(c.worst.leftRight, threshold)},
+                                   {"topBottom", seamScoreJson(c.worst.topBottom, threshold)}};
+        if (!c.failure.empty()) j["check"]["failure"] = c.failure;
+    } else {
+        j["check"] = nullptr;
+    }
+    return j;
+}
+
+class BuildCommand final : public Command {
+public:
+    CLI::App* attach(CLI::App& app) override {
+        CLI::App* cmd = app.add_subcommand("build", "build every texture of a water material manifest, incrementally");
+        cmd->add_option("manifests", manifests_, "material manifests (.toml; see docs/manifest.md)")->required();
+        cmd->add_option("-o,--output", output_,
+                        "output folder: the material's own for one manifest, else one subfolder per material name");
+        cmd->add_option("-j,--jobs", jobs_, "assets built at once (output bytes are the same for any number)")
+            ->capture_default_str()
+            ->check(CLI::Range(1, 256));
+        cmd->add_flag("--check-only", checkOnly_, "validate the manifests and run the tileability checks; write nothing");
+        cmd->add_flag("--force", force_, "rebuild every output, even those up to date");
+        cmd->add_option("--depfile", depfile_, "write a Make/Ninja depfile listing the manifest and every source it reads");
+        cmd->add_option("--stamp", stamp_, "touch this file after a successful build; the depfile's target (for CMake)");
+        addCommonOptions(*cmd);
+        cmd->footer(
+            "Examples:\n"
+            "  heightpack build examples/ocean.toml -o out/ocean\n"
+            "  heightpack build examples/*.toml -o out --jobs 2 --json\n"
+            "  heightpack build examples/ocean.toml --check-only\n"
+            "  heightpack-view out/ocean/material.json\n"
+            "Only outputs whose source bytes or options changed are rebuilt (content hashes, not timestamps).\n"
+            "Exit codes: 0 built or up to date, 1 a map that must tile does not (nothing written), 2 usage,\n"
+            "3 bad manifest or source (FILE:LINE named), 4 cannot write output.\n");
+        return cmd;
+    }
+
+    ExitCode run() override {
+        if (!checkOnly_ && output_.empty()) return usage("give the output folder with -o (or use --check-only)");
+        if (checkOnly_ && (!depfile_.empty() || !stamp_.empty()))
+            return usage("--depfile and --stamp write files; --check-only writes nothing");
+        setLibraryThreads(common_.threads);
+
+        // Everything is parsed before anything is built: a bad manifest stops the build before it starts.
+        std::vector<Manifest> manifests;
+        std::map<std::string, std::string> names;
+        for (const std::string& path : manifests_) {
+            auto m = parseManifest(path);
+            if (!m) return fail(m.error());
+            const auto [it, fresh] = names.emplace(m->name, path);
+            if (!fresh && manifests_.size() > 1)
+                return fail(badInput(path, "names its material '" + m->name + "', as " + it->second + " does",
+                                     "give each material its own name: each is built into OUTPUT/NAME"));
+            manifests.push_back(std::move(*m));
+        }
+
+        const auto start = std::chrono::steady_clock::now();
+        nlohmann::json materials = nlohmann::json::array();
+        std::vector<std::string> dependencies;
+        bool checksPassed = true;
+        for (const Manifest& m : manifests) {
+            const std::string folder =
+                manifests.size() == 1 ? output_ : (fs::path(output_) / m.name).string();
+            auto report = buildOne(m, folder);
+            if (!report) return fail(report.error());
+            for (const Error& e : report->checkFailures) printError(e);
+            checksPassed = checksPassed && report->checkFailures.empty();
+            dependencies.insert(dependencies.end(), report->dependencies.begin(), report->dependencies.end());
+            materials.push_back(reportJson(*report, m.threshold));
+        }
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+        if (checksPassed && !checkOnly_) {
+            if (!depfile_.empty()) {
+                const std::string target = stamp_.empty() ? (fs::path(output_) / kMaterialFile).string() : stamp_;
+                if (ExitCode c = writeFile(depfile_, depfileText(target, dependencies)); c != ExitCode::Ok) return c;
+            }
+            if (!stamp_.empty())
+                if (ExitCode c = writeFile(stamp_, "heightpack build stamp\n"); c != ExitCode::Ok) return c;
+        }
+        if (common_.json)
+            printJson({{"command", "build"}, {"checkOnly", checkOnly_}, {"ok", checksPassed}, {"jobs", jobs_},
+                       {"seconds", seconds}, {"materials", materials}});
+        return checksPassed ? ExitCode::Ok : ExitCode::CheckFailed;
+    }
+
+private:
+    Result<BuildReport> buildOne(const Manifest& m, const std::string& folder) {
+        BuildOptions options;
+        options.outputDir = folder;
+        options.jobs = jobs_;
+        options.threads = common_.threads;
+        options.checkOnly = checkOnly_;
+        options.force = force_;
+        options.version = kVersion;
+        if (chatty())
+            std::printf("%s %s (%s)%s%s\n", checkOnly_ ? "checking" : "building", m.name.c_str(), m.path.c_str(),
+                        checkOnly_ ? "" : " into ", checkOnly_ ? "" : folder.c_str());
+        std::fflush(stdout);
+        Progress progress(!common_.quiet, "build " + m.name);
+        size_t done = 0, total = 0;
+        options.onEvent = [&](const BuildEvent& e) {
+            if (total == 0) total = countOutputs(m);
+            if (e.type == BuildEvent::Type::Done) {
+                ++done;
+                if (chatty()) {
+                    progress.clear();
+                    printAsset(e.asset);
+                }
+            }
+            const std::string label = e.asset.output + (e.stage.empty() ? "" : " " + std::string(e.stage));
+            progress.update(label, (double(done) + (e.type == BuildEvent::Type::Done ? 0.0 : 0.5 * e.fraction)) / double(total));
+        };
+        const auto start = std::chrono::steady_clock::now();
+        auto report = buildMaterial(m, options);
+        progress.clear();
+        if (report && chatty()) printSummary(*report, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        return report;
+    }
+
+    static size_t countOutputs(const Manifest& m) {
+        size_t n = 0;
+        for (const DisplacementAsset& d : m.displacement) n += d.frames.size();
+        if (m.normals) n += m.normals->frames.size();
+        if (m.fresnel) ++n;
+        if (m.foam && m.foam->texture) ++n;
+        return std::max<size_t>(n, 1);
+    }
+
+    static void printAsset(const AssetReport& a) {
+        std::string what = a.kind + " '" + a.name + "'";
+        if (a.frame >= 0) what += " frame " + std::to_string(a.frame);
+        if (a.status == AssetStatus::Rebuilt)
+            std::printf("  %-11s %-28s %-30s %6.2f s\n", "rebuilt", a.output.c_str(), what.c_str(), a.seconds);
+        else
+            std::printf("  %-11s %-28s %s\n", assetStatusName(a.status), a.output.c_str(), what.c_str());
+        std::fflush(stdout);
+    }
+
+    void printSummary(const BuildReport& r, double seconds) const {
+        if (checkOnly_) {
+            for (const AssetReport& a : r.assets) {
+                const char* verdict = !a.check ? "not checked (tileable = false)" : a.check->tiles ? "tiles" : "does NOT tile";
+                std::printf("  %-28s %-30s %s\n", a.output.c_str(), (a.kind + " '" + a.name + "'").c_str(), verdict);
+            }
+            std::printf("%s: %s\n", r.material.c_str(),
+                        r.checkFailures.empty() ? "manifest valid, every map that must tile does" : "checks FAILED");
+            return;
+        }
+        if (!r.checkFailures.empty()) {
+            std::printf("%s: nothing written: %zu map(s) must tile and do not\n", r.material.c_str(), r.checkFailures.size());
+            return;
+        }
+        if (r.staleTemporariesRemoved > 0)
+            std::printf("  removed %d temporary file(s) an interrupted build left\n", r.staleTemporariesRemoved);
+        if (r.rebuilt() == 0 && !r.materialWritten)
+            std::printf("%s: nothing to do, all %zu outputs up to date (%.2f s)\n", r.material.c_str(), r.assets.size(), seconds);
+        else
+            std::printf("%s: %d rebuilt, %d up to date, material.json %s (%.2f s)\n", r.material.c_str(), r.rebuilt(),
+                        r.upToDate(), r.materialWritten ? "written" : "unchanged", seconds);
+    }
+
+    nlohmann::json reportJson(const BuildReport& r, double threshold) const {
+        nlohmann::json assets = nlohmann::json::array();
+        for (const AssetReport& a : r.assets) assets.push_back(assetJson(a, threshold));
+        nlohmann::json failures = nlohmann::json::array();
+        for (const Error& e : r.checkFailures) failures.push_back({{"where", e.path}, {"what", e.what}});
+        return {{"name", r.material},
+                {"manifest", r.manifest},
+                {"outputDir", checkOnly_ ? nlohmann::json(nullptr) : nlohmann::json(r.outputDir)},
+                {"material", checkOnly_ ? nlohmann::json(nullptr)
+                                        : nlohmann::json((fs::path(r.outputDir) / kMaterialFile).string())},
+                {"materialWritten", r.materialWritten},
+                {"rebuilt", r.rebuilt()},
+                {"upToDate", r.upToDate()},
+                {"staleTemporariesRemoved", r.staleTemporariesRemoved},
+                {"checkFailures", failures},
+                {"assets", assets}};
+    }
+
+    ExitCode writeFile(const std::string& path, const std::string& text) const {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.close();
+        if (!out) return fail(cannotWrite(path, "cannot be written", "check that its folder exists and is writable"));
+        return ExitCode::Ok;
+    }
+
+    std::vector<std::string> manifests_;
+    std::string output_, depfile_, stamp_;
+    int jobs_ = 1;
+    bool checkOnly_ = false, force_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> makeBuildCommand() { return std::make_unique<BuildCommand>(); }
+
+}  // namespace heightpack::cli
