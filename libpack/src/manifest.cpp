@@ -211,9 +211,7 @@ public:
             s.finish();
         }
 
-        const toml::node* layers = top.find("displacement");
-        if (!layers) throw top.error(1, "missing [[displacement]]: a material needs at least one height map");
-        const toml::array* array = layers->as_array();
+        const toml::array* array = top.require("displacement").as_array();
         if (!array || !array->is_array_of_tables() || array->empty())
             throw top.error("displacement", "must be one or more [[displacement]] tables");
         if (array->size() > 8) throw top.error("displacement", "has " + std::to_string(array->size()) + " maps; at most 8");

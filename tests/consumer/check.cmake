@@ -1,12 +1,54 @@
-# Installs the build at BUILD_DIR into WORK_DIR/prefix, then configures, builds and runs the consumer.
+# Installs the build at BUILD_DIR into WORK_DIR/prefix, then configures, builds and runs the consumer,
+# and checks that its water material is rebuilt exactly when its map's bytes change (Ninja + depfile).
 file(REMOVE_RECURSE ${WORK_DIR})
 macro(run)
-  execute_process(COMMAND ${ARGV} RESULT_VARIABLE rc)
+  execute_process(COMMAND ${ARGV} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGV}")
+    message(FATAL_ERROR "failed (${rc}): ${ARGV}\n${out}\n${err}")
   endif()
 endmacro()
+set(src ${WORK_DIR}/src)
+set(build ${WORK_DIR}/build)
+set(texture ${build}/water/chop.exr)
+file(COPY ${SOURCE_DIR}/ DESTINATION ${src})
+file(COPY_FILE ${EXAMPLES_DIR}/maps/choppy.png ${src}/water/chop.png)
+
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
-run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
-run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
-run(${WORK_DIR}/build/consumer)
+run(${CMAKE_COMMAND} -S ${src} -B ${build} -G Ninja -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
+run(${CMAKE_COMMAND} --build ${build})
+run(${build}/consumer)
+if(NOT EXISTS ${build}/water/material.json OR NOT EXISTS ${texture})
+  message(FATAL_ERROR "the water material was not built")
+endif()
+file(SHA256 ${texture} first)
+
+# Nothing changed: Ninja has nothing to do.
+run(${CMAKE_COMMAND} --build ${build})
+if(NOT out MATCHES "no work to do")
+  message(FATAL_ERROR "a second build did work:\n${out}")
+endif()
+
+# The map touched, its bytes the same: Ninja re-runs heightpack (the depfile names the map), which
+# rebuilds nothing; then Ninja is satisfied again.
+file(TOUCH ${src}/water/chop.png)
+run(${CMAKE_COMMAND} --build ${build})
+if(NOT out MATCHES "building water material")
+  message(FATAL_ERROR "touching the map did not re-run heightpack build:\n${out}")
+endif()
+file(SHA256 ${texture} touched)
+if(NOT touched STREQUAL first)
+  message(FATAL_ERROR "the texture changed though the map did not")
+endif()
+run(${CMAKE_COMMAND} --build ${build})
+if(NOT out MATCHES "no work to do")
+  message(FATAL_ERROR "the build after a touch was not up to date:\n${out}")
+endif()
+
+# The map changed: the texture is rebuilt from it.
+file(COPY_FILE ${EXAMPLES_DIR}/maps/ripple.png ${src}/water/chop.png)
+run(${CMAKE_COMMAND} --build ${build})
+file(SHA256 ${texture} changed)
+if(changed STREQUAL first)
+  message(FATAL_ERROR "changing the map did not rebuild its texture")
+endif()
+message(STATUS "consumer: installed package, heightpack_add_material and its depfile work")

@@ -237,3 +237,34 @@ TEST(Viewer, PlaysASequenceFrameByFrame) {
     first.insert(first.end(), {"--time", "1"});
     EXPECT_GT(compare(screenshot(dir, "between.png", between), screenshot(dir, "first.png", first), 2).max, 2);
 }
+
+TEST(Viewer, OpensABuiltMaterialWithItsParameters) {
+    // heightpack build writes the textures and material.json; the viewer opening material.json must show
+    // what it shows given the same textures and the material's tile sizes and amplitudes by hand.
+    ScratchDir dir;
+    std::ofstream(dir.file("m.toml")) << "format = 1\nname = \"m\"\n"
+                                      << "[[displacement]]\nname = \"swell\"\nsource = \"" << kExamples << "swell.png\"\n"
+                                      << "tile_size = 40.0\nscroll = [0.010, 0.004]\namplitude = 2.0\n"
+                                      << "[[displacement]]\nname = \"choppy\"\nsource = \"" << kExamples << "choppy.png\"\n"
+                                      << "tile_size = 10.0\nscroll = [-0.006, 0.011]\namplitude = 0.3\n"
+                                      << "[normals]\nsource = \"" << kExamples << "ripple.png\"\ntile_size = 8.0\nheight = 0.05\n"
+                                      << "[[normals.octave]]\ntile_size = 8.0\nscroll = [0.02, 0.01]\n"
+                                      << "[[normals.octave]]\ntile_size = 8.0\nscroll = [-0.015, 0.02]\n"
+                                      << "[[normals.octave]]\ntile_size = 2.0\nscroll = [0.05, -0.03]\nstrength = 0.5\n"
+                                      << "[[normals.octave]]\ntile_size = 2.0\nscroll = [-0.04, -0.05]\nstrength = 0.5\n"
+                                      << "[fresnel]\nior = 1.333\n";
+    const ProcessResult built = runProcess({HEIGHTPACK_EXE, "build", dir.file("m.toml"), "-q", "-o", dir.file("m")});
+    ASSERT_EQ(built.code, 0) << built.err;
+    const std::vector<std::string> shot = {"--size", "320x180", "--time", "12.5", "--camera", "0,0,8,30,-10"};
+    auto material = shot, byHand = shot, defaults = shot;
+    material.insert(material.begin(), dir.file("m/material.json"));
+    const std::vector<std::string> files = {dir.file("m/swell.exr"), dir.file("m/choppy.exr"), "--normals",
+                                            dir.file("m/normals.exr"), "--fresnel", dir.file("m/fresnel.exr")};
+    byHand.insert(byHand.begin(), files.begin(), files.end());
+    defaults.insert(defaults.begin(), files.begin(), files.end());
+    byHand.insert(byHand.end(), {"--tile-size", "40,10", "--amplitude", "2,0.3"});
+    const Picture fromMaterial = screenshot(dir, "material.png", material);
+    EXPECT_EQ(compare(fromMaterial, screenshot(dir, "by_hand.png", byHand), 0).max, 0);
+    // The material's parameters were used: the viewer's own defaults give another picture.
+    EXPECT_GT(compare(fromMaterial, screenshot(dir, "defaults.png", defaults), 2).fractionOver, 0.05);
+}

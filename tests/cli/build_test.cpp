@@ -1,0 +1,508 @@
+// `heightpack build` end to end: incremental rebuilds by content, deterministic trees whatever --jobs,
+// a killed build leaving no partial file, bad manifests named by file:line, material.json and the
+// depfile checked by independent readers (OpenImageIO, nlohmann::json).
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "support/test_support.hpp"
+
+using namespace heightpack;
+using namespace heightpack::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+ProcessResult heightpackRun(const std::vector<std::string>& args) {
+    std::vector<std::string> argv = {HEIGHTPACK_EXE};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return runProcess(argv);
+}
+
+// A periodic sea: whole numbers of waves across the tile, so every level tiles.
+Image periodicMap(int size, double amplitude, int seed) {
+    return makeImage(size, size, [=](int x, int y) {
+        const double u = double(x) / size, v = double(y) / size;
+        double h = 0.5;
+        for (int k = 1; k <= 5; ++k)
+            h += amplitude / k * std::sin(2 * kPi * (k * u + ((k + seed) % 3) * v) + 0.7 * k + seed);
+        return static_cast<float>(h);
+    });
+}
+
+// A painting whose edges do not meet: a ramp left to right and an off-period wave.
+Image paintedMap(int size) {
+    return makeImage(size, size, [=](int x, int y) {
+        return static_cast<float>(0.2 + 0.5 * x / size + 0.1 * std::sin(0.37 * y) * std::cos(0.23 * x));
+    });
+}
+
+const char* kManifest = R"(format = 1
+name = "sea"
+
+[defaults]
+filter = "kaiser"
+
+[[displacement]]
+name = "long"
+source = "maps/a.png"
+tile_size = 64.0
+scroll = [0.01, 0.004]
+amplitude = 1.5
+
+[[displacement]]
+name = "short"
+source = "maps/b.png"
+tile_size = 16.0
+amplitude = 0.4
+
+[normals]
+name = "ripple_n"
+source = "maps/r.png"
+tile_size = 8.0
+height = 0.05
+filter = "kaiser"
+
+[fresnel]
+ior = 1.333
+)";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+}
+
+void writeText(const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+}
+
+std::string readText(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Every file under root (hidden ones too), relative path -> bytes.
+std::map<std::string, std::string> tree(const fs::path& root) {
+    std::map<std::string, std::string> files;
+    std::error_code ec;
+    for (const auto& e : fs::recursive_directory_iterator(root, ec))
+        if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = readText(e.path().string());
+    return files;
+}
+
+long long mtimeNs(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return -1;
+    return st.st_mtim.tv_sec * 1000000000LL + st.st_mtim.tv_nsec;
+}
+
+// A project folder with four maps and the manifest above.
+class BuildTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        fs::create_directories(dir.path() / "maps");
+        writeImage(dir.file("maps/a.png"), periodicMap(128, 0.08, 1), OIIO::TypeDesc::UINT16);
+        writeImage(dir.file("maps/b.png"), periodicMap(64, 0.06, 2), OIIO::TypeDesc::UINT16);
+        writeImage(dir.file("maps/r.png"), periodicMap(64, 0.1, 3), OIIO::TypeDesc::UINT8);
+        writeImage(dir.file("maps/painted.png"), paintedMap(128), OIIO::TypeDesc::UINT8);
+        writeText(manifest, kManifest);
+    }
+
+    ProcessResult build(std::vector<std::string> extra = {}) {
+        std::vector<std::string> args = {"build", manifest, "-o", out};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return heightpackRun(args);
+    }
+    // Builds with --json and returns the one material's report.
+    nlohmann::json buildJson(std::vector<std::string> extra = {}) {
+        extra.push_back("--json");
+        const ProcessResult r = build(extra);
+        EXPECT_EQ(r.code, 0) << r.err;
+        const auto doc = nlohmann::json::parse(r.out, nullptr, false);
+        EXPECT_FALSE(doc.is_discarded()) << r.out;
+        return doc.is_discarded() ? nlohmann::json() : doc["materials"][0];
+    }
+    // Output -> status, from a report.
+    static std::map<std::string, std::string> statuses(const nlohmann::json& material) {
+        std::map<std::string, std::string> s;
+        for (const auto& a : material["assets"]) s[a["output"]] = a["status"];
+        return s;
+    }
+
+    ScratchDir dir;
+    std::string manifest = dir.file("water.toml");
+    std::string out = dir.file("out");
+};
+
+}  // namespace
+
+TEST_F(BuildTest, SecondBuildDoesNothingAndSaysSo) {
+    const auto first = buildJson();
+    EXPECT_EQ(first["rebuilt"], 4);
+    for (const auto& [output, status] : statuses(first)) EXPECT_EQ(status, "rebuilt") << output;
+    const auto before = tree(out);
+    const long long swellTime = mtimeNs(out + "/long.exr");
+
+    const ProcessResult again = build();
+    ASSERT_EQ(again.code, 0) << again.err;
+    EXPECT_NE(again.out.find("nothing to do"), std::string::npos) << again.out;
+    const auto second = buildJson();
+    EXPECT_EQ(second["rebuilt"], 0);
+    EXPECT_EQ(second["upToDate"], 4);
+    EXPECT_FALSE(second["materialWritten"]);
+    EXPECT_EQ(tree(out), before);
+    EXPECT_EQ(mtimeNs(out + "/long.exr"), swellTime);  // not even rewritten with the same bytes
+}
+
+TEST_F(BuildTest, TouchingAMapWithoutChangingItRebuildsNothing) {
+    buildJson();
+    const auto later = fs::last_write_time(dir.file("maps/a.png")) + std::chrono::hours(1);
+    fs::last_write_time(dir.file("maps/a.png"), later);
+    fs::last_write_time(manifest, later);
+    const auto report = buildJson();
+    EXPECT_EQ(report["rebuilt"], 0) << report.dump(1);
+}
+
+TEST_F(BuildTest, ChangingOneMapRebuildsItsOutputOnly) {
+    buildJson();
+    const auto before = tree(out);
+    writeImage(dir.file("maps/b.png"), periodicMap(64, 0.09, 2), OIIO::TypeDesc::UINT16);
+    const auto report = buildJson();
+    const std::map<std::string, std::string> expected = {
+        {"long.exr", "up to date"}, {"short.exr", "rebuilt"}, {"ripple_n.exr", "up to date"}, {"fresnel.exr", "up to date"}};
+    EXPECT_EQ(statuses(report), expected);
+    const auto after = tree(out);
+    EXPECT_NE(after.at("short.exr"), before.at("short.exr"));
+    for (const char* same : {"long.exr", "ripple_n.exr", "fresnel.exr", "material.json"})
+        EXPECT_EQ(after.at(same), before.at(same)) << same;
+}
+
+TEST_F(BuildTest, ChangingTheFilterRebuildsThePackedTexturesOnly) {
+    buildJson();
+    writeText(manifest, replaced(kManifest, "[defaults]\nfilter = \"kaiser\"", "[defaults]\nfilter = \"lanczos3\""));
+    const auto report = buildJson();
+    const std::map<std::string, std::string> expected = {
+        {"long.exr", "rebuilt"}, {"short.exr", "rebuilt"}, {"ripple_n.exr", "up to date"}, {"fresnel.exr", "up to date"}};
+    EXPECT_EQ(statuses(report), expected);
+    // The rebuilt texture says so in its header, read by OpenImageIO.
+    auto in = OIIO::ImageInput::open(out + "/long.exr");
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:filter"), "lanczos3");
+}
+
+TEST_F(BuildTest, ChangingAnAmplitudeRewritesOnlyMaterialJson) {
+    buildJson();
+    writeText(manifest, replaced(kManifest, "amplitude = 1.5", "amplitude = 2.25"));
+    const auto report = buildJson();
+    EXPECT_EQ(report["rebuilt"], 0);
+    EXPECT_TRUE(report["materialWritten"]);
+    const auto material = nlohmann::json::parse(readText(out + "/material.json"));
+    EXPECT_EQ(material["displacement"][0]["amplitude"], 2.25);
+}
+
+TEST_F(BuildTest, DeletedOrDamagedOutputsAreRebuiltToTheSameBytes) {
+    buildJson();
+    const auto before = tree(out);
+    fs::remove(out + "/long.exr");
+    std::string damaged = before.at("short.exr");
+    damaged[damaged.size() / 2] ^= 0x55;
+    writeText(out + "/short.exr", damaged);
+    const auto report = buildJson();
+    const std::map<std::string, std::string> expected = {
+        {"long.exr", "rebuilt"}, {"short.exr", "rebuilt"}, {"ripple_n.exr", "up to date"}, {"fresnel.exr", "up to date"}};
+    EXPECT_EQ(statuses(report), expected);
+    EXPECT_EQ(tree(out), before);
+}
+
+TEST_F(BuildTest, JobsOneAndTwoGiveByteIdenticalTrees) {
+    const std::string one = dir.file("one"), two = dir.file("two");
+    ASSERT_EQ(heightpackRun({"build", manifest, "-o", one, "--jobs", "1", "--threads", "1"}).code, 0);
+    ASSERT_EQ(heightpackRun({"build", manifest, "-o", two, "--jobs", "2", "--threads", "3"}).code, 0);
+    const auto a = tree(one), b = tree(two);
+    EXPECT_EQ(a.size(), 6u);  // four textures, material.json, the build state
+    EXPECT_EQ(a, b);
+}
+
+TEST_F(BuildTest, MaterialJsonDescribesWhatWasWritten) {
+    buildJson();
+    const auto m = nlohmann::json::parse(readText(out + "/material.json"));
+    EXPECT_EQ(m["schema"], "heightpack-material");
+    EXPECT_EQ(m["version"], 1);
+    EXPECT_EQ(m["name"], "sea");
+    ASSERT_EQ(m["displacement"].size(), 2u);
+    const auto& d = m["displacement"][0];
+    EXPECT_EQ(d["tileSize"], 64.0);
+    EXPECT_EQ(d["scroll"], nlohmann::json::array({0.01, 0.004}));
+    EXPECT_EQ(d["amplitude"], 1.5);
+    EXPECT_EQ(d["layout"], "neighbour4");
+    // Sizes and level counts as OpenImageIO reads them from the files.
+    for (const auto* layer : {&m["displacement"][0], &m["displacement"][1], &m["normals"], &m["fresnel"]}) {
+        const auto& t = (*layer)["texture"];
+        auto in = OIIO::ImageInput::open(out + "/" + t["file"].get<std::string>());
+        ASSERT_TRUE(in) << t.dump();
+        EXPECT_EQ(t["width"], in->spec().width);
+        EXPECT_EQ(t["height"], in->spec().height);
+        int levels = 0;
+        while (in->seek_subimage(0, levels)) ++levels;
+        EXPECT_EQ(t["levels"], levels);
+    }
+    EXPECT_EQ(m["normals"]["octaves"].size(), 1u);  // none given: one at the map's own tile size
+    EXPECT_EQ(m["normals"]["octaves"][0]["tileSize"], 8.0);
+    EXPECT_EQ(m["fresnel"]["ior"], 1.333);
+}
+
+TEST_F(BuildTest, JsonReportGivesHashesChecksAndTimes) {
+    const auto r = buildJson();
+    ASSERT_EQ(r["assets"].size(), 4u);
+    std::map<std::string, nlohmann::json> byName;
+    for (const auto& a : r["assets"]) byName[a["name"]] = a;
+    EXPECT_EQ(byName["long"]["inputHash"].get<std::string>().size(), 32u);
+    EXPECT_NE(byName["long"]["inputHash"], byName["short"]["inputHash"]);
+    EXPECT_TRUE(byName["fresnel"]["inputHash"].is_null());
+    EXPECT_TRUE(byName["long"]["check"]["ran"]);
+    EXPECT_TRUE(byName["long"]["check"]["tiles"]);
+    EXPECT_LT(byName["long"]["check"]["worst"]["leftRight"]["value"].get<double>(), 2.0);
+    EXPECT_TRUE(byName["fresnel"]["check"].is_null());
+    EXPECT_GE(byName["long"]["seconds"].get<double>(), 0.0);
+    // The same map under another name hashes the same: the hash is of the bytes.
+    fs::copy_file(dir.file("maps/a.png"), dir.file("maps/a_copy.png"));
+    writeText(manifest, replaced(kManifest, "maps/b.png", "maps/a_copy.png"));
+    const auto again = buildJson();
+    EXPECT_EQ(again["assets"][0]["inputHash"], again["assets"][1]["inputHash"]);
+    // An up-to-date output's check passed in the build that made it and is not run again.
+    EXPECT_FALSE(again["assets"][0]["check"]["ran"]);
+    EXPECT_TRUE(again["assets"][0]["check"]["passedEarlier"]);
+}
+
+TEST_F(BuildTest, AMapThatMustTileAndDoesNotFailsTheBuildNamingIt) {
+    buildJson();
+    const auto before = tree(out);
+    writeText(manifest, replaced(kManifest, "maps/b.png", "maps/painted.png"));
+    const ProcessResult r = build();
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find(manifest + ":14: displacement 'short' (" ), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("left/right edges"), std::string::npos) << r.err;
+    EXPECT_EQ(tree(out), before);
+    // Marked as not tiling, the same map builds.
+    writeText(manifest, replaced(replaced(kManifest, "maps/b.png", "maps/painted.png"), "amplitude = 0.4",
+                                 "amplitude = 0.4\ntileable = false"));
+    const auto report = buildJson();
+    EXPECT_EQ(report["assets"][1]["status"], "rebuilt");
+    EXPECT_TRUE(report["assets"][1]["check"].is_null());
+}
+
+TEST_F(BuildTest, CheckOnlyValidatesAndWritesNothing) {
+    const ProcessResult ok = heightpackRun({"build", manifest, "--check-only"});
+    EXPECT_EQ(ok.code, 0) << ok.err;
+    EXPECT_NE(ok.out.find("manifest valid"), std::string::npos) << ok.out;
+    EXPECT_FALSE(fs::exists(out));
+    writeText(manifest, replaced(kManifest, "maps/a.png", "maps/painted.png"));
+    const ProcessResult bad = heightpackRun({"build", manifest, "--check-only", "-o", out});
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.err.find("displacement 'long'"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(BuildTest, DepfileNamesTheStampTheManifestAndEverySource) {
+    const std::string depfile = dir.file("sea.d"), stamp = dir.file("sea.stamp");
+    ASSERT_EQ(build({"--depfile", depfile, "--stamp", stamp}).code, 0);
+    EXPECT_TRUE(fs::exists(stamp));
+    const std::string text = readText(depfile);
+    EXPECT_EQ(text.rfind(stamp + ":", 0), 0u) << text;
+    for (const char* file : {"water.toml", "maps/a.png", "maps/b.png", "maps/r.png"})
+        EXPECT_NE(text.find(fs::absolute(dir.file(file)).string()), std::string::npos) << file << "\n" << text;
+    EXPECT_EQ(text.find("painted"), std::string::npos);  // not read, not a dependency
+}
+
+TEST_F(BuildTest, SequenceSourcesBuildFrameByFrame) {
+    for (int f = 0; f < 3; ++f) {
+        char name[64];
+        std::snprintf(name, sizeof name, "maps/sea.%04d.png", f);
+        writeImage(dir.file(name), periodicMap(64, 0.05 + 0.01 * f, f), OIIO::TypeDesc::UINT16);
+    }
+    writeText(manifest, replaced(kManifest, "maps/b.png", "maps/sea.png"));
+    const auto report = buildJson();
+    EXPECT_EQ(report["rebuilt"], 6);
+    for (const char* frame : {"short.0000.exr", "short.0001.exr", "short.0002.exr"}) EXPECT_TRUE(fs::exists(out + "/" + frame));
+    const auto m = nlohmann::json::parse(readText(out + "/material.json"));
+    EXPECT_EQ(m["displacement"][1]["texture"]["file"], "short.exr");
+    EXPECT_EQ(m["displacement"][1]["texture"]["frames"], 3);
+}
+
+TEST_F(BuildTest, SeveralManifestsBuildIntoOneFolderEach) {
+    const std::string second = dir.file("lagoon.toml");
+    writeText(second, replaced(kManifest, "name = \"sea\"", "name = \"lagoon\""));
+    const ProcessResult r = heightpackRun({"build", manifest, second, "-o", out, "--jobs", "2"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out + "/sea/material.json"));
+    EXPECT_TRUE(fs::exists(out + "/lagoon/material.json"));
+    EXPECT_EQ(readText(out + "/sea/long.exr"), readText(out + "/lagoon/long.exr"));
+    // Two materials of one name would overwrite each other.
+    const ProcessResult clash = heightpackRun({"build", manifest, manifest, "-o", out});
+    EXPECT_EQ(clash.code, 3);
+}
+
+// Each bad manifest: an error on one line naming file:line and the key, the documented exit code, and
+// the previous build's outputs untouched.
+TEST_F(BuildTest, BadManifestsNameFileLineAndKeepThePreviousOutputs) {
+    buildJson();
+    const auto before = tree(out);
+    struct Case {
+        const char* what;
+        std::string text;
+        std::string marker;  // the error's line is the line holding this text
+        int code;
+        std::string mentions;
+    };
+    const std::string base = kManifest;
+    const std::vector<Case> cases = {
+        {"syntax error", replaced(base, "[[displacement]]\nname = \"short\"", "[[displacement]\nname = \"short\""),
+         "[[displacement]\n", 3, "TOML syntax error"},
+        {"unknown top-level key", replaced(base, "name = \"sea\"", "name = \"sea\"\ncolour = \"blue\""), "colour", 3,
+         "unknown key 'colour'"},
+        {"misspelt key", replaced(base, "tile_size = 64.0", "tile_sise = 64.0"), "tile_sise", 3,
+         "did you mean 'tile_size'"},
+        {"negative tile size", replaced(base, "tile_size = 64.0", "tile_size = -64.0"), "tile_size = -64.0", 3,
+         "displacement[0].tile_size"},
+        {"missing map", replaced(base, "maps/a.png", "maps/missing.png"), "maps/missing.png", 3, "does not exist"},
+        {"map not tileable", replaced(base, "maps/a.png", "maps/painted.png"), "[[displacement]]\nname = \"long\"", 1,
+         "does not tile"},
+        {"duplicate output", replaced(base, "name = \"short\"", "name = \"short\"\noutput = \"long.exr\""),
+         "[[displacement]]\nname = \"short\"", 3, "'long.exr'"},
+        {"output escaping via ..", replaced(base, "name = \"short\"", "name = \"short\"\noutput = \"../short.exr\""),
+         "../short.exr", 3, "displacement[1].output"},
+        {"absolute output", replaced(base, "name = \"short\"", "name = \"short\"\noutput = \"/tmp/short.exr\""),
+         "/tmp/short.exr", 3, "displacement[1].output"},
+        {"output not an exr", replaced(base, "name = \"short\"", "name = \"short\"\noutput = \"short.png\""),
+         "short.png", 3, ".exr"},
+        {"wrong type", replaced(base, "amplitude = 0.4", "amplitude = \"0.4\""), "amplitude = \"0.4\"", 3,
+         "must be a number"},
+        {"missing required key", replaced(base, "height = 0.05\n", ""), "[normals]", 3, "missing key 'normals.height'"},
+        {"unknown wrap", replaced(base, "[defaults]\n", "[defaults]\nwrap = \"mirror\"\n"), "mirror", 3,
+         "defaults.wrap"},
+        {"newer format", replaced(base, "format = 1", "format = 2"), "format = 2", 3, "format"},
+        {"no height maps",
+         replaced(replaced(base, "[[displacement]]\nname = \"long\"", "[[unused]]\nname = \"long\""),
+                  "[[displacement]]\nname = \"short\"", "[[unused]]\nname = \"short\""),
+         "format = 1", 3, "missing key 'displacement'"},
+        {"foam hmax below h0", base + "\n[foam]\nh0 = 2.0\nhmax = 1.0\n", "hmax = 1.0", 3, "foam.hmax"},
+        {"Fresnel ramp too small", replaced(base, "ior = 1.333", "ior = 1.333\nsize = 1"), "size = 1\n", 3, "fresnel.size"},
+        {"scroll with three numbers", replaced(base, "scroll = [0.01, 0.004]", "scroll = [0.01, 0.004, 0.0]"),
+         "scroll = [", 3, "displacement[0].scroll"},
+        {"duplicate name", replaced(base, "name = \"short\"", "name = \"long\""), "name = \"long\"\nsource = \"maps/b",
+         3, "already the name"},
+        {"bad channel", replaced(base, "name = \"short\"", "name = \"short\"\nchannel = \"x\""), "channel", 3,
+         "displacement[1].channel"},
+        {"normal height zero", replaced(base, "height = 0.05", "height = 0"), "height = 0", 3, "normals.height"},
+        {"ior below one", replaced(base, "ior = 1.333", "ior = 0.5"), "ior = 0.5", 3, "fresnel.ior"},
+        {"octaves not tables", replaced(base, "filter = \"kaiser\"\n\n[fresnel]", "filter = \"kaiser\"\noctave = 3\n\n[fresnel]"),
+         "octave = 3", 3, "normals.octave"},
+    };
+    ASSERT_GE(cases.size(), 15u);
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.what);
+        writeText(manifest, c.text);
+        const size_t at = c.text.find(c.marker);
+        ASSERT_NE(at, std::string::npos) << c.marker;
+        const int line = 1 + static_cast<int>(std::count(c.text.begin(), c.text.begin() + at, '\n'));
+        const ProcessResult r = build();
+        EXPECT_EQ(r.code, c.code) << r.err;
+        EXPECT_EQ(r.err.rfind("heightpack: error: " + manifest + ":" + std::to_string(line) + ": ", 0), 0u) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_NE(r.err.find(c.mentions), std::string::npos) << r.err;
+        EXPECT_EQ(tree(out), before);
+    }
+}
+
+// SIGKILL cannot be caught: what a killed build leaves must already be whole, and the next build must
+// finish the job and clear what the killed one left.
+TEST_F(BuildTest, AKilledBuildLeavesNoPartialOutputAndTheNextBuildCompletesIt) {
+    std::string text = "format = 1\nname = \"big\"\n";
+    for (int i = 0; i < 6; ++i) {
+        const std::string map = "maps/big" + std::to_string(i) + ".png";
+        writeImage(dir.file(map), periodicMap(1024, 0.05 + 0.01 * i, i), OIIO::TypeDesc::UINT16);
+        text += "[[displacement]]\nname = \"big" + std::to_string(i) + "\"\nsource = \"" + map + "\"\ntile_size = 32\n";
+    }
+    writeText(manifest, text);
+
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        const int devnull = ::open("/dev/null", O_WRONLY);
+        ::dup2(devnull, 1);
+        ::dup2(devnull, 2);
+        ::execl(HEIGHTPACK_EXE, HEIGHTPACK_EXE, "build", manifest.c_str(), "-o", out.c_str(), "--jobs", "1",
+                "--threads", "1", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    // Kill it the moment the first texture appears.
+    auto firstOutput = [&] {
+        std::error_code ec;
+        for (const auto& e : fs::directory_iterator(out, ec))
+            if (e.path().extension() == ".exr" && e.path().filename().string()[0] != '.') return true;
+        return false;
+    };
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    int status = 0;
+    bool exited = false;
+    while (!firstOutput() && std::chrono::steady_clock::now() < deadline) {
+        if (::waitpid(child, &status, WNOHANG) == child) {
+            exited = true;
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    ::kill(child, SIGKILL);
+    if (!exited) ::waitpid(child, &status, 0);
+    ASSERT_FALSE(exited) << "the build finished before it could be killed";
+    ASSERT_TRUE(WIFSIGNALED(status));
+
+    // Every texture there is whole: OpenImageIO reads every level of it.
+    int complete = 0;
+    for (const auto& e : fs::directory_iterator(out)) {
+        const std::string name = e.path().filename().string();
+        if (name[0] == '.' || e.path().extension() != ".exr") continue;
+        auto in = OIIO::ImageInput::open(e.path().string());
+        ASSERT_TRUE(in) << name;
+        for (int level = 0; in->seek_subimage(0, level); ++level) {
+            std::vector<float> pixels(size_t(in->spec().width) * in->spec().height * 4);
+            EXPECT_TRUE(in->read_image(0, level, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data())) << name << " " << level;
+        }
+        ++complete;
+    }
+    EXPECT_GE(complete, 1);
+    EXPECT_LT(complete, 6);
+    EXPECT_FALSE(fs::exists(out + "/material.json"));
+
+    // Outputs recorded in the build state are kept; one renamed into place just before the kill, and
+    // not yet recorded, is made again.
+    const auto report = buildJson({"--jobs", "2"});
+    EXPECT_GE(report["rebuilt"].get<int>(), 6 - complete);
+    EXPECT_LE(report["rebuilt"].get<int>(), 7 - complete);
+    for (const auto& e : fs::directory_iterator(out))
+        EXPECT_EQ(e.path().filename().string().find(".hptmp-"), std::string::npos) << e.path();
+    // And the result is what an uninterrupted build makes.
+    const std::string clean = dir.file("clean");
+    ASSERT_EQ(heightpackRun({"build", manifest, "-o", clean}).code, 0);
+    EXPECT_EQ(tree(out), tree(clean));
+}
