@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The main job on the bundled examples: installs what is missing, builds, packs every map in
-# examples/maps into out/, and prints what it wrote. Open out/*_preview.png to look at the results.
+# The main job on the bundled examples: installs what is missing, builds, builds the example water
+# materials (examples/*.toml) into out/ocean and out/lagoon, renders the ocean with the viewer, and
+# runs every command on examples/maps into out/. Open out/view.png and out/*_preview.png to look.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -8,6 +9,14 @@ bash scripts/install-deps.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build --target heightpack heightpack-view
 
+# The pipeline's step: every texture of each material manifest, and material.json. A second run has
+# nothing to do.
+./build/heightpack build examples/ocean.toml examples/lagoon.toml -o out --jobs 2
+./build/heightpack build examples/ocean.toml examples/lagoon.toml -o out --jobs 2
+xvfb-run -a -s "-screen 0 1280x1024x24" ./build/viewer/heightpack-view out/ocean/material.json \
+  --screenshot out/view.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10
+
+# Each command on its own.
 mkdir -p out
 for map in examples/maps/*.png; do
   name=$(basename "$map" .png)
@@ -37,11 +46,6 @@ oiiotool out/fresnel.exr --ch R,G,B --resize 256x32 --colorconvert linear sRGB o
 ./build/heightpack check out/painted_tiled.png --preview out/painted_check_after.png
 ./build/heightpack check examples/maps/swell.png --quiet && echo "examples/maps/swell.png tiles"
 
-# The water as the game will show it, rendered headlessly (Xvfb + Mesa) by the chapter 18 viewer:
-# the swell and choppy maps displacing the radial grid, the ripple normal map, the Fresnel ramp.
-xvfb-run -a -s "-screen 0 1280x1024x24" ./build/viewer/heightpack-view out/swell.exr out/choppy.exr \
-  --normals out/ripple_n.exr --fresnel out/fresnel.exr --screenshot out/view.png --size 1280x720 --time 12.5 \
-  --camera 0,0,8,30,-10
 # A material made entirely of synthesised maps: a JONSWAP swell and a Phillips chop (heights in metres),
 # a looping ripple sequence for the normals, packed and rendered.
 ./build/heightpack synth --spectrum jonswap --wind 14m/s --fetch 200km --direction 20 --tile-size 256m --size 512 \
