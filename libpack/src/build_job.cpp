@@ -139,27 +139,36 @@ void addSourcedSteps(std::vector<Step>& steps, const SourcedAsset& a, const std:
     }
 }
 
+PackOptions packOptions(const MapSettings& s, const std::string& version) {
+    PackOptions pack;
+    pack.load = loadOptions(s);
+    pack.mip.wrap = s.wrap;
+    pack.mip.filter = s.filter;
+    pack.resizeToPowerOfTwo = s.resize;
+    pack.compression = s.compression;
+    pack.version = version;
+    return pack;
+}
+
+// The step's work for a packed (or plain) chain: pack with the threads and progress of the moment.
+auto packMaker(const PackOptions& pack) {
+    return [pack](const std::string& in, const std::string& out, int threads, const ProgressFn& progress) {
+        PackOptions o = pack;
+        o.mip.threads = threads;
+        o.progress = progress;
+        auto r = packHeightMap(in, out, o);
+        return r ? Status(Done{}) : Status(r.error());
+    };
+}
+
 std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
     std::vector<Step> steps;
     for (const DisplacementAsset& d : m.displacement) {
-        PackOptions pack;
-        pack.load = loadOptions(d.settings);
-        pack.mip.wrap = d.settings.wrap;
-        pack.mip.filter = d.settings.filter;
+        PackOptions pack = packOptions(d.settings, version);
         pack.scale = static_cast<float>(d.layer.heightScale);
         pack.offset = static_cast<float>(d.layer.heightOffset);
-        pack.resizeToPowerOfTwo = d.settings.resize;
-        pack.compression = d.settings.compression;
-        pack.version = version;
         const std::string text = "scale=" + number(pack.scale) + "\noffset=" + number(pack.offset) + "\n";
-        addSourcedSteps(steps, d, d.layer.name, "displacement", text, m.threshold,
-                        [pack](const std::string& in, const std::string& out, int threads, const ProgressFn& progress) {
-                            PackOptions o = pack;
-                            o.mip.threads = threads;
-                            o.progress = progress;
-                            auto r = packHeightMap(in, out, o);
-                            return r ? Status(Done{}) : Status(r.error());
-                        });
+        addSourcedSteps(steps, d, d.layer.name, "displacement", text, m.threshold, packMaker(pack));
     }
     if (m.normals) {
         const NormalAsset& n = *m.normals;
@@ -208,22 +217,9 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
     }
     if (m.foam && m.foam->texture) {
         const SourcedAsset& t = *m.foam->texture;
-        PackOptions pack;
-        pack.load = loadOptions(t.settings);
-        pack.mip.wrap = t.settings.wrap;
-        pack.mip.filter = t.settings.filter;
-        pack.resizeToPowerOfTwo = t.settings.resize;
-        pack.compression = t.settings.compression;
+        PackOptions pack = packOptions(t.settings, version);
         pack.packed = false;
-        pack.version = version;
-        addSourcedSteps(steps, t, m.foam->layer.name, "foam", "plain=1\n", m.threshold,
-                        [pack](const std::string& in, const std::string& out, int threads, const ProgressFn& progress) {
-                            PackOptions o = pack;
-                            o.mip.threads = threads;
-                            o.progress = progress;
-                            auto r = packHeightMap(in, out, o);
-                            return r ? Status(Done{}) : Status(r.error());
-                        });
+        addSourcedSteps(steps, t, m.foam->layer.name, "foam", "plain=1\n", m.threshold, packMaker(pack));
     }
     return steps;
 }
@@ -425,6 +421,12 @@ Result<BuildReport> buildMaterial(const Manifest& m, const BuildOptions& options
             s.error = Error{ErrorKind::Internal, s.report.input, std::string("internal error: ") + e.what(), "please report this"};
         }
     };
+    // A source's error names the source file; the hint says which asset of which manifest read it.
+    auto inAsset = [&](Error e, const Step& s) {
+        e.hint += (e.hint.empty() ? "" : "; ") + std::string("asset '") + s.report.name + "' of " + m.path + ":" +
+                  std::to_string(s.report.line);
+        return e;
+    };
     auto firstError = [&]() -> std::optional<Error> {
         for (const Step& s : steps)
             if (s.error) return s.error;
@@ -439,7 +441,7 @@ Result<BuildReport> buildMaterial(const Manifest& m, const BuildOptions& options
             std::string inputHash;
             if (!s.report.input.empty()) {
                 auto h = hashFile(s.report.input);
-                if (!h) return void(s.error = h.error());
+                if (!h) return void(s.error = inAsset(h.error(), s));
                 inputHash = *h;
             }
             s.report.inputHash = inputHash;
@@ -473,7 +475,7 @@ Result<BuildReport> buildMaterial(const Manifest& m, const BuildOptions& options
             CheckOptions check = s.check;
             check.mip.threads = threads;
             auto r = checkFile(s.report.input, check);
-            if (!r) return void(s.error = r.error());
+            if (!r) return void(s.error = inAsset(r.error(), s));
             AssetCheck& c = *s.report.check;
             c.ran = true;
             c.tiles = r->tiles;
@@ -523,10 +525,7 @@ Result<BuildReport> buildMaterial(const Manifest& m, const BuildOptions& options
                 emit(BuildEvent::Type::Progress, s, stage, f);
             });
             if (!made) {
-                Error e = made.error();
-                e.hint += (e.hint.empty() ? "" : "; ") + std::string("asset '") + s.report.name + "' of " + m.path + ":" +
-                          std::to_string(s.report.line);
-                s.error = e;
+                s.error = inAsset(made.error(), s);
                 stop = true;
                 return;
             }

@@ -38,6 +38,9 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
         spec.alpha_channel = -1;
     }
     spec.attribute("oiio:UnassociatedAlpha", 1);
+    // OpenImageIO's EXR writer stamps the current time (capDate) when no DateTime is given; a fixed,
+    // empty one keeps the same inputs giving the same bytes.
+    spec.attribute("DateTime", "");
     if (options.srgbChannels > 0 && options.bits != 32) spec.attribute("oiio:ColorSpace", "sRGB");
     // PNG keeps text chunks only: numbers go in as text there, so nothing recorded is lost.
     std::string ext = std::filesystem::path(path).extension().string();

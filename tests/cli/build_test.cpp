@@ -506,3 +506,24 @@ TEST_F(BuildTest, AKilledBuildLeavesNoPartialOutputAndTheNextBuildCompletesIt) {
     ASSERT_EQ(heightpackRun({"build", manifest, "-o", clean}).code, 0);
     EXPECT_EQ(tree(out), tree(clean));
 }
+
+TEST_F(BuildTest, ADamagedSourceIsBadInputNamingItAndItsManifestLine) {
+    buildJson();
+    const auto before = tree(out);
+    const std::string png = readText(dir.file("maps/b.png"));
+    writeText(dir.file("maps/b.png"), png.substr(0, png.size() / 2));
+    const ProcessResult r = build();
+    EXPECT_EQ(r.code, 3);
+    EXPECT_EQ(r.err.rfind("heightpack: error: " + dir.file("maps/b.png") + ": ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("asset 'short' of " + manifest + ":14"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(tree(out), before);
+}
+
+TEST_F(BuildTest, DepfileEscapesSpacesForMakeAndNinja) {
+    fs::copy_file(dir.file("maps/a.png"), dir.file("maps/a b.png"));
+    writeText(manifest, replaced(kManifest, "maps/a.png", "maps/a b.png"));
+    const std::string depfile = dir.file("sea.d");
+    ASSERT_EQ(build({"--depfile", depfile, "--stamp", dir.file("stamp")}).code, 0);
+    EXPECT_NE(readText(depfile).find("maps/a\\ b.png"), std::string::npos) << readText(depfile);
+}

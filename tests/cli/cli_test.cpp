@@ -10,6 +10,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "heightpack/io.hpp"
 #include "heightpack/fresnel.hpp"
@@ -184,7 +185,7 @@ TEST(Cli, UsageErrorsExitTwoAndPointAtHelp) {
 }
 
 TEST(Cli, HelpShowsAnExample) {
-    for (const char* command : {"pack", "normal", "fresnel", "check", "tile", "synth", "info"}) {
+    for (const char* command : {"pack", "normal", "fresnel", "check", "tile", "synth", "info", "build"}) {
         const CliRun run = heightpackRun({command, "--help"});
         EXPECT_EQ(run.code, 0);
         EXPECT_NE(run.out.find("Example"), std::string::npos) << run.out;
@@ -193,6 +194,21 @@ TEST(Cli, HelpShowsAnExample) {
     const CliRun top = heightpackRun({"--help"});
     EXPECT_EQ(top.code, 0);
     EXPECT_NE(top.out.find("Exit codes"), std::string::npos);
+}
+
+TEST(Cli, FlatOutputsCarryNoTimestamp) {
+    // Written a second apart, the same ramp and the same small map must be the same bytes: a writer
+    // that stamps the time (OpenImageIO's EXR writer does, unless told otherwise) breaks that.
+    ScratchDir dir;
+    writeImage(dir.file("map.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT16);
+    for (const char* name : {"a", "b"}) {
+        ASSERT_EQ(heightpackRun({"fresnel", "-q", "-o", dir.file(std::string(name) + "_ramp.exr")}).code, 0);
+        ASSERT_EQ(heightpackRun({"tile", dir.file("map.png"), "--force", "--depth", "float", "-q", "-o",
+                                 dir.file(std::string(name) + "_tiled.exr")}).code, 0);
+        if (name[0] == 'a') std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+    }
+    EXPECT_EQ(readBytes(dir.file("a_ramp.exr")), readBytes(dir.file("b_ramp.exr")));
+    EXPECT_EQ(readBytes(dir.file("a_tiled.exr")), readBytes(dir.file("b_tiled.exr")));
 }
 
 TEST(Cli, ExampleMapsPack) {
