@@ -387,6 +387,14 @@ Result<BuildReport> buildMaterial(const Manifest& m, const BuildOptions& options
     report.dependencies.assign(dependencies.begin(), dependencies.end());
 
     const fs::path folder(options.outputDir);
+    // An output over a source would destroy the source: refuse before anything is written.
+    for (const Step& s : steps) {
+        const fs::path output = fs::weakly_canonical(folder / s.report.output);
+        for (const std::string& source : dependencies)
+            if (output == fs::weakly_canonical(source))
+                return cannotWrite((folder / s.report.output).string(), "is also a source this material reads (" + source + ")",
+                                   "choose another output folder");
+    }
     if (!options.checkOnly) {
         std::error_code ec;
         fs::create_directories(folder, ec);

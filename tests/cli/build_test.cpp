@@ -527,3 +527,17 @@ TEST_F(BuildTest, DepfileEscapesSpacesForMakeAndNinja) {
     ASSERT_EQ(build({"--depfile", depfile, "--stamp", dir.file("stamp")}).code, 0);
     EXPECT_NE(readText(depfile).find("maps/a\\ b.png"), std::string::npos) << readText(depfile);
 }
+
+TEST_F(BuildTest, AnOutputThatWouldOverwriteASourceIsRefused) {
+    // A source EXR built into its own folder: the packed texture would replace the map it is made from.
+    const std::string exr = dir.file("maps/a.exr");
+    ASSERT_EQ(heightpackRun({"tile", dir.file("maps/a.png"), "--depth", "float", "-q", "-o", exr}).code, 0);
+    std::string text = replaced(replaced(kManifest, "maps/a.png", "a.exr"), "name = \"long\"", "name = \"a\"");
+    for (size_t at; (at = text.find("maps/")) != std::string::npos;) text.erase(at, 5);
+    writeText(dir.file("maps/m.toml"), text);
+    const std::string before = readText(exr);
+    const ProcessResult r = heightpackRun({"build", dir.file("maps/m.toml"), "-o", dir.file("maps")});
+    EXPECT_EQ(r.code, 4) << r.err;
+    EXPECT_NE(r.err.find("is also a source"), std::string::npos) << r.err;
+    EXPECT_EQ(readText(exr), before);
+}
