@@ -6,7 +6,7 @@
 set -euo pipefail
 build=${1:-build}
 runs=${2:-3}
-maps=${3:-12}
+maps=${3:-8}  # a material holds at most 8 displacement maps
 size=${4:-1024}
 hp="$build/heightpack"
 [ -x "$hp" ] || { echo "bench_build: no $hp; build first (cmake --build $build)" >&2; exit 2; }
