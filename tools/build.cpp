@@ -132,18 +132,32 @@ private:
                         checkOnly_ ? "" : " into ", checkOnly_ ? "" : folder.c_str());
         std::fflush(stdout);
         Progress progress(!common_.quiet, "build " + m.name);
-        size_t done = 0, total = 0;
+        // The bar: finished outputs plus how far each one in progress has come, its stages weighted
+        // roughly by their cost, so it only moves forward whatever order the jobs report in.
+        const double total = static_cast<double>(countOutputs(m));
+        double done = 0.0;
+        std::map<std::string, double> inFlight;
         options.onEvent = [&](const BuildEvent& e) {
-            if (total == 0) total = countOutputs(m);
+            const std::string& output = e.asset.output;
             if (e.type == BuildEvent::Type::Done) {
-                ++done;
+                inFlight.erase(output);
+                done += 1.0;
                 if (chatty()) {
                     progress.clear();
                     printAsset(e.asset);
                 }
+            } else {
+                const double f = e.fraction;
+                const double part = e.stage == "load" ? 0.2 * f
+                                    : e.stage == "write" ? 0.5 + 0.5 * f
+                                    : e.stage == "hash" || e.stage == "check" ? 0.0
+                                                                              : 0.2 + 0.3 * f;  // mip, normal
+                inFlight[output] = std::max(inFlight[output], part);
             }
-            const std::string label = e.asset.output + (e.stage.empty() ? "" : " " + std::string(e.stage));
-            progress.update(label, (double(done) + (e.type == BuildEvent::Type::Done ? 0.0 : 0.5 * e.fraction)) / double(total));
+            double fraction = done;
+            for (const auto& [name, part] : inFlight) fraction += part;
+            const std::string label = (e.stage == "check" ? "checking " : "") + output;
+            progress.update(label, fraction / total);
         };
         const auto start = std::chrono::steady_clock::now();
         auto report = buildMaterial(m, options);

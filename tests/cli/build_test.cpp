@@ -541,3 +541,38 @@ TEST_F(BuildTest, AnOutputThatWouldOverwriteASourceIsRefused) {
     EXPECT_NE(r.err.find("is also a source"), std::string::npos) << r.err;
     EXPECT_EQ(readText(exr), before);
 }
+
+TEST_F(BuildTest, FoamTexturesSubfoldersAndTheThresholdWork) {
+    std::string text = replaced(kManifest, "name = \"long\"", "name = \"long\"\noutput = \"textures/long.exr\"");
+    text = replaced(text, "name = \"sea\"", "name = \"sea\"\nthreshold = 200.0");  // lets the painting pass
+    text = replaced(text, "maps/b.png", "maps/painted.png");
+    text += "\n[foam]\nh0 = 0.5\nhmax = 0.9\ntile_size = 3.0\nsource = \"maps/r.png\"\nfilter = \"box\"\n";
+    writeText(manifest, text);
+    const auto report = buildJson();
+    EXPECT_EQ(report["rebuilt"], 5) << report.dump(1);
+    EXPECT_TRUE(fs::exists(out + "/textures/long.exr"));
+
+    const auto m = nlohmann::json::parse(readText(out + "/material.json"));
+    EXPECT_EQ(m["displacement"][0]["texture"]["file"], "textures/long.exr");
+    EXPECT_EQ(m["foam"]["h0"], 0.5);
+    EXPECT_EQ(m["foam"]["hmax"], 0.9);
+    EXPECT_EQ(m["foam"]["tileSize"], 3.0);
+    ASSERT_EQ(m["foam"]["texture"]["file"], "foam.exr");
+    // The foam texture is a plain one-channel mip chain of the map, as OpenImageIO reads it.
+    auto in = OIIO::ImageInput::open(out + "/foam.exr");
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().nchannels, 1);
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:layout"), "plain");
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:filter"), "box");
+    int levels = 0;
+    while (in->seek_subimage(0, levels)) ++levels;
+    EXPECT_EQ(levels, 7);  // 64x64 down to 1x1
+    EXPECT_EQ(m["foam"]["texture"]["levels"], levels);
+    std::vector<float> level0(64 * 64);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, level0.data()));
+    auto map = OIIO::ImageInput::open(dir.file("maps/r.png"));
+    ASSERT_TRUE(map);
+    std::vector<float> painted(64 * 64);
+    ASSERT_TRUE(map->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, painted.data()));
+    EXPECT_EQ(level0, painted);
+}
