@@ -47,17 +47,60 @@ oiiotool out/fresnel.exr --ch R,G,B --resize 256x32 --colorconvert linear sRGB o
 ./build/heightpack check examples/maps/swell.png --quiet && echo "examples/maps/swell.png tiles"
 
 # A material made entirely of synthesised maps: a JONSWAP swell and a Phillips chop (heights in metres),
-# a looping ripple sequence for the normals, packed and rendered.
+# built from a manifest into out/synth and rendered.
 ./build/heightpack synth --spectrum jonswap --wind 14m/s --fetch 200km --direction 20 --tile-size 256m --size 512 \
   --seed 3 -o out/synth_swell.exr
 ./build/heightpack synth --spectrum phillips --wind 7m/s --direction 40 --tile-size 32m --size 256 --seed 5 \
   -o out/synth_chop.exr
-./build/heightpack pack out/synth_swell.exr -o out/synth_swell_packed.exr
-./build/heightpack pack out/synth_chop.exr -o out/synth_chop_packed.exr
-./build/heightpack normal out/synth_chop.exr --tile-size 32m --height 1m -o out/synth_chop_n.exr
-xvfb-run -a -s "-screen 0 1280x1024x24" ./build/viewer/heightpack-view out/synth_swell_packed.exr \
-  out/synth_chop_packed.exr --normals out/synth_chop_n.exr --fresnel out/fresnel.exr --tile-size 256,32 \
-  --amplitude 1,1 --screenshot out/synth_view.png --size 1280x720 --time 4 --camera 0,0,12,20,-8
+# The material's manifest points at the synthesised maps (heights in metres, so amplitude 1); its
+# normal-map octaves use scales that share no small ratio, so the chop's tile does not repeat visibly.
+cat >out/synth_sea.toml <<'TOML'
+format = 1
+name = "synth_sea"
+
+[[displacement]]
+name = "swell"
+source = "synth_swell.exr"
+tile_size = 256.0
+scroll = [0.002, 0.001]
+
+[[displacement]]
+name = "chop"
+source = "synth_chop.exr"
+tile_size = 32.0
+scroll = [-0.01, 0.006]
+
+[normals]
+name = "chop_n"
+source = "synth_chop.exr"
+tile_size = 32.0
+height = 1.0
+
+[[normals.octave]]
+tile_size = 32.0
+scroll = [-0.01, 0.006]
+
+[[normals.octave]]
+tile_size = 13.7
+scroll = [0.012, 0.01]
+strength = 0.6
+
+[[normals.octave]]
+tile_size = 5.3
+scroll = [0.03, -0.02]
+strength = 0.35
+
+[[normals.octave]]
+tile_size = 2.1
+scroll = [-0.05, -0.04]
+strength = 0.2
+
+[fresnel]
+ior = 1.333
+TOML
+./build/heightpack build out/synth_sea.toml -o out/synth
+xvfb-run -a -s "-screen 0 1280x1024x24" ./build/viewer/heightpack-view out/synth/material.json \
+  --screenshot out/synth_view.png --size 1280x720 --time 4 --camera 0,0,12,20,-8
 # And the seams a 3x3 tiling shows, before and after tile.
 xvfb-run -a ./build/viewer/heightpack-view examples/maps/painted_not_tileable.png --tiled 3x3 --size 768x768 \
   --screenshot out/painted_tiled3x3.png

@@ -92,7 +92,8 @@ int main(int argc, char** argv) {
         if (!o.files.normals.empty() || !o.files.fresnel.empty() || !o.files.foam.empty())
             return usage("a material.json names its own textures; leave out --normals, --fresnel and --foam");
         std::string note;
-        if (heightpack::Status s = applyMaterial(o.files.heights[0], o.files, o.settings, note); !s) {
+        const std::string path = o.files.heights[0];  // a copy: applyMaterial replaces o.files
+        if (heightpack::Status s = applyMaterial(path, o.files, o.settings, note); !s) {
             const heightpack::Error& e = s.error();
             std::fprintf(stderr, "heightpack: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(), e.hint.c_str());
             return 3;

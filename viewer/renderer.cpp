@@ -33,9 +33,11 @@ std::string indexed(const char* name, int k) {
 }
 
 // Trilinear filtering for the bound texture: shading textures seen at a distance must not sparkle.
+// The maximum level is raised first: glGenerateMipmap makes levels only up to it, and a texture whose
+// filter wants levels that were never made is incomplete and samples as zero.
 void enableMipmaps() {
-    glGenerateMipmap(GL_TEXTURE_2D);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 1000);
+    glGenerateMipmap(GL_TEXTURE_2D);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
 }
 
@@ -125,9 +127,8 @@ void Renderer::upload(const Scene& scene) {
     for (GLuint* t : {&normalTexture_, &fresnelTexture_, &foamTexture_})
         if (*t) glDeleteTextures(1, t), *t = 0;
     if (scene.normals) {
-        const Image& n = scene.normals->level0;
-        normalTexture_ = uploadChain({n}, true, Wrap::Periodic);
-        enableMipmaps();
+        normalTexture_ = uploadChain(scene.normals->levels, true, Wrap::Periodic);
+        if (scene.normals->levels.size() == 1) enableMipmaps();
     }
     if (scene.fresnel) {
         fresnelTexture_ = uploadChain({scene.fresnel->ramp}, true, Wrap::Clamp);

@@ -103,11 +103,14 @@ Result<NormalMap> loadNormalMap(const std::string& path) {
     if (!file) return file.error();
     NormalMap map;
     map.path = path;
-    map.level0 = file->levels[0];
-    if (map.level0.channels < 3) return badInput(path, "is not a normal map (fewer than 3 channels)", "make one with heightpack normal");
+    // Each level of an EXR from heightpack normal holds the normals of that level's heights, better than
+    // averaged normals: keep them all.
+    map.levels = std::move(file->levels);
+    if (map.levels[0].channels < 3) return badInput(path, "is not a normal map (fewer than 3 channels)", "make one with heightpack normal");
     // 8/16-bit maps store 0.5 + 0.5 n.
     if (file->pixelType != "float" && file->pixelType != "half")
-        for (float& v : map.level0.pixels) v = 2.0f * v - 1.0f;
+        for (Image& level : map.levels)
+            for (float& v : level.pixels) v = 2.0f * v - 1.0f;
     const bool directx = findAttribute(file->attributes, "heightpack:convention") == "directx";
     map.greenSign = directx ? 1.0f : -1.0f;
     return map;

@@ -31,7 +31,7 @@ struct HeightLayer {
 
 struct NormalMap {
     std::string path;
-    Image level0;                 // xyz in [-1, 1] (and alpha, if any)
+    std::vector<Image> levels;    // xyz in [-1, 1] (and alpha, if any); the file's own mip chain, or level 0 only
     float greenSign = -1.0f;      // world +y runs down the stored image: an OpenGL map's green flips
 };
 

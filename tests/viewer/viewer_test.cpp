@@ -268,3 +268,43 @@ TEST(Viewer, OpensABuiltMaterialWithItsParameters) {
     // The material's parameters were used: the viewer's own defaults give another picture.
     EXPECT_GT(compare(fromMaterial, screenshot(dir, "defaults.png", defaults), 2).fractionOver, 0.05);
 }
+
+namespace {
+
+// Mean of the three channels over the rows below `top`: the water, below the horizon.
+double meanBelow(const Picture& p, int top) {
+    double sum = 0.0;
+    for (int y = top; y < p.height; ++y)
+        for (int x = 0; x < p.width; ++x) sum += p.at(x, y, 0) + p.at(x, y, 1) + p.at(x, y, 2);
+    return sum / (3.0 * p.width * std::max(1, p.height - top));
+}
+
+}  // namespace
+
+TEST(Viewer, NormalMapsAndFoamTexturesChangeThePicture) {
+    // A texture the shader cannot sample (incomplete mip chain) reads as zero and silently drops out of
+    // the lighting; these pictures must show both the normal map and the foam texture.
+    ScratchDir dir;
+    ASSERT_EQ(runProcess({HEIGHTPACK_EXE, "normal", kExamples + "ripple.png", "--tile-size", "8m", "--height", "0.5m",
+                          "-q", "-o", dir.file("ripple_n.exr")})
+                  .code,
+              0);
+    const std::vector<std::string> shot = {"--size", "240x135", "--time", "3", "--camera", "0,0,6,30,-15"};
+    auto plain = shot, detailed = shot;
+    plain.insert(plain.begin(), kExamples + "swell.png");
+    detailed.insert(detailed.begin(), {kExamples + "swell.png", "--normals", dir.file("ripple_n.exr")});
+    EXPECT_GT(compare(screenshot(dir, "plain.png", plain), screenshot(dir, "normals.png", detailed), 4).fractionOver, 0.1);
+
+    // Foam everywhere (H0 far below the water) against none (far above): the foam texture whitens the sea.
+    for (const char* range : {"h0 = -100.0\nhmax = -99.0\n", "h0 = 100.0\nhmax = 101.0\n"}) {
+        std::ofstream(dir.file("m.toml")) << "format = 1\nname = \"m\"\n[[displacement]]\nname = \"swell\"\nsource = \""
+                                          << kExamples << "swell.png\"\ntile_size = 40.0\n[foam]\n"
+                                          << range << "source = \"" << kExamples << "ripple.png\"\n";
+        ASSERT_EQ(runProcess({HEIGHTPACK_EXE, "build", dir.file("m.toml"), "-q", "-o", dir.file(range[5] == '-' ? "all" : "none")}).code, 0);
+    }
+    auto all = shot, none = shot;
+    all.insert(all.begin(), dir.file("all/material.json"));
+    none.insert(none.begin(), dir.file("none/material.json"));
+    const Picture foam = screenshot(dir, "all.png", all), water = screenshot(dir, "none.png", none);
+    EXPECT_GT(meanBelow(foam, foam.height / 2), meanBelow(water, water.height / 2) + 40.0);
+}
