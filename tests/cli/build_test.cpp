@@ -434,9 +434,14 @@ TEST_F(BuildTest, BadManifestsNameFileLineAndKeepThePreviousOutputs) {
     }
 }
 
-// SIGKILL cannot be caught: what a killed build leaves must already be whole, and the next build must
-// finish the job and clear what the killed one left.
-TEST_F(BuildTest, AKilledBuildLeavesNoPartialOutputAndTheNextBuildCompletesIt) {
+// Interrupts a build of six large maps the moment its first texture appears, with SIGKILL (which
+// cannot be caught: what it leaves must already be whole) or SIGINT (whose handler removes the
+// temporary files). Either way every texture there is complete, and the next build finishes the job,
+// clears what the interrupted one left, and gives what an uninterrupted build gives.
+class InterruptedBuildTest : public BuildTest, public ::testing::WithParamInterface<int> {};
+
+TEST_P(InterruptedBuildTest, LeavesNoPartialOutputAndTheNextBuildCompletesIt) {
+    const int signal = GetParam();
     std::string text = "format = 1\nname = \"big\"\n";
     for (int i = 0; i < 6; ++i) {
         const std::string map = "maps/big" + std::to_string(i) + ".png";
@@ -455,7 +460,6 @@ TEST_F(BuildTest, AKilledBuildLeavesNoPartialOutputAndTheNextBuildCompletesIt) {
                 "--threads", "1", static_cast<char*>(nullptr));
         ::_exit(127);
     }
-    // Kill it the moment the first texture appears.
     auto firstOutput = [&] {
         std::error_code ec;
         for (const auto& e : fs::directory_iterator(out, ec))
@@ -472,15 +476,18 @@ TEST_F(BuildTest, AKilledBuildLeavesNoPartialOutputAndTheNextBuildCompletesIt) {
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
-    ::kill(child, SIGKILL);
+    ::kill(child, signal);
     if (!exited) ::waitpid(child, &status, 0);
-    ASSERT_FALSE(exited) << "the build finished before it could be killed";
+    ASSERT_FALSE(exited) << "the build finished before it could be interrupted";
     ASSERT_TRUE(WIFSIGNALED(status));
+    EXPECT_EQ(WTERMSIG(status), signal);
 
     // Every texture there is whole: OpenImageIO reads every level of it.
     int complete = 0;
+    bool temporaries = false;
     for (const auto& e : fs::directory_iterator(out)) {
         const std::string name = e.path().filename().string();
+        temporaries = temporaries || name.find(".hptmp-") != std::string::npos;
         if (name[0] == '.' || e.path().extension() != ".exr") continue;
         auto in = OIIO::ImageInput::open(e.path().string());
         ASSERT_TRUE(in) << name;
@@ -493,19 +500,26 @@ TEST_F(BuildTest, AKilledBuildLeavesNoPartialOutputAndTheNextBuildCompletesIt) {
     EXPECT_GE(complete, 1);
     EXPECT_LT(complete, 6);
     EXPECT_FALSE(fs::exists(out + "/material.json"));
+    if (signal == SIGINT) {
+        EXPECT_FALSE(temporaries) << "SIGINT's handler removes the temporary file being written";
+    }
 
-    // Outputs recorded in the build state are kept; one renamed into place just before the kill, and
+    // Outputs recorded in the build state are kept; one renamed into place just before the signal, and
     // not yet recorded, is made again.
     const auto report = buildJson({"--jobs", "2"});
     EXPECT_GE(report["rebuilt"].get<int>(), 6 - complete);
     EXPECT_LE(report["rebuilt"].get<int>(), 7 - complete);
     for (const auto& e : fs::directory_iterator(out))
         EXPECT_EQ(e.path().filename().string().find(".hptmp-"), std::string::npos) << e.path();
-    // And the result is what an uninterrupted build makes.
     const std::string clean = dir.file("clean");
     ASSERT_EQ(heightpackRun({"build", manifest, "-o", clean}).code, 0);
     EXPECT_EQ(tree(out), tree(clean));
 }
+
+INSTANTIATE_TEST_SUITE_P(Signals, InterruptedBuildTest, ::testing::Values(SIGKILL, SIGINT),
+                         [](const ::testing::TestParamInfo<int>& info) {
+                             return std::string(info.param == SIGKILL ? "SIGKILL" : "SIGINT");
+                         });
 
 TEST_F(BuildTest, ADamagedSourceIsBadInputNamingItAndItsManifestLine) {
     buildJson();
