@@ -7,9 +7,11 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "heightpack/io.hpp"
+#include "material_settings.hpp"
 #include "panel.hpp"
 
 namespace heightpack::view {
@@ -93,10 +95,15 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
     auto last = std::chrono::steady_clock::now();
     auto lastCheck = last;
     auto watched = fileTimes(o.files);
+    auto materialTime = [&] {
+        std::error_code ec;
+        return o.material.empty() ? std::filesystem::file_time_type{} : std::filesystem::last_write_time(o.material, ec);
+    };
+    auto watchedMaterial = materialTime();
     double mouseX = 0, mouseY = 0;
     glfwGetCursorPos(window, &mouseX, &mouseY);
     bool explodeKeyWasDown = false, f1WasDown = false;
-    while (!glfwWindowShouldClose(window)) {
+    for (int frame = 0; !glfwWindowShouldClose(window) && (o.frames == 0 || frame < o.frames); ++frame) {
         glfwPollEvents();
         const auto now = std::chrono::steady_clock::now();
         const float dt = std::chrono::duration<float>(now - last).count();
@@ -106,6 +113,18 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
         // Reload what changed on disk: an artist saves, the water changes.
         if (now - lastCheck > std::chrono::milliseconds(500)) {
             lastCheck = now;
+            // A rebuilt material: its textures, and its parameters (material.json changes only when
+            // the build changed something in it).
+            const auto materialNow = materialTime();
+            if (materialNow != watchedMaterial) {
+                watchedMaterial = materialNow;
+                std::string note;
+                if (Status s = applyMaterial(o.material, o.files, o.settings, note); !s)
+                    std::fprintf(stderr, "heightpack-view: not reloaded: %s: %s\n", s.error().path.c_str(),
+                                 s.error().what.c_str());
+                else
+                    watched.clear();  // load the scene again below, whatever the textures' times say
+            }
             const auto current = fileTimes(o.files);
             if (current != watched) {
                 watched = current;

@@ -13,10 +13,12 @@ namespace heightpack::view {
 
 struct ViewerOptions {
     SceneFiles files;
+    std::string material;         // the material.json the files and settings came from, if any
     std::string screenshot;       // render one frame offscreen to this PNG and exit
     int width = 1280, height = 720;
     std::optional<float> time;    // fixed animation clock
     int bench = 0;                // render this many frames offscreen, print GPU time per pass, exit
+    int frames = 0;               // interactive: close the window after this many frames (0: when the user does)
     bool json = false;
     Camera camera;
     RenderSettings settings;

@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
     app.add_option("--grid", o.settings.rings, "rings N of the radial grid (segments M follow --segments)");
     app.add_option("--segments", o.settings.segments, "segments M of the radial grid");
     app.add_flag("--json", o.json, "print --bench figures as JSON");
+    app.add_option("--frames", o.frames, "close the interactive window after N frames (smoke tests, recordings)")
+        ->check(CLI::Range(1, 1000000000));
     app.footer(
         "Examples:\n"
         "  heightpack-view out/ocean/material.json\n"
@@ -99,6 +101,7 @@ int main(int argc, char** argv) {
             return 3;
         }
         if (!note.empty()) std::fprintf(stderr, "heightpack-view: note: %s\n", note.c_str());
+        o.material = path;
     }
     std::vector<float> v;
     if (!camera.empty()) {

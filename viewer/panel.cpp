@@ -10,8 +10,8 @@ void drawPanel(RenderSettings& s, PanelState& state, Camera& camera, const Scene
                float time) {
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(470, 680), ImGuiCond_FirstUseEver);
-    ImGui::PushItemWidth(-190);
     ImGui::Begin("heightpack-view (F1 hides)");
+    ImGui::PushItemWidth(-190);  // inside Begin: the width belongs to this window's stack
     ImGui::Text("t = %.2f s   water %.2f ms   combine %.2f ms", time, times.water, times.combine);
     ImGui::Text("camera %.1f %.1f %.1f  yaw %.0f pitch %.0f", camera.position.x, camera.position.y, camera.position.z,
                 camera.yaw, camera.pitch);

@@ -308,3 +308,15 @@ TEST(Viewer, NormalMapsAndFoamTexturesChangeThePicture) {
     const Picture foam = screenshot(dir, "all.png", all), water = screenshot(dir, "none.png", none);
     EXPECT_GT(meanBelow(foam, foam.height / 2), meanBelow(water, water.height / 2) + 40.0);
 }
+
+TEST(Viewer, InteractiveWindowRunsWithItsPanel) {
+    // The window an artist uses: the frame loop, input polling, the ImGui panel and the reload check,
+    // for a few frames, on a built material. An ImGui stack mismatch in the panel aborted here once.
+    ScratchDir dir;
+    std::ofstream(dir.file("m.toml")) << "format = 1\nname = \"m\"\n[[displacement]]\nname = \"swell\"\nsource = \""
+                                      << kExamples << "swell.png\"\ntile_size = 40.0\n";
+    ASSERT_EQ(runProcess({HEIGHTPACK_EXE, "build", dir.file("m.toml"), "-q", "-o", dir.file("m")}).code, 0);
+    const ViewRun run = view({dir.file("m/material.json"), "--frames", "8", "--size", "480x270"});
+    EXPECT_EQ(run.code, 0) << run.err;
+    EXPECT_EQ(run.err.find("Assertion"), std::string::npos) << run.err;
+}
