@@ -88,19 +88,53 @@ public:
             manifests.push_back(std::move(*m));
         }
 
+        // Every material is hashed and checked before any is written: a map that must tile and does
+        // not, in any of them, stops the whole build with nothing written.
         const auto start = std::chrono::steady_clock::now();
-        nlohmann::json materials = nlohmann::json::array();
-        std::vector<std::string> dependencies;
+        std::vector<std::unique_ptr<Tracker>> trackers;
+        std::vector<MaterialBuild> builds;
         bool checksPassed = true;
         for (const Manifest& m : manifests) {
-            const std::string folder =
-                manifests.size() == 1 ? output_ : (fs::path(output_) / m.name).string();
-            auto report = buildOne(m, folder);
-            if (!report) return fail(report.error());
-            for (const Error& e : report->checkFailures) printError(e);
-            checksPassed = checksPassed && report->checkFailures.empty();
-            dependencies.insert(dependencies.end(), report->dependencies.begin(), report->dependencies.end());
-            materials.push_back(reportJson(*report, m.threshold));
+            trackers.push_back(std::make_unique<Tracker>(*this, m));
+            BuildOptions options;
+            options.outputDir = manifests.size() == 1 ? output_ : (fs::path(output_) / m.name).string();
+            options.jobs = jobs_;
+            options.threads = common_.threads;
+            options.checkOnly = checkOnly_;
+            options.force = force_;
+            options.version = kVersion;
+            options.onEvent = [tracker = trackers.back().get()](const BuildEvent& e) { tracker->event(e); };
+            auto build = MaterialBuild::prepare(m, options);
+            trackers.back()->progress.clear();
+            if (!build) return fail(build.error());
+            for (const Error& e : build->report().checkFailures) printError(e);
+            checksPassed = checksPassed && build->report().checkFailures.empty();
+            builds.push_back(std::move(*build));
+        }
+        nlohmann::json materials = nlohmann::json::array();
+        std::vector<std::string> dependencies;
+        for (size_t i = 0; i < builds.size(); ++i) {
+            const Manifest& m = manifests[i];
+            BuildReport report = builds[i].report();
+            if (checksPassed && builds[i].runnable()) {
+                if (chatty())
+                    std::printf("building %s (%s) into %s\n", m.name.c_str(), m.path.c_str(), report.outputDir.c_str());
+                std::fflush(stdout);
+                const auto began = std::chrono::steady_clock::now();
+                auto ran = builds[i].run();
+                trackers[i]->progress.clear();
+                if (!ran) return fail(ran.error());
+                report = std::move(*ran);
+                if (chatty())
+                    printSummary(report, std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count());
+            } else if (chatty()) {
+                if (checkOnly_ || !report.checkFailures.empty())
+                    printSummary(report, 0.0);
+                else
+                    std::printf("%s: nothing written: another material's maps failed their checks\n", m.name.c_str());
+            }
+            dependencies.insert(dependencies.end(), report.dependencies.begin(), report.dependencies.end());
+            materials.push_back(reportJson(report, m.threshold));
         }
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -119,30 +153,21 @@ public:
     }
 
 private:
-    Result<BuildReport> buildOne(const Manifest& m, const std::string& folder) {
-        BuildOptions options;
-        options.outputDir = folder;
-        options.jobs = jobs_;
-        options.threads = common_.threads;
-        options.checkOnly = checkOnly_;
-        options.force = force_;
-        options.version = kVersion;
-        if (chatty())
-            std::printf("%s %s (%s)%s%s\n", checkOnly_ ? "checking" : "building", m.name.c_str(), m.path.c_str(),
-                        checkOnly_ ? "" : " into ", checkOnly_ ? "" : folder.c_str());
-        std::fflush(stdout);
-        Progress progress(!common_.quiet, "build " + m.name);
-        // The bar: finished outputs plus how far each one in progress has come, its stages weighted
-        // roughly by their cost, so it only moves forward whatever order the jobs report in.
-        const double total = static_cast<double>(countOutputs(m));
-        double done = 0.0;
-        std::map<std::string, double> inFlight;
-        options.onEvent = [&](const BuildEvent& e) {
+    // One material's progress on the terminal: a line per finished output and a bar. The bar counts
+    // finished outputs plus how far each one in progress has come, its stages weighted roughly by
+    // their cost, so it only moves forward whatever order the jobs report in.
+    struct Tracker {
+        Tracker(const BuildCommand& command, const Manifest& m)
+            : chatty(command.chatty()),
+              progress(!command.common_.quiet, (command.checkOnly_ ? "check " : "build ") + m.name),
+              total(static_cast<double>(countOutputs(m))) {}
+
+        void event(const BuildEvent& e) {
             const std::string& output = e.asset.output;
             if (e.type == BuildEvent::Type::Done) {
                 inFlight.erase(output);
                 done += 1.0;
-                if (chatty()) {
+                if (chatty) {
                     progress.clear();
                     printAsset(e.asset);
                 }
@@ -158,13 +183,14 @@ private:
             for (const auto& [name, part] : inFlight) fraction += part;
             const std::string label = (e.stage == "check" ? "checking " : "") + output;
             progress.update(label, fraction / total);
-        };
-        const auto start = std::chrono::steady_clock::now();
-        auto report = buildMaterial(m, options);
-        progress.clear();
-        if (report && chatty()) printSummary(*report, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        return report;
-    }
+        }
+
+        bool chatty;
+        Progress progress;
+        double total;
+        double done = 0.0;
+        std::map<std::string, double> inFlight;
+    };
 
     static size_t countOutputs(const Manifest& m) {
         size_t n = 0;
@@ -188,7 +214,9 @@ private:
     void printSummary(const BuildReport& r, double seconds) const {
         if (checkOnly_) {
             for (const AssetReport& a : r.assets) {
-                const char* verdict = !a.check ? "not checked (tileable = false)" : a.check->tiles ? "tiles" : "does NOT tile";
+                const char* verdict = a.check         ? (a.check->tiles ? "tiles" : "does NOT tile")
+                                      : a.input.empty() ? "nothing to check (made, not painted)"
+                                                        : "not checked (tileable = false)";
                 std::printf("  %-28s %-30s %s\n", a.output.c_str(), (a.kind + " '" + a.name + "'").c_str(), verdict);
             }
             std::printf("%s: %s\n", r.material.c_str(),

@@ -374,19 +374,64 @@ std::string depfileText(const std::string& target, const std::vector<std::string
     return text + "\n";
 }
 
-Result<BuildReport> buildMaterial(const Manifest& m, const BuildOptions& options) {
+// Everything a build holds between preparing (hashes, checks) and running (writing).
+struct MaterialBuild::Impl {
+    Manifest m;
+    BuildOptions options;
+    std::vector<Step> steps;
+    fs::path folder;
+    std::string statePath;
+    State state;
     BuildReport report;
+    int jobs = 1, threads = 1;
+    bool ran = false;
+    std::mutex mutex;  // guards state, events and the steps' shared fields
+
+    void emit(BuildEvent::Type type, const Step& s, std::string_view stage, double fraction) {
+        if (!options.onEvent) return;
+        std::lock_guard<std::mutex> lock(mutex);
+        options.onEvent({type, s.report, stage, fraction});
+    }
+    static void guarded(Step& s, const std::function<void()>& body) {
+        try {
+            body();
+        } catch (const std::bad_alloc&) {
+            s.error = Error{ErrorKind::Internal, s.report.input, "out of memory", "use fewer --jobs or --threads"};
+        } catch (const std::exception& e) {
+            s.error = Error{ErrorKind::Internal, s.report.input, std::string("internal error: ") + e.what(), "please report this"};
+        }
+    }
+    // A source's error names the source file; the hint says which asset of which manifest read it.
+    Error inAsset(Error e, const Step& s) const {
+        e.hint += (e.hint.empty() ? "" : "; ") + std::string("asset '") + s.report.name + "' of " + m.path + ":" +
+                  std::to_string(s.report.line);
+        return e;
+    }
+    std::optional<Error> firstError() const {
+        for (const Step& s : steps)
+            if (s.error) return s.error;
+        return std::nullopt;
+    }
+
+    Status prepare();
+    Status run();
+    void hashStep(Step& s);
+    void checkStep(Step& s);
+    void makeStep(Step& s, std::atomic<bool>& stop);
+};
+
+Status MaterialBuild::Impl::prepare() {
     report.manifest = m.path;
     report.material = m.name;
     report.outputDir = options.outputDir;
-    std::vector<Step> steps = planSteps(m, options.version);
+    steps = planSteps(m, options.version);
 
     std::set<std::string> dependencies{fs::absolute(m.path).lexically_normal().string()};
     for (const Step& s : steps)
         if (!s.report.input.empty()) dependencies.insert(fs::absolute(s.report.input).lexically_normal().string());
     report.dependencies.assign(dependencies.begin(), dependencies.end());
 
-    const fs::path folder(options.outputDir);
+    folder = fs::path(options.outputDir);
     // An output over a source would destroy the source: refuse before anything is written.
     for (const Step& s : steps) {
         const fs::path output = fs::weakly_canonical(folder / s.report.output);
@@ -395,102 +440,20 @@ Result<BuildReport> buildMaterial(const Manifest& m, const BuildOptions& options
                 return cannotWrite((folder / s.report.output).string(), "is also a source this material reads (" + source + ")",
                                    "choose another output folder");
     }
-    if (!options.checkOnly) {
-        std::error_code ec;
-        fs::create_directories(folder, ec);
-        if (ec || !fs::is_directory(folder, ec))
-            return cannotWrite(options.outputDir, "cannot be created as a folder", "choose another output folder");
-        std::set<fs::path> folders{folder};
-        for (const Step& s : steps) {
-            const fs::path parent = (folder / s.report.output).parent_path();
-            fs::create_directories(parent, ec);
-            if (ec) return cannotWrite(parent.string(), "cannot be created as a folder", "check the permissions");
-            folders.insert(parent);
-        }
-        for (const fs::path& f : folders) report.staleTemporariesRemoved += removeStaleTemporaryFiles(f.string());
-    }
-    const std::string statePath = (folder / kBuildStateFile).string();
-    State state = options.checkOnly ? State{} : loadState(statePath);
-
-    const int jobs = std::max(1, options.jobs);
-    const int threads = options.threads > 0 ? options.threads : std::max(1, resolveThreadCount(0) / jobs);
-    std::mutex mutex;  // guards state, events and the steps' shared fields
-    auto emit = [&](BuildEvent::Type type, const Step& s, std::string_view stage, double fraction) {
-        if (!options.onEvent) return;
-        std::lock_guard<std::mutex> lock(mutex);
-        options.onEvent({type, s.report, stage, fraction});
-    };
-    auto guarded = [&](Step& s, const std::function<void()>& body) {
-        try {
-            body();
-        } catch (const std::bad_alloc&) {
-            s.error = Error{ErrorKind::Internal, s.report.input, "out of memory", "use fewer --jobs or --threads"};
-        } catch (const std::exception& e) {
-            s.error = Error{ErrorKind::Internal, s.report.input, std::string("internal error: ") + e.what(), "please report this"};
-        }
-    };
-    // A source's error names the source file; the hint says which asset of which manifest read it.
-    auto inAsset = [&](Error e, const Step& s) {
-        e.hint += (e.hint.empty() ? "" : "; ") + std::string("asset '") + s.report.name + "' of " + m.path + ":" +
-                  std::to_string(s.report.line);
-        return e;
-    };
-    auto firstError = [&]() -> std::optional<Error> {
-        for (const Step& s : steps)
-            if (s.error) return s.error;
-        return std::nullopt;
-    };
+    statePath = (folder / kBuildStateFile).string();
+    if (!options.checkOnly) state = loadState(statePath);
+    jobs = std::max(1, options.jobs);
+    threads = options.threads > 0 ? options.threads : std::max(1, resolveThreadCount(0) / jobs);
 
     // 1. What changed: hash every input and every recorded output.
-    forEachParallel(steps.size(), jobs, [&](size_t i) {
-        Step& s = steps[i];
-        guarded(s, [&] {
-            emit(BuildEvent::Type::Progress, s, "hash", 0.0);
-            std::string inputHash;
-            if (!s.report.input.empty()) {
-                auto h = hashFile(s.report.input);
-                if (!h) return void(s.error = inAsset(h.error(), s));
-                inputHash = *h;
-            }
-            s.report.inputHash = inputHash;
-            s.report.key = hashText("heightpack " + options.version + "\n" + s.optionsText + "input=" + inputHash + "\n");
-            s.checkKey = hashText("heightpack " + options.version + "\n" + s.checkText + "input=" + inputHash + "\n");
-            if (options.checkOnly) {
-                s.needCheck = s.mustTile;
-                return;
-            }
-            const auto entry = state.find(s.report.output);
-            bool upToDate = !options.force && entry != state.end() && entry->second.key == s.report.key;
-            if (upToDate) {
-                const std::string output = (folder / s.report.output).string();
-                std::error_code ec;
-                auto h = fs::is_regular_file(output, ec) ? hashFile(output) : Result<std::string>(Error{});
-                upToDate = h.ok() && *h == entry->second.hash;
-            }
-            s.needBuild = !upToDate;
-            s.needCheck = s.mustTile && (s.needBuild || entry == state.end() || entry->second.checked != s.checkKey);
-        });
-    });
+    forEachParallel(steps.size(), jobs, [&](size_t i) { guarded(steps[i], [&] { hashStep(steps[i]); }); });
     if (auto e = firstError()) return *e;
 
     // 2. Tileability, before anything is written: a map that must tile and does not stops the build.
     forEachParallel(steps.size(), jobs, [&](size_t i) {
         Step& s = steps[i];
         if (s.mustTile) s.report.check = AssetCheck{false, !s.needCheck, true, {}, {}};
-        if (!s.needCheck) return;
-        guarded(s, [&] {
-            emit(BuildEvent::Type::Start, s, "check", 0.0);
-            CheckOptions check = s.check;
-            check.mip.threads = threads;
-            auto r = checkFile(s.report.input, check);
-            if (!r) return void(s.error = inAsset(r.error(), s));
-            AssetCheck& c = *s.report.check;
-            c.ran = true;
-            c.tiles = r->tiles;
-            c.worst = r->worst;
-            if (!r->tiles) c.failure = describeFailure(*r);
-            emit(BuildEvent::Type::Progress, s, "check", 1.0);
-        });
+        if (s.needCheck) guarded(s, [&] { checkStep(s); });
     });
     if (auto e = firstError()) return *e;
     for (const Step& s : steps) {
@@ -502,55 +465,108 @@ Result<BuildReport> buildMaterial(const Manifest& m, const BuildOptions& options
                                                 "make it tile with 'heightpack tile', or set tileable = false if it "
                                                 "is not meant to tile"));
     }
-    if (!report.checkFailures.empty() || options.checkOnly) {
-        for (Step& s : steps) {
-            s.report.status = options.checkOnly ? (s.needCheck ? AssetStatus::Checked : AssetStatus::Skipped)
-                                                : AssetStatus::UpToDate;
-            report.assets.push_back(s.report);
-        }
-        return report;
+    for (Step& s : steps) {
+        s.report.status = options.checkOnly ? (s.needCheck ? AssetStatus::Checked : AssetStatus::Skipped)
+                                            : AssetStatus::UpToDate;
+        report.assets.push_back(s.report);
     }
+    return Done{};
+}
+
+void MaterialBuild::Impl::hashStep(Step& s) {
+    emit(BuildEvent::Type::Progress, s, "hash", 0.0);
+    std::string inputHash;
+    if (!s.report.input.empty()) {
+        auto h = hashFile(s.report.input);
+        if (!h) return void(s.error = inAsset(h.error(), s));
+        inputHash = *h;
+    }
+    s.report.inputHash = inputHash;
+    s.report.key = hashText("heightpack " + options.version + "\n" + s.optionsText + "input=" + inputHash + "\n");
+    s.checkKey = hashText("heightpack " + options.version + "\n" + s.checkText + "input=" + inputHash + "\n");
+    if (options.checkOnly) {
+        s.needCheck = s.mustTile;
+        return;
+    }
+    const auto entry = state.find(s.report.output);
+    bool upToDate = !options.force && entry != state.end() && entry->second.key == s.report.key;
+    if (upToDate) {
+        const std::string output = (folder / s.report.output).string();
+        std::error_code ec;
+        auto h = fs::is_regular_file(output, ec) ? hashFile(output) : Result<std::string>(Error{});
+        upToDate = h.ok() && *h == entry->second.hash;
+    }
+    s.needBuild = !upToDate;
+    s.needCheck = s.mustTile && (s.needBuild || entry == state.end() || entry->second.checked != s.checkKey);
+}
+
+void MaterialBuild::Impl::checkStep(Step& s) {
+    emit(BuildEvent::Type::Start, s, "check", 0.0);
+    CheckOptions check = s.check;
+    check.mip.threads = threads;
+    auto r = checkFile(s.report.input, check);
+    if (!r) return void(s.error = inAsset(r.error(), s));
+    AssetCheck& c = *s.report.check;
+    c.ran = true;
+    c.tiles = r->tiles;
+    c.worst = r->worst;
+    if (!r->tiles) c.failure = describeFailure(*r);
+    emit(BuildEvent::Type::Progress, s, "check", 1.0);
+}
+
+void MaterialBuild::Impl::makeStep(Step& s, std::atomic<bool>& stop) {
+    s.report.status = s.needBuild ? AssetStatus::Rebuilt : AssetStatus::UpToDate;
+    if (stop) return;
+    if (!s.needBuild) {
+        emit(BuildEvent::Type::Done, s, "", 1.0);
+        if (!s.needCheck) return;
+        std::lock_guard<std::mutex> lock(mutex);
+        state[s.report.output].checked = s.checkKey;  // an up-to-date output newly checked
+        return;
+    }
+    guarded(s, [&] {
+        emit(BuildEvent::Type::Start, s, "load", 0.0);
+        const auto start = std::chrono::steady_clock::now();
+        const std::string output = (folder / s.report.output).string();
+        Status made = s.make(output, threads, [&](std::string_view stage, double f) {
+            emit(BuildEvent::Type::Progress, s, stage, f);
+        });
+        if (!made) return void(s.error = inAsset(made.error(), s));
+        auto hash = hashFile(output);
+        if (!hash) return void(s.error = hash.error());
+        s.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::lock_guard<std::mutex> lock(mutex);
+        state[s.report.output] = {s.report.key, *hash, s.mustTile ? s.checkKey : ""};
+        if (Status saved = writeText(statePath, stateText(state)); !saved) s.error = saved.error();
+    });
+    if (s.error) stop = true;
+    else emit(BuildEvent::Type::Done, s, "", 1.0);
+}
+
+Status MaterialBuild::Impl::run() {
+    if (ran || options.checkOnly || !report.checkFailures.empty())
+        return Error{ErrorKind::Internal, m.path, "this build cannot run: it ran already, is check-only or failed its checks",
+                     "please report this"};
+    ran = true;
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec || !fs::is_directory(folder, ec))
+        return cannotWrite(options.outputDir, "cannot be created as a folder", "choose another output folder");
+    std::set<fs::path> folders{folder};
+    for (const Step& s : steps) {
+        const fs::path parent = (folder / s.report.output).parent_path();
+        fs::create_directories(parent, ec);
+        if (ec) return cannotWrite(parent.string(), "cannot be created as a folder", "check the permissions");
+        folders.insert(parent);
+    }
+    for (const fs::path& f : folders) report.staleTemporariesRemoved += removeStaleTemporaryFiles(f.string());
 
     // 3. Make what changed. The state is saved after every output, so a killed build redoes only
     // what it had not finished.
     std::atomic<bool> stop{false};
-    forEachParallel(steps.size(), jobs, [&](size_t i) {
-        Step& s = steps[i];
-        s.report.status = s.needBuild ? AssetStatus::Rebuilt : AssetStatus::UpToDate;
-        if (stop) return;
-        if (!s.needBuild) {
-            emit(BuildEvent::Type::Done, s, "", 1.0);
-            if (!s.needCheck) return;
-            std::lock_guard<std::mutex> lock(mutex);
-            state[s.report.output].checked = s.checkKey;  // an up-to-date output newly checked
-            return;
-        }
-        guarded(s, [&] {
-            emit(BuildEvent::Type::Start, s, "load", 0.0);
-            const auto start = std::chrono::steady_clock::now();
-            const std::string output = (folder / s.report.output).string();
-            Status made = s.make(output, threads, [&](std::string_view stage, double f) {
-                emit(BuildEvent::Type::Progress, s, stage, f);
-            });
-            if (!made) {
-                s.error = inAsset(made.error(), s);
-                stop = true;
-                return;
-            }
-            auto hash = hashFile(output);
-            if (!hash) return void(s.error = hash.error());
-            s.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            std::lock_guard<std::mutex> lock(mutex);
-            state[s.report.output] = {s.report.key, *hash, s.mustTile ? s.checkKey : ""};
-            if (Status saved = writeText(statePath, stateText(state)); !saved) {
-                s.error = saved.error();
-                stop = true;
-            }
-        });
-        if (s.error) stop = true;
-        else emit(BuildEvent::Type::Done, s, "", 1.0);
-    });
+    forEachParallel(steps.size(), jobs, [&](size_t i) { makeStep(steps[i], stop); });
     if (auto e = firstError()) return *e;
+    report.assets.clear();
     for (const Step& s : steps) report.assets.push_back(s.report);
 
     // 4. Outputs the manifest no longer names are forgotten (their files are left alone), then the
@@ -569,7 +585,38 @@ Result<BuildReport> buildMaterial(const Manifest& m, const BuildOptions& options
         if (Status s = writeText(materialPath, json); !s) return s.error();
         report.materialWritten = true;
     }
-    return report;
+    return Done{};
+}
+
+MaterialBuild::MaterialBuild(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+MaterialBuild::MaterialBuild(MaterialBuild&&) noexcept = default;
+MaterialBuild& MaterialBuild::operator=(MaterialBuild&&) noexcept = default;
+MaterialBuild::~MaterialBuild() = default;
+
+Result<MaterialBuild> MaterialBuild::prepare(const Manifest& manifest, const BuildOptions& options) {
+    auto impl = std::make_unique<Impl>();
+    impl->m = manifest;
+    impl->options = options;
+    if (Status s = impl->prepare(); !s) return s.error();
+    return MaterialBuild(std::move(impl));
+}
+
+const BuildReport& MaterialBuild::report() const { return impl_->report; }
+
+bool MaterialBuild::runnable() const {
+    return !impl_->ran && !impl_->options.checkOnly && impl_->report.checkFailures.empty();
+}
+
+Result<BuildReport> MaterialBuild::run() {
+    if (Status s = impl_->run(); !s) return s.error();
+    return impl_->report;
+}
+
+Result<BuildReport> buildMaterial(const Manifest& manifest, const BuildOptions& options) {
+    auto build = MaterialBuild::prepare(manifest, options);
+    if (!build) return build.error();
+    if (!build->runnable()) return build->report();
+    return build->run();
 }
 
 }  // namespace heightpack

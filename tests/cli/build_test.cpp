@@ -357,6 +357,17 @@ TEST_F(BuildTest, SeveralManifestsBuildIntoOneFolderEach) {
     EXPECT_TRUE(fs::exists(out + "/sea/material.json"));
     EXPECT_TRUE(fs::exists(out + "/lagoon/material.json"));
     EXPECT_EQ(readText(out + "/sea/long.exr"), readText(out + "/lagoon/long.exr"));
+    // A map that must tile and does not, in either material, stops both: every material is checked
+    // before any is written.
+    const auto before = tree(out);
+    writeText(second, replaced(replaced(kManifest, "name = \"sea\"", "name = \"lagoon\""), "maps/b.png",
+                               "maps/painted.png"));
+    writeImage(dir.file("maps/a.png"), periodicMap(128, 0.07, 1), OIIO::TypeDesc::UINT16);  // sea would rebuild
+    const ProcessResult failing = heightpackRun({"build", manifest, second, "-o", out});
+    EXPECT_EQ(failing.code, 1) << failing.err;
+    EXPECT_NE(failing.err.find(second + ":14: displacement 'short'"), std::string::npos) << failing.err;
+    EXPECT_NE(failing.out.find("sea: nothing written"), std::string::npos) << failing.out;
+    EXPECT_EQ(tree(out), before);
     // Two materials of one name would overwrite each other.
     const ProcessResult clash = heightpackRun({"build", manifest, manifest, "-o", out});
     EXPECT_EQ(clash.code, 3);

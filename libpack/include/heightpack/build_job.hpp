@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -83,8 +84,34 @@ struct BuildOptions {
     std::function<void(const BuildEvent&)> onEvent;
 };
 
-// Builds the material. Fails (Error) on an unreadable source, an unwritable output folder and the
-// like; a failing tileability check is not an Error but a report with checkFailures and nothing written.
+// A build in two steps, so a caller with several materials can check them all before writing any.
+class MaterialBuild {
+public:
+    // Plans the outputs, hashes every source and recorded output, and runs the tileability checks that
+    // are due. Writes nothing. A failing check is not an Error: report().checkFailures lists it.
+    static Result<MaterialBuild> prepare(const Manifest& manifest, const BuildOptions& options);
+
+    // After prepare: every asset (with its check), the dependencies, the check failures. After run:
+    // the statuses and times of what was made, and whether material.json was written.
+    const BuildReport& report() const;
+    // Whether run() may go ahead: not check-only, every check passed, not run yet.
+    bool runnable() const;
+    // Makes what changed, then the build state and material.json.
+    Result<BuildReport> run();
+
+    MaterialBuild(MaterialBuild&&) noexcept;
+    MaterialBuild& operator=(MaterialBuild&&) noexcept;
+    ~MaterialBuild();
+
+private:
+    struct Impl;
+    explicit MaterialBuild(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+// prepare() and, when runnable, run(): the whole build of one material. Fails (Error) on an unreadable
+// source, an unwritable output folder and the like; a failing tileability check is not an Error but a
+// report with checkFailures and nothing written.
 Result<BuildReport> buildMaterial(const Manifest& manifest, const BuildOptions& options);
 
 // A Make-style depfile: "target: dep dep ...", paths escaped for Make and Ninja.
