@@ -107,6 +107,7 @@ public:
             auto build = MaterialBuild::prepare(m, options);
             trackers.back()->progress.clear();
             if (!build) return fail(build.error());
+            trackers.back()->total = static_cast<double>(std::max<size_t>(1, build->report().assets.size()));
             for (const Error& e : build->report().checkFailures) printError(e);
             checksPassed = checksPassed && build->report().checkFailures.empty();
             builds.push_back(std::move(*build));
@@ -159,8 +160,7 @@ private:
     struct Tracker {
         Tracker(const BuildCommand& command, const Manifest& m)
             : chatty(command.chatty()),
-              progress(!command.common_.quiet, (command.checkOnly_ ? "check " : "build ") + m.name),
-              total(static_cast<double>(countOutputs(m))) {}
+              progress(!command.common_.quiet, (command.checkOnly_ ? "check " : "build ") + m.name) {}
 
         void event(const BuildEvent& e) {
             const std::string& output = e.asset.output;
@@ -187,19 +187,10 @@ private:
 
         bool chatty;
         Progress progress;
-        double total;
+        double total = 1.0;  // outputs of the material; known once prepare() has planned them
         double done = 0.0;
         std::map<std::string, double> inFlight;
     };
-
-    static size_t countOutputs(const Manifest& m) {
-        size_t n = 0;
-        for (const DisplacementAsset& d : m.displacement) n += d.frames.size();
-        if (m.normals) n += m.normals->frames.size();
-        if (m.fresnel) ++n;
-        if (m.foam && m.foam->texture) ++n;
-        return std::max<size_t>(n, 1);
-    }
 
     static void printAsset(const AssetReport& a) {
         std::string what = a.kind + " '" + a.name + "'";
