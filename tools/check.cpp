@@ -11,20 +11,14 @@ namespace heightpack::cli {
 
 namespace {
 
-std::string scoreText(double v) {
-    if (std::isinf(v)) return "inf";
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2f", v);
-    return text;
-}
-
 class CheckCommand final : public Command {
 public:
     CLI::App* attach(CLI::App& app) override {
         CLI::App* cmd = app.add_subcommand("check", "tell whether a height map tiles, per edge and mip level (exit 1 if not)");
         cmd->add_option("input", input_, "a height map, or a texture heightpack wrote (packed, plain, normal)")->required();
         cmd->add_option("--threshold", options_.threshold,
-                        "largest seam score that passes: boundary differences over the interior's median column")
+                        "largest seam score that passes: how far the tile edge stands out from every other cut, in "
+                        "robust standard deviations")
             ->capture_default_str()
             ->check(CLI::Range(1.0, 1e6));
         cmd->add_option("--preview", options_.previewPath, "write a PNG of the map tiled 2x2 with failing seams marked");
@@ -43,8 +37,10 @@ public:
             "  heightpack check examples/maps/swell.png --json\n"
             "  heightpack check swell.png --preview out/swell_check.png\n"
             "  heightpack check out/swell.exr\n"
-            "Scores are about 1 where the tile edge is like any other place; value compares jumps in height,\n"
-            "slope compares kinks. Exit codes: 0 tiles, 1 does not, 2 usage, 3 bad input, 4 cannot write.\n");
+            "A score says how far the tile edge stands out from every other place the tile could be cut, in\n"
+            "robust standard deviations: 0 to about 5 by chance, large at a seam. value scores jumps in height,\n"
+            "slope scores kinks. Every level pack would make is judged (levels under 32 texels a side are too\n"
+            "small to judge). Exit codes: 0 tiles, 1 does not, 2 usage, 3 bad input, 4 cannot write.\n");
         return cmd;
     }
 
@@ -73,14 +69,9 @@ private:
     void print(const CheckReport& r) const {
         const double t = r.threshold;
         if (common_.json) {
-            nlohmann::json levels = nlohmann::json::array();
-            for (size_t i = 0; i < r.levels.size(); ++i)
-                levels.push_back({{"level", i}, {"width", r.levels[i].width}, {"height", r.levels[i].height},
-                                  {"leftRight", seamScoreJson(r.levels[i].leftRight, t)},
-                                  {"topBottom", seamScoreJson(r.levels[i].topBottom, t)},
-                                  {"pass", levelTiles(r.levels[i], t)}});
             nlohmann::json doc = {{"command", "check"}, {"input", r.input}, {"kind", r.kind}, {"tiles", r.tiles},
-                                  {"threshold", t}, {"levels", levels},
+                                  {"threshold", t}, {"levels", seamLevelsJson(r.levels, t)},
+                                  {"failure", seamFailureJson(r.failure, t)},
                                   {"worst", {{"leftRight", seamScoreJson(r.worst.leftRight, t)},
                                              {"topBottom", seamScoreJson(r.worst.topBottom, t)}}}};
             if (!r.note.empty()) doc["note"] = r.note;
@@ -96,13 +87,13 @@ private:
 
     void printText(const CheckReport& r) const {
         const double t = r.threshold;
-        std::printf("%s: %s (threshold %.2f; scores near 1 are like the interior)\n", r.input.c_str(),
-                    r.tiles ? "tiles" : "does NOT tile", t);
+        std::printf("%s: %s (threshold %s; 0 to about 5 is how any cut scores by chance)\n", r.input.c_str(),
+                    r.tiles ? "tiles" : "does NOT tile", seamScoreText(t, t).c_str());
         if (!r.note.empty()) std::printf("  note: %s\n", r.note.c_str());
         std::printf("  %-5s %-11s %-26s %-26s\n", "level", "size", "left/right value  slope", "top/bottom value  slope");
         auto cell = [&](const SeamScore& s) {
             if (!s.measured) return std::string("(too small)");
-            std::string text = scoreText(s.value) + " / " + scoreText(s.slope);
+            std::string text = seamScoreText(s.value, t) + " / " + seamScoreText(s.slope, t);
             return text + (seamPasses(s, t) ? "" : "  FAIL");
         };
         for (size_t i = 0; i < r.levels.size(); ++i) {
@@ -110,15 +101,17 @@ private:
             const std::string size = std::to_string(l.width) + "x" + std::to_string(l.height);
             std::printf("  %-5zu %-11s %-26s %-26s\n", i, size.c_str(), cell(l.leftRight).c_str(), cell(l.topBottom).c_str());
         }
-        auto verdict = [&](const char* name, const SeamScore& s) {
-            if (!s.measured) return std::printf("  %s: not measured (map too small)\n", name), void();
-            if (seamPasses(s, t)) return std::printf("  %s: tiles\n", name), void();
-            std::printf("  %s: SEAM: %s\n", name,
-                        s.value > t ? ("heights jump " + scoreText(s.value) + "x the interior's typical step").c_str()
-                                    : ("slopes break " + scoreText(s.slope) + "x the interior's typical bend").c_str());
-        };
-        verdict("left/right edges", r.worst.leftRight);
-        verdict("top/bottom edges", r.worst.topBottom);
+        for (SeamEdge edge : {SeamEdge::LeftRight, SeamEdge::TopBottom}) {
+            const SeamScore& worst = edge == SeamEdge::LeftRight ? r.worst.leftRight : r.worst.topBottom;
+            if (!worst.measured) {
+                std::printf("  %s edges: not measured (no level has 32 texels along and 8 across)\n", seamEdgeName(edge));
+            } else if (const auto f = firstSeamFailure(r.levels, t, edge)) {
+                std::printf("  SEAM: %s\n", describeSeamFailure(*f, t).c_str());
+            } else {
+                std::printf("  %s edges: tile at every level (worst score %s)\n", seamEdgeName(edge),
+                            seamScoreText(std::max(worst.value, worst.slope), t).c_str());
+            }
+        }
         if (r.packing)
             std::printf("  packing: %s (largest difference %.3g)\n", r.packing->consistent ? "consistent" : "INCONSISTENT",
                         r.packing->maxError);

@@ -61,11 +61,31 @@ void Progress::clear() {
     lastStage_.clear();
 }
 
+namespace {
+nlohmann::json scoreNumber(double v) { return std::isinf(v) ? nlohmann::json(v > 0 ? "inf" : "-inf") : nlohmann::json(v); }
+}  // namespace
+
 nlohmann::json seamScoreJson(const SeamScore& s, double threshold) {
     if (!s.measured) return {{"measured", false}};
-    auto number = [](double v) { return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v); };
-    return {{"measured", true}, {"value", number(s.value)}, {"slope", number(s.slope)},
+    return {{"measured", true}, {"value", scoreNumber(s.value)}, {"slope", scoreNumber(s.slope)},
             {"pass", seamPasses(s, threshold)}};
+}
+
+nlohmann::json seamLevelsJson(const std::vector<LevelSeams>& levels, double threshold) {
+    nlohmann::json out = nlohmann::json::array();
+    for (size_t i = 0; i < levels.size(); ++i)
+        out.push_back({{"level", i}, {"width", levels[i].width}, {"height", levels[i].height},
+                       {"leftRight", seamScoreJson(levels[i].leftRight, threshold)},
+                       {"topBottom", seamScoreJson(levels[i].topBottom, threshold)},
+                       {"pass", levelTiles(levels[i], threshold)}});
+    return out;
+}
+
+nlohmann::json seamFailureJson(const std::optional<SeamFailure>& f, double threshold) {
+    if (!f) return nullptr;
+    return {{"level", f->level}, {"width", f->width}, {"height", f->height}, {"edge", seamEdgeName(f->edge)},
+            {"kind", f->kind == SeamKind::Jump ? "jump" : "kink"}, {"score", scoreNumber(f->score)},
+            {"text", describeSeamFailure(*f, threshold)}};
 }
 
 void Progress::update(std::string_view stage, double fraction) {

@@ -87,8 +87,13 @@ private:
     std::string lastStage_;
 };
 
-// One edge pair's seam scores as JSON: measured, value, slope, pass.
+// One edge pair's seam scores as JSON: measured, value, slope, pass. A score is a number, or the string
+// "inf" when it is infinite (README, "Seam scores"); an unmeasured pair is {"measured": false}.
 nlohmann::json seamScoreJson(const SeamScore& score, double threshold);
+// A chain's per-level scores: [{level, width, height, leftRight, topBottom, pass}, ...].
+nlohmann::json seamLevelsJson(const std::vector<LevelSeams>& levels, double threshold);
+// The first failing edge: {level, width, height, edge, kind, score, text}, or null.
+nlohmann::json seamFailureJson(const std::optional<SeamFailure>& failure, double threshold);
 
 // "1.5 MiB", "312 KiB": a size for people.
 std::string humanBytes(unsigned long long bytes);

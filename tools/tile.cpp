@@ -20,9 +20,11 @@ public:
         cmd->add_option("input", input_, "the height map")->required();
         cmd->add_option("-o,--output", output_, "the tiling map to write (.png, .tif, .exr)")->required();
         cmd->add_option("--method", method_,
-                        "periodic: subtract the smooth field behind the seams, heights and slopes; moisan: the "
-                        "same for heights only (Moisan 2011); crossfade: offset and blend keeping contrast "
-                        "(Heitz-Neyret); mirror: mirror tiling, twice the size")
+                        "periodic: subtract the smooth field behind the height jumps (Moisan 2011), then bend "
+                        "the slopes together within an eighth of the tile of each edge, or where slopes still break at some level, "
+                        "crossfade that near the edges; moisan: the first part "
+                        "only; crossfade: offset and blend keeping contrast (Heitz-Neyret); mirror: mirror "
+                        "tiling, twice the size")
             ->capture_default_str()
             ->check(CLI::IsMember({"periodic", "moisan", "crossfade", "mirror"}));
         widthOption_ = cmd->add_option("--width", options_.width, "crossfade band as a fraction of the tile, in (0, 0.5]")
@@ -40,6 +42,9 @@ public:
         cmd->add_option("--threshold", options_.threshold, "seam score that counts as tiling (see check)")
             ->capture_default_str()
             ->check(CLI::Range(1.0, 1e6));
+        cmd->add_option("--filter", filter_, "mip filter of the chain the map is judged on, as pack would make it")
+            ->capture_default_str()
+            ->check(CLI::IsMember({"box", "triangle", "lanczos3", "kaiser"}));
         cmd->add_option("--depth", depth_, "output sample type; keep = the input's")
             ->capture_default_str()
             ->check(CLI::IsMember({"keep", "uint8", "uint16", "float"}));
@@ -51,8 +56,11 @@ public:
             "  heightpack tile painted_not_tileable.png -o painted_tiled.png\n"
             "  heightpack tile painted.png --method crossfade --width 0.1 -o painted_tiled.png\n"
             "  heightpack tile painted.png --method mirror -o painted_mirrored.png\n"
-            "A map that already tiles is copied unchanged (periodic would still alter it slightly); --force applies\n"
-            "the method anyway.\n");
+            "The map is judged as check judges it, at every level pack would make. One that tiles is written\n"
+            "unchanged (the same bytes, or as float when its heights came from a colour channel); --force applies\n"
+            "the method anyway. Heights are never clipped or rescaled: when the fixed map leaves [0,1] an integer\n"
+            "output cannot hold it, so .exr and .tif outputs become float (said in the output) and a .png fails.\n"
+            "When the result would still not tile, nothing is written (exit 1).\n");
         return cmd;
     }
 
@@ -65,46 +73,54 @@ public:
         options_.bits = depth_ == "uint8" ? 8 : depth_ == "uint16" ? 16 : depth_ == "float" ? 32 : 0;
         options_.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);
         options_.load.silenceDecoderMessages = true;
+        options_.mip.filter = *parseFilter(filter_);
+        options_.mip.threads = common_.threads;
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
         auto report = tileFile(input_, output_, options_);
         if (!report) return fail(report.error());
         const TileReport& r = *report;
-        auto scores = [](const LevelSeams& s) {
-            return nlohmann::json{{"leftRight", {{"value", s.leftRight.value}, {"slope", s.leftRight.slope}}},
-                                  {"topBottom", {{"value", s.topBottom.value}, {"slope", s.topBottom.slope}}}};
+        const double t = options_.threshold;
+        auto chain = [&](const ChainSeams& c) {
+            return nlohmann::json{{"tiles", c.tiles()}, {"failure", seamFailureJson(c.failure, t)},
+                                  {"levels", seamLevelsJson(c.levels, t)}};
         };
         if (common_.json) {
-            printJson({{"command", "tile"}, {"input", r.input}, {"output", r.output},
-                       {"method", r.alreadyTiled ? "none" : method_}, {"alreadyTiled", r.alreadyTiled},
-                       {"width", r.width}, {"height", r.height}, {"bits", r.bits},
-                       {"remap", r.remapped ? nlohmann::json{{"scale", r.remapScale}, {"offset", r.remapOffset}}
-                                            : nlohmann::json(nullptr)},
-                       {"before", scores(r.before)}, {"after", scores(r.after)}});
+            printJson({{"command", "tile"}, {"input", r.input}, {"output", r.output}, {"written", r.written},
+                       {"method", r.methodUsed}, {"alreadyTiled", r.alreadyTiled},
+                       {"width", r.width}, {"height", r.height}, {"bits", r.bits}, {"widenedToFloat", r.widened},
+                       {"range", {r.low, r.high}}, {"inputRange", {r.inputLow, r.inputHigh}}, {"threshold", t},
+                       {"before", chain(r.before)}, {"after", chain(r.after)}});
+        } else if (!common_.quiet && !r.written) {
+            std::fprintf(stderr,
+                         "heightpack: error: %s: --method %s could not make it tile: %s (%s); nothing written\n",
+                         r.input.c_str(), method_.c_str(), describeSeamFailure(*r.after.failure, t).c_str(),
+                         method_ == "periodic" ? "no candidate tiled without stretching the heights past 1.5x: is it a "
+                                                 "sheet of unrelated pictures rather than one map?"
+                                               : "try the default --method periodic");
         } else if (chatty()) {
             if (r.alreadyTiled) {
-                std::printf("%s already tiles (worst score %.2f): wrote it unchanged to %s (--force applies %s anyway)\n",
-                            r.input.c_str(), worst(r.before), r.output.c_str(), method_.c_str());
+                std::printf("%s already tiles at every level: wrote it unchanged to %s (--force applies %s anyway)\n",
+                            r.input.c_str(), r.output.c_str(), method_.c_str());
             } else {
-                std::printf("wrote %s: %dx%d, %s, worst seam score %.2f -> %.2f", r.output.c_str(), r.width, r.height,
-                            method_.c_str(), worst(r.before), worst(r.after));
-                if (r.remapped)
-                    std::printf(", heights mapped into [0,1] as (h %+.4g) * %.4g rather than clipped (--depth float "
-                                "keeps them as they are)",
-                                -r.remapOffset, r.remapScale);
-                std::printf("\n");
+                std::printf("%s: %s\n", r.input.c_str(), describeSeamFailure(*r.before.failure, t).c_str());
+                std::printf("wrote %s: %dx%d, %s, tiles at every level; heights %.4g..%.4g (input %.4g..%.4g)\n",
+                            r.output.c_str(), r.width, r.height, r.methodUsed.c_str(), r.low, r.high, r.inputLow,
+                            r.inputHigh);
             }
+            if (r.widened)
+                std::printf("note: written as float: %s\n",
+                            r.alreadyTiled ? "the heights are not whole steps of the input's integer type"
+                                           : "the fixed heights leave [0,1], which the input's integer type cannot "
+                                             "hold without clipping");
         }
-        return ExitCode::Ok;
+        return r.written ? ExitCode::Ok : ExitCode::CheckFailed;
     }
 
 private:
-    static double worst(const LevelSeams& s) {
-        return std::max({s.leftRight.value, s.leftRight.slope, s.topBottom.value, s.topBottom.slope});
-    }
     bool widthGiven() const { return widthOption_ && widthOption_->count() > 0; }
 
-    std::string input_, output_, channel_, method_ = "periodic", depth_ = "keep";
+    std::string input_, output_, channel_, method_ = "periodic", depth_ = "keep", filter_ = "kaiser";
     TileOptions options_;
     CLI::Option* widthOption_ = nullptr;
 };

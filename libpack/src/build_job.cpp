@@ -241,21 +241,7 @@ void forEachParallel(size_t count, int jobs, const std::function<void(size_t)>& 
 
 // The first failing edge of a check, in words.
 std::string describeFailure(const CheckReport& r) {
-    for (size_t level = 0; level < r.levels.size(); ++level) {
-        const LevelSeams& l = r.levels[level];
-        for (const auto& [edge, score] : {std::pair<const char*, const SeamScore&>{"left/right", l.leftRight},
-                                          std::pair<const char*, const SeamScore&>{"top/bottom", l.topBottom}}) {
-            if (!score.measured || seamPasses(score, r.threshold)) continue;
-            char text[200];
-            if (score.value > r.threshold)
-                std::snprintf(text, sizeof text, "%s edges: heights jump %.1fx the interior's typical step at level %zu (%dx%d)",
-                              edge, score.value, level, l.width, l.height);
-            else
-                std::snprintf(text, sizeof text, "%s edges: slopes break %.1fx the interior's typical bend at level %zu (%dx%d)",
-                              edge, score.slope, level, l.width, l.height);
-            return text;
-        }
-    }
+    if (r.failure) return describeSeamFailure(*r.failure, r.threshold);
     if (r.packing && !r.packing->consistent) return "its packing is inconsistent";
     return "it fails the check";
 }
@@ -464,9 +450,20 @@ Status MaterialBuild::Impl::prepare() {
         std::string what = s.report.kind + " '" + s.report.name + "'";
         if (s.report.frame >= 0) what += " frame " + std::to_string(s.report.frame);
         what += " (" + s.report.input + ") does not tile: " + s.report.check->failure;
+        // The fix that works: tile judges with the same measure and threshold, on the chain this filter makes,
+        // and a float EXR holds whatever heights the fix needs.
+        const std::filesystem::path source(s.report.input);
+        std::string fix = "heightpack tile " + s.report.input + " -o " +
+                          (source.parent_path() / (source.stem().string() + "_tiled.exr")).string();
+        if (s.check.mip.filter != Filter::Kaiser) fix += std::string(" --filter ") + filterName(s.check.mip.filter);
+        if (s.check.threshold != kDefaultSeamThreshold) {
+            char threshold[32];
+            std::snprintf(threshold, sizeof threshold, " --threshold %g", s.check.threshold);
+            fix += threshold;
+        }
         report.checkFailures.push_back(badInput(m.path + ":" + std::to_string(s.report.line), what,
-                                                "make it tile with 'heightpack tile', or set tileable = false if it "
-                                                "is not meant to tile"));
+                                                "make it tile with '" + fix + "' and use that as the source, or set "
+                                                "tileable = false if it is not meant to tile"));
     }
     for (Step& s : steps) {
         s.report.status = options.checkOnly ? (s.needCheck ? AssetStatus::Checked : AssetStatus::Skipped)

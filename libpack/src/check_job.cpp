@@ -28,6 +28,16 @@ void keepWorst(SeamScore& worst, const SeamScore& s) {
 
 }  // namespace
 
+double sampleQuantum(const SourceInfo& source) {
+    return source.pixelType == "uint8" ? 1.0 / 255 : source.pixelType == "uint16" ? 1.0 / 65535 : 0.0;
+}
+
+std::vector<Image> seamChain(const Image& heights, const MipOptions& mip, std::string* note) {
+    if (isPowerOfTwo(heights.width) && isPowerOfTwo(heights.height)) return generateMipChain(heights, mip);
+    if (note) *note = "sides are not powers of two: level 0 only (pack would need --resize pow2)";
+    return {heights};
+}
+
 Result<CheckReport> checkFile(const std::string& path, const CheckOptions& options) {
     if (!options.previewPath.empty())
         if (Status s = checkWritable(options.previewPath); !s) return s.error();
@@ -37,6 +47,8 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
 
     // A texture with mip levels is checked as stored; anything else gets the chain pack would make.
     std::vector<Image> chain;
+    SeamOptions seamOptions;
+    seamOptions.threads = options.mip.threads;
     auto texture = readTextureFile(path, options.load.silenceDecoderMessages);
     if (texture && texture->levels.size() > 1) {
         const std::string layout = findAttribute(texture->attributes, "heightpack:layout");
@@ -50,20 +62,17 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
         auto loaded = detail::loadInput(path, options.load, options.mip.threads);
         if (!loaded) return loaded.error();
         report.kind = "image";
-        if (isPowerOfTwo(loaded->heights.width) && isPowerOfTwo(loaded->heights.height)) {
-            chain = generateMipChain(loaded->heights, options.mip);
-        } else {
-            report.note = "sides are not powers of two: level 0 only (pack would need --resize pow2)";
-            chain.push_back(std::move(loaded->heights));
-        }
+        seamOptions.quantum = sampleQuantum(loaded->source);
+        chain = seamChain(loaded->heights, options.mip, &report.note);
     }
 
-    for (const Image& level : chain) {
-        report.levels.push_back(measureSeams(level));
-        const LevelSeams& s = report.levels.back();
+    ChainSeams seams = measureChainSeams(chain, options.threshold, seamOptions);
+    report.tiles = seams.tiles();
+    report.failure = seams.failure;
+    report.levels = std::move(seams.levels);
+    for (const LevelSeams& s : report.levels) {
         keepWorst(report.worst.leftRight, s.leftRight);
         keepWorst(report.worst.topBottom, s.topBottom);
-        report.tiles = report.tiles && levelTiles(s, options.threshold);
     }
     report.worst.width = chain[0].width;
     report.worst.height = chain[0].height;

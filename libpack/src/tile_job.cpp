@@ -1,9 +1,11 @@
 #include "heightpack/tile_job.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
+#include "heightpack/check_job.hpp"
 #include "heightpack/mip.hpp"
 #include "job_steps.hpp"
 
@@ -21,82 +23,160 @@ const char* tileMethodName(TileMethod method) {
 
 namespace {
 
-std::string scoresText(const LevelSeams& s) {
-    char text[160];
-    std::snprintf(text, sizeof text, "left/right value %.3g slope %.3g, top/bottom value %.3g slope %.3g",
-                  s.leftRight.value, s.leftRight.slope, s.topBottom.value, s.topBottom.slope);
-    return text;
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+bool holdsFloat(const std::string& ext) { return ext == ".exr" || ext == ".tif" || ext == ".tiff"; }
+
+std::string verdictText(const ChainSeams& seams) {
+    return seams.tiles() ? "tiles at every level" : describeSeamFailure(*seams.failure, seams.threshold);
+}
+
+// Whether every height is a whole number of steps of a bits-bit type, inside [0,1].
+bool exactIn(const Image& map, int bits) {
+    const double steps = bits == 8 ? 255.0 : 65535.0;
+    return std::all_of(map.pixels.begin(), map.pixels.end(), [&](float v) {
+        const double s = double(v) * steps;
+        return v >= 0.0f && v <= 1.0f && std::abs(s - std::round(s)) < 1e-3;
+    });
+}
+
+double span(const Image& map) {
+    const auto [low, high] = std::minmax_element(map.pixels.begin(), map.pixels.end());
+    return double(*high) - *low;
+}
+
+// The method's result; for Periodic, the first candidate that tiles at every level and keeps the height
+// span within 1.5x the input's: Moisan with the edge slopes bent together; Moisan crossfaded near the
+// edges (its heights already meet there, so the blend only hides kinks: a change of slope at a scale
+// the bend did not reach, a line along the edge); the map itself crossfaded (when Moisan's smooth field
+// would stretch the span: a sheet of unrelated tiles); then the same two with a band of a quarter tile.
+// The last candidate is returned when none passes; the caller judges it again and writes nothing.
+Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, std::string& name,
+                  double& band) {
+    name = tileMethodName(options.method);
+    band = options.width;
+    switch (options.method) {
+        case TileMethod::Moisan: return periodicComponent(map, PeriodicContinuity::Heights);
+        case TileMethod::Crossfade: return crossfadeTile(map, options.width);
+        case TileMethod::Mirror: return mirrorTile(map);
+        case TileMethod::Periodic: break;
+    }
+    const double maxSpan = 1.5 * span(map);
+    auto acceptable = [&](const Image& candidate) {
+        return span(candidate) <= maxSpan &&
+               measureChainSeams(seamChain(candidate, options.mip), options.threshold, seamOptions).tiles();
+    };
+    Image result = periodicComponent(map);
+    if (acceptable(result)) return result;
+    const Image moisan = periodicComponent(map, PeriodicContinuity::Heights);
+    for (double width : {options.width, 0.25}) {
+        char text[64];
+        std::snprintf(text, sizeof text, " over %g of the tile", width);
+        for (const Image* base : {&moisan, &map}) {
+            result = crossfadeTile(*base, width);
+            name = std::string(base == &moisan ? "moisan+crossfade" : "crossfade") + text;
+            band = width;
+            if (acceptable(result)) return result;
+        }
+    }
+    return result;
 }
 
 }  // namespace
 
 Result<TileReport> tileFile(const std::string& input, const std::string& output, const TileOptions& options) {
     if (Status s = checkWritable(output); !s) return s.error();
-    auto loaded = detail::loadInput(input, options.load, 0);
+    auto loaded = detail::loadInput(input, options.load, options.mip.threads);
     if (!loaded) return loaded.error();
     TileReport report;
     report.input = input;
     report.output = output;
     const Image& map = loaded->heights;
-    report.before = measureSeams(map);
+    const auto [inLow, inHigh] = std::minmax_element(map.pixels.begin(), map.pixels.end());
+    report.inputLow = *inLow;
+    report.inputHigh = *inHigh;
+    SeamOptions seamOptions;
+    seamOptions.threads = options.mip.threads;
+    seamOptions.quantum = sampleQuantum(loaded->source);
+    report.before = measureChainSeams(seamChain(map, options.mip), options.threshold, seamOptions);
+    report.alreadyTiled = report.before.tiles() && !options.force;
 
-    if (levelTiles(report.before, options.threshold) && !options.force) {
-        report.alreadyTiled = true;
+    const std::string ext = lowerExtension(output);
+    const std::string& type = loaded->source.pixelType;
+    const int inputBits = type == "uint8" ? 8 : type == "uint16" ? 16 : 32;
+    if (report.alreadyTiled && loaded->source.channels == 1 && lowerExtension(input) == ext) {
+        // The file itself: bit-exact, metadata and all.
         report.after = report.before;
+        report.methodUsed = "none";
+        report.bits = inputBits;
+        report.low = report.inputLow;
+        report.high = report.inputHigh;
         report.width = map.width;
         report.height = map.height;
-        if (std::filesystem::path(input).extension() == std::filesystem::path(output).extension()) {
-            std::error_code same;  // set when output does not exist yet: then it is not the input either
-            if (!std::filesystem::equivalent(input, output, same))
-                if (Status s = copyFile(input, output); !s) return s.error();
-            return report;
-        }
-        // Another format asked for: the same heights, re-encoded below.
+        std::error_code same;  // set when output does not exist yet: then it is not the input either
+        if (!std::filesystem::equivalent(input, output, same))
+            if (Status s = copyFile(input, output); !s) return s.error();
+        report.written = true;
+        return report;
     }
 
-    Image result = report.alreadyTiled                        ? map
-                   : options.method == TileMethod::Periodic   ? periodicComponent(map)
-                   : options.method == TileMethod::Moisan     ? periodicComponent(map, PeriodicContinuity::Heights)
-                   : options.method == TileMethod::Crossfade  ? crossfadeTile(map, options.width)
-                                                              : mirrorTile(map);
-    report.after = measureSeams(result);
+    Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, report.methodUsed, report.crossfadeWidth);
+    if (report.alreadyTiled) report.methodUsed = "none";
     report.width = result.width;
     report.height = result.height;
+    const auto [low, high] = std::minmax_element(result.pixels.begin(), result.pixels.end());
+    report.low = *low;
+    report.high = *high;
 
-    const std::string& type = loaded->source.pixelType;
-    report.bits = options.bits ? options.bits : type == "uint8" ? 8 : type == "uint16" ? 16 : 32;
-    std::string ext = std::filesystem::path(output).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    if (report.bits == 32 && ext == ".png") report.bits = 16;  // PNG holds no floats
-    if (report.bits != 32) {
-        // Clipping would flatten crests into plateaus with kinks of their own; an affine map keeps the shape.
-        const auto [lo, hi] = std::minmax_element(result.pixels.begin(), result.pixels.end());
-        if (*lo < 0.0f || *hi > 1.0f) {
-            report.remapped = true;
-            report.remapOffset = std::min(0.0, double(*lo));
-            report.remapScale = 1.0 / (std::max(1.0, double(*hi)) - report.remapOffset);
-            for (float& v : result.pixels)
-                v = static_cast<float>((v - report.remapOffset) * report.remapScale);
+    // The type: the one asked for, else the input's (PNG holds no floats: 16 bits there). Widened to
+    // float where an integer type would clip, or would round a map that should stay unchanged.
+    report.bits = options.bits ? options.bits : inputBits;
+    if (report.bits == 32 && !holdsFloat(ext)) report.bits = 16;
+    const bool inRange = *low >= 0.0f && *high <= 1.0f;
+    if (report.bits != 32 && (!inRange || (report.alreadyTiled && !exactIn(result, report.bits)))) {
+        if (!holdsFloat(ext) || options.bits != 0) {
+            char what[200];
+            if (inRange)
+                std::snprintf(what, sizeof what, "the heights are not whole %d-bit steps: writing them so would round them",
+                              report.bits);
+            else
+                std::snprintf(what, sizeof what, "the tiled heights reach [%.4g, %.4g], outside the [0,1] of %d-bit samples",
+                              double(*low), double(*high), report.bits);
+            return cannotWrite(output, what,
+                               "write float samples: an .exr or .tif output without --depth; heightpack never clips or "
+                               "rescales heights");
         }
+        report.bits = 32;
+        report.widened = true;
     }
+    // Judge what will be stored: rounded to the type.
+    if (report.bits != 32) {
+        const double steps = report.bits == 8 ? 255.0 : 65535.0;
+        for (float& v : result.pixels) v = static_cast<float>(std::round(double(v) * steps) / steps);
+    }
+    SeamOptions afterOptions = seamOptions;
+    afterOptions.quantum = report.bits == 8 ? 1.0 / 255 : report.bits == 16 ? 1.0 / 65535 : 0.0;
+    report.after = measureChainSeams(seamChain(result, options.mip), options.threshold, afterOptions);
+    if (!report.after.tiles() && !report.alreadyTiled) return report;  // nothing written: the caller says why
 
     FlatImageOptions flat;
     flat.bits = report.bits;
     flat.attributes = {
-        {"heightpack:tileMethod", std::string(report.alreadyTiled ? "none" : tileMethodName(options.method))},
+        {"heightpack:tileMethod", report.methodUsed},
         {"heightpack:source", std::filesystem::path(input).filename().string()},
         {"heightpack:sourceHash", loaded->hash},
-        {"heightpack:seamsBefore", scoresText(report.before)},
-        {"heightpack:seamsAfter", scoresText(report.after)},
+        {"heightpack:seamsBefore", verdictText(report.before)},
+        {"heightpack:seamsAfter", verdictText(report.after)},
         {"heightpack:version", options.version},
     };
-    if (report.remapped) {
-        flat.attributes.push_back({"heightpack:remapScale", static_cast<float>(report.remapScale)});
-        flat.attributes.push_back({"heightpack:remapOffset", static_cast<float>(report.remapOffset)});
-    }
-    if (options.method == TileMethod::Crossfade && !report.alreadyTiled)
-        flat.attributes.push_back({"heightpack:crossfadeWidth", static_cast<float>(options.width)});
+    if (report.methodUsed.find("crossfade") != std::string::npos)
+        flat.attributes.push_back({"heightpack:crossfadeWidth", static_cast<float>(report.crossfadeWidth)});
     if (Status s = writeFlatImage(output, result, flat); !s) return s.error();
+    report.written = true;
     return report;
 }
 

@@ -3,15 +3,41 @@
 #include <opencv2/core.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
+
+#include "heightpack/parallel.hpp"
 
 namespace heightpack {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+// Levels with fewer texels than this along a direction are not judged in that direction: the spread of
+// the cut statistic is estimated from the other cuts, and fewer than about two dozen of them (after
+// leaving out those that share texels with the tile edge) give a spread too unstable to bound a false
+// alarm. The levels above, with more texels, have been judged already.
+constexpr int kMinimumTexels = 32;
+// Lines across: each cut's statistic is a mean over them, and fewer than this make it heavy-tailed.
+constexpr int kMinimumLines = 8;
+
+// The three difference operators, each centred on the gap between texel c and c+1 (periodic):
+//   jump1: h(c+1) - h(c)                                 a jump a shows as a; smooth slopes show too
+//   jump3: h(c+2) - 3h(c+1) + 3h(c) - h(c-1)             a jump shows as 2a; blind to slopes and bends
+//   kink:  h(c+2) - h(c+1) - h(c) + h(c-1)               a change of slope s shows as s; blind to jumps
+// jump3 carries jumps on smooth maps, where jump1 varies with the local slope; jump1 carries them on
+// rough maps, where jump3 is mostly noise.
+enum Operator { kJump1, kJump3, kKink, kOperators };
+// How many gaps on each side of a cut share texels with it: those neighbours see a seam at the cut too,
+// so they are left out of the prediction of the cut and of the reference cuts.
+constexpr int kReach[kOperators] = {0, 1, 1};
+// Amplification of independent texel noise by each operator (root of the sum of squared weights).
+const double kNoiseGain[kOperators] = {std::sqrt(2.0), std::sqrt(20.0), 2.0};
 
 double median(std::vector<double> v) {
     if (v.empty()) return 0.0;
@@ -22,55 +48,118 @@ double median(std::vector<double> v) {
     return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + mid));
 }
 
-// boundary / interior, with flat maps handled: no interior variation and none at the boundary is fine.
-double ratio(double boundary, double interior) {
-    constexpr double kTiny = 1e-12;
-    if (interior > kTiny) return boundary / interior;
-    return boundary > kTiny ? std::numeric_limits<double>::infinity() : 1.0;
+// Sums over the lines of |operator| at every gap: sums[op][c]. lines holds m lines of n texels each.
+// Lines are summed in fixed blocks and the blocks in order, so the result does not depend on threads.
+std::array<std::vector<double>, kOperators> operatorSums(const float* lines, int n, int m, int threads) {
+    constexpr int kBlock = 64;
+    const int blocks = (m + kBlock - 1) / kBlock;
+    std::vector<std::array<std::vector<double>, kOperators>> partial(blocks);
+    parallelFor(blocks, threads, [&](int begin, int end) {
+        std::vector<double> d(n);
+        for (int b = begin; b < end; ++b) {
+            auto& sums = partial[b];
+            for (auto& s : sums) s.assign(n, 0.0);
+            for (int j = b * kBlock; j < std::min(m, (b + 1) * kBlock); ++j) {
+                const float* h = lines + size_t(j) * n;
+                for (int c = 0; c < n; ++c) d[c] = double(h[c + 1 == n ? 0 : c + 1]) - h[c];
+                for (int c = 0; c < n; ++c) {
+                    const double before = d[c == 0 ? n - 1 : c - 1], after = d[c + 1 == n ? 0 : c + 1];
+                    sums[kJump1][c] += std::abs(d[c]);
+                    sums[kJump3][c] += std::abs(after - 2 * d[c] + before);
+                    sums[kKink][c] += std::abs(after - before);
+                }
+            }
+        }
+    });
+    std::array<std::vector<double>, kOperators> total;
+    for (auto& s : total) s.assign(n, 0.0);
+    for (const auto& p : partial)
+        for (int op = 0; op < kOperators; ++op)
+            for (int c = 0; c < n; ++c) total[op][c] += p[op][c];
+    return total;
 }
 
-// Levels with fewer texels than this along a direction are not judged in that direction: a handful of
-// columns says nothing reliable about a seam, and the levels above have already been checked.
-constexpr int kMinimumTexels = 16;
+// The period of an 8x8 block grid (JPEG) as it appears at this level, when the gaps on the grid's lines
+// stand out from the others; 1 when there is none. The tile edge is a grid line itself (the grid starts
+// at texel 0), so it is then compared with the cuts of its own phase.
+int blockPeriod(const std::vector<double>& jump3, int level) {
+    const int n = static_cast<int>(jump3.size());
+    const int period = level < 3 ? 8 >> level : 1;
+    if (period < 2 || n % period != 0 || n < 4 * period) return 1;
+    std::vector<double> onGrid, offGrid;
+    for (int c = 0; c < n; ++c) (c % period == period - 1 ? onGrid : offGrid).push_back(jump3[c]);
+    return median(onGrid) > 1.15 * median(offGrid) ? period : 1;
+}
 
-// How many interior columns next to each side of the boundary the boundary is compared with: a seam is
-// local, and a map's character can change across it (a painting is busier in one place than another).
-constexpr int kNeighbourColumns = 8;
+// How far the tile edge's statistic stands above what the cuts beside it predict, in robust standard
+// deviations of the same contrast over every other cut. s holds one operator's mean |value| per gap;
+// the tile edge is gap n-1.
+// floor: the least spread, as a fraction of the statistic's typical level.
+double edgeContrast(std::vector<double> s, int reach, int period, double floor) {
+    const int n = static_cast<int>(s.size());
+    if (period > 1) {
+        // Each phase of the block grid by its own typical level, so grid lines and the others compare.
+        for (int p = 0; p < period; ++p) {
+            std::vector<double> phase;
+            for (int c = p; c < n; c += period) phase.push_back(s[c]);
+            const double typical = median(phase);
+            if (typical > 0)
+                for (int c = p; c < n; c += period) s[c] /= typical;
+        }
+    }
+    // Predict each cut from its neighbours just outside its reach; what it has beyond that is its contrast.
+    const int window = std::clamp((n - 2 * reach - 4) / 6, 1, 4);
+    std::vector<double> contrast(n);
+    for (int c = 0; c < n; ++c) {
+        double predicted = 0;
+        for (int k = reach + 1; k <= reach + window; ++k) predicted += s[(c + k) % n] + s[(c - k + n) % n];
+        contrast[c] = s[c] - predicted / (2 * window);
+    }
+    // Reference cuts: those whose contrast does not involve the tile edge's own gaps.
+    const int exclude = 2 * reach + window;
+    std::vector<double> reference;
+    for (int c = exclude; c < n - 1 - exclude; ++c) reference.push_back(contrast[c]);
+    const double centre = median(reference);
+    std::vector<double> deviation;
+    for (double r : reference) deviation.push_back(std::abs(r - centre));
+    double typicalLevel = 0;
+    for (double v : s) typicalLevel += v / n;
+    const double spread = std::max({1.4826 * median(deviation), floor * typicalLevel});
+    const double excess = contrast[n - 1] - centre;
+    if (spread > 0) return excess / spread;
+    return excess > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+}
 
-// Scores along one direction of a level of n texels along it and m across. h(i, j) reads texel i along
-// the direction in line j.
-template <class Read>
-SeamScore scoreAlong(int n, int m, Read h) {
+// Scores along one direction: lines holds m lines of n texels, the tile edge between texel n-1 and 0.
+SeamScore scoreAlong(const float* lines, int n, int m, const SeamOptions& options) {
     SeamScore score;
-    if (n < kMinimumTexels || m < 4) return score;
+    if (n < kMinimumTexels || m < kMinimumLines) return score;
     score.measured = true;
-    const int k = std::min(kNeighbourColumns, (n - 2) / 2);
-    // First differences across the boundary gap n-1|0 and across the interior gaps i|i+1 nearest it.
-    double boundary = 0.0, boundaryBend = 0.0;
-    std::vector<int> gapColumns, bendColumns;
-    for (int i = 0; i < k; ++i) {
-        gapColumns.push_back(i);              // gaps 0|1 .. k-1|k
-        gapColumns.push_back(n - 2 - i);      // gaps n-2|n-1 ..
-        bendColumns.push_back(1 + i);         // second differences centred on 1 .. k
-        bendColumns.push_back(n - 2 - i);     // and on n-2 ..
+    std::array<std::vector<double>, kOperators> sums = operatorSums(lines, n, m, options.threads);
+    for (auto& s : sums)
+        for (double& v : s) v /= m;
+    const int period = blockPeriod(sums[kJump3], options.level);
+    // Below the source's steps, or float rounding at the heights' magnitude, a difference is no evidence:
+    // on an exactly periodic, noiseless field every cut differs from the others by rounding alone.
+    double largest = 0;
+    for (size_t i = 0; i < size_t(n) * m; ++i) largest = std::max(largest, double(std::abs(lines[i])));
+    const double quantum = std::max(options.quantum, largest * 4 * std::numeric_limits<float>::epsilon());
+    // Nor is a contrast under a hundredth of the map's typical height step: no one sees a jump that small
+    // (jump3 shows a jump twice over), and a noiseless analytic field, whose third differences are next to
+    // nothing, would otherwise call a jump of curvature a seam.
+    double typicalStep = 0;
+    for (double v : sums[kJump1]) typicalStep += v / n;
+    const double kVisible[kOperators] = {0.01, 0.02, 0.01};
+    double z[kOperators];
+    for (int op = 0; op < kOperators; ++op) {
+        double level = 0;
+        for (double v : sums[op]) level += v / n;
+        // Rounding to those steps alone moves a mean over m lines by about this much.
+        const double floor = std::max(kNoiseGain[op] * quantum / std::sqrt(12.0 * m), kVisible[op] * typicalStep);
+        z[op] = edgeContrast(sums[op], kReach[op], period, level > 0 ? floor / level : 0.0);
     }
-    std::vector<double> gaps(gapColumns.size(), 0.0), bends(bendColumns.size(), 0.0);
-    for (int j = 0; j < m; ++j) {
-        for (size_t c = 0; c < gapColumns.size(); ++c) {
-            const int i = gapColumns[c];
-            gaps[c] += std::abs(double(h(i + 1, j)) - h(i, j));
-        }
-        for (size_t c = 0; c < bendColumns.size(); ++c) {
-            const int i = bendColumns[c];
-            bends[c] += std::abs(double(h(i + 1, j)) - 2.0 * h(i, j) + h(i - 1, j));
-        }
-        boundary += std::abs(double(h(0, j)) - h(n - 1, j));
-        // The two second differences that straddle the boundary, centred on texel 0 and on texel n-1.
-        boundaryBend += 0.5 * (std::abs(double(h(1, j)) - 2.0 * h(0, j) + h(n - 1, j)) +
-                               std::abs(double(h(0, j)) - 2.0 * h(n - 1, j) + h(n - 2, j)));
-    }
-    score.value = ratio(boundary / m, median(gaps) / m);
-    score.slope = ratio(boundaryBend / m, median(bends) / m);
+    score.value = std::max(z[kJump1], z[kJump3]);
+    score.slope = z[kKink];
     return score;
 }
 
@@ -144,12 +233,17 @@ struct Gaussianiser {
 
 }  // namespace
 
-LevelSeams measureSeams(const Image& level) {
+LevelSeams measureSeams(const Image& level, const SeamOptions& options) {
+    assert(level.channels == 1);
     LevelSeams seams;
     seams.width = level.width;
     seams.height = level.height;
-    seams.leftRight = scoreAlong(level.width, level.height, [&](int i, int j) { return level.at(i, j); });
-    seams.topBottom = scoreAlong(level.height, level.width, [&](int i, int j) { return level.at(j, i); });
+    seams.leftRight = scoreAlong(level.pixels.data(), level.width, level.height, options);
+    // Columns as lines: the same code then reads every line contiguously.
+    std::vector<float> columns(level.texelCount());
+    for (int y = 0; y < level.height; ++y)
+        for (int x = 0; x < level.width; ++x) columns[size_t(x) * level.height + y] = level.at(x, y);
+    seams.topBottom = scoreAlong(columns.data(), level.height, level.width, options);
     return seams;
 }
 
@@ -161,27 +255,78 @@ bool levelTiles(const LevelSeams& seams, double threshold) {
     return seamPasses(seams.leftRight, threshold) && seamPasses(seams.topBottom, threshold);
 }
 
-Image periodicComponent(const Image& map, PeriodicContinuity continuity) {
+std::optional<SeamFailure> firstSeamFailure(const std::vector<LevelSeams>& levels, double threshold,
+                                            std::optional<SeamEdge> edge) {
+    for (size_t level = 0; level < levels.size(); ++level) {
+        const LevelSeams& l = levels[level];
+        for (SeamEdge e : {SeamEdge::LeftRight, SeamEdge::TopBottom}) {
+            const SeamScore& s = e == SeamEdge::LeftRight ? l.leftRight : l.topBottom;
+            if ((edge && *edge != e) || seamPasses(s, threshold)) continue;
+            const bool jump = s.value > threshold;
+            return SeamFailure{static_cast<int>(level), l.width, l.height, e, jump ? SeamKind::Jump : SeamKind::Kink,
+                               jump ? s.value : s.slope};
+        }
+    }
+    return std::nullopt;
+}
+
+ChainSeams measureChainSeams(const std::vector<Image>& chain, double threshold, SeamOptions options) {
+    ChainSeams result;
+    result.threshold = threshold;
+    for (size_t level = 0; level < chain.size(); ++level) {
+        options.level = static_cast<int>(level);
+        result.levels.push_back(measureSeams(chain[level], options));
+    }
+    result.failure = firstSeamFailure(result.levels, threshold);
+    return result;
+}
+
+const char* seamEdgeName(SeamEdge edge) { return edge == SeamEdge::LeftRight ? "left/right" : "top/bottom"; }
+
+std::string describeSeamFailure(const SeamFailure& f, double threshold) {
+    char text[200];
+    std::snprintf(text, sizeof text, "%s edges at level %d (%dx%d): %s, score %s (threshold %s)", seamEdgeName(f.edge),
+                  f.level, f.width, f.height, f.kind == SeamKind::Jump ? "heights jump" : "slopes break",
+                  seamScoreText(f.score, threshold).c_str(), seamScoreText(threshold, threshold).c_str());
+    return text;
+}
+
+std::string seamScoreText(double score, double threshold) {
+    if (std::isinf(score)) return score > 0 ? "inf" : "-inf";
+    char text[32];
+    for (int decimals = 1; decimals < 6; ++decimals) {
+        std::snprintf(text, sizeof text, "%.*f", decimals, score);
+        if ((std::strtod(text, nullptr) > threshold) == (score > threshold)) break;
+    }
+    return text;
+}
+
+namespace {
+
+// relativeToSlope: the jump across an edge is measured from the line through the slopes beside it
+// (the step minus their mean), so a smooth slope running through the edge is kept rather than flattened
+// into one level step; Moisan's original measures it from the edge texel repeated.
+Image moisanPeriodic(const Image& map, bool relativeToSlope) {
     assert(map.channels == 1);
     const int w = map.width, h = map.height;
     // The boundary image v: what the periodic Laplacian of the map has at the texels beside a tile edge
-    // that the map's own interior does not. Heights (Moisan): the jump across the edge, as if the missing
-    // neighbour repeated the edge texel. Heights and slopes: the whole second difference across the edge,
-    // as if the missing neighbour continued the map linearly.
+    // that the map's own interior does not: the jump across the edge. Its sum over each line is zero, so
+    // the smooth field has no net curvature to spread over the tile (no dome).
     cv::Mat v(h, w, CV_64F, cv::Scalar(0.0));
-    const bool slopes = continuity == PeriodicContinuity::HeightsAndSlopes && w >= 3 && h >= 3;
     auto add = [&](int x, int y, double value) { v.at<double>(y, x) += value; };
     for (int y = 0; y < h; ++y) {
-        const double first = map.at(0, y), second = map.at(std::min(1, w - 1), y);
-        const double last = map.at(w - 1, y), beforeLast = map.at(std::max(0, w - 2), y);
-        add(0, y, slopes ? last - 2 * first + second : last - first);
-        add(w - 1, y, slopes ? first - 2 * last + beforeLast : first - last);
+        const double first = map.at(0, y), last = map.at(w - 1, y);
+        const double slope = relativeToSlope && w >= 3
+                                 ? 0.5 * (double(map.at(1, y)) - first + last - map.at(w - 2, y)) : 0.0;
+        add(0, y, last - first + slope);
+        add(w - 1, y, first - last - slope);
     }
     for (int x = 0; x < w; ++x) {
-        const double first = map.at(x, 0), second = map.at(x, std::min(1, h - 1));
-        const double last = map.at(x, h - 1), beforeLast = map.at(x, std::max(0, h - 2));
-        add(x, 0, slopes ? last - 2 * first + second : last - first);
-        add(x, h - 1, slopes ? first - 2 * last + beforeLast : first - last);
+        const double first = map.at(x, 0), last = map.at(x, h - 1);
+        const double slope = relativeToSlope && h >= 3
+                                 ? 0.5 * (double(map.at(x, 1)) - first + last - map.at(x, h - 2)) : 0.0;
+        add(x, 0, last - first + slope);
+        add(x, h - 1, first - last - slope);
     }
     // The smooth field s solves the periodic Poisson equation laplacian(s) = v with zero mean; the map
     // minus s has, everywhere, the Laplacian of the map's interior: no seam, and its mean kept.
@@ -205,6 +350,58 @@ Image periodicComponent(const Image& map, PeriodicContinuity continuity) {
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) out.at(x, y) = static_cast<float>(map.at(x, y) - smooth.at<double>(y, x));
     return out;
+}
+
+// Removes the change of slope that the periodic component leaves at the left/right tile edge (call it on
+// a transposed map for top/bottom). The change along the edge is smoothed (the part that varies from
+// line to line is like the interior's own bends), then bent away within a band of `band` texels on each
+// side by A (1 - d/band)^3, d the distance from the edge: heights stay continuous, the slope on each
+// side turns by 3A/band, and nothing beyond the band changes. Unlike a global smooth field that matches
+// slopes, which must bend the whole tile into a dome when the slopes differ on average, the change is
+// local and bounded by the slope difference times band / 6.
+void bendAwayEdgeKinks(Image& map, int band) {
+    const int w = map.width, h = map.height;
+    std::vector<double> kink(h);
+    for (int y = 0; y < h; ++y) {
+        const double after = double(map.at(1, y)) - map.at(0, y), before = double(map.at(w - 1, y)) - map.at(w - 2, y);
+        kink[y] = after - before;
+    }
+    // Smooth along the edge (itself periodic) with a Gaussian of a sixteenth of its length.
+    const double sigma = std::max(1.0, h / 16.0);
+    const int reach = static_cast<int>(std::ceil(3 * sigma));
+    std::vector<double> weights(2 * reach + 1);
+    double total = 0;
+    for (int k = -reach; k <= reach; ++k) total += weights[k + reach] = std::exp(-0.5 * k * k / (sigma * sigma));
+    std::vector<double> smooth(h, 0.0);
+    for (int y = 0; y < h; ++y)
+        for (int k = -reach; k <= reach; ++k) smooth[y] += weights[k + reach] / total * kink[wrapIndex(y + k, h, Wrap::Periodic)];
+    for (int y = 0; y < h; ++y) {
+        const double amplitude = smooth[y] * band / 6.0;  // cancels the kink: the bend's own is -6A/band
+        for (int i = 0; i < band && i < w / 2; ++i) {
+            const double d = (i + 0.5) / band, g = amplitude * (1 - d) * (1 - d) * (1 - d);
+            map.at(i, y) += static_cast<float>(g);
+            map.at(w - 1 - i, y) += static_cast<float>(g);
+        }
+    }
+}
+
+Image transposed(const Image& map) {
+    Image out(map.height, map.width, 1);
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x) out.at(y, x) = map.at(x, y);
+    return out;
+}
+
+}  // namespace
+
+Image periodicComponent(const Image& map, PeriodicContinuity continuity) {
+    const bool slopes = continuity == PeriodicContinuity::HeightsAndSlopes;
+    Image out = moisanPeriodic(map, slopes);
+    if (!slopes || map.width < 8 || map.height < 8) return out;
+    bendAwayEdgeKinks(out, std::max(4, map.width / 8));
+    out = transposed(out);
+    bendAwayEdgeKinks(out, std::max(4, map.height / 8));
+    return transposed(out);
 }
 
 double crossfadeWeight(int x, int y, int width, int height, double band) {

@@ -26,9 +26,17 @@ struct CheckReport {
     double threshold = kDefaultSeamThreshold;
     std::vector<LevelSeams> levels;
     LevelSeams worst;  // per edge pair, the highest scores over the measured levels
+    std::optional<SeamFailure> failure;  // the first failing edge, finest level first
     std::optional<PackingCheck> packing;  // for neighbour4 textures
     bool tiles = true;  // every measured level passes (and the packing is consistent)
 };
+
+// The quantum of a source's samples: 1/255 for 8 bits, 1/65535 for 16, 0 for float.
+double sampleQuantum(const SourceInfo& source);
+
+// The mip chain `pack` would make from a flat map, for the seam measure: the whole chain when the sides
+// are powers of two, else level 0 alone (pack would resize first). Sets *note to say which.
+std::vector<Image> seamChain(const Image& heights, const MipOptions& mip, std::string* note = nullptr);
 
 // Scores the seams of the file at path at every level. A flat image gets the mip chain pack would make;
 // an EXR with mip levels is scored level by level as stored, on its first channel (the height R of a

@@ -4,13 +4,15 @@
 #include <string>
 
 #include "heightpack/io.hpp"
+#include "heightpack/mip.hpp"
 #include "heightpack/result.hpp"
 #include "heightpack/tileable.hpp"
 
 namespace heightpack {
 
 enum class TileMethod {
-    Periodic,   // periodic + smooth with slopes continued across the edges: only a smooth field is subtracted
+    Periodic,   // Moisan's periodic component with the edge slopes bent together; where slopes still break at
+                // some level or the span grows past 1.5x, a crossfade near the edges (the measure chooses)
     Moisan,     // Moisan's original periodic component: heights meet, slopes may kink at the edges
     Crossfade,  // offset and blend with a histogram-preserving blend over a band
     Mirror,     // mirror tiling: twice the size, symmetric
@@ -19,6 +21,7 @@ const char* tileMethodName(TileMethod method);
 
 struct TileOptions {
     LoadOptions load;
+    MipOptions mip;  // the chain the verdict is judged on, as pack would make it (wrap stays periodic)
     TileMethod method = TileMethod::Periodic;
     double width = 0.1;  // crossfade band, fraction of the tile, (0, 0.5]
     bool force = false;  // apply the method even to a map that already tiles
@@ -30,22 +33,28 @@ struct TileOptions {
 struct TileReport {
     std::string input;
     std::string output;
-    bool alreadyTiled = false;  // the input passed the check and was copied unchanged
-    LevelSeams before;          // level 0 of the input
-    LevelSeams after;           // level 0 of the output
+    bool alreadyTiled = false;  // the input passed the check at every level and was written unchanged
+    bool written = false;       // false when the method could not make the map tile: nothing was written
+    std::string methodUsed;     // "none", the method's name, or what Periodic chose ("moisan+crossfade over 0.1 of the tile")
+    ChainSeams before;          // the input, judged at every level as `check` judges it
+    ChainSeams after;           // the output as written (rounded to its type), likewise
+    double crossfadeWidth = 0.0;  // the band of a crossfade used, fraction of the tile
     int bits = 0;
-    // An integer output holds [0,1]: a result reaching outside is mapped back by
-    // stored = (value - remapOffset) * remapScale (affine, so it still tiles), instead of being clipped.
-    bool remapped = false;
-    double remapScale = 1.0;
-    double remapOffset = 0.0;
+    // Written as float although the input (or --depth) is an integer type: the heights left [0,1], which
+    // an integer type cannot hold without clipping, or (unchanged maps) are not exact in that type.
+    bool widened = false;
+    double low = 0.0, high = 0.0;  // the range of the heights written
+    double inputLow = 0.0, inputHigh = 0.0;
     int width = 0;
     int height = 0;
 };
 
-// Checks input (level 0); if it tiles and !force, copies it to output unchanged. Otherwise applies the
-// method and writes the result at the input's bit depth (or options.bits), recording what was done in
-// the metadata.
+// Judges input at every level pack would make (the seam measure of `check`). If it tiles and !force,
+// writes it unchanged: the file's bytes when it is a one-channel file of output's format, else its
+// heights in a type that holds them exactly. Otherwise applies the method and judges the result as it
+// will be stored; writes it only when it tiles. Integer outputs are never clipped or rescaled: heights
+// outside [0,1] are written as float where the format holds floats (.exr, .tif), else it fails with
+// CannotWrite and writes nothing.
 Result<TileReport> tileFile(const std::string& input, const std::string& output, const TileOptions& options);
 
 }  // namespace heightpack

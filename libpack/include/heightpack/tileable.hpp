@@ -2,6 +2,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -9,15 +10,19 @@
 
 namespace heightpack {
 
-// How the tile boundary compares with the interior along one direction. Each score is the mean absolute
-// difference across the boundary (texel W-1 to texel 0, seen as neighbours when tiled) divided by the
-// median, over the 16 interior columns (rows) nearest the boundary, of the same statistic: about 1 where
-// the boundary is like the places beside it, large at a seam. `value` compares first differences (a jump
-// in height); `slope` compares second differences (a kink: heights meet but slopes do not).
+// How the tile edge compares with every other place the tile could have been cut, along one direction.
+// For each gap between neighbouring texels (the tile edge is the gap between the last texel and the
+// first) three difference operators are averaged over the lines across: the height step, a third
+// difference (a jump that stands out of a smooth slope) and the change of slope. Each gap is compared
+// with what the gaps just beside it predict (so a steep or busy place predicts large differences), and
+// the tile edge's excess is divided by the spread of the same excess over every other gap (median
+// absolute deviation). A score is that ratio: about 0 where the tile edge is like any other cut, a few
+// units by chance, and large at a seam. When the map has an 8x8 block grid (JPEG), each phase of the
+// grid is first divided by its own typical level, so the tile edge, itself a grid line, meets its peers.
 struct SeamScore {
-    double value = 1.0;
-    double slope = 1.0;
-    bool measured = false;  // false below 16 texels along the direction (or 4 across): too few to judge
+    double value = 0.0;  // heights jump: the larger of the step and the third-difference scores
+    double slope = 0.0;  // slopes break: the change-of-slope score
+    bool measured = false;  // false below 32 texels along the direction or 8 lines across: too few to judge
 };
 
 struct LevelSeams {
@@ -27,32 +32,79 @@ struct LevelSeams {
     SeamScore topBottom;  // the top and bottom edges meeting (differences along y)
 };
 
-// The default verdict threshold: a boundary whose differences are more than twice the interior's median
-// column fails. Tileable maps score about 1 (their boundary is just another column); a seam a person
-// notices scores several times more.
-inline constexpr double kDefaultSeamThreshold = 2.0;
+// The default verdict threshold. Over thousands of exactly periodic maps (spectra k^-1.5 to k^-4, 64 to
+// 1024 texels, 8 and 16 bits, float, JPEG) no level scored above about 6; crops, jumps of 3 mean
+// steps and kinks of 6 mean bends score 9 and more (tests/seam_test.cpp, tests/bench/seam_rates).
+inline constexpr double kDefaultSeamThreshold = 7.5;
 
-// Scores of one level (channel 0). A direction needs at least 16 texels along it and 4 across.
-LevelSeams measureSeams(const Image& level);
+// What the measure needs to know beyond the level's texels.
+struct SeamOptions {
+    int level = 0;          // the level's index in its mip chain: an 8x8 block grid of level 0 is 8 >> level
+    double quantum = 0.0;   // the source's height step (1/255 for 8 bits, 0 for float): differences of
+                            // rounding alone are no evidence of a seam
+    int threads = 0;        // 0 = all cores; scores do not depend on it
+};
+
+// Scores of one level (channel 0).
+LevelSeams measureSeams(const Image& level, const SeamOptions& options = {});
 
 // Whether a measured score passes the threshold (both value and slope must).
 bool seamPasses(const SeamScore& score, double threshold = kDefaultSeamThreshold);
 bool levelTiles(const LevelSeams& seams, double threshold = kDefaultSeamThreshold);
+
+enum class SeamEdge { LeftRight, TopBottom };
+enum class SeamKind { Jump, Kink };
+const char* seamEdgeName(SeamEdge edge);  // "left/right", "top/bottom"
+
+// The first failing edge of a chain, finest level first.
+struct SeamFailure {
+    int level = 0;
+    int width = 0;
+    int height = 0;
+    SeamEdge edge = SeamEdge::LeftRight;
+    SeamKind kind = SeamKind::Jump;
+    double score = 0.0;
+};
+
+// The first failing edge over levels, finest first (left/right before top/bottom within a level); only
+// the given edge when one is named.
+std::optional<SeamFailure> firstSeamFailure(const std::vector<LevelSeams>& levels, double threshold,
+                                            std::optional<SeamEdge> edge = std::nullopt);
+
+// Every level of a mip chain measured with one threshold: the verdict `check` gives and `tile` acts on.
+struct ChainSeams {
+    double threshold = kDefaultSeamThreshold;
+    std::vector<LevelSeams> levels;
+    std::optional<SeamFailure> failure;  // none when every measured level passes
+    bool tiles() const { return !failure.has_value(); }
+};
+// options.level is set per level.
+ChainSeams measureChainSeams(const std::vector<Image>& chain, double threshold = kDefaultSeamThreshold,
+                             SeamOptions options = {});
+
+// "left/right edges at level 2 (32x32): heights jump, score 12.3 (threshold 7.5)".
+std::string describeSeamFailure(const SeamFailure& failure, double threshold);
+// A score with as many decimals as it takes to compare with threshold as the number does ("7.51", not
+// "7.5", against 7.5); "inf" for an infinite score (an edge that differs where the interior has no
+// variation at all).
+std::string seamScoreText(double score, double threshold = kDefaultSeamThreshold);
 
 // ---- Making a map tile ----
 
 // Which discontinuities the periodic component removes.
 enum class PeriodicContinuity {
     Heights,           // Moisan 2011 exactly: heights meet at the edges; slopes may still kink there
-    HeightsAndSlopes,  // the boundary image built from second differences: heights and slopes meet
+    HeightsAndSlopes,  // Moisan, then the slope change left at each edge bent away near the edge
 };
 
 // Moisan's periodic + smooth decomposition ("Periodic plus smooth image decomposition", J. Math.
 // Imaging Vis. 2011): returns the periodic component u - s, where s is the smooth (harmonic inside the
-// tile) field whose periodic Laplacian equals the boundary image of u. Changes the map only by that
-// smooth field and keeps its mean. With HeightsAndSlopes (the default) the boundary image holds the
-// second differences across each edge rather than the jumps, so slopes continue across the edge too:
-// lighting from a normal map sees no line where Moisan's original leaves a kink. Any size.
+// tile) field whose periodic Laplacian equals the jumps of u across the tile edges. It changes the map
+// by a field bounded by those jumps and keeps its mean. With HeightsAndSlopes (the default) the change
+// of slope that remains at each edge, smoothed along the edge, is then bent away within an eighth of the
+// tile beside it, so lighting sees no line there either; the middle of the tile keeps its detail, and
+// nothing grows with the tile's size (a global field matching slopes would bend the tile into a dome
+// whenever the edge slopes differ on average). Any size.
 Image periodicComponent(const Image& map, PeriodicContinuity continuity = PeriodicContinuity::HeightsAndSlopes);
 
 enum class CrossfadeBlend {
