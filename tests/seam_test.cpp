@@ -176,24 +176,37 @@ TileOutcome tileAndJudge(const std::string& name, const std::string& input, cons
     CheckOptions check;
     check.load = load;
     auto before = checkFile(input, check);
-    if (!before) return o.error = "check of the input: " + before.error().what, o;
+    if (!before) {
+        o.error = "check of the input: " + before.error().what;
+        return o;
+    }
     o.before = worstSeam(*before);
-    if (before->tiles) return o.skipped = "check passes the input", o;
+    if (before->tiles) {
+        o.skipped = "check passes the input";
+        return o;
+    }
     TileOptions options;
     options.load = load;
     options.bits = 32;
     auto tiled = tileFile(input, output, options);
-    if (!tiled) return o.error = "tile: " + tiled.error().what, o;
+    if (!tiled) {
+        o.error = "tile: " + tiled.error().what;
+        return o;
+    }
     o.method = tiled->alreadyTiled ? "copied as already tiling" : tileMethodName(options.method);
     auto after = checkFile(output, CheckOptions{});
-    if (!after) return o.error = "check of the output: " + after.error().what, o;
+    auto in = loadHeightMap(input, load), out = loadHeightMap(output);
+    if (!after || !in || !out) {
+        o.error = "cannot check or reload the output, or reload the input";
+        return o;
+    }
     o.after = worstSeam(*after);
     o.afterTiles = after->tiles;
-    auto in = loadHeightMap(input, load), out = loadHeightMap(output);
-    if (!in || !out) return o.error = "cannot reload the input or the output", o;
     o.spanRatio = span(out->heights) / std::max(1e-12, span(in->heights));
-    if (out->heights.width != in->heights.width || out->heights.height != in->heights.height)
-        return o.error = "the output's size differs from the input's", o;
+    if (out->heights.width != in->heights.width || out->heights.height != in->heights.height) {
+        o.error = "the output's size differs from the input's";
+        return o;
+    }
     o.detail = fineDetailCorrelation(in->heights, out->heights);
     return o;
 }
@@ -271,6 +284,29 @@ TEST(SeamFamilies, JpegQualityReachesTheFile) {
     EXPECT_EQ(loaded->source.channels, 1);
 }
 
+TEST(SeamFamilies, SeamsHaveTheStrengthTheyAreMadeWith) {
+    // Float maps, so the mean differences the seams are made from are the ones measured here.
+    for (int i = 2; i < 60; i += 5) {
+        const MapSpec periodic = drawMap(Family::Periodic, i), crop = drawMap(Family::Crop, i),
+                      ramp = drawMap(Family::Ramp, i), parabola = drawMap(Family::Parabola, i);
+        ASSERT_EQ(ramp.format, MapFormat::ExrFloat);
+        const WrapRatios p = wrapRatios(makeMap(periodic)), c = wrapRatios(makeMap(crop)),
+                         r = wrapRatios(makeMap(ramp)), q = wrapRatios(makeMap(parabola));
+        // Periodic: the wrap is one more pair of neighbours (a few texels' ratios, so loose bounds).
+        EXPECT_LT(std::max(p.firstX, p.firstY), 2.0) << describe(periodic) << ": " << p.text();
+        // A crop's opposite edges are unrelated places of the field: further apart than neighbours.
+        EXPECT_GT(std::max(c.firstX, c.firstY), 1.2) << describe(crop) << ": " << c.text();
+        // The ramp falls 3 mu1 at the wrap, on top of the periodic map's own step there (mean mu1).
+        EXPECT_GT(ramp.alongX ? r.firstX : r.firstY, 2.0) << describe(ramp) << ": " << r.text();
+        EXPECT_LT(ramp.alongX ? r.firstX : r.firstY, 4.5) << describe(ramp) << ": " << r.text();
+        // The parabola's heights meet; its slope flips by 2 b n = 6 mu2, shared by the two second
+        // differences that straddle the wrap: about 3 mu2 each.
+        EXPECT_GT(parabola.alongX ? q.secondX : q.secondY, 2.0) << describe(parabola) << ": " << q.text();
+        EXPECT_LT(parabola.alongX ? q.secondX : q.secondY, 4.5) << describe(parabola) << ": " << q.text();
+        EXPECT_LT(parabola.alongX ? q.firstX : q.firstY, 2.0) << describe(parabola) << ": " << q.text();
+    }
+}
+
 TEST(SeamMeasure, PeriodicMapsTile) {
     const int count = scaledCount(500, 500);
     std::vector<MapSpec> specs;
@@ -283,7 +319,8 @@ TEST(SeamMeasure, PeriodicMapsTile) {
         scores.push_back(v.worst.score);
         if (!v.tiles) {
             ++failures;
-            std::printf("false alarm: %s: %s\n", describe(v.spec).c_str(), v.worst.text().c_str());
+            std::printf("false alarm: %s: %s (map's own %s)\n", describe(v.spec).c_str(), v.worst.text().c_str(),
+                        v.ratios.text().c_str());
         }
     }
     printRates("exactly periodic maps (every one should pass):", verdicts);
@@ -310,7 +347,8 @@ TEST(SeamMeasure, SeamedMapsFail) {
             of.push_back(v);
             if (v.tiles) {
                 ++missed;
-                std::printf("missed seam: %s: %s\n", describe(v.spec).c_str(), v.worst.text().c_str());
+                std::printf("missed seam: %s: %s (map's own %s)\n", describe(v.spec).c_str(), v.worst.text().c_str(),
+                            v.ratios.text().c_str());
             }
         }
         printRates((std::string(familyName(family)) + " maps (every one should fail):").c_str(), of);

@@ -184,6 +184,28 @@ Image makeMap(const MapSpec& spec) {
     return map;
 }
 
+WrapRatios wrapRatios(const Image& map) {
+    auto along = [&](bool alongX, bool second) {
+        const int n = alongX ? map.width : map.height, across = alongX ? map.height : map.width;
+        auto h = [&](int i, int j) { return double(alongX ? map.at((i + n) % n, j) : map.at(j, (i + n) % n)); };
+        double sum = 0;
+        for (int j = 0; j < across; ++j)
+            sum += second ? 0.5 * (std::abs(h(n - 2, j) - 2 * h(n - 1, j) + h(0, j)) +
+                                   std::abs(h(n - 1, j) - 2 * h(0, j) + h(1, j)))
+                          : std::abs(h(0, j) - h(n - 1, j));
+        const double inside = second ? meanSecondDifference(map, alongX) : meanFirstDifference(map, alongX);
+        return inside > 0 ? sum / across / inside : INFINITY;
+    };
+    return {along(true, false), along(false, false), along(true, true), along(false, true)};
+}
+
+std::string WrapRatios::text() const {
+    char t[160];
+    std::snprintf(t, sizeof t, "wrap/inside: first x %.3g y %.3g, second x %.3g y %.3g", firstX, firstY, secondX,
+                  secondY);
+    return t;
+}
+
 std::string writeMap(const std::string& path, const Image& map, MapFormat format) {
     if (map.channels != 1) return "writeMap takes one channel";
     auto out = OIIO::ImageOutput::create(path);
@@ -252,7 +274,9 @@ MapVerdict checkGeneratedMap(const MapSpec& spec, const std::string& folder) {
     verdict.spec = spec;
     const std::string path = (std::filesystem::path(folder) / ("map" + std::to_string(counter++) +
                                                                 formatExtension(spec.format))).string();
-    verdict.error = writeMap(path, makeMap(spec), spec.format);
+    const Image map = makeMap(spec);
+    verdict.ratios = wrapRatios(map);
+    verdict.error = writeMap(path, map, spec.format);
     if (verdict.error.empty()) {
         auto report = checkFile(path, CheckOptions{});
         if (report) {

@@ -60,6 +60,15 @@ Image makeMap(const MapSpec& spec);
 double meanFirstDifference(const Image& map, bool alongX);
 double meanSecondDifference(const Image& map, bool alongX);
 
+// How strong a map's seam is, measured on the map itself (independently of check): the mean absolute first
+// (second) difference across the wrap over the mean inside, along x and along y. About 1 for a periodic
+// map; a ramp's first ratio along its direction is about 3 plus the map's own step there.
+struct WrapRatios {
+    double firstX = 0, firstY = 0, secondX = 0, secondY = 0;
+    std::string text() const;  // "wrap/inside: first x 1.02 y 0.98, second x 1.1 y 0.95"
+};
+WrapRatios wrapRatios(const Image& map);
+
 // Writes a one-channel map in [0, 1] with OpenImageIO (JPEG quality through the "Compression" attribute,
 // "jpeg:75"). Returns an empty string, or what went wrong.
 std::string writeMap(const std::string& path, const Image& map, MapFormat format);
@@ -89,6 +98,7 @@ struct MapVerdict {
     std::string error;  // writing or checking failed
     bool tiles = false;
     WorstSeam worst;
+    WrapRatios ratios;  // of the map as generated, before it was stored
 };
 // Makes the map, writes it in its format under folder, runs checkFile with default options, removes the file.
 MapVerdict checkGeneratedMap(const MapSpec& spec, const std::string& folder);
