@@ -290,6 +290,8 @@ TEST(SeamFamilies, SeamsHaveTheStrengthTheyAreMadeWith) {
         const MapSpec periodic = drawMap(Family::Periodic, i), crop = drawMap(Family::Crop, i),
                       ramp = drawMap(Family::Ramp, i), parabola = drawMap(Family::Parabola, i);
         ASSERT_EQ(ramp.format, MapFormat::ExrFloat);
+        if (std::max({crop.width, crop.height, ramp.width, ramp.height, parabola.width, parabola.height}) > 512)
+            continue;  // the large ones only make this slower
         const WrapRatios p = wrapRatios(makeMap(periodic)), c = wrapRatios(makeMap(crop)),
                          r = wrapRatios(makeMap(ramp)), q = wrapRatios(makeMap(parabola));
         // Periodic: the wrap is one more pair of neighbours (a few texels' ratios, so loose bounds).
@@ -353,7 +355,8 @@ TEST(SeamMeasure, SeamedMapsFail) {
         }
         printRates((std::string(familyName(family)) + " maps (every one should fail):").c_str(), of);
         RecordProperty(std::string(familyName(family)) + "_missed",
-                       static_cast<int>(std::count_if(of.begin(), of.end(), [](const MapVerdict& v) { return v.tiles; })));
+                       static_cast<int>(std::count_if(of.begin(), of.end(),
+                                                      [](const MapVerdict& v) { return v.tiles; })));
     }
     EXPECT_EQ(missed, 0) << "of " << verdicts.size() << " maps with a seam; each is listed above";
 }
@@ -495,7 +498,8 @@ TEST(SeamFix, TileLeavesATilingMapUnchanged) {
         if (!t1 || !t2) return void(o.error = "tile: " + (t1 ? t2.error().what : t1.error().what));
         auto a = loadHeightMap(in), b = loadHeightMap(same), c = loadHeightMap(exr);
         if (!a || !b || !c) return void(o.error = "cannot reload");
-        o.sameBytes = readBytes(in) == readBytes(same);
+        o.sameBytes = readBytes(in) == readBytes(same) &&
+                      (s.format != MapFormat::ExrFloat || readBytes(in) == readBytes(exr));
         o.sameValues = a->heights.pixels == b->heights.pixels;
         o.exrSameValues = a->heights.pixels == c->heights.pixels;
     });
@@ -516,7 +520,7 @@ TEST(SeamFix, TileLeavesATilingMapUnchanged) {
             std::printf("changed: %s: same-format bytes %s, values %s, float EXR values %s\n", name.c_str(),
                         o.sameBytes ? "equal" : "DIFFER", o.sameValues ? "equal" : "DIFFER",
                         o.exrSameValues ? "equal" : "DIFFER");
-        EXPECT_TRUE(o.sameBytes) << name << ": the same-format output is not the input's bytes";
+        EXPECT_TRUE(o.sameBytes) << name << ": a same-format output is not the input's bytes";
         EXPECT_TRUE(o.sameValues) << name;
         EXPECT_TRUE(o.exrSameValues) << name << ": the float EXR output's values differ from the input's";
     }

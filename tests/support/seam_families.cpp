@@ -52,6 +52,7 @@ MapSpec drawMap(Family family, int index) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     MapSpec spec;
     spec.family = family;
+    spec.index = index;
     spec.format = kAllFormats[index % 5];
     spec.seed = static_cast<unsigned>(rng());
     spec.beta = 1.5 + 2.5 * unit(rng);
@@ -72,8 +73,9 @@ MapSpec drawMap(Family family, int index) {
 
 std::string describe(const MapSpec& spec) {
     char text[200];
-    std::snprintf(text, sizeof text, "%s seed %u beta %.3f aniso %.2f angle %.3f %dx%d %s", familyName(spec.family),
-                  spec.seed, spec.beta, spec.aniso, spec.angle, spec.width, spec.height, formatName(spec.format));
+    std::snprintf(text, sizeof text, "%s #%d seed %u beta %.3f aniso %.2f angle %.3f %dx%d %s",
+                  familyName(spec.family), spec.index, spec.seed, spec.beta, spec.aniso, spec.angle, spec.width,
+                  spec.height, formatName(spec.format));
     std::string s = text;
     if (spec.family == Family::Ramp || spec.family == Family::Parabola) s += spec.alongX ? " along x" : " along y";
     return s;
@@ -217,7 +219,8 @@ std::string writeMap(const std::string& path, const Image& map, MapFormat format
     if (format == MapFormat::Jpeg75) spec.attribute("Compression", "jpeg:75");
     if (format == MapFormat::Jpeg90) spec.attribute("Compression", "jpeg:90");
     if (!out->open(path, spec)) return "cannot open " + path + ": " + out->geterror();
-    if (!out->write_image(OIIO::TypeDesc::FLOAT, map.pixels.data())) return "cannot write " + path + ": " + out->geterror();
+    if (!out->write_image(OIIO::TypeDesc::FLOAT, map.pixels.data()))
+        return "cannot write " + path + ": " + out->geterror();
     if (!out->close()) return "cannot close " + path + ": " + out->geterror();
     return {};
 }

@@ -32,6 +32,7 @@ const char* formatExtension(MapFormat format);  // ".png", ".exr", ".jpg"
 // Everything that determines one generated map.
 struct MapSpec {
     Family family = Family::Periodic;
+    int index = 0;       // drawMap(family, index) gives this spec again
     MapFormat format = MapFormat::Png8;
     unsigned seed = 0;   // of the noise (and of the crop offset)
     double beta = 2.0;   // power spectrum k^-beta, in [1.5, 4]
@@ -47,7 +48,7 @@ struct MapSpec {
 // 512, a few 1024), square or 4:1 either way (short side at least 16). The format cycles with the index,
 // so any run of 5 consecutive indices covers all five.
 MapSpec drawMap(Family family, int index);
-// The parameters as one line: family, seed, beta, aniso, angle, size, format (and direction).
+// The parameters as one line: family, index, seed, beta, aniso, angle, size, format (and direction).
 std::string describe(const MapSpec& spec);
 
 // An exactly periodic width x height field with power spectrum k^-beta (k in cycles per texel, after the
