@@ -142,11 +142,12 @@ TEST(Tileable, PeriodicComponentMeetsEdgesWithoutADomeAndKeepsTheMiddle) {
             maxMiss = std::max({maxMiss, std::abs(stepX - slopeX), std::abs(stepY - slopeY)});
         }
         EXPECT_LT(maxMiss, 0.05 * maxJump) << "seed " << seed;
-        // No dome: the change is bounded by the jumps it replaces, not by the tile's size.
+        // No dome: the change is bounded by the jumps it replaces plus the local bend (3/8 of the slope
+        // difference times an eighth of the tile), not by the tile's size.
         double maxChange = 0;
         for (int y = 0; y < 256; ++y)
             for (int x = 0; x < 256; ++x) maxChange = std::max(maxChange, std::abs(change(x, y)));
-        EXPECT_LT(maxChange, maxJump) << "seed " << seed;
+        EXPECT_LT(maxChange, 1.5 * maxJump) << "seed " << seed;
         // Beyond the bands where the slopes are bent together (an eighth of the tile), the change is
         // harmonic: the middle keeps the map's own curvature.
         double maxBend = 0;

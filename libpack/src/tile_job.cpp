@@ -53,7 +53,8 @@ double span(const Image& map) {
 // span within 1.5x the input's: Moisan with the edge slopes bent together; Moisan crossfaded near the
 // edges (its heights already meet there, so the blend only hides kinks: a change of slope at a scale
 // the bend did not reach, a line along the edge); the map itself crossfaded (when Moisan's smooth field
-// would stretch the span: a sheet of unrelated tiles); then the same two with a band of a quarter tile.
+// would stretch the span: a sheet of unrelated tiles); then the same two with a band of a fifth of the tile (wider would reach the middle half of the map,
+// which no candidate may change).
 // The last candidate is returned when none passes; the caller judges it again and writes nothing.
 Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, std::string& name,
                   double& band) {
@@ -73,7 +74,7 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
     Image result = periodicComponent(map);
     if (acceptable(result)) return result;
     const Image moisan = periodicComponent(map, PeriodicContinuity::Heights);
-    for (double width : {options.width, 0.25}) {
+    for (double width : {options.width, 0.2}) {
         char text[64];
         std::snprintf(text, sizeof text, " over %g of the tile", width);
         for (const Image* base : {&moisan, &map}) {

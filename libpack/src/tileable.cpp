@@ -94,10 +94,12 @@ int blockPeriod(const std::vector<double>& jump3, int level) {
 // How far the tile edge's statistic stands above what the cuts beside it predict, in robust standard
 // deviations of the same contrast over every other cut. s holds one operator's mean |value| per gap;
 // the tile edge is gap n-1.
-// floor: the least spread, as a fraction of the statistic's typical level.
+// floor: the least spread, in the statistic's units.
 double edgeContrast(std::vector<double> s, int reach, int period, double floor) {
     const int n = static_cast<int>(s.size());
     if (period > 1) {
+        const double typical = median(s);
+        if (typical > 0) floor /= typical;
         // Each phase of the block grid by its own typical level, so grid lines and the others compare.
         for (int p = 0; p < period; ++p) {
             std::vector<double> phase;
@@ -122,11 +124,13 @@ double edgeContrast(std::vector<double> s, int reach, int period, double floor) 
     const double centre = median(reference);
     std::vector<double> deviation;
     for (double r : reference) deviation.push_back(std::abs(r - centre));
-    double typicalLevel = 0;
-    for (double v : s) typicalLevel += v / n;
-    const double spread = std::max({1.4826 * median(deviation), floor * typicalLevel});
+    const double spread = std::max(1.4826 * median(deviation), floor);
     const double excess = contrast[n - 1] - centre;
-    if (spread > 0) return excess / spread;
+    // A spread estimated from few cuts is itself uncertain, and the ratio's tail grows heavier as they get
+    // fewer (as Student's t against the normal): shrink the score by about the ratio of their critical
+    // values, so that one threshold holds at 32 texels as at 4096.
+    const double fewCuts = 1.0 + 8.0 / static_cast<double>(reference.size());
+    if (spread > 0) return excess / spread / fewCuts;
     return excess > 0 ? std::numeric_limits<double>::infinity() : 0.0;
 }
 
@@ -152,11 +156,9 @@ SeamScore scoreAlong(const float* lines, int n, int m, const SeamOptions& option
     const double kVisible[kOperators] = {0.01, 0.02, 0.01};
     double z[kOperators];
     for (int op = 0; op < kOperators; ++op) {
-        double level = 0;
-        for (double v : sums[op]) level += v / n;
         // Rounding to those steps alone moves a mean over m lines by about this much.
         const double floor = std::max(kNoiseGain[op] * quantum / std::sqrt(12.0 * m), kVisible[op] * typicalStep);
-        z[op] = edgeContrast(sums[op], kReach[op], period, level > 0 ? floor / level : 0.0);
+        z[op] = edgeContrast(sums[op], kReach[op], period, floor);
     }
     score.value = std::max(z[kJump1], z[kJump3]);
     score.slope = z[kKink];
@@ -352,18 +354,31 @@ Image moisanPeriodic(const Image& map, bool relativeToSlope) {
     return out;
 }
 
+// The bend's height at distance u (in bands) from the edge: G(u) = integral from u to 1 of w, where the
+// slope profile w is 1 up to half the band and eases to 0 by its end with a smoothstep. So the bend's slope
+// is constant over the half band next to the edge (the change of slope is cancelled at every scale up
+// to half a band, as the coarse mip levels see it too) and its curvature stays spread over the outer half.
+double bendProfile(double u) {
+    if (u >= 1) return 0.0;
+    if (u <= 0.5) return 0.75 - u;
+    const double x = 2 * (u - 0.5);
+    return 0.5 * (0.5 - x + x * x * x - 0.5 * x * x * x * x);
+}
+
 // Removes the change of slope that the periodic component leaves at the left/right tile edge (call it on
-// a transposed map for top/bottom). The change along the edge is smoothed (the part that varies from
-// line to line is like the interior's own bends), then bent away within a band of `band` texels on each
-// side by A (1 - d/band)^3, d the distance from the edge: heights stay continuous, the slope on each
-// side turns by 3A/band, and nothing beyond the band changes. Unlike a global smooth field that matches
-// slopes, which must bend the whole tile into a dome when the slopes differ on average, the change is
-// local and bounded by the slope difference times band / 6.
+// a transposed map for top/bottom). The change is measured per line from the mean slopes over a few
+// texels on each side and smoothed along the edge (the part that varies from line to line is like the
+// interior's own bends), then bent away within `band` texels on each side: heights stay continuous and
+// nothing beyond the band changes. Unlike a global smooth field that matches slopes, which must bend the
+// whole tile into a dome when the slopes differ on average, the change is local: at most 3/8 of the
+// slope difference times the band.
 void bendAwayEdgeKinks(Image& map, int band) {
     const int w = map.width, h = map.height;
+    const int span = std::max(1, std::min(4, band / 4));
     std::vector<double> kink(h);
     for (int y = 0; y < h; ++y) {
-        const double after = double(map.at(1, y)) - map.at(0, y), before = double(map.at(w - 1, y)) - map.at(w - 2, y);
+        const double after = (double(map.at(span, y)) - map.at(0, y)) / span;
+        const double before = (double(map.at(w - 1, y)) - map.at(w - 1 - span, y)) / span;
         kink[y] = after - before;
     }
     // Smooth along the edge (itself periodic) with a Gaussian of a sixteenth of its length.
@@ -376,9 +391,10 @@ void bendAwayEdgeKinks(Image& map, int band) {
     for (int y = 0; y < h; ++y)
         for (int k = -reach; k <= reach; ++k) smooth[y] += weights[k + reach] / total * kink[wrapIndex(y + k, h, Wrap::Periodic)];
     for (int y = 0; y < h; ++y) {
-        const double amplitude = smooth[y] * band / 6.0;  // cancels the kink: the bend's own is -6A/band
+        // Slope -kink/2 after the edge and +kink/2 before it: the bend's own change of slope is -kink.
+        const double amplitude = 0.5 * smooth[y] * band;
         for (int i = 0; i < band && i < w / 2; ++i) {
-            const double d = (i + 0.5) / band, g = amplitude * (1 - d) * (1 - d) * (1 - d);
+            const double g = amplitude * bendProfile((i + 0.5) / band);
             map.at(i, y) += static_cast<float>(g);
             map.at(w - 1 - i, y) += static_cast<float>(g);
         }

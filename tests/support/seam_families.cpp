@@ -63,10 +63,12 @@ MapSpec drawMap(Family family, int index) {
     // Long side: 64 (25%), 128 (30%), 256 (25%), 512 (15%), 1024 (5%).
     const double s = unit(rng);
     const int longSide = s < 0.25 ? 64 : s < 0.55 ? 128 : s < 0.80 ? 256 : s < 0.95 ? 512 : 1024;
-    // Square (60%), 4:1 wide (20%), 1:4 tall (20%).
+    // Square (60%), 4:1 wide (20%), 1:4 tall (20%). A 4:1 map is at least 128x32: check judges a direction
+    // only with 32 texels along it (fewer cuts give no stable spread), so a 16-texel side is never judged.
     const double shape = unit(rng);
-    spec.width = shape < 0.8 ? longSide : longSide / 4;
-    spec.height = shape < 0.6 ? longSide : shape < 0.8 ? longSide / 4 : longSide;
+    const int side = shape < 0.6 ? longSide : std::max(longSide, 128);
+    spec.width = shape < 0.8 ? side : side / 4;
+    spec.height = shape < 0.6 ? side : shape < 0.8 ? side / 4 : side;
     spec.alongX = unit(rng) < 0.5;
     return spec;
 }

@@ -35,7 +35,7 @@ struct LevelSeams {
 // The default verdict threshold. Over thousands of exactly periodic maps (spectra k^-1.5 to k^-4, 64 to
 // 1024 texels, 8 and 16 bits, float, JPEG) no level scored above about 6; crops, jumps of 3 mean
 // steps and kinks of 6 mean bends score 9 and more (tests/seam_test.cpp, tests/bench/seam_rates).
-inline constexpr double kDefaultSeamThreshold = 7.5;
+inline constexpr double kDefaultSeamThreshold = 6.5;
 
 // What the measure needs to know beyond the level's texels.
 struct SeamOptions {
