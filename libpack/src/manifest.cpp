@@ -1,5 +1,7 @@
 #include "heightpack/manifest.hpp"
 
+#include "heightpack/tileable.hpp"
+
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -203,7 +205,7 @@ public:
                                           std::to_string(kManifestFormat));
         m.name = top.requiredText("name");
         if (!validName(m.name)) throw top.error("name", "must be 1-64 letters, digits, '_', '-' or '.'");
-        m.threshold = top.number("threshold", 2.0, 1.0, 1e6);
+        m.threshold = top.number("threshold", kDefaultSeamThreshold, 1.0, 1e6);
         if (const toml::table* d = top.table("defaults")) {
             Section s(*d, "defaults", path_);
             defaults_ = settings(s, MapSettings{});

@@ -162,7 +162,16 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     SeamOptions afterOptions = seamOptions;
     afterOptions.quantum = report.bits == 8 ? 1.0 / 255 : report.bits == 16 ? 1.0 / 65535 : 0.0;
     report.after = measureChainSeams(seamChain(result, options.mip), options.threshold, afterOptions);
-    if (!report.after.tiles() && !report.alreadyTiled) return report;  // nothing written: the caller says why
+    // Mirror tiling breaks slopes at its mirror lines by design (the help says so): it is written when its
+    // heights meet, and the report still shows the kinks.
+    const bool onlyDesignedKinks =
+        options.method == TileMethod::Mirror &&
+        std::none_of(report.after.levels.begin(), report.after.levels.end(), [&](const LevelSeams& l) {
+            return (l.leftRight.measured && l.leftRight.value > options.threshold) ||
+                   (l.topBottom.measured && l.topBottom.value > options.threshold);
+        });
+    if (!report.after.tiles() && !report.alreadyTiled && !onlyDesignedKinks)
+        return report;  // nothing written: the caller says why
 
     FlatImageOptions flat;
     flat.bits = report.bits;

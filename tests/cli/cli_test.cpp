@@ -346,8 +346,9 @@ TEST(Cli, CheckGivesAVerdictPerEdgeAndExitsOneOnASeam) {
     const CliRun bad = heightpackRun({"check", painted, "--preview", dir.file("painted_check.png")});
     EXPECT_EQ(bad.code, 1) << bad.err;
     EXPECT_NE(bad.out.find("does NOT tile"), std::string::npos) << bad.out;
-    EXPECT_NE(bad.out.find("left/right edges: SEAM"), std::string::npos) << bad.out;
-    EXPECT_NE(bad.out.find("top/bottom edges: SEAM"), std::string::npos) << bad.out;
+    // Each failing edge in words, naming the finest level where it fails.
+    EXPECT_NE(bad.out.find("SEAM: left/right edges at level 0 (512x512): heights jump"), std::string::npos) << bad.out;
+    EXPECT_NE(bad.out.find("SEAM: top/bottom edges at level 0 (512x512): heights jump"), std::string::npos) << bad.out;
     auto preview = OIIO::ImageInput::open(dir.file("painted_check.png"));
     ASSERT_TRUE(preview);
     EXPECT_EQ(preview->spec().width, 1024);  // 2 x 512, the documented 512..1024
@@ -359,7 +360,8 @@ TEST(Cli, CheckGivesAVerdictPerEdgeAndExitsOneOnASeam) {
     EXPECT_EQ(j["tiles"], true);
     EXPECT_EQ(j["levels"].size(), 10u);
     EXPECT_EQ(j["levels"][0]["leftRight"]["pass"], true);
-    EXPECT_LT(j["worst"]["leftRight"]["value"].get<double>(), 1.5);
+    EXPECT_LT(j["worst"]["leftRight"]["value"].get<double>(), 3.0);  // like any other cut
+    EXPECT_TRUE(j["failure"].is_null());
 
     // A packed texture is checked level by level as stored, and its packing verified.
     ASSERT_EQ(heightpackRun({"pack", swell, "-q", "-o", dir.file("swell.exr")}).code, 0);
@@ -376,16 +378,22 @@ TEST(Cli, TileMakesThePaintingTileAndLeavesATilingMapAlone) {
     const std::string swell = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/swell.png";
     for (const std::vector<std::string>& method :
          {std::vector<std::string>{}, {"--method", "crossfade", "--width", "0.25"}}) {
-        std::vector<std::string> args = {"tile", painted, "-o", dir.file("tiled.png")};
+        std::vector<std::string> args = {"tile", painted, "-o", dir.file("tiled.exr"), "--json"};
         args.insert(args.end(), method.begin(), method.end());
         const CliRun tile = heightpackRun(args);
         ASSERT_EQ(tile.code, 0) << tile.err;
-        const CliRun check = heightpackRun({"check", dir.file("tiled.png")});
-        EXPECT_EQ(check.code, 0) << check.out;
-        auto in = OIIO::ImageInput::open(dir.file("tiled.png"));
+        const auto report = nlohmann::json::parse(tile.out);
+        EXPECT_EQ(report["before"]["tiles"], false);
+        EXPECT_EQ(report["after"]["tiles"], true);
+        const CliRun check = heightpackRun({"check", dir.file("tiled.exr")});
+        EXPECT_EQ(check.code, 0) << check.out;  // one verdict: what tile says tiles, check passes
+        auto in = OIIO::ImageInput::open(dir.file("tiled.exr"));
         ASSERT_TRUE(in);
-        EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT8);  // the input's depth
-        EXPECT_EQ(in->spec().get_string_attribute("heightpack:tileMethod"), method.empty() ? "periodic" : "crossfade");
+        // The file records what was done, as the report says.
+        EXPECT_EQ(in->spec().get_string_attribute("heightpack:tileMethod"), report["method"].get<std::string>());
+        if (!method.empty()) {
+            EXPECT_EQ(report["method"], "crossfade");
+        }
     }
 
     const CliRun already = heightpackRun({"tile", swell, "-o", dir.file("swell.png")});
@@ -396,12 +404,12 @@ TEST(Cli, TileMakesThePaintingTileAndLeavesATilingMapAlone) {
     EXPECT_EQ(forced.code, 0) << forced.err;
     EXPECT_NE(readBytes(dir.file("forced.png")), readBytes(swell));
 
-    // Moisan's original: heights meet at the edges; its slope kink is what the default method removes.
-    ASSERT_EQ(heightpackRun({"tile", painted, "--method", "moisan", "-q", "-o", dir.file("moisan.exr"), "--depth",
-                             "float"}).code, 0);
-    const auto moisan = nlohmann::json::parse(heightpackRun({"check", dir.file("moisan.exr"), "--json"}).out);
-    EXPECT_LT(moisan["levels"][0]["leftRight"]["value"].get<double>(), 2.0);
-    EXPECT_LT(moisan["levels"][0]["topBottom"]["value"].get<double>(), 2.0);
+    // Moisan's original: heights meet at the edges, but its slope kink stays, so check would fail the
+    // result: tile says which edge breaks (slopes, not heights), exits 1 and writes nothing.
+    const CliRun moisan = heightpackRun({"tile", painted, "--method", "moisan", "-o", dir.file("moisan.exr")});
+    EXPECT_EQ(moisan.code, 1) << moisan.err;
+    EXPECT_NE(moisan.err.find("slopes break"), std::string::npos) << moisan.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("moisan.exr")));
 
     const CliRun mirror = heightpackRun({"tile", painted, "--method", "mirror", "--json", "-o", dir.file("m.png")});
     ASSERT_EQ(mirror.code, 0) << mirror.err;

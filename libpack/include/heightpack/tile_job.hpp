@@ -52,7 +52,8 @@ struct TileReport {
 // Judges input at every level pack would make (the seam measure of `check`). If it tiles and !force,
 // writes it unchanged: the file's bytes when it is a one-channel file of output's format, else its
 // heights in a type that holds them exactly. Otherwise applies the method and judges the result as it
-// will be stored; writes it only when it tiles. Integer outputs are never clipped or rescaled: heights
+// will be stored; writes it only when it tiles (mirror: when its heights meet, its mirror lines kinking
+// slopes by design). Integer outputs are never clipped or rescaled: heights
 // outside [0,1] are written as float where the format holds floats (.exr, .tif), else it fails with
 // CannotWrite and writes nothing.
 Result<TileReport> tileFile(const std::string& input, const std::string& output, const TileOptions& options);
