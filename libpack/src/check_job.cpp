@@ -45,7 +45,12 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
             const Wrap wrap = findAttribute(texture->attributes, "heightpack:wrap") == "clamp" ? Wrap::Clamp : Wrap::Periodic;
             report.packing = checkPacking(texture->levels, wrap);
         }
-        for (const Image& level : texture->levels) chain.push_back(channelZero(level));
+        for (const Image& level : texture->levels) {
+            chain.push_back(channelZero(level));
+            // A NaN is bad input, not a seam: the verdict would be meaningless.
+            if (Status s = checkFinite(chain.back(), path, 0, "level " + std::to_string(chain.size() - 1)); !s)
+                return s.error();
+        }
     } else {
         auto loaded = detail::loadInput(path, options.load, options.mip.threads);
         if (!loaded) return loaded.error();
