@@ -39,7 +39,7 @@ public:
         cmd->add_flag("--force", options_.force, "apply the method even when the map already tiles");
         cmd->add_option("--threshold", options_.threshold, "seam score that counts as tiling (see check)")
             ->capture_default_str()
-            ->check(CLI::Range(1.0, 1e6));
+            ->check(finiteRange(1.0, 1e6));
         cmd->add_option("--depth", depth_, "output sample type; keep = the input's")
             ->capture_default_str()
             ->check(CLI::IsMember({"keep", "uint8", "uint16", "float"}));
@@ -67,6 +67,9 @@ public:
         options_.load.silenceDecoderMessages = true;
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
+        if (const ExitCode code = checkOutputs({input_}, {{output_, "-o", {".png", ".tif", ".tiff", ".exr"}}});
+            code != ExitCode::Ok)
+            return code;
         auto report = tileFile(input_, output_, options_);
         if (!report) return fail(report.error());
         const TileReport& r = *report;
