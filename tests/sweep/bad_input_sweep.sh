@@ -57,6 +57,7 @@ head -c 33 good.png > header.png
 head -c 300 good.exr > header.exr
 head -c 16 good.tif > header.tif
 mkfifo fifo.png
+cp good.png seqfifo.0000.png; mkfifo seqfifo.0001.png
 ln -s missing-target.png dangling.png
 ln -s fifo.png fifolink.png
 # Float maps as PFM (bottom-up rows of little-endian floats): NaN, infinity, a short file, a huge header.
@@ -320,6 +321,7 @@ bad_manifest 3 "@:2" "$(printf 'format = 1\nname = "a b/c"\n[[displacement]]\nso
 bad_manifest 3 "@:8" "$(manifest maps_a.png 'tile_sise = 3.0')"
 bad_manifest 3 "@:8" "$(manifest maps_a.png 'channel = "auto"')"
 bad_manifest 3 "cut.png" "$(manifest cut.png '')"
+bad_manifest 3 "seqfifo.0001.png" "$(manifest seqfifo.png '')"
 bad_manifest 3 "nan.pfm" "$(manifest nan.pfm '')"
 bad_manifest 3 "rle.bmp" "$(manifest rle.bmp '')"
 bad_manifest 3 "huge.png" "$(manifest huge.png '')"
