@@ -38,7 +38,8 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     // A texture with mip levels is checked as stored; anything else gets the chain pack would make.
     std::vector<Image> chain;
     auto texture = readTextureFile(path, options.load.silenceDecoderMessages);
-    if (texture && texture->levels.size() > 1) {
+    if (!texture) return texture.error();  // unreadable or damaged at any level: no verdict on part of it
+    if (texture->levels.size() > 1) {
         const std::string layout = findAttribute(texture->attributes, "heightpack:layout");
         report.kind = layout.empty() ? "texture" : layout;
         if (layout == "neighbour4" && texture->levels[0].channels == 4) {

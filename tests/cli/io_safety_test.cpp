@@ -463,6 +463,16 @@ TEST(IoSafety, CheckOnAMipMappedExrHoldingNanIsBadInput) {
     EXPECT_EQ(run.code, 3) << run.out << run.err;
     expectOneLineError(run, dir.file("nan.exr"));
     EXPECT_NE(run.err.find("level 1 holds NaN at texel 3,5"), std::string::npos) << run.err;
+
+    // A mip-mapped EXR missing its last level is damaged, not judged on level 0 alone.
+    writeMipExr(dir.file("good.exr"), 64, [](int, int x, int y) { return smooth(x, y); });
+    auto bytes = readBytes(dir.file("good.exr"));
+    bytes.resize(bytes.size() - 8);
+    writeBytes(dir.file("cut.exr"), bytes);
+    const ProcessResult cut = hp({"check", dir.file("cut.exr")});
+    EXPECT_EQ(cut.code, 3) << cut.out << cut.err;
+    expectOneLineError(cut, dir.file("cut.exr"));
+    EXPECT_NE(cut.err.find("damaged"), std::string::npos) << cut.err;
 }
 
 // Item 13: the rough messages: permission denied, empty output path.

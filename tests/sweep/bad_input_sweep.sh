@@ -44,6 +44,7 @@ cut_half() { head -c $(($(stat -c %s "$1") / 2)) "$1" > "$2"; }
 cut_half good.png cut.png
 cut_half good.tif cut.tif
 cut_half good.exr cut.exr
+head -c $(($(stat -c %s packed.exr) - 20)) packed.exr > cutmip.exr   # a mip-mapped EXR missing its last level
 head -c 8 good.png > signature.png
 : > empty.png
 printf 'hello\n' > text.png
@@ -182,7 +183,7 @@ expect normal 4 node.exr good.png "${N[@]}" -o node.exr
 expect normal 4 /dev/full good.png "${N[@]}" -o /dev/full
 
 # ---- check ----
-for f in "${BAD_MAPS[@]}" "${HEIGHT_ONLY[@]}"; do expect check 3 "$f" "$f"; done
+for f in "${BAD_MAPS[@]}" "${HEIGHT_ONLY[@]}" cutmip.exr; do expect check 3 "$f" "$f"; done
 expect check 2 "" good.png --threshold nan
 expect check 2 "" good.png --threshold inf
 expect check 2 "" good.png --threshold 0.5
@@ -211,7 +212,7 @@ expect tile 4 node.exr good.png -o node.exr
 expect tile 4 outdir.exr good.png -o outdir.exr
 
 # ---- info ----
-for f in "${BAD_MAPS[@]}"; do expect info 3 "$f" "$f"; done
+for f in "${BAD_MAPS[@]}" cutmip.exr; do expect info 3 "$f" "$f"; done
 expect info 2 "" good.png --threads nan
 expect info 2 "" good.png --bogus
 expect info 2 "" good.png packed.exr
