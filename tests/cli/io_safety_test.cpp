@@ -494,5 +494,9 @@ TEST(IoSafety, MessagesSayWhatIsWrong) {
         expectOneLineError(run, dir.file("secret.png"));
         EXPECT_NE(run.err.find("permission denied"), std::string::npos) << run.err;
         EXPECT_EQ(run.err.find("export it as"), std::string::npos) << run.err;
+        const ProcessResult full = runProcess({"setpriv", "--reuid=65534", "--regid=65534", "--clear-groups",
+                                               HEIGHTPACK_EXE, "fresnel", "-o", "/dev/full"});
+        EXPECT_EQ(full.code, 4) << full.err;
+        expectOneLineError(full, "/dev/full");
     }
 }
