@@ -15,7 +15,7 @@ HP=$(realpath "${1:-build/heightpack}")
 SHARDS=("pack normal info check" "tile synth fresnel build")
 if [ -z "${SWEEP_SHARD:-}" ]; then
     out=$(mktemp -d "${TMPDIR:-/tmp}/heightpack-sweep-out.XXXXXX")
-    for i in "${!SHARDS[@]}"; do SWEEP_SHARD=$i "$0" "$HP" > "$out/$i" 2>&1 & done
+    for i in "${!SHARDS[@]}"; do SWEEP_SHARD=$i bash "$0" "$HP" > "$out/$i" 2>&1 & done
     wait
     grep -hv '^row ' "$out"/* | grep -v '^$'
     printf '\n%-8s %6s %7s\n' command cases passed
@@ -107,7 +107,7 @@ expect() {
     [[ "$MINE" == *" $cmd "* ]] || return 0
     local before after rc problems=""
     before=$(snapshot)
-    timeout 30 "$HP" "$cmd" "$@" > "$T/out" 2> "$T/err" < /dev/null
+    timeout "${SWEEP_TIMEOUT:-30}" "$HP" "$cmd" "$@" > "$T/out" 2> "$T/err" < /dev/null
     rc=$?
     after=$(snapshot)
     [ "$rc" -eq "$code" ] || problems+="exit $rc, want $code; "
