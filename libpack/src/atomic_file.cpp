@@ -147,7 +147,8 @@ Status TemporaryFile::commit() {
     // The bytes reach the disk before the name does, and the name before commit() returns: after a
     // power loss the output is the old file or the whole new one (README, "Outputs").
     const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0 || ::fsync(fd) != 0) {
+    // EINVAL / ENOTSUP: a file system without fsync (some FUSE mounts); nothing more can be promised there.
+    if (fd < 0 || (::fsync(fd) != 0 && errno != EINVAL && errno != ENOTSUP)) {
         const std::string why = std::strerror(errno);
         if (fd >= 0) ::close(fd);
         return cannotWrite(finalPath_, "cannot flush the finished file to disk: " + why, "check free disk space");

@@ -218,7 +218,9 @@ bool isRleBmp(const std::string& path) {
     unsigned char h[34] = {};
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
     if (!f || std::fread(h, 1, sizeof h, f.get()) != sizeof h || h[0] != 'B' || h[1] != 'M') return false;
-    auto le32 = [&](int at) { return uint32_t(h[at]) | uint32_t(h[at + 1]) << 8 | uint32_t(h[at + 2]) << 16 | uint32_t(h[at + 3]) << 24; };
+    auto le32 = [&](int at) {
+        return uint32_t(h[at]) | uint32_t(h[at + 1]) << 8 | uint32_t(h[at + 2]) << 16 | uint32_t(h[at + 3]) << 24;
+    };
     const uint32_t infoSize = le32(14), compression = le32(30);
     return infoSize >= 40 && (compression == 1 || compression == 2);
 }
