@@ -3,7 +3,9 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -335,4 +337,48 @@ TEST(Io, FastPngDecoderReadsTheExamplesAsOpenImageIODoes) {
         ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, reference.data()));
         EXPECT_EQ(fast->heights.pixels, reference) << name;
     }
+}
+
+TEST(Io, WritersNeverWriteNonFiniteTexelsOrOneFormatUnderAnothersName) {
+    ScratchDir dir;
+    Image nan = makeImage(8, 8, field);
+    nan.at(3, 2) = std::numeric_limits<float>::quiet_NaN();
+    FlatImageOptions flat;
+    const Status flatNan = writeFlatImage(dir.file("nan.exr"), nan, flat);
+    ASSERT_FALSE(flatNan.ok());
+    EXPECT_EQ(flatNan.error().kind, ErrorKind::Internal);
+
+    TiledExrContent content;
+    content.width = content.height = 8;
+    content.channelNames = {"Y"};
+    content.fillRows = [](int, int, int rows, float* dst) {
+        std::fill(dst, dst + rows * 8, std::numeric_limits<float>::infinity());
+    };
+    for (Compression c : {Compression::Zip, Compression::Piz}) {
+        ExrWriteOptions options;
+        options.compression = c;
+        const Status tiledInf = writeTiledExr(dir.file("inf.exr"), content, options);
+        ASSERT_FALSE(tiledInf.ok());
+        EXPECT_EQ(tiledInf.error().kind, ErrorKind::Internal);
+    }
+
+    // EXR bytes under a PNG's name, a JPEG (lossy) height map: refused, not written.
+    content.fillRows = [](int, int, int rows, float* dst) { std::fill(dst, dst + rows * 8, 0.5f); };
+    EXPECT_FALSE(writeTiledExr(dir.file("x.png"), content, {}).ok());
+    EXPECT_FALSE(writeFlatImage(dir.file("x.jpg"), makeImage(8, 8, field), flat).ok());
+    EXPECT_TRUE(dir.listing().empty());
+}
+
+TEST(Io, InputsThatAreNotRegularFilesAreRefusedBeforeTheyAreOpened) {
+    ScratchDir dir;
+    ASSERT_EQ(::mkfifo(dir.file("pipe.png").c_str(), 0644), 0);
+    EXPECT_NE(loadError(dir.file("pipe.png")).what.find("FIFO"), std::string::npos);
+    EXPECT_NE(loadError("/dev/zero").what.find("device"), std::string::npos);
+    EXPECT_FALSE(checkReadable(dir.path().string()).ok());
+    writeImage(dir.file("a.png"), makeImage(8, 8, field), OIIO::TypeDesc::UINT8);
+    EXPECT_TRUE(checkReadable(dir.file("a.png")).ok());
+    // sameFile sees through other spellings and links.
+    ASSERT_EQ(::link(dir.file("a.png").c_str(), dir.file("b.png").c_str()), 0);
+    EXPECT_TRUE(sameFile(dir.file("a.png"), (dir.path() / "." / "b.png").string()));
+    EXPECT_FALSE(sameFile(dir.file("a.png"), dir.file("missing.png")));
 }

@@ -20,8 +20,8 @@ public:
                         "largest seam score that passes: how far the tile edge stands out from every other cut, in "
                         "robust standard deviations")
             ->capture_default_str()
-            ->check(CLI::Range(1.0, 1e6));
-        cmd->add_option("--preview", options_.previewPath, "write a PNG of the map tiled 2x2 with failing seams marked");
+            ->check(finiteRange(1.0, 1e6));
+        previewOption_ = cmd->add_option("--preview", options_.previewPath, "write a PNG of the map tiled 2x2 with failing seams marked");
         cmd->add_option("--wrap", wrap_, "wrap of the mip chain made from a flat image, as pack would")
             ->capture_default_str()
             ->check(CLI::IsMember({"periodic", "clamp"}));
@@ -55,6 +55,12 @@ public:
         const std::vector<std::string> inputs = expandSequence(input_);
         bool all = true;
         const std::string preview = options_.previewPath;
+        if (previewOption_ && previewOption_->count() > 0) {
+            std::vector<OutputRule> outputs;
+            for (size_t f = 0; f < inputs.size(); ++f)
+                outputs.push_back({frameFileName(preview, int(f), int(inputs.size())), "--preview", {".png"}});
+            if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
+        }
         for (size_t f = 0; f < inputs.size(); ++f) {
             options_.previewPath = preview.empty() ? preview : frameFileName(preview, int(f), int(inputs.size()));
             auto report = checkFile(inputs[f], options_);
@@ -120,6 +126,7 @@ private:
 
     std::string input_, channel_, wrap_ = "periodic", filter_ = "kaiser";
     CheckOptions options_;
+    CLI::Option* previewOption_ = nullptr;
 };
 
 }  // namespace

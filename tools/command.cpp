@@ -2,11 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+
+#include "heightpack/io.hpp"
 
 namespace heightpack::cli {
 
@@ -46,6 +49,41 @@ ExitCode Command::fail(const Error& error) const {
 ExitCode Command::usage(const std::string& what) const {
     printError({ErrorKind::Internal, {}, what, "see 'heightpack " + name_ + " --help'"});
     return ExitCode::Usage;
+}
+
+ExitCode Command::checkOutputs(const std::vector<std::string>& inputs, const std::vector<OutputRule>& outputs) const {
+    namespace fs = std::filesystem;
+    const std::string help = "see 'heightpack " + name_ + " --help'";
+    auto refuse = [&](const std::string& path, const std::string& what, const std::string& hint) {
+        printError({ErrorKind::Internal, path, what, hint + "; " + help});
+        return ExitCode::Usage;
+    };
+    for (size_t i = 0; i < outputs.size(); ++i) {
+        const OutputRule& o = outputs[i];
+        if (o.path.empty()) return refuse(o.option + " ''", "the output path is empty", "give an output file name");
+        for (const std::string& input : inputs)
+            if (sameFile(input, o.path))
+                return refuse(o.path, "is the input" + (input == o.path ? std::string() : " " + input + " (the same file)") +
+                                          ": writing it would destroy the input",
+                              "give " + o.option + " another file name");
+        if (Status s = checkWritable(o.path); !s) return fail(s.error());
+        std::string ext = fs::path(o.path).extension().string();
+        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (std::find(o.extensions.begin(), o.extensions.end(), ext) == o.extensions.end()) {
+            std::string list;
+            for (const std::string& e : o.extensions) list += (list.empty() ? "" : ", ") + e;
+            return refuse(o.path,
+                          "'" + name_ + "' cannot write " + (ext.empty() ? "a file without an extension" : ext + " files") +
+                              " faithfully",
+                          o.option + " must end in " + list);
+        }
+        std::error_code ec;
+        for (size_t j = 0; j < i; ++j)
+            if (sameFile(outputs[j].path, o.path) ||
+                fs::weakly_canonical(outputs[j].path, ec) == fs::weakly_canonical(o.path, ec))
+                return refuse(o.path, "is also the " + outputs[j].option + " output", "give each output its own name");
+    }
+    return ExitCode::Ok;
 }
 
 void Command::printJson(const nlohmann::json& document) { std::cout << document.dump(2) << std::endl; }
@@ -125,24 +163,54 @@ std::optional<double> parseLength(const std::string& text) {
     return std::nullopt;
 }
 
-CLI::Validator lengthValidator() {
+namespace {
+
+std::string numberText(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+bool lengthUpTo(const std::string& text, double maxMetres) {
+    const auto v = parseLength(text);
+    return v && *v <= maxMetres;
+}
+
+}  // namespace
+
+CLI::Validator lengthValidator(double maxMetres) {
     return CLI::Validator(
-        [](std::string& text) {
-            return parseLength(text) ? std::string() : "'" + text + "' is not a positive length like 8m, 15cm or 2km";
+        [maxMetres](std::string& text) {
+            return lengthUpTo(text, maxMetres) ? std::string()
+                                               : "'" + text + "' is not a positive length up to " + numberText(maxMetres) +
+                                                     " m, like 8m, 15cm or 2km";
         },
         "LENGTH");
 }
 
-CLI::Validator lengthPairValidator() {
+CLI::Validator lengthPairValidator(double maxMetres) {
     return CLI::Validator(
-        [](std::string& text) {
+        [maxMetres](std::string& text) {
             const auto comma = text.find(',');
-            const bool ok = comma == std::string::npos
-                                ? parseLength(text).has_value()
-                                : parseLength(text.substr(0, comma)) && parseLength(text.substr(comma + 1));
-            return ok ? std::string() : "'" + text + "' is not a positive length like 8m, or a pair like 8m,4m";
+            const bool ok = comma == std::string::npos ? lengthUpTo(text, maxMetres)
+                                                       : lengthUpTo(text.substr(0, comma), maxMetres) &&
+                                                             lengthUpTo(text.substr(comma + 1), maxMetres);
+            return ok ? std::string()
+                      : "'" + text + "' is not a positive length up to " + numberText(maxMetres) +
+                            " m like 8m, or a pair like 8m,4m";
         },
         "LENGTH[,LENGTH]");
+}
+
+CLI::Validator finiteRange(double lo, double hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            const bool ok = !text.empty() && end != text.c_str() && *end == '\0' && std::isfinite(v) && v >= lo && v <= hi;
+            return ok ? std::string() : "'" + text + "' is not a number from " + numberText(lo) + " to " + numberText(hi);
+        },
+        "NUMBER in [" + numberText(lo) + ", " + numberText(hi) + "]");
 }
 
 std::optional<std::array<double, 3>> parseColour(const std::string& text) {

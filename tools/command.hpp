@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "heightpack/result.hpp"
 #include "heightpack/tileable.hpp"
@@ -51,6 +52,18 @@ protected:
     ExitCode fail(const Error& error) const;
     // Prints a usage error about this command ("... (see 'heightpack NAME --help')") and returns 2.
     ExitCode usage(const std::string& what) const;
+    // An output a command is about to write, and what it may be called.
+    struct OutputRule {
+        std::string path;
+        std::string option;                   // "-o", "--preview": named in messages
+        std::vector<std::string> extensions;  // lower case, with the dot: {".exr", ".png"}
+    };
+    // Judges every output before any input is read or anything is written: the path is not empty
+    // (exit 2); nothing already there is a folder, link, device or read-only (exit 4, from
+    // checkWritable); its extension is one the command writes faithfully (exit 2, naming them); it is
+    // not the same file as any input (device and inode: links and other spellings count) nor as another
+    // output (exit 2). Prints the error and returns its code, or Ok when every output passes.
+    ExitCode checkOutputs(const std::vector<std::string>& inputs, const std::vector<OutputRule>& outputs) const;
     // Prints a JSON document on stdout, one object, newline-terminated.
     static void printJson(const nlohmann::json& document);
     // Whether a human-readable summary should go to stdout.
@@ -101,9 +114,12 @@ std::string humanBytes(unsigned long long bytes);
 // Validators for option values; a bad value is a usage error (exit 2) naming the option.
 // A positive length with an optional unit: "8m", "8" (metres), "15cm", "150mm", "2km".
 std::optional<double> parseLength(const std::string& text);
-CLI::Validator lengthValidator();
-// One or two positive lengths: "8m" or "8m,4m".
-CLI::Validator lengthPairValidator();
+// A length as parseLength reads it, at most maxMetres.
+CLI::Validator lengthValidator(double maxMetres);
+// One or two positive lengths up to maxMetres: "8m" or "8m,4m".
+CLI::Validator lengthPairValidator(double maxMetres);
+// A finite number in [lo, hi]; unlike CLI::Range it refuses NaN and infinities.
+CLI::Validator finiteRange(double lo, double hi);
 // A linear colour "r,g,b", each in [0,1].
 std::optional<std::array<double, 3>> parseColour(const std::string& text);
 CLI::Validator colourValidator();

@@ -17,7 +17,7 @@ public:
         cmd->add_option("-o,--output", output_, "ramp to write: .exr (float) or .png (8-bit, sRGB colours)")->required();
         cmd->add_option("--ior", options_.ior, "index of refraction of the water (air is 1)")
             ->capture_default_str()
-            ->check(CLI::Range(1.0, 10.0));
+            ->check(finiteRange(1.0, 10.0));
         cmd->add_option("--model", model_, "exact: unpolarised Fresnel equations; schlick: Schlick's approximation")
             ->capture_default_str()
             ->check(CLI::IsMember({"exact", "schlick"}));
@@ -44,6 +44,7 @@ public:
     }
 
     ExitCode run() override {
+        if (const ExitCode code = checkOutputs({}, {{output_, "-o", {".exr", ".png"}}}); code != ExitCode::Ok) return code;
         const std::string format = outputFormat(format_, output_);
         if (format.empty()) return usage("the output must end in .exr or .png, matching --format if given");
         options_.model = model_ == "schlick" ? FresnelModel::Schlick : FresnelModel::Exact;

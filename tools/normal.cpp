@@ -22,11 +22,11 @@ public:
         cmd->add_option("--tile-size", tileSize_, "the tile's width in metres, or width,height (square texels if "
                                                   "only the width is given)")
             ->required()
-            ->check(lengthPairValidator());
+            ->check(lengthPairValidator(1e5));
         cmd->add_option("--height", height_, "how far a stored 1.0 stands above a stored 0.0, in metres (the "
                                              "viewer's displacement amplitude)")
             ->required()
-            ->check(lengthValidator());
+            ->check(lengthValidator(1e3));
         cmd->add_option("--kernel", kernel_, "slope kernel; each measures a plane's slope exactly")
             ->capture_default_str()
             ->check(CLI::IsMember({"central", "sobel3", "scharr"}));
@@ -65,6 +65,7 @@ public:
     }
 
     ExitCode run() override {
+        if (const ExitCode code = checkOutputs({}, {{output_, "-o", {".exr", ".png"}}}); code != ExitCode::Ok) return code;
         const std::string format = outputFormat(format_, output_);
         if (format.empty()) return usage("the output must end in .exr or .png, matching --format if given");
         NormalJobOptions o;
@@ -91,6 +92,10 @@ public:
 
         // A sequence gets a normal map per frame, numbered like it.
         const std::vector<std::string> inputs = expandSequence(input_);
+        std::vector<OutputRule> outputs;
+        for (size_t f = 0; f < inputs.size(); ++f)
+            outputs.push_back({frameFileName(output_, int(f), int(inputs.size())), "-o", {".exr", ".png"}});
+        if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         for (size_t f = 0; f < inputs.size(); ++f) {
             const ExitCode code = normalOne(inputs[f], frameFileName(output_, int(f), int(inputs.size())), o, format);
             if (code != ExitCode::Ok) return code;

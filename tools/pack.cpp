@@ -22,8 +22,10 @@ public:
         cmd->add_option("-o,--output", output_, "packed EXR to write (replaced atomically)")->required();
         cmd->add_option("--channel", channel_, "which channel of a colour image holds the height")
             ->check(CLI::IsMember({"r", "g", "b", "a", "luma"}));
-        cmd->add_option("--scale", options_.scale, "stored height = offset + scale * painted value")->capture_default_str();
-        cmd->add_option("--offset", options_.offset, "see --scale")->capture_default_str();
+        cmd->add_option("--scale", options_.scale, "stored height = offset + scale * painted value")
+            ->capture_default_str()
+            ->check(finiteRange(-1e6, 1e6));
+        cmd->add_option("--offset", options_.offset, "see --scale")->capture_default_str()->check(finiteRange(-1e6, 1e6));
         cmd->add_option("--wrap", wrap_, "how filters and neighbours see past the edge")->capture_default_str()
             ->check(CLI::IsMember({"periodic", "clamp"}));
         cmd->add_option("--filter", filter_, "mip filter")->capture_default_str()
@@ -62,6 +64,12 @@ public:
         const std::vector<std::string> inputs = expandSequence(input_);
         const int frames = static_cast<int>(inputs.size());
         const std::string plain = options_.plainOutput;
+        std::vector<OutputRule> outputs;
+        for (int f = 0; f < frames; ++f) {
+            outputs.push_back({frameFileName(output_, f, frames), "-o", {".exr"}});
+            if (!plain.empty()) outputs.push_back({frameFileName(plain, f, frames), "--emit-plain", {".exr"}});
+        }
+        if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         nlohmann::json sequence = nlohmann::json::array();
         for (int f = 0; f < frames; ++f) {
             options_.plainOutput = plain.empty() ? plain : frameFileName(plain, f, frames);

@@ -29,10 +29,14 @@ std::optional<double> parseWithUnit(const std::string& text, const std::vector<s
 const std::vector<std::pair<std::string, double>> kSpeedUnits = {{"m/s", 1.0}, {"kn", 0.514444}, {"km/h", 1 / 3.6}};
 const std::vector<std::pair<std::string, double>> kTimeUnits = {{"s", 1.0}, {"min", 60.0}};
 
-CLI::Validator unitValidator(const std::vector<std::pair<std::string, double>>& units, const char* example) {
+CLI::Validator unitValidator(const std::vector<std::pair<std::string, double>>& units, double max, const char* example) {
     return CLI::Validator(
-        [&units, example](std::string& text) {
-            return parseWithUnit(text, units) ? std::string() : "'" + text + "' is not a positive value like " + example;
+        [&units, max, example](std::string& text) {
+            const auto v = parseWithUnit(text, units);
+            char most[32];
+            std::snprintf(most, sizeof most, "%g", max);
+            return v && *v <= max ? std::string()
+                                  : "'" + text + "' is not a positive value up to " + most + " (SI units) like " + example;
         },
         "VALUE");
 }
@@ -46,18 +50,19 @@ public:
         cmd->add_option("--spectrum", spectrum_, "phillips or jonswap (fetch-limited)")
             ->capture_default_str()
             ->check(CLI::IsMember({"phillips", "jonswap"}));
-        cmd->add_option("--wind", wind_, "wind speed at 10 m: 12m/s, 20kn, 40km/h")->required()->check(unitValidator(kSpeedUnits, "12m/s"));
+        cmd->add_option("--wind", wind_, "wind speed at 10 m: 12m/s, 20kn, 40km/h")->required()->check(unitValidator(kSpeedUnits, 100.0, "12m/s"));
         cmd->add_option("--direction", options_.spectrum.windDirection, "wind direction in degrees, from +x toward +y")
-            ->capture_default_str();
-        cmd->add_option("--fetch", fetch_, "JONSWAP fetch: 100km, 5000m")->check(lengthValidator());
-        cmd->add_option("--gamma", options_.spectrum.gamma, "JONSWAP peak enhancement")->capture_default_str()->check(CLI::Range(1.0, 10.0));
-        cmd->add_option("--tile-size", tileSize_, "metres across the tile: 256m")->required()->check(lengthValidator());
+            ->capture_default_str()
+            ->check(finiteRange(-360.0, 360.0));
+        cmd->add_option("--fetch", fetch_, "JONSWAP fetch: 100km, 5000m")->check(lengthValidator(1e7));
+        cmd->add_option("--gamma", options_.spectrum.gamma, "JONSWAP peak enhancement")->capture_default_str()->check(finiteRange(1.0, 10.0));
+        cmd->add_option("--tile-size", tileSize_, "metres across the tile: 256m")->required()->check(lengthValidator(1e5));
         cmd->add_option("--size", options_.spectrum.size, "texels across (a power of two)")->capture_default_str();
         cmd->add_option("--seed", options_.spectrum.seed, "random seed: the same seed gives the same bytes")->capture_default_str();
         cmd->add_option("--frames", options_.frames, "write this many frames of a loop (needs --loop)")->capture_default_str();
         cmd->add_flag("--displacement", options_.displacement,
                       "also write Tessendorf's horizontal displacement (choppiness) as channels Dx, Dy (.exr)");
-        cmd->add_option("--loop", loop_, "loop period: 8s; the sea at t + period is the sea at t")->check(unitValidator(kTimeUnits, "8s"));
+        cmd->add_option("--loop", loop_, "loop period: 8s; the sea at t + period is the sea at t")->check(unitValidator(kTimeUnits, 1e6, "8s"));
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
@@ -73,8 +78,12 @@ public:
         if (!isPowerOfTwo(s.size) || s.size < 4 || s.size > 8192) return usage("--size must be a power of two from 4 to 8192");
         if (options_.frames < 1 || options_.frames > 10000) return usage("--frames must be 1 to 10000");
         if (options_.frames > 1 && loop_.empty()) return usage("--frames needs --loop: the period the frames cover");
+        std::vector<OutputRule> outputs;
+        for (int f = 0; f < options_.frames; ++f)
+            outputs.push_back({frameFileName(output_, f, options_.frames), "-o", {".exr", ".png", ".tif", ".tiff"}});
+        if (const ExitCode code = checkOutputs({}, outputs); code != ExitCode::Ok) return code;
         std::string ext = std::filesystem::path(output_).extension().string();
-        if (ext != ".exr" && ext != ".png" && ext != ".tif" && ext != ".tiff") return usage("the output must end in .exr, .png or .tif");
+        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         if (options_.displacement && ext != ".exr") return usage("--displacement needs an .exr output (channels Y, Dx, Dy)");
         s.model = *parseSpectrumModel(spectrum_);
         s.windSpeed = *parseWithUnit(wind_, kSpeedUnits);

@@ -41,7 +41,7 @@ public:
         cmd->add_flag("--force", options_.force, "apply the method even when the map already tiles");
         cmd->add_option("--threshold", options_.threshold, "seam score that counts as tiling (see check)")
             ->capture_default_str()
-            ->check(CLI::Range(1.0, 1e6));
+            ->check(finiteRange(1.0, 1e6));
         cmd->add_option("--filter", filter_, "mip filter of the chain the map is judged on, as pack would make it")
             ->capture_default_str()
             ->check(CLI::IsMember({"box", "triangle", "lanczos3", "kaiser"}));
@@ -77,6 +77,9 @@ public:
         options_.mip.threads = common_.threads;
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
+        if (const ExitCode code = checkOutputs({input_}, {{output_, "-o", {".png", ".tif", ".tiff", ".exr"}}});
+            code != ExitCode::Ok)
+            return code;
         auto report = tileFile(input_, output_, options_);
         if (!report) return fail(report.error());
         const TileReport& r = *report;

@@ -1,5 +1,6 @@
 #include "atomic_file.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -36,6 +37,7 @@ void removePendingTemporaryFiles() {
 }
 
 Status checkWritable(const std::string& path) {
+    if (path.empty()) return cannotWrite("''", "the output path is empty", "give an output file name");
     std::error_code ec;
     const fs::path target(path);
     if (target.filename().empty()) return cannotWrite(path, "names a folder, not a file", "give an output file name");
@@ -47,8 +49,19 @@ Status checkWritable(const std::string& path) {
     if (::access(folder.c_str(), W_OK) != 0)
         return cannotWrite(path, "folder " + folder.string() + " is not writable", "choose another output folder");
     struct stat st {};
-    if (::stat(path.c_str(), &st) == 0) {
+    if (::lstat(path.c_str(), &st) == 0) {
         if (S_ISDIR(st.st_mode)) return cannotWrite(path, "is a folder", "give an output file name");
+        // The rename would replace the link itself with a file, leaving what it points to as it was:
+        // neither is what the link's owner meant, so a link is refused rather than guessed about.
+        if (S_ISLNK(st.st_mode)) {
+            std::string target = fs::read_symlink(path, ec).string();
+            return cannotWrite(path, "is a symbolic link" + (target.empty() ? std::string() : " to " + target),
+                               "write to the file it points to, or remove the link first");
+        }
+        // A device, FIFO or socket would be replaced by a regular file (as root, even /dev/full).
+        if (!S_ISREG(st.st_mode))
+            return cannotWrite(path, "exists and is not a regular file (a device, FIFO or socket)",
+                               "choose an output file name");
         // Checked by mode bits too: root passes access(W_OK) on any file, but a read-only output was
         // made read-only on purpose.
         if ((st.st_mode & 0222) == 0 || ::access(path.c_str(), W_OK) != 0)
@@ -57,14 +70,16 @@ Status checkWritable(const std::string& path) {
     return Done{};
 }
 
-int removeStaleTemporaryFiles(const std::string& folder) {
+int removeStaleTemporaryFiles(const std::string& folder, const std::string& stem) {
     std::error_code ec;
     int removed = 0;
-    for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
+    const std::string prefix = stem.empty() ? std::string() : "." + stem + ".hptmp-";
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder.empty() ? "." : folder, ec)) {
         // .STEM.hptmp-PID-N.EXT, as TemporaryFile names them.
         const std::string name = entry.path().filename().string();
-        const size_t mark = name.find(".hptmp-");
+        const size_t mark = prefix.empty() ? name.find(".hptmp-") : (name.rfind(prefix, 0) == 0 ? stem.size() + 1 : std::string::npos);
         if (name.empty() || name[0] != '.' || mark == std::string::npos) continue;
+        if (!entry.is_regular_file(ec) || entry.is_symlink(ec)) continue;
         const long pid = std::strtol(name.c_str() + mark + 7, nullptr, 10);
         if (pid <= 0 || pid == ::getpid()) continue;
         if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // its writer still runs
@@ -108,6 +123,8 @@ TemporaryFile::TemporaryFile(const std::string& finalPath) : finalPath_(finalPat
     name.append(target.stem().string()).append(".hptmp-").append(std::to_string(::getpid()));
     name.append("-").append(std::to_string(counter++)).append(target.extension().string());
     path_ = (target.parent_path() / name).string();
+    // What a killed earlier run left of this same output goes first: one mechanism for every writer.
+    removeStaleTemporaryFiles(target.parent_path().string(), target.stem().string());
     std::lock_guard<std::mutex> lock(pendingMutex);
     for (int i = 0; i < kMaxPending && path_.size() < kMaxPath; ++i) {
         if (!pendingUsed[i].load()) {
@@ -127,10 +144,26 @@ TemporaryFile::~TemporaryFile() {
 Status TemporaryFile::commit() {
     struct stat st {};
     if (::stat(finalPath_.c_str(), &st) == 0) ::chmod(path_.c_str(), st.st_mode & 07777);
+    // The bytes reach the disk before the name does, and the name before commit() returns: after a
+    // power loss the output is the old file or the whole new one (README, "Outputs").
+    const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+    // EINVAL / ENOTSUP: a file system without fsync (some FUSE mounts); nothing more can be promised there.
+    if (fd < 0 || (::fsync(fd) != 0 && errno != EINVAL && errno != ENOTSUP)) {
+        const std::string why = std::strerror(errno);
+        if (fd >= 0) ::close(fd);
+        return cannotWrite(finalPath_, "cannot flush the finished file to disk: " + why, "check free disk space");
+    }
+    ::close(fd);
     if (::rename(path_.c_str(), finalPath_.c_str()) != 0)
         return cannotWrite(finalPath_, std::string("cannot move the finished file into place: ") + std::strerror(errno),
                            "check the folder's permissions");
     committed_ = true;
+    const std::string folder = fs::path(finalPath_).parent_path().string();
+    const int dir = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir >= 0) {
+        ::fsync(dir);  // some file systems refuse a folder's fsync; the rename has happened either way
+        ::close(dir);
+    }
     return Done{};
 }
 

@@ -43,6 +43,7 @@ std::string hashText(const std::string& text) { return hex128(XXH3_128bits(text.
 
 // XXH3-128 of a file's bytes, streamed.
 Result<std::string> hashFile(const std::string& path) {
+    if (Status s = checkReadable(path); !s) return s.error();  // a FIFO or device would hang the read
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
     if (!f) return badInput(path, "cannot be read", "check that it exists and is readable");
     std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state(XXH3_createState(), XXH3_freeState);

@@ -50,14 +50,20 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     SeamOptions seamOptions;
     seamOptions.threads = options.mip.threads;
     auto texture = readTextureFile(path, options.load.silenceDecoderMessages);
-    if (texture && texture->levels.size() > 1) {
+    if (!texture) return texture.error();  // unreadable or damaged at any level: no verdict on part of it
+    if (texture->levels.size() > 1) {
         const std::string layout = findAttribute(texture->attributes, "heightpack:layout");
         report.kind = layout.empty() ? "texture" : layout;
         if (layout == "neighbour4" && texture->levels[0].channels == 4) {
             const Wrap wrap = findAttribute(texture->attributes, "heightpack:wrap") == "clamp" ? Wrap::Clamp : Wrap::Periodic;
             report.packing = checkPacking(texture->levels, wrap);
         }
-        for (const Image& level : texture->levels) chain.push_back(channelZero(level));
+        for (const Image& level : texture->levels) {
+            chain.push_back(channelZero(level));
+            // A NaN is bad input, not a seam: the verdict would be meaningless.
+            if (Status s = checkFinite(chain.back(), path, 0, "level " + std::to_string(chain.size() - 1)); !s)
+                return s.error();
+        }
     } else {
         auto loaded = detail::loadInput(path, options.load, options.mip.threads);
         if (!loaded) return loaded.error();

@@ -14,7 +14,9 @@
 #include <libdeflate.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <numeric>
 
@@ -33,6 +35,17 @@ constexpr int kDeflateLevel = 4;
 
 
 int levelSize(int size, int level) { return std::max(1, size >> level); }
+
+// The last guard before bytes reach a file: an output never holds NaN or infinity. Whatever let one
+// through (an option or input check missing) is a bug, reported as one.
+Status requireFinite(const std::string& path, const float* values, size_t count, int level) {
+    for (size_t i = 0; i < count; ++i)
+        if (!std::isfinite(values[i]))
+            return Error{ErrorKind::Internal, path,
+                         "internal error: level " + std::to_string(level) + " holds a non-finite value; nothing was written",
+                         "please report this with the command line"};
+    return Done{};
+}
 
 // ---- The OpenEXRCore path ----
 
@@ -144,6 +157,7 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
             parallelFor(rows, options.threads, [&](int a, int b) {
                 content.fillRows(level, y0 + a, b - a, band.data() + size_t(a) * w * channels);
             });
+            if (Status s = requireFinite(finalPath, band.data(), size_t(w) * rows * channels, level); !s) return s;
             parallelFor(tilesX, options.threads, [&](int a, int b) {
                 std::vector<unsigned char> raw, scratch;
                 libdeflate_compressor* compressor = zip ? libdeflate_alloc_compressor(kDeflateLevel) : nullptr;
@@ -207,6 +221,7 @@ Status writeWithImf(const std::string& finalPath, const std::string& path, const
                 const int y0 = ty * options.tileSize;
                 const int rows = std::min(options.tileSize, h - y0);
                 content.fillRows(level, y0, rows, band.data());
+                if (Status s = requireFinite(finalPath, band.data(), size_t(w) * rows * channels, level); !s) return s;
                 Imf::FrameBuffer frame;
                 for (int c = 0; c < channels; ++c) {
                     frame.insert(content.channelNames[c],
@@ -231,6 +246,10 @@ Status writeWithImf(const std::string& finalPath, const std::string& path, const
 Status writeTiledExr(const std::string& path, const TiledExrContent& content, const ExrWriteOptions& options) {
     assert(content.width > 0 && content.height > 0 && !content.channelNames.empty() && content.fillRows);
     if (Status writable = checkWritable(path); !writable) return writable;
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".exr")  // never EXR bytes under another format's name
+        return cannotWrite(path, "is not an .exr name, but the file would be an EXR", "name the output .exr");
     detail::TemporaryFile temp(path);
     const bool core = options.compression == Compression::None || options.compression == Compression::Zip ||
                       options.compression == Compression::Zips;

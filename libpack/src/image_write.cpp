@@ -8,6 +8,7 @@
 
 #include "atomic_file.hpp"
 #include "heightpack/io.hpp"
+#include "strings.hpp"
 
 namespace heightpack {
 
@@ -24,6 +25,16 @@ double encodeSrgb(double linear) {
 Status writeFlatImage(const std::string& path, const Image& image, const FlatImageOptions& options) {
     assert(image.channels >= 1 && image.channels <= 4 && !image.empty());
     if (Status writable = checkWritable(path); !writable) return writable;
+    // The extension decides the format; only those that hold what is given faithfully are written.
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".png" && ext != ".tif" && ext != ".tiff" && ext != ".exr")
+        return cannotWrite(path, "names no format heightpack writes", "use .png, .tif or .exr");
+    // The last guard before bytes reach a file: an output never holds NaN or infinity.
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        if (!std::isfinite(image.pixels[i]))
+            return Error{ErrorKind::Internal, path, "internal error: the image holds a non-finite value; nothing was written",
+                         "please report this with the command line"};
     detail::TemporaryFile temp(path);
 
     const OIIO::TypeDesc type = options.bits == 8    ? OIIO::TypeDesc::UINT8
@@ -43,8 +54,6 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
     spec.attribute("DateTime", "");
     if (options.srgbChannels > 0 && options.bits != 32) spec.attribute("oiio:ColorSpace", "sRGB");
     // PNG keeps text chunks only: numbers go in as text there, so nothing recorded is lost.
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     const bool textOnly = ext == ".png";
     for (const ExrAttribute& a : options.attributes) {
         if (const auto* s = std::get_if<std::string>(&a.value)) {
@@ -68,10 +77,15 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
         }
     }
 
+    // Messages name the output, never the temporary file the user did not ask for.
+    auto named = [&](std::string text) {
+        for (size_t at; (at = text.find(temp.path())) != std::string::npos;) text.replace(at, temp.path().size(), path);
+        return detail::firstLine(text);
+    };
     auto out = OIIO::ImageOutput::create(temp.path());
-    if (!out) return cannotWrite(path, "no writer for this file type: " + OIIO::geterror(), "use .png, .tif or .exr");
+    if (!out) return cannotWrite(path, "no writer for this file type: " + named(OIIO::geterror()), "use .png, .tif or .exr");
     if (!out->open(temp.path(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close())
-        return cannotWrite(path, "writing failed: " + out->geterror(), "check free disk space and permissions");
+        return cannotWrite(path, "writing failed: " + named(out->geterror()), "check free disk space and permissions");
     out.reset();
     return temp.commit();
 }

@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 
+#include "image_input.hpp"
 #include "stderr_silencer.hpp"
 #include "strings.hpp"
 
@@ -16,12 +17,9 @@ namespace {
 
 // Opens path and fills header from its first level; the caller walks the levels.
 Result<std::unique_ptr<OIIO::ImageInput>> openTexture(const std::string& path, TextureHeader& header) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) return badInput(path, "no such file", "check the path");
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) return badInput(path, "cannot be read as an image: " + detail::firstLine(OIIO::geterror()), "check the file");
+    auto opened = detail::openImage(path, detail::SizeLimits{});
+    if (!opened) return opened.error();
+    std::unique_ptr<OIIO::ImageInput> in = std::move(*opened);
     header.path = path;
     header.format = in->format_name();
     const OIIO::ImageSpec& top = in->spec();
@@ -43,10 +41,19 @@ Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoder
     if (!in) return in.error();
     for (int mip = 0; (*in)->seek_subimage(0, mip); ++mip) {
         const OIIO::ImageSpec spec = (*in)->spec();
-        Image level(spec.width, spec.height, spec.nchannels);
-        if (!(*in)->read_image(0, mip, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, level.pixels.data()))
-            return badInput(path, "level " + std::to_string(mip) + " is damaged: " + detail::firstLine((*in)->geterror()),
-                            "write the file again");
+        // Every level's header is judged before its pixels are allocated.
+        if (Status s = detail::judgeSize(path, spec, detail::SizeLimits{}); !s) return s.error();
+        Image level;
+        try {
+            level = Image(spec.width, spec.height, spec.nchannels);
+        } catch (const std::bad_alloc&) {
+            return badInput(path, "level " + std::to_string(mip) + " is too large for this machine's memory",
+                            "split or downsize the map");
+        }
+        if (Status s = detail::readPixels(**in, path, 0, mip, 0, spec.nchannels, level.pixels.data(),
+                                          "level " + std::to_string(mip) + " is damaged or truncated");
+            !s)
+            return s.error();
         file.levels.push_back(std::move(level));
     }
     return file;

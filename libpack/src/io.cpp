@@ -1,13 +1,19 @@
 #include "heightpack/io.hpp"
 
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <xxhash.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
+#include "image_input.hpp"
 #include "png_fast.hpp"
 #include "stderr_silencer.hpp"
 #include "strings.hpp"
@@ -50,31 +56,14 @@ std::optional<ChannelSelect> parseChannelSelect(std::string_view name) {
 }
 
 Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& options) {
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status)) return badInput(path, "no such file", "check the path");
-    if (fs::is_directory(status)) return badInput(path, "is a folder, not an image", "name an image file");
-    if (fs::file_size(path, ec) == 0) return badInput(path, "file is empty", "export the height map again");
-
-    // Keep colour and alpha as stored: an RGBA height map's channels are data, not premultiplied colour.
     detail::StderrSilencer quiet(options.silenceDecoderMessages);
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) {
-        return badInput(path, "cannot be read as an image: " + detail::firstLine(OIIO::geterror()),
-                        "export it as PNG, TIFF or EXR");
-    }
+    detail::SizeLimits limits;
+    limits.maxSide = options.maxSide;
+    limits.maxTexels = options.maxTexels;
+    auto opened = detail::openImage(path, limits);
+    if (!opened) return opened.error();
+    std::unique_ptr<OIIO::ImageInput>& in = *opened;
     const OIIO::ImageSpec spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0)
-        return badInput(path, "has no 2D pixel data", "export it as a flat 2D image");
-    if (spec.width > options.maxSide || spec.height > options.maxSide ||
-        int64_t(spec.width) * spec.height > options.maxTexels) {
-        return badInput(path, "is " + sizeText(spec.width, spec.height) + ", larger than heightpack accepts (" +
-                                  std::to_string(options.maxSide) + " texels a side, " +
-                                  std::to_string(options.maxTexels) + " texels in all)",
-                        "split or downsize the map");
-    }
 
     LoadedHeights out;
     SourceInfo& src = out.source;
@@ -140,10 +129,8 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
         return badInput(path, "is " + sizeText(spec.width, spec.height) + ", too large for this machine's memory",
                         "split or downsize the map");
     }
-    if (!in->read_image(0, 0, chBegin, chBegin + chCount, OIIO::TypeDesc::FLOAT, pixels.data())) {
-        return badInput(path, "is damaged or truncated: " + detail::firstLine(in->geterror()),
-                        "export the height map again");
-    }
+    if (Status read = detail::readPixels(*in, path, 0, 0, chBegin, chBegin + chCount, pixels.data()); !read)
+        return read.error();
     in->close();
 
     Image& heights = out.heights;
@@ -155,17 +142,120 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     } else {
         heights.pixels = std::move(pixels);
     }
-    for (size_t i = 0; i < heights.pixels.size(); ++i) {
-        if (!std::isfinite(heights.pixels[i])) {
-            const size_t x = i % spec.width, y = i / spec.width;
-            return badInput(path,
-                            std::string("holds ") + (std::isnan(heights.pixels[i]) ? "NaN" : "an infinite value") +
-                                " at texel " + std::to_string(x) + "," + std::to_string(y),
-                            "fix the map in the tool that made it");
-        }
-    }
+    if (Status finite = checkFinite(heights, path); !finite) return finite.error();
     return out;
 }
+
+Status checkFinite(const Image& image, const std::string& path, int channel, const std::string& where) {
+    for (size_t t = 0; t < image.texelCount(); ++t) {
+        const float v = image.pixels[t * image.channels + channel];
+        if (std::isfinite(v)) continue;
+        const size_t x = t % image.width, y = t / image.width;
+        return badInput(path,
+                        (where.empty() ? "" : where + " ") + "holds " + (std::isnan(v) ? "NaN" : "an infinite value") +
+                            " at texel " + std::to_string(x) + "," + std::to_string(y),
+                        "fix the map in the tool that made it");
+    }
+    return Done{};
+}
+
+Status checkReadable(const std::string& path) {
+    if (path.empty()) return badInput("''", "the input path is empty", "name an image file");
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) {
+        if (errno == EACCES)
+            return badInput(path, "permission denied", "make its folder readable (chmod) or run as a user who may read it");
+        if (errno == ENOTDIR) return badInput(path, "no such file (a part of the path is not a folder)", "check the path");
+        return badInput(path, "no such file", "check the path");
+    }
+    if (S_ISDIR(st.st_mode)) return badInput(path, "is a folder, not an image", "name an image file");
+    if (!S_ISREG(st.st_mode)) {
+        const char* what = S_ISFIFO(st.st_mode)                          ? "is a FIFO (named pipe)"
+                           : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "is a device"
+                           : S_ISSOCK(st.st_mode)                       ? "is a socket"
+                                                                        : "is not a regular file";
+        return badInput(path, std::string(what) + ", not a regular file",
+                        "save the image to a file first; heightpack reads only regular files");
+    }
+    // Opened without blocking (a regular file never blocks) to learn whether this user may read it.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        if (errno == EACCES || errno == EPERM)
+            return badInput(path, "permission denied", "make it readable (chmod u+r) or run as a user who may read it");
+        return badInput(path, std::string("cannot be opened: ") + std::strerror(errno), "check the file");
+    }
+    ::close(fd);
+    if (st.st_size == 0) return badInput(path, "file is empty", "export the height map again");
+    return Done{};
+}
+
+bool sameFile(const std::string& a, const std::string& b) {
+    struct stat sa {}, sb {};
+    if (a.empty() || b.empty() || ::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
+    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+namespace detail {
+
+Status judgeSize(const std::string& path, const OIIO::ImageSpec& spec, const SizeLimits& limits) {
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0)
+        return badInput(path, "has no 2D pixel data", "export it as a flat 2D image");
+    const int64_t texels = int64_t(spec.width) * spec.height;
+    if (spec.width > limits.maxSide || spec.height > limits.maxSide || texels > limits.maxTexels ||
+        texels * spec.nchannels > limits.maxSamples) {
+        return badInput(path, "is " + sizeText(spec.width, spec.height) + " with " + std::to_string(spec.nchannels) +
+                                  " channels, larger than heightpack accepts (" + std::to_string(limits.maxSide) +
+                                  " texels a side, " + std::to_string(limits.maxTexels) + " texels in all)",
+                        "split or downsize the map");
+    }
+    return Done{};
+}
+
+namespace {
+
+// BMP's RLE8 and RLE4 (compression 1 and 2 in the info header): OpenImageIO 2.4 decodes them wrongly.
+bool isRleBmp(const std::string& path) {
+    unsigned char h[34] = {};
+    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!f || std::fread(h, 1, sizeof h, f.get()) != sizeof h || h[0] != 'B' || h[1] != 'M') return false;
+    auto le32 = [&](int at) {
+        return uint32_t(h[at]) | uint32_t(h[at + 1]) << 8 | uint32_t(h[at + 2]) << 16 | uint32_t(h[at + 3]) << 24;
+    };
+    const uint32_t infoSize = le32(14), compression = le32(30);
+    return infoSize >= 40 && (compression == 1 || compression == 2);
+}
+
+}  // namespace
+
+Result<std::unique_ptr<OIIO::ImageInput>> openImage(const std::string& path, const SizeLimits& limits) {
+    if (Status s = checkReadable(path); !s) return s.error();
+    if (isRleBmp(path))
+        return badInput(path, "is an RLE-compressed BMP, which heightpack cannot decode faithfully",
+                        "re-export it as PNG (or as an uncompressed BMP)");
+    // Keep colour and alpha as stored: an RGBA height map's channels are data, not premultiplied colour.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in) {
+        return badInput(path, "cannot be read as an image: " + firstLine(OIIO::geterror()),
+                        "export it as PNG, TIFF or EXR");
+    }
+    if (Status s = judgeSize(path, in->spec(), limits); !s) return s.error();
+    return in;
+}
+
+Status readPixels(OIIO::ImageInput& in, const std::string& path, int subimage, int level, int chBegin, int chEnd,
+                  float* dst, const std::string& what) {
+    (void)in.geterror();  // forget anything said while opening: only this read's errors count
+    const bool ok = in.read_image(subimage, level, chBegin, chEnd, OIIO::TypeDesc::FLOAT, dst);
+    const std::string error = in.geterror();
+    if (!ok || !error.empty())
+        return badInput(path, what + ": " + firstLine(error.empty() ? "the decoder failed" : error),
+                        "export the file again");
+    return Done{};
+}
+
+}  // namespace detail
 
 std::string hashPixels(const Image& image) {
     const XXH64_hash_t h = XXH3_64bits(image.pixels.data(), image.pixels.size() * sizeof(float));

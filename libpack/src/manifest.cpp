@@ -18,6 +18,12 @@ namespace {
 
 constexpr const char* kHint = "see docs/manifest.md for every key";
 
+// A key or value as quoted in a message: long ones are cut, so an error stays one readable line.
+std::string shorten(const std::string& text) {
+    constexpr size_t kMax = 64;
+    return text.size() <= kMax ? text : text.substr(0, kMax) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
 // Edit distance, to suggest the key a typo meant.
 size_t distance(const std::string& a, const std::string& b) {
     std::vector<size_t> row(b.size() + 1);
@@ -45,7 +51,7 @@ public:
 
     int line() const { return std::max(1, lineOf(table_)); }
     const std::string& prefix() const { return prefix_; }
-    std::string key(const std::string& k) const { return prefix_.empty() ? k : prefix_ + "." + k; }
+    std::string key(const std::string& k) const { return shorten(prefix_.empty() ? k : prefix_ + "." + k); }
 
     Error error(int line, const std::string& what, const std::string& hint = kHint) const {
         return badInput(file_ + ":" + std::to_string(line), what, hint);
@@ -114,7 +120,7 @@ public:
             if (*v == a) return *v;
             list += list.empty() ? a : std::string(", ") + a;
         }
-        throw error(k, "is '" + *v + "', but must be one of: " + list);
+        throw error(k, "is '" + shorten(*v) + "', but must be one of: " + list);
     }
     std::vector<double> numbers(const std::string& k, std::vector<double> fallback, size_t count, double lo, double hi) {
         const toml::node* n = find(k);
@@ -182,7 +188,10 @@ private:
     std::set<std::string> known_;
 };
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+// The same limits as the command line's --tile-size and --height: a tile up to 100 km across, waves up
+// to 1 km high. Anything larger is a typo, and would overflow float maths downstream.
+constexpr double kMaxTileSize = 1e5;
+constexpr double kMaxHeight = 1e3;
 
 bool validName(const std::string& name) {
     if (name.empty() || name.size() > 64) return false;
@@ -247,7 +256,7 @@ private:
         out.resize = s.boolean("resize").value_or(base.resize);
         if (const auto c = s.text("channel")) {
             const auto parsed = parseChannelSelect(*c);
-            if (!parsed || *c == "auto") throw s.error("channel", "is '" + *c + "', but must be one of: r, g, b, a, luma");
+            if (!parsed || *c == "auto") throw s.error("channel", "is '" + shorten(*c) + "', but must be one of: r, g, b, a, luma");
             out.channel = *parsed;
         }
         return out;
@@ -271,7 +280,7 @@ private:
         a.frames = expandSequence(a.source);
         std::error_code ec;
         if (!fs::is_regular_file(a.frames[0], ec))
-            throw s.error("source", "names '" + *source + "', which " +
+            throw s.error("source", "names '" + shorten(*source) + "', which " +
                                         (fs::exists(a.frames[0], ec) ? "is not a file" : "does not exist") + " (looked for " +
                                         a.source + ")",
                           "paths are relative to the manifest's folder; a sequence NAME.EXT is NAME.0000.EXT, ...");
@@ -284,13 +293,13 @@ private:
         const std::string given = s.text("output").value_or(name + ".exr");
         const fs::path p = fs::path(given).lexically_normal();
         if (given.empty() || p.is_absolute() || p.empty() || *p.begin() == ".." || p == "." || p.filename().empty())
-            throw s.error("output", "is '" + given + "', which is not a file inside the output folder",
+            throw s.error("output", "is '" + shorten(given) + "', which is not a file inside the output folder",
                           "give a relative path such as textures/swell.exr, without '..'");
         std::string ext = p.extension().string();
         for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        if (ext != ".exr") throw s.error("output", "is '" + given + "', but every texture is written as an .exr");
+        if (ext != ".exr") throw s.error("output", "is '" + shorten(given) + "', but every texture is written as an .exr");
         if (p.filename().string().front() == '.')
-            throw s.error("output", "is '" + given + "': names starting with '.' are heightpack's own temporary files");
+            throw s.error("output", "is '" + shorten(given) + "': names starting with '.' are heightpack's own temporary files");
         claim(s, p.string());
         return p.string();
     }
@@ -306,7 +315,7 @@ private:
 
     std::string assetName(Section& s, const std::string& fallback) {
         const std::string name = s.text("name").value_or(fallback);
-        if (!validName(name)) throw s.error("name", "is '" + name + "': use 1-64 letters, digits, '_', '-' or '.'");
+        if (!validName(name)) throw s.error("name", "is '" + shorten(name) + "': use 1-64 letters, digits, '_', '-' or '.'");
         const auto [it, fresh] = names_.emplace(name, s.line());
         if (!fresh)
             throw s.error("name", "is '" + name + "', already the name of the asset on line " + std::to_string(it->second));
@@ -322,7 +331,7 @@ private:
         DisplacementAsset d;
         d.layer.name = assetName(s, "");
         static_cast<SourcedAsset&>(d) = sourced(s, d.layer.name);
-        d.layer.tileSize = s.number("tile_size", std::nullopt, 0, kInf, true);
+        d.layer.tileSize = s.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
         d.layer.scroll = scroll(s);
         d.layer.amplitude = s.number("amplitude", 1.0, -1e6, 1e6);
         d.layer.heightScale = s.number("height_scale", 1.0, -1e6, 1e6);
@@ -345,8 +354,8 @@ private:
         NormalAsset n;
         n.layer.name = assetName(s, "normals");
         static_cast<SourcedAsset&>(n) = sourced(s, n.layer.name);
-        n.layer.tileSize = s.number("tile_size", std::nullopt, 0, kInf, true);
-        n.layer.heightRange = s.number("height", std::nullopt, 0, kInf, true);
+        n.layer.tileSize = s.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
+        n.layer.heightRange = s.number("height", std::nullopt, 0, kMaxHeight, true);
         n.kernel = *parseSlopeKernel(s.choice("kernel", "central", {"central", "sobel3", "scharr"}));
         n.layer.convention = s.choice("convention", "opengl", {"opengl", "directx"});
         n.layer.alpha = s.choice("alpha", "none", {"none", "height", "variance"});
@@ -357,7 +366,7 @@ private:
             for (size_t i = 0; i < a->size(); ++i) {
                 Section o(*(*a)[i].as_table(), "normals.octave[" + std::to_string(i) + "]", path_);
                 NormalOctave octave;
-                octave.tileSize = o.number("tile_size", std::nullopt, 0, kInf, true);
+                octave.tileSize = o.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
                 octave.scroll = scroll(o);
                 octave.strength = o.number("strength", 1.0, 0, 100);
                 o.finish();
@@ -401,7 +410,7 @@ private:
         if (f.layer.hmax <= f.layer.h0)
             throw s.error("hmax", "is " + Section::formatNumber(f.layer.hmax) + ", but must be above h0 (" +
                                       Section::formatNumber(f.layer.h0) + ")");
-        f.layer.tileSize = s.number("tile_size", 4.0, 0, kInf, true);
+        f.layer.tileSize = s.number("tile_size", 4.0, 0, kMaxTileSize, true);
         SourcedAsset texture = sourced(s, f.layer.name, false);
         if (!texture.source.empty()) {
             if (texture.frames.size() > 1) throw s.error("source", "names a sequence; foam is one texture");

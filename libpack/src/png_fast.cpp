@@ -98,25 +98,36 @@ std::optional<Image> decodeGreyPng(const std::string& path, int width, int heigh
     const unsigned char* data = file->data();
     const size_t size = file->size();
 
+    // Chunk order as the PNG specification (section 5.6) fixes it: IHDR first and once, the IDAT chunks
+    // one unbroken run, IEND last. Anything else unusual (a critical chunk this decoder does not know,
+    // a palette in a grey image) goes to the library decoder, which knows every rule.
     int bitDepth = 0, colourType = -1;
     std::vector<unsigned char> compressed;
     compressed.reserve(size);
-    bool ended = false;
+    bool ended = false, sawHeader = false, inData = false, dataDone = false;
     for (size_t p = 8; p + 12 <= size && !ended;) {
         const uint32_t length = be32(data + p);
-        if (length > size - p - 12) return std::nullopt;  // truncated
+        if (length > 0x7fffffffu || length > size - p - 12) return std::nullopt;  // truncated
         const unsigned char* type = data + p + 4;
         const unsigned char* body = data + p + 8;
         if (libdeflate_crc32(0, type, length + 4) != be32(body + length)) return std::nullopt;
-        if (std::memcmp(type, "IHDR", 4) == 0) {
+        const bool isHeader = std::memcmp(type, "IHDR", 4) == 0, isData = std::memcmp(type, "IDAT", 4) == 0;
+        if (sawHeader == isHeader) return std::nullopt;  // IHDR not first, or a second one
+        if (inData && !isData) dataDone = true;
+        if (isData && dataDone) return std::nullopt;  // the IDAT run was interrupted
+        inData = isData;
+        if (isHeader) {
+            sawHeader = true;
             if (length != 13 || be32(body) != uint32_t(width) || be32(body + 4) != uint32_t(height)) return std::nullopt;
             bitDepth = body[8];
             colourType = body[9];
             if (body[10] != 0 || body[11] != 0 || body[12] != 0) return std::nullopt;  // interlaced or unknown
-        } else if (std::memcmp(type, "IDAT", 4) == 0) {
+        } else if (isData) {
             compressed.insert(compressed.end(), body, body + length);
         } else if (std::memcmp(type, "IEND", 4) == 0) {
             ended = true;
+        } else if (!(type[0] & 0x20)) {
+            return std::nullopt;  // a critical chunk (PLTE in a grey image, or one unknown here)
         }
         p += size_t(length) + 12;
     }

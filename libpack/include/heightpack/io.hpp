@@ -56,6 +56,19 @@ struct LoadedHeights {
 // a colour image without a channel choice, or non-finite values.
 Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& options = {});
 
+// Checks, before anything is opened, that path names a regular file (not a folder, FIFO, device or
+// socket: those would hang or mislead a decoder) that this process may read and that is not empty.
+// Fails with BadInput saying which, with a hint.
+Status checkReadable(const std::string& path);
+
+// Fails with BadInput naming the first texel of channel `channel` of image that is NaN or infinite;
+// `where` (e.g. "level 2") goes before "holds NaN" in the message.
+Status checkFinite(const Image& image, const std::string& path, int channel = 0, const std::string& where = {});
+
+// Whether a and b name the same existing file: same device and inode, so hard links, symbolic links
+// and other spellings of one path all count. False when either does not exist.
+bool sameFile(const std::string& a, const std::string& b);
+
 // A 64-bit hash (XXH3) of an image's texel values, as 16 hex digits; identical pixels give the same hash.
 std::string hashPixels(const Image& image);
 
@@ -109,8 +122,9 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
 // Copies the file at from to to, atomically (to appears whole or not at all).
 Status copyFile(const std::string& from, const std::string& to);
 
-// Checks, before any work, that path can be written: its folder exists and is writable, and an existing
-// file there is not read-only. Fails with CannotWrite naming the problem.
+// Checks, before any work, that path can be written: it is not empty, its folder exists and is
+// writable, and anything already there is a regular file that is not read-only (a folder, a symbolic
+// link, a device, FIFO or socket is refused). Fails with CannotWrite naming the problem.
 Status checkWritable(const std::string& path);
 
 // Sequences of frames are numbered files: NAME.0000.EXT, NAME.0001.EXT, ... The file frame f of n goes
@@ -122,8 +136,9 @@ std::string frameFileName(const std::string& path, int frame, int frames);
 std::vector<std::string> expandSequence(const std::string& path);
 
 // Removes the temporary files in folder that a heightpack process killed mid-write (SIGKILL, power
-// loss) left behind: those whose writing process no longer runs. Returns how many it removed.
-int removeStaleTemporaryFiles(const std::string& folder);
+// loss) left behind: those whose writing process no longer runs; with stem, only those of outputs
+// named STEM.EXT. Every atomic write calls it for its own output first. Returns how many it removed.
+int removeStaleTemporaryFiles(const std::string& folder, const std::string& stem = {});
 
 // Removes every temporary file an unfinished write in this process has open. Async-signal-safe: meant
 // for a SIGINT/SIGTERM handler, so an interrupted run leaves nothing behind.
