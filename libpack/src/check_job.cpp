@@ -36,6 +36,10 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     report.threshold = options.threshold;
 
     // A texture with mip levels is checked as stored; anything else gets the chain pack would make.
+    auto progress = [&](std::string_view stage, double f) {
+        if (options.progress) options.progress(stage, f);
+    };
+    progress("load", 0.0);
     std::vector<Image> chain;
     auto texture = readTextureFile(path, options.load.silenceDecoderMessages);
     if (texture && texture->levels.size() > 1) {
@@ -50,6 +54,8 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
         auto loaded = detail::loadInput(path, options.load, options.mip.threads);
         if (!loaded) return loaded.error();
         report.kind = "image";
+        report.source = loaded->source;
+        progress("mip", 0.0);
         if (isPowerOfTwo(loaded->heights.width) && isPowerOfTwo(loaded->heights.height)) {
             chain = generateMipChain(loaded->heights, options.mip);
         } else {
@@ -59,6 +65,7 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     }
 
     for (const Image& level : chain) {
+        progress("check", double(report.levels.size()) / chain.size());
         report.levels.push_back(measureSeams(level));
         const LevelSeams& s = report.levels.back();
         keepWorst(report.worst.leftRight, s.leftRight);

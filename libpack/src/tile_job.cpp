@@ -32,13 +32,20 @@ std::string scoresText(const LevelSeams& s) {
 
 Result<TileReport> tileFile(const std::string& input, const std::string& output, const TileOptions& options) {
     if (Status s = checkWritable(output); !s) return s.error();
+    auto progress = [&](std::string_view stage, double f) {
+        if (options.progress) options.progress(stage, f);
+    };
+    progress("load", 0.0);
     auto loaded = detail::loadInput(input, options.load, 0);
     if (!loaded) return loaded.error();
     TileReport report;
     report.input = input;
     report.output = output;
+    report.source = loaded->source;
     const Image& map = loaded->heights;
+    progress("check", 0.0);
     report.before = measureSeams(map);
+    progress("tile", 0.0);
 
     if (levelTiles(report.before, options.threshold) && !options.force) {
         report.alreadyTiled = true;
@@ -59,7 +66,9 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
                    : options.method == TileMethod::Moisan     ? periodicComponent(map, PeriodicContinuity::Heights)
                    : options.method == TileMethod::Crossfade  ? crossfadeTile(map, options.width)
                                                               : mirrorTile(map);
+    progress("tile", 1.0);
     report.after = measureSeams(result);
+    progress("write", 0.0);
     report.width = result.width;
     report.height = result.height;
 

@@ -1,7 +1,9 @@
 // The whole `tile` operation: make a map tile, changing the painting as little as the method allows.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <string_view>
 
 #include "heightpack/io.hpp"
 #include "heightpack/result.hpp"
@@ -25,11 +27,14 @@ struct TileOptions {
     double threshold = kDefaultSeamThreshold;
     int bits = 0;  // 8, 16 or 32 (float); 0 keeps the input's depth (float inputs stay float)
     std::string version;
+    // Reports progress: the stage ("load", "check", "tile", "write") and the fraction of it done; may be empty.
+    std::function<void(std::string_view stage, double fraction)> progress;
 };
 
 struct TileReport {
     std::string input;
     std::string output;
+    SourceInfo source;          // what the input held and which channel was used
     bool alreadyTiled = false;  // the input passed the check and was copied unchanged
     LevelSeams before;          // level 0 of the input
     LevelSeams after;           // level 0 of the output
