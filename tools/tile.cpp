@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 #include "command.hpp"
@@ -43,8 +44,7 @@ public:
         cmd->add_option("--depth", depth_, "output sample type; keep = the input's")
             ->capture_default_str()
             ->check(CLI::IsMember({"keep", "uint8", "uint16", "float"}));
-        cmd->add_option("--channel", channel_, "which channel of a colour image holds the height")
-            ->check(CLI::IsMember({"r", "g", "b", "a", "luma"}));
+        addChannelOption(*cmd, channel_);
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
@@ -63,12 +63,16 @@ public:
                           : method_ == "moisan"  ? TileMethod::Moisan
                                                  : TileMethod::Periodic;
         options_.bits = depth_ == "uint8" ? 8 : depth_ == "uint16" ? 16 : depth_ == "float" ? 32 : 0;
-        options_.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);
+        applyChannel(channel_, options_.load);
         options_.load.silenceDecoderMessages = true;
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
+        Progress progress(!common_.quiet, "tile " + std::filesystem::path(input_).filename().string(),
+                          {{"load", 0.2}, {"check", 0.1}, {"tile", 0.5}, {"write", 0.2}});
+        options_.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
         auto report = tileFile(input_, output_, options_);
         if (!report) return fail(report.error());
+        progress.clear();
         const TileReport& r = *report;
         auto scores = [](const LevelSeams& s) {
             return nlohmann::json{{"leftRight", {{"value", s.leftRight.value}, {"slope", s.leftRight.slope}}},
@@ -80,7 +84,7 @@ public:
                        {"width", r.width}, {"height", r.height}, {"bits", r.bits},
                        {"remap", r.remapped ? nlohmann::json{{"scale", r.remapScale}, {"offset", r.remapOffset}}
                                             : nlohmann::json(nullptr)},
-                       {"before", scores(r.before)}, {"after", scores(r.after)}});
+                       {"before", scores(r.before)}, {"after", scores(r.after)}, {"channel", channelJson(r.source)}});
         } else if (chatty()) {
             if (r.alreadyTiled) {
                 std::printf("%s already tiles (worst score %.2f): wrote it unchanged to %s (--force applies %s anyway)\n",
@@ -94,6 +98,8 @@ public:
                                 -r.remapOffset, r.remapScale);
                 std::printf("\n");
             }
+            std::fflush(stdout);
+            printChannelNote(r.source);
         }
         return ExitCode::Ok;
     }
