@@ -309,3 +309,10 @@ TEST(RoughEdges, SynthWarnsWhenJonswapOptionsMeetPhillips) {
     const ProcessResult help = heightpackRun({"synth", "--help"});
     EXPECT_NE(help.out.find("100km"), std::string::npos) << help.out;  // --fetch's default is stated
 }
+
+TEST(RoughEdges, FresnelTakesTheManifestsIorRange) {
+    // docs/manifest.md: ior 1-4. The command line took up to 10.
+    ScratchDir dir;
+    EXPECT_EQ(heightpackRun({"fresnel", "--ior", "4", "-o", dir.file("a.exr")}).code, 0);
+    EXPECT_EQ(heightpackRun({"fresnel", "--ior", "5", "-o", dir.file("b.exr")}).code, 2);
+}
