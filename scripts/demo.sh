@@ -27,8 +27,9 @@ done
 
 # Normal maps in world units (tile width, and how many metres a stored 1.0 stands above 0.0), and the
 # Fresnel / water-colour ramp the water shader indexes by N.V.
-./build/heightpack normal examples/maps/swell.png --tile-size 256m --height 6m -o out/swell_n.exr
-./build/heightpack normal examples/maps/choppy.png --tile-size 64m --height 1.5m -o out/choppy_n.exr
+# The same sizes as examples/ocean.toml gives the maps (swell 64 m, 1.5 m; choppy 16 m, 0.4 m).
+./build/heightpack normal examples/maps/swell.png --tile-size 64m --height 1.5m -o out/swell_n.exr
+./build/heightpack normal examples/maps/choppy.png --tile-size 16m --height 0.4m -o out/choppy_n.exr
 ./build/heightpack normal examples/maps/ripple.png --tile-size 8m --height 0.05m -o out/ripple_n.exr
 for name in swell choppy ripple; do
   oiiotool "out/${name}_n.exr" --mulc 0.5 --addc 0.5 -d uint8 -o "out/${name}_n_preview.png"

@@ -91,11 +91,10 @@ public:
         // Every material is hashed and checked before any is written: a map that must tile and does
         // not, in any of them, stops the whole build with nothing written.
         const auto start = std::chrono::steady_clock::now();
-        std::vector<std::unique_ptr<Tracker>> trackers;
+        Tracker tracker(*this);  // one bar for the whole build, every material's outputs
         std::vector<MaterialBuild> builds;
         bool checksPassed = true;
         for (const Manifest& m : manifests) {
-            trackers.push_back(std::make_unique<Tracker>(*this, m));
             BuildOptions options;
             options.outputDir = manifests.size() == 1 ? output_ : (fs::path(output_) / m.name).string();
             options.jobs = jobs_;
@@ -103,11 +102,11 @@ public:
             options.checkOnly = checkOnly_;
             options.force = force_;
             options.version = kVersion;
-            options.onEvent = [tracker = trackers.back().get()](const BuildEvent& e) { tracker->event(e); };
+            options.onEvent = [&tracker](const BuildEvent& e) { tracker.event(e); };
             auto build = MaterialBuild::prepare(m, options);
-            trackers.back()->progress.clear();
+            tracker.progress.clear();
             if (!build) return fail(build.error());
-            trackers.back()->total = static_cast<double>(std::max<size_t>(1, build->report().assets.size()));
+            tracker.total += static_cast<double>(build->report().assets.size());
             for (const Error& e : build->report().checkFailures) printError(e);
             checksPassed = checksPassed && build->report().checkFailures.empty();
             builds.push_back(std::move(*build));
@@ -123,7 +122,7 @@ public:
                 std::fflush(stdout);
                 const auto began = std::chrono::steady_clock::now();
                 auto ran = builds[i].run();
-                trackers[i]->progress.clear();
+                tracker.progress.clear();
                 if (!ran) return fail(ran.error());
                 report = std::move(*ran);
                 if (chatty())
@@ -154,13 +153,13 @@ public:
     }
 
 private:
-    // One material's progress on the terminal: a line per finished output and a bar. The bar counts
-    // finished outputs plus how far each one in progress has come, its stages weighted roughly by
-    // their cost, so it only moves forward whatever order the jobs report in.
+    // The build's progress on the terminal: a line per finished output and one bar for every output of
+    // every material. The bar counts finished outputs plus how far each one in progress has come, its
+    // stages weighted roughly by their cost, so it only moves forward whatever order the jobs report in;
+    // its label counts outputs rather than naming one, so parallel jobs do not make it flicker.
     struct Tracker {
-        Tracker(const BuildCommand& command, const Manifest& m)
-            : chatty(command.chatty()),
-              progress(!command.common_.quiet, (command.checkOnly_ ? "check " : "build ") + m.name) {}
+        explicit Tracker(const BuildCommand& command)
+            : chatty(command.chatty()), progress(!command.common_.quiet, command.checkOnly_ ? "check" : "build") {}
 
         void event(const BuildEvent& e) {
             const std::string& output = e.asset.output;
@@ -181,13 +180,16 @@ private:
             }
             double fraction = done;
             for (const auto& [name, part] : inFlight) fraction += part;
-            const std::string label = (e.stage == "check" ? "checking " : "") + output;
-            progress.update(label, fraction / total);
+            const std::string label = e.stage == "check" || e.stage == "hash"
+                                          ? std::string("checking")
+                                          : std::to_string(static_cast<int>(done)) + "/" +
+                                                std::to_string(static_cast<int>(total)) + " outputs";
+            progress.update(label, total > 0 ? fraction / total : 0.0);
         }
 
         bool chatty;
         Progress progress;
-        double total = 1.0;  // outputs of the material; known once prepare() has planned them
+        double total = 0.0;  // outputs of every material prepared so far
         double done = 0.0;
         std::map<std::string, double> inFlight;
     };

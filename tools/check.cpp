@@ -1,6 +1,7 @@
 // heightpack check: does a map tile, at every mip level? Exit 0 when it does, 1 when it does not.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "command.hpp"
@@ -28,8 +29,7 @@ public:
         cmd->add_option("--filter", filter_, "filter of that chain")
             ->capture_default_str()
             ->check(CLI::IsMember({"box", "triangle", "lanczos3", "kaiser"}));
-        cmd->add_option("--channel", channel_, "which channel of a colour image holds the height")
-            ->check(CLI::IsMember({"r", "g", "b", "a", "luma"}));
+        addChannelOption(*cmd, channel_);
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
@@ -45,13 +45,13 @@ public:
     }
 
     ExitCode run() override {
-        options_.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);
+        applyChannel(channel_, options_.load);
         options_.load.silenceDecoderMessages = true;
         options_.mip.wrap = wrap_ == "clamp" ? Wrap::Clamp : Wrap::Periodic;
         options_.mip.filter = *parseFilter(filter_);
         options_.mip.threads = common_.threads;
         setLibraryThreads(common_.threads);
-        // A sequence is checked frame by frame; it tiles when every frame does.
+        // A sequence is checked frame by frame; it tiles when every frame does. --json prints one document.
         const std::vector<std::string> inputs = expandSequence(input_);
         bool all = true;
         const std::string preview = options_.previewPath;
@@ -61,31 +61,46 @@ public:
                 outputs.push_back({frameFileName(preview, int(f), int(inputs.size())), "--preview", {".png"}});
             if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         }
+        nlohmann::json frames = nlohmann::json::array();
         for (size_t f = 0; f < inputs.size(); ++f) {
             options_.previewPath = preview.empty() ? preview : frameFileName(preview, int(f), int(inputs.size()));
+            Progress progress(!common_.quiet, "check " + std::filesystem::path(inputs[f]).filename().string(),
+                              {{"load", 0.3}, {"mip", 0.3}, {"check", 0.4}});
+            options_.progress = [&](std::string_view stage, double fraction) { progress.update(stage, fraction); };
             auto report = checkFile(inputs[f], options_);
             if (!report) return fail(report.error());
+            progress.clear();
             all = all && report->tiles;
-            print(*report);
+            if (common_.json && inputs.size() > 1)
+                frames.push_back(toJson(*report));
+            else
+                print(*report);
         }
+        if (common_.json && inputs.size() > 1)
+            printJson({{"command", "check"}, {"input", input_}, {"tiles", all}, {"frames", frames}});
         return all ? ExitCode::Ok : ExitCode::CheckFailed;
     }
 
 private:
-    void print(const CheckReport& r) const {
+    nlohmann::json toJson(const CheckReport& r) const {
         const double t = r.threshold;
+        nlohmann::json doc = {{"command", "check"}, {"input", r.input}, {"kind", r.kind}, {"tiles", r.tiles},
+                              {"threshold", t}, {"levels", seamLevelsJson(r.levels, t)},
+                              {"failure", seamFailureJson(r.failure, t)},
+                              {"worst", {{"leftRight", seamScoreJson(r.worst.leftRight, t)},
+                                         {"topBottom", seamScoreJson(r.worst.topBottom, t)}}}};
+        if (!r.note.empty()) doc["note"] = r.note;
+        if (r.packing)
+            doc["packing"] = {{"consistent", r.packing->consistent}, {"maxError", r.packing->maxError},
+                              {"firstBadLevel", r.packing->firstBadLevel}};
+        if (!options_.previewPath.empty()) doc["preview"] = options_.previewPath;
+        if (!r.source.channelUsed.empty()) doc["channel"] = channelJson(r.source);
+        return doc;
+    }
+
+    void print(const CheckReport& r) const {
         if (common_.json) {
-            nlohmann::json doc = {{"command", "check"}, {"input", r.input}, {"kind", r.kind}, {"tiles", r.tiles},
-                                  {"threshold", t}, {"levels", seamLevelsJson(r.levels, t)},
-                                  {"failure", seamFailureJson(r.failure, t)},
-                                  {"worst", {{"leftRight", seamScoreJson(r.worst.leftRight, t)},
-                                             {"topBottom", seamScoreJson(r.worst.topBottom, t)}}}};
-            if (!r.note.empty()) doc["note"] = r.note;
-            if (r.packing)
-                doc["packing"] = {{"consistent", r.packing->consistent}, {"maxError", r.packing->maxError},
-                                  {"firstBadLevel", r.packing->firstBadLevel}};
-            if (!options_.previewPath.empty()) doc["preview"] = options_.previewPath;
-            printJson(doc);
+            printJson(toJson(r));
         } else if (!common_.quiet) {
             printText(r);
         }
@@ -96,6 +111,7 @@ private:
         std::printf("%s: %s (threshold %s; 0 to about 5 is how any cut scores by chance)\n", r.input.c_str(),
                     r.tiles ? "tiles" : "does NOT tile", seamScoreText(t, t).c_str());
         if (!r.note.empty()) std::printf("  note: %s\n", r.note.c_str());
+        if (!r.source.channelNote.empty()) std::printf("  note: %s\n", r.source.channelNote.c_str());
         std::printf("  %-5s %-11s %-26s %-26s\n", "level", "size", "left/right value  slope", "top/bottom value  slope");
         auto cell = [&](const SeamScore& s) {
             if (!s.measured) return std::string("(too small)");

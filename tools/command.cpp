@@ -23,6 +23,7 @@ ExitCode exitCodeFor(ErrorKind kind) {
 }
 
 void printError(const Error& error) {
+    clearProgressLine();
     std::string line = "heightpack: error: ";
     if (!error.path.empty()) line += error.path + ": ";
     line += error.what;
@@ -86,16 +87,34 @@ ExitCode Command::checkOutputs(const std::vector<std::string>& inputs, const std
     return ExitCode::Ok;
 }
 
-void Command::printJson(const nlohmann::json& document) { std::cout << document.dump(2) << std::endl; }
+void Command::printJson(const nlohmann::json& document) {
+    clearProgressLine();
+    std::cout << document.dump(2) << std::endl;
+}
 
-Progress::Progress(bool enabled, std::string label)
-    : enabled_(enabled && ::isatty(STDERR_FILENO)), label_(std::move(label)) {}
+namespace {
+Progress* activeProgress = nullptr;  // the bar on screen, if any: the CLI draws from one thread
+}  // namespace
 
-Progress::~Progress() { clear(); }
+void clearProgressLine() {
+    if (activeProgress) activeProgress->clear();
+}
+
+Progress::Progress(bool enabled, std::string label, std::vector<ProgressStage> stages)
+    : enabled_(enabled && ::isatty(STDERR_FILENO)), label_(std::move(label)), stages_(std::move(stages)) {}
+
+Progress::~Progress() {
+    clear();
+    if (activeProgress == this) activeProgress = nullptr;
+}
 
 void Progress::clear() {
-    if (enabled_ && lastPercent_ >= 0) std::fprintf(stderr, "\r\033[K");
-    lastPercent_ = -1;
+    if (enabled_ && shownPercent_ >= 0) {
+        std::fflush(stdout);
+        std::fprintf(stderr, "\r\033[K");
+        std::fflush(stderr);
+    }
+    shownPercent_ = -1;
     lastStage_.clear();
 }
 
@@ -128,15 +147,89 @@ nlohmann::json seamFailureJson(const std::optional<SeamFailure>& f, double thres
 
 void Progress::update(std::string_view stage, double fraction) {
     if (!enabled_) return;
-    const int percent = static_cast<int>(fraction * 100.0 + 0.5);
-    if (percent == lastPercent_ && stage == lastStage_) return;
-    lastPercent_ = percent;
+    fraction = std::clamp(fraction, 0.0, 1.0);
+    if (!stages_.empty()) {
+        double total = 0, before = 0, share = 0;
+        bool found = false;
+        for (const ProgressStage& s : stages_) {
+            if (s.name == stage) found = true, share = s.weight;
+            if (!found) before += s.weight;
+            total += s.weight;
+        }
+        if (!found) return;  // a stage this bar does not count
+        fraction = (before + share * fraction) / total;
+    }
+    // Floor, so 100% means done; never below what was shown, whatever order the stages report in.
+    const int percent = std::max(highestPercent_, static_cast<int>(fraction * 100.0));
+    if (percent == shownPercent_ && stage == lastStage_) return;
+    if (activeProgress && activeProgress != this) activeProgress->clear();
+    activeProgress = this;
+    highestPercent_ = percent;
+    shownPercent_ = percent;
     lastStage_ = stage;
+    std::fflush(stdout);
     constexpr int kBar = 24;
     const int filled = percent * kBar / 100;
     std::fprintf(stderr, "\r\033[K%s: %-5.*s [%.*s%*s] %3d%%", label_.c_str(), static_cast<int>(stage.size()),
                  stage.data(), filled, "########################", kBar - filled, "", percent);
     std::fflush(stderr);
+}
+
+CLI::Option* addChannelOption(CLI::App& cmd, std::string& channel) {
+    return cmd.add_option("--channel", channel,
+                          "where the height is in a colour image: r, g, b, a, luma, or a channel's name as the file "
+                          "lists it (height.Y, Z, depth); default: the only grey channel, or Y, or R of a packed "
+                          "heightpack texture")
+        ->check(CLI::Validator(
+            [](std::string& text) { return text.empty() ? std::string("give a channel: r, g, b, a, luma or a name") : ""; },
+            "CHANNEL"));
+}
+
+void applyChannel(const std::string& text, LoadOptions& load) {
+    if (text.empty()) {
+        load.channel = ChannelSelect::Auto;
+    } else if (const auto select = parseChannelSelect(text)) {
+        load.channel = *select;
+    } else {
+        load.channel = ChannelSelect::Named;
+        load.channelName = text;
+    }
+}
+
+void printChannelNote(const SourceInfo& source) {
+    if (!source.channelNote.empty()) std::cout << "  note: " << source.channelNote << "\n";
+}
+
+nlohmann::json channelJson(const SourceInfo& source) {
+    return {{"used", source.channelUsed},
+            {"note", source.channelNote.empty() ? nlohmann::json(nullptr) : nlohmann::json(source.channelNote)}};
+}
+
+namespace {
+int nearestPowerOfTwo(int n) {
+    int below = 1;
+    while (below * 2 <= n) below *= 2;
+    return n - below <= 2 * below - n ? below : 2 * below;
+}
+}  // namespace
+
+std::string resizeNote(int w0, int h0, int w, int h) {
+    char text[256];
+    const int nw = nearestPowerOfTwo(w0), nh = nearestPowerOfTwo(h0);
+    std::snprintf(text, sizeof text, "resized %dx%d to %dx%d, aspect %.3g -> %.3g%s; the nearest powers of two are %dx%d",
+                  w0, h0, w, h, double(w0) / h0, double(w) / h,
+                  std::abs(double(w0) / h0 - double(w) / h) > 1e-3 ? " (stretched)" : "", nw, nh);
+    std::string note = text;
+    if (nw != w || nh != h) note += ": export the map at that size to change it less";
+    return note;
+}
+
+nlohmann::json resizeJson(int w0, int h0, int w, int h) {
+    return {{"from", {{"width", w0}, {"height", h0}}},
+            {"to", {{"width", w}, {"height", h}}},
+            {"aspectFrom", double(w0) / h0},
+            {"aspectTo", double(w) / h},
+            {"nearestPowerOfTwo", {{"width", nearestPowerOfTwo(w0)}, {"height", nearestPowerOfTwo(h0)}}}};
 }
 
 std::string humanBytes(unsigned long long bytes) {

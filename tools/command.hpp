@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "heightpack/io.hpp"
 #include "heightpack/result.hpp"
 #include "heightpack/tileable.hpp"
 
@@ -82,10 +83,19 @@ std::unique_ptr<Command> makeTileCommand();
 std::unique_ptr<Command> makeSynthCommand();
 std::unique_ptr<Command> makeBuildCommand();
 
-// A one-line progress display on stderr, shown only on a terminal and never with --quiet.
+// A stage of a job and its share of the whole job's time, for Progress.
+struct ProgressStage {
+    std::string_view name;
+    double weight;
+};
+
+// A one-line progress display on stderr, shown only on a terminal and never with --quiet. The bar
+// shows the whole job: with stages, a stage's fraction counts toward the stages before it plus its own
+// share; without, update's fraction is the whole. The percentage shown never goes down. At most one
+// bar is on screen; printError, printJson and clearProgressLine() remove it before other output.
 class Progress {
 public:
-    Progress(bool enabled, std::string label);
+    Progress(bool enabled, std::string label, std::vector<ProgressStage> stages = {});
     ~Progress();
     Progress(const Progress&) = delete;
     Progress& operator=(const Progress&) = delete;
@@ -96,9 +106,29 @@ public:
 private:
     bool enabled_;
     std::string label_;
-    int lastPercent_ = -1;
+    std::vector<ProgressStage> stages_;
+    int shownPercent_ = -1;  // on screen now; -1 when the line is clear
+    int highestPercent_ = 0;
     std::string lastStage_;
 };
+
+// Clears the progress line on stderr if one is shown: call before printing anything else.
+void clearProgressLine();
+
+// --channel, as every command that reads heights takes it: r|g|b|a|luma, or a channel's name as the file
+// lists it (height.Y, Z, depth).
+CLI::Option* addChannelOption(CLI::App& cmd, std::string& channel);
+// Sets load's channel choice from --channel's text; empty: automatic.
+void applyChannel(const std::string& text, LoadOptions& load);
+// Says which channel the heights came from when that may surprise: "  note: ..." on stdout.
+void printChannelNote(const SourceInfo& source);
+// {"used": name, "note": text or null}, for --json.
+nlohmann::json channelJson(const SourceInfo& source);
+
+// What --resize pow2 did to a width x height map: the new size, the change of aspect, and the nearest
+// powers of two per side (the size to export at to keep the shape). One line, no newline.
+std::string resizeNote(int fromWidth, int fromHeight, int toWidth, int toHeight);
+nlohmann::json resizeJson(int fromWidth, int fromHeight, int toWidth, int toHeight);
 
 // One edge pair's seam scores as JSON: measured, value, slope, pass. A score is a number, or the string
 // "inf" when it is infinite (README, "Seam scores"); an unmeasured pair is {"measured": false}.

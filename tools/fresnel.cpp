@@ -17,7 +17,7 @@ public:
         cmd->add_option("-o,--output", output_, "ramp to write: .exr (float) or .png (8-bit, sRGB colours)")->required();
         cmd->add_option("--ior", options_.ior, "index of refraction of the water (air is 1)")
             ->capture_default_str()
-            ->check(finiteRange(1.0, 10.0));
+            ->check(finiteRange(1.0, 4.0));  // the manifest's range too (docs/manifest.md)
         cmd->add_option("--model", model_, "exact: unpolarised Fresnel equations; schlick: Schlick's approximation")
             ->capture_default_str()
             ->check(CLI::IsMember({"exact", "schlick"}));

@@ -4,6 +4,7 @@
 
 #include "command.hpp"
 #include "heightpack/info.hpp"
+#include "heightpack/io.hpp"
 #include "heightpack/parallel.hpp"
 
 namespace heightpack::cli {
@@ -15,14 +16,21 @@ public:
     CLI::App* attach(CLI::App& app) override {
         CLI::App* cmd = app.add_subcommand("info", "describe a texture: size, levels, layout, wrap, filter, "
                                                    "scale/offset, min/max/mean per level");
-        cmd->add_option("input", input_, "an EXR heightpack wrote, or any image")->required();
+        cmd->add_option("input", input_, "an EXR heightpack wrote, or any image; NAME.EXT for a sequence "
+                                         "NAME.0000.EXT, NAME.0001.EXT, ...")
+            ->required();
         addCommonOptions(*cmd);
-        cmd->footer("Examples:\n  heightpack info out/swell.exr\n  heightpack info out/swell.exr --json\n");
+        cmd->footer(
+            "Examples:\n  heightpack info out/swell.exr\n  heightpack info out/swell.exr --json\n"
+            "  heightpack info out/ripple_seq.exr   (the frames out/ripple_seq.0000.exr ...)\n");
         return cmd;
     }
 
     ExitCode run() override {
         setLibraryThreads(common_.threads);
+        // A sequence: frame 0 described in full, then a line per frame.
+        const std::vector<std::string> frames = expandSequence(input_);
+        if (frames.size() > 1 || frames.front() != input_) return runSequence(frames);
         auto info = readFileInfo(input_, /*silenceDecoderMessages=*/true);
         if (!info) return fail(info.error());
         if (common_.json)
@@ -33,6 +41,35 @@ public:
     }
 
 private:
+    ExitCode runSequence(const std::vector<std::string>& frames) const {
+        std::vector<FileInfo> infos;
+        for (const std::string& frame : frames) {
+            auto info = readFileInfo(frame, /*silenceDecoderMessages=*/true);
+            if (!info) return fail(info.error());
+            infos.push_back(std::move(*info));
+        }
+        if (common_.json) {
+            nlohmann::json all = nlohmann::json::array();
+            for (const FileInfo& info : infos) all.push_back(toJson(info));
+            printJson({{"command", "info"}, {"path", input_}, {"sequence", true}, {"frameCount", infos.size()},
+                       {"frames", all}});
+            return ExitCode::Ok;
+        }
+        if (common_.quiet) return ExitCode::Ok;
+        std::printf("%s: a sequence of %zu frame%s, %s .. %s\n", input_.c_str(), infos.size(),
+                    infos.size() == 1 ? "" : "s", frames.front().c_str(), frames.back().c_str());
+        printText(infos.front());
+        std::printf("  %-5s %-11s %12s %12s %12s   (level 0, channel %s)\n", "frame", "size", "min", "max", "mean",
+                    infos.front().levels.front().channels.front().name.c_str());
+        for (size_t f = 0; f < infos.size(); ++f) {
+            const LevelInfo& l = infos[f].levels.front();
+            const ChannelStats& c = l.channels.front();
+            const std::string size = std::to_string(l.width) + "x" + std::to_string(l.height);
+            std::printf("  %-5zu %-11s %12.6g %12.6g %12.6g\n", f, size.c_str(), c.min, c.max, c.mean);
+        }
+        return ExitCode::Ok;
+    }
+
     static nlohmann::json toJson(const FileInfo& info) {
         nlohmann::json attributes = nlohmann::json::object();
         for (const auto& [k, v] : info.attributes) attributes[k] = v;

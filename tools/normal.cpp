@@ -49,8 +49,7 @@ public:
         cmd->add_option("--compression", compression_, "EXR compression")
             ->capture_default_str()
             ->check(CLI::IsMember({"none", "rle", "zips", "zip", "piz"}));
-        cmd->add_option("--channel", channel_, "which channel of a colour image holds the height")
-            ->check(CLI::IsMember({"r", "g", "b", "a", "luma"}));
+        addChannelOption(*cmd, channel_);
         cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two (EXR)")
             ->check(CLI::IsMember({"none", "pow2"}));
         addCommonOptions(*cmd);
@@ -85,37 +84,46 @@ public:
         o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
         o.compression = *parseCompression(compression_);
         o.resizeToPowerOfTwo = resize_ == "pow2";
-        o.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);
+        applyChannel(channel_, o.load);
         o.load.silenceDecoderMessages = true;
         o.version = kVersion;
         setLibraryThreads(common_.threads);
 
-        // A sequence gets a normal map per frame, numbered like it.
+        // A sequence gets a normal map per frame, numbered like it; --json prints one document for all.
         const std::vector<std::string> inputs = expandSequence(input_);
         std::vector<OutputRule> outputs;
         for (size_t f = 0; f < inputs.size(); ++f)
             outputs.push_back({frameFileName(output_, int(f), int(inputs.size())), "-o", {".exr", ".png"}});
         if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
+        nlohmann::json sequence = nlohmann::json::array();
         for (size_t f = 0; f < inputs.size(); ++f) {
-            const ExitCode code = normalOne(inputs[f], frameFileName(output_, int(f), int(inputs.size())), o, format);
+            const ExitCode code = normalOne(inputs[f], frameFileName(output_, int(f), int(inputs.size())), o, format,
+                                            inputs.size() > 1 ? &sequence : nullptr);
             if (code != ExitCode::Ok) return code;
         }
+        if (inputs.size() > 1 && common_.json) printJson({{"command", "normal"}, {"input", input_}, {"frames", sequence}});
         return ExitCode::Ok;
     }
 
 private:
-    ExitCode normalOne(const std::string& input, const std::string& output, NormalJobOptions& o, const std::string& format) {
+    // Makes one normal map; its JSON report goes to stdout, or into sequence when making frames.
+    ExitCode normalOne(const std::string& input, const std::string& output, NormalJobOptions& o, const std::string& format,
+                       nlohmann::json* sequence) {
         const NormalOptions& n = o.normal;
-        Progress progress(!common_.quiet, "normal " + std::filesystem::path(input).filename().string());
+        Progress progress(!common_.quiet, "normal " + std::filesystem::path(input).filename().string(),
+                          {{"load", 0.15}, {"mip", 0.1}, {"normal", 0.35}, {"write", 0.4}});
+        progress.update("load", 0.0);  // from the start: loading a large map takes seconds
         o.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
         auto report = makeNormalMap(input, output, o);
         if (!report) return fail(report.error());
+        progress.clear();
         const NormalReport& r = *report;
+        const int width = r.levelSizes[0].first, height = r.levelSizes[0].second;
         if (common_.json) {
             nlohmann::json levels = nlohmann::json::array();
             for (size_t i = 0; i < r.levelSizes.size(); ++i)
                 levels.push_back({{"level", i}, {"width", r.levelSizes[i].first}, {"height", r.levelSizes[i].second}});
-            printJson({{"command", "normal"},
+            const nlohmann::json doc = {{"command", "normal"},
                        {"input", r.input},
                        {"output", r.output},
                        {"format", format},
@@ -128,9 +136,16 @@ private:
                        {"wrap", wrap_},
                        {"sourceHash", r.sourceHash},
                        {"resized", r.resized},
+                       {"resize", r.resized ? resizeJson(r.source.width, r.source.height, width, height)
+                                            : nlohmann::json(nullptr)},
+                       {"channel", channelJson(r.source)},
                        {"maxSlopeDegrees", r.maxSlopeDegrees},
                        {"levels", levels},
-                       {"seconds", r.seconds}});
+                       {"seconds", r.seconds}};
+            if (sequence)
+                sequence->push_back(doc);
+            else
+                printJson(doc);
         } else if (chatty()) {
             std::ostringstream line;
             line << "wrote " << r.output << ": " << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " ("
@@ -139,6 +154,8 @@ private:
                  << convention_ << ", steepest " << std::fixed << std::setprecision(1) << r.maxSlopeDegrees
                  << " deg, " << std::setprecision(2) << r.seconds << " s";
             std::cout << line.str() << "\n";
+            if (r.resized) std::cout << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";
+            printChannelNote(r.source);
         }
         return ExitCode::Ok;
     }

@@ -20,8 +20,7 @@ public:
         cmd->add_option("input", input_, "height map: PNG, TIFF, EXR, JPEG, TGA, PSD (8/16-bit, half, float)")
             ->required();
         cmd->add_option("-o,--output", output_, "packed EXR to write (replaced atomically)")->required();
-        cmd->add_option("--channel", channel_, "which channel of a colour image holds the height")
-            ->check(CLI::IsMember({"r", "g", "b", "a", "luma"}));
+        addChannelOption(*cmd, channel_);
         cmd->add_option("--scale", options_.scale, "stored height = offset + scale * painted value")
             ->capture_default_str()
             ->check(finiteRange(-1e6, 1e6));
@@ -51,7 +50,7 @@ public:
         if (!std::isfinite(options_.scale) || !std::isfinite(options_.offset))
             return usage("--scale and --offset must be finite numbers");
         options_.load.silenceDecoderMessages = true;  // errors come back in the result, as one line
-        options_.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);
+        applyChannel(channel_, options_.load);
         options_.mip.wrap = wrap_ == "clamp" ? Wrap::Clamp : Wrap::Periodic;
         options_.mip.filter = *parseFilter(filter_);
         options_.mip.threads = common_.threads;
@@ -83,11 +82,14 @@ public:
 private:
     // Packs one map; its JSON report goes to stdout, or into sequence when packing frames.
     ExitCode packOne(const std::string& input, const std::string& output, nlohmann::json* sequence) {
-        Progress progress(!common_.quiet, "pack " + std::filesystem::path(input).filename().string());
+        Progress progress(!common_.quiet, "pack " + std::filesystem::path(input).filename().string(),
+                          {{"load", 0.15}, {"mip", 0.35}, {"write", 0.5}});
         options_.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
         auto report = packHeightMap(input, output, options_);
         if (!report) return fail(report.error());
+        progress.clear();
         const PackReport& r = *report;
+        const int width = r.levelSizes[0].first, height = r.levelSizes[0].second;
         const double seconds = r.loadSeconds + r.mipSeconds + r.writeSeconds;
         std::error_code ec;
         const auto bytes = std::filesystem::file_size(r.output, ec);
@@ -105,9 +107,11 @@ private:
                 {"source", {{"format", r.source.format}, {"pixelType", r.source.pixelType},
                             {"width", r.source.width}, {"height", r.source.height},
                             {"channels", r.source.channels}, {"channelUsed", r.source.channelUsed},
+                            {"channel", channelJson(r.source)},
                             {"decoder", r.source.decoder},
                             {"hash", r.sourceHash}}},
                 {"resized", r.resized},
+                {"resize", r.resized ? resizeJson(r.source.width, r.source.height, width, height) : nlohmann::json(nullptr)},
                 {"layout", "neighbour4"},
                 {"wrap", wrap_},
                 {"filter", filter_},
@@ -126,10 +130,12 @@ private:
             std::ostringstream line;
             line << "wrote " << r.output << ": " << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " ("
                  << r.levelSizes.size() << " levels) from " << r.source.width << "x" << r.source.height << " "
-                 << r.source.pixelType << " '" << r.source.channelUsed << "'" << (r.resized ? " resized" : "")
+                 << r.source.pixelType << " '" << r.source.channelUsed << "'"
                  << ", " << wrap_ << ", " << filter_ << ", " << compression_ << ", " << humanBytes(bytes) << ", "
                  << std::fixed << std::setprecision(2) << seconds << " s";
             std::cout << line.str() << "\n";
+            if (r.resized) std::cout << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";
+            printChannelNote(r.source);
             if (!r.plainOutput.empty()) std::cout << "wrote " << r.plainOutput << ": unpacked chain\n";
         }
         return ExitCode::Ok;

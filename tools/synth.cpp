@@ -54,8 +54,12 @@ public:
         cmd->add_option("--direction", options_.spectrum.windDirection, "wind direction in degrees, from +x toward +y")
             ->capture_default_str()
             ->check(finiteRange(-360.0, 360.0));
-        cmd->add_option("--fetch", fetch_, "JONSWAP fetch: 100km, 5000m")->check(lengthValidator(1e7));
-        cmd->add_option("--gamma", options_.spectrum.gamma, "JONSWAP peak enhancement")->capture_default_str()->check(finiteRange(1.0, 10.0));
+        fetchOption_ = cmd->add_option("--fetch", fetch_, "JONSWAP fetch: 100km, 5000m (jonswap only)")
+                           ->default_str("100km")
+                           ->check(lengthValidator(1e7));
+        gammaOption_ = cmd->add_option("--gamma", options_.spectrum.gamma, "JONSWAP peak enhancement (jonswap only)")
+                           ->capture_default_str()
+                           ->check(finiteRange(1.0, 10.0));
         cmd->add_option("--tile-size", tileSize_, "metres across the tile: 256m")->required()->check(lengthValidator(1e5));
         cmd->add_option("--size", options_.spectrum.size, "texels across (a power of two)")->capture_default_str();
         cmd->add_option("--seed", options_.spectrum.seed, "random seed: the same seed gives the same bytes")->capture_default_str();
@@ -86,13 +90,22 @@ public:
         for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         if (options_.displacement && ext != ".exr") return usage("--displacement needs an .exr output (channels Y, Dx, Dy)");
         s.model = *parseSpectrumModel(spectrum_);
+        if (s.model == SpectrumModel::Phillips && !common_.quiet)
+            for (const CLI::Option* o : {fetchOption_, gammaOption_})
+                if (o->count() > 0)
+                    std::fprintf(stderr, "heightpack: warning: %s is ignored with --spectrum phillips (it shapes "
+                                         "jonswap only)\n", o->get_name().c_str());
         s.windSpeed = *parseWithUnit(wind_, kSpeedUnits);
         s.tileSize = *parseLength(tileSize_);
         if (!fetch_.empty()) s.fetch = *parseLength(fetch_);
         if (!loop_.empty()) s.loopPeriod = *parseWithUnit(loop_, kTimeUnits);
         options_.version = kVersion;
+        Progress progress(!common_.quiet, "synth " + std::filesystem::path(output_).filename().string(),
+                          {{"synth", 0.8}, {"write", 0.2}});
+        options_.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
         auto report = synthesise(output_, options_);
         if (!report) return fail(report.error());
+        progress.clear();
         const SynthReport& r = *report;
         if (common_.json) {
             printJson({{"command", "synth"}, {"outputs", r.outputs}, {"spectrum", spectrum_}, {"windSpeed", s.windSpeed},
@@ -112,6 +125,8 @@ public:
 private:
     std::string output_, spectrum_ = "jonswap", wind_, fetch_, tileSize_, loop_;
     SynthOptions options_;
+    CLI::Option* fetchOption_ = nullptr;
+    CLI::Option* gammaOption_ = nullptr;
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 #include "command.hpp"
@@ -48,8 +49,7 @@ public:
         cmd->add_option("--depth", depth_, "output sample type; keep = the input's")
             ->capture_default_str()
             ->check(CLI::IsMember({"keep", "uint8", "uint16", "float"}));
-        cmd->add_option("--channel", channel_, "which channel of a colour image holds the height")
-            ->check(CLI::IsMember({"r", "g", "b", "a", "luma"}));
+        addChannelOption(*cmd, channel_);
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
@@ -71,7 +71,7 @@ public:
                           : method_ == "moisan"  ? TileMethod::Moisan
                                                  : TileMethod::Periodic;
         options_.bits = depth_ == "uint8" ? 8 : depth_ == "uint16" ? 16 : depth_ == "float" ? 32 : 0;
-        options_.load.channel = channel_.empty() ? ChannelSelect::Auto : *parseChannelSelect(channel_);
+        applyChannel(channel_, options_.load);
         options_.load.silenceDecoderMessages = true;
         options_.mip.filter = *parseFilter(filter_);
         options_.mip.threads = common_.threads;
@@ -80,8 +80,12 @@ public:
         if (const ExitCode code = checkOutputs({input_}, {{output_, "-o", {".png", ".tif", ".tiff", ".exr"}}});
             code != ExitCode::Ok)
             return code;
+        Progress progress(!common_.quiet, "tile " + std::filesystem::path(input_).filename().string(),
+                          {{"load", 0.2}, {"check", 0.1}, {"tile", 0.5}, {"write", 0.2}});
+        options_.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
         auto report = tileFile(input_, output_, options_);
         if (!report) return fail(report.error());
+        progress.clear();
         const TileReport& r = *report;
         const double t = options_.threshold;
         auto chain = [&](const ChainSeams& c) {
@@ -93,8 +97,9 @@ public:
                        {"method", r.methodUsed}, {"alreadyTiled", r.alreadyTiled},
                        {"width", r.width}, {"height", r.height}, {"bits", r.bits}, {"widenedToFloat", r.widened},
                        {"range", {r.low, r.high}}, {"inputRange", {r.inputLow, r.inputHigh}}, {"threshold", t},
-                       {"before", chain(r.before)}, {"after", chain(r.after)}});
+                       {"before", chain(r.before)}, {"after", chain(r.after)}, {"channel", channelJson(r.source)}});
         } else if (!common_.quiet && !r.written) {
+            clearProgressLine();
             std::fprintf(stderr,
                          "heightpack: error: %s: --method %s could not make it tile: %s (%s); nothing written\n",
                          r.input.c_str(), method_.c_str(), describeSeamFailure(*r.after.failure, t).c_str(),
@@ -116,6 +121,8 @@ public:
                             r.alreadyTiled ? "the heights are not whole steps of the input's integer type"
                                            : "the fixed heights leave [0,1], which the input's integer type cannot "
                                              "hold without clipping");
+            std::fflush(stdout);
+            printChannelNote(r.source);
         }
         return r.written ? ExitCode::Ok : ExitCode::CheckFailed;
     }

@@ -21,8 +21,46 @@ namespace {
 void onGlfwError(int code, const char* description) { std::fprintf(stderr, "heightpack-view: GLFW error %d: %s\n", code, description); }
 
 int fail(const std::string& what, const std::string& hint, int code = 70) {
-    std::fprintf(stderr, "heightpack: error: %s (%s)\n", what.c_str(), hint.c_str());
+    std::fprintf(stderr, "heightpack-view: error: %s (%s)\n", what.c_str(), hint.c_str());
     return code;
+}
+
+// Key presses, counted by GLFW's key callback as they happen: a press shorter than a frame still counts
+// (polling glfwGetKey once a frame misses it). Held keys (flying) are still polled.
+struct KeyPresses {
+    int explode = 0, togglePanel = 0;
+    bool quit = false;
+};
+
+void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
+    if (action != GLFW_PRESS) return;
+    auto* presses = static_cast<KeyPresses*>(glfwGetWindowUserPointer(window));
+    if (!presses || (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard)) return;
+    if (key == GLFW_KEY_E) ++presses->explode;
+    if (key == GLFW_KEY_F1) ++presses->togglePanel;
+    if (key == GLFW_KEY_ESCAPE) presses->quit = true;
+}
+
+// Draws the panel over what the bound framebuffer holds, for a screenshot: the same panel an artist sees.
+void drawPanelOffscreen(ViewerOptions& o, const Scene& scene, const Renderer& renderer, float time) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(float(o.width), float(o.height));
+    io.DeltaTime = 1.0f / 60.0f;
+    ImGui_ImplOpenGL3_Init("#version 330");
+    PanelState panel;
+    for (int pass = 0; pass < 2; ++pass) {  // the first frame sizes the auto-resizing window
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui::NewFrame();
+        drawPanel(o.settings, panel, o.camera, scene, renderer.times(), time);
+        ImGui::Render();
+    }
+    glViewport(0, 0, o.width, o.height);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui::DestroyContext();
 }
 
 // Where the ray through a window pixel meets the water plane, if it does.
@@ -38,7 +76,7 @@ bool pickWater(const Camera& camera, double x, double y, int width, int height, 
     return true;
 }
 
-int renderOffscreen(ViewerOptions& o, Renderer& renderer) {
+int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer) {
     RenderTarget target;
     if (!target.create(o.width, o.height, GL_RGBA8)) return fail("cannot create a " + std::to_string(o.width) + "x" +
                                                                      std::to_string(o.height) + " render target", "try a smaller --size");
@@ -69,6 +107,10 @@ int renderOffscreen(ViewerOptions& o, Renderer& renderer) {
     }
     if (!o.screenshot.empty()) {
         renderer.render(o.camera, o.settings, time, o.width, o.height, target.framebuffer, false);
+        if (o.panelInScreenshot) {
+            glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+            drawPanelOffscreen(o, scene, renderer, time);
+        }
         const std::vector<unsigned char> rgb = target.readRgb();
         Image image(o.width, o.height, 3);
         for (size_t i = 0; i < rgb.size(); ++i) image.pixels[i] = rgb[i] / 255.0f;
@@ -88,6 +130,11 @@ int renderOffscreen(ViewerOptions& o, Renderer& renderer) {
 int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& renderer) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
+    // No imgui.ini in whatever folder the viewer was started from: the panel sizes itself to the window.
+    ImGui::GetIO().IniFilename = nullptr;
+    KeyPresses presses;
+    glfwSetWindowUserPointer(window, &presses);
+    glfwSetKeyCallback(window, onKey);  // before ImGui's backend, which chains to it
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     ImGui_ImplOpenGL3_Init("#version 330");
     PanelState panel;
@@ -102,7 +149,7 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
     auto watchedMaterial = materialTime();
     double mouseX = 0, mouseY = 0;
     glfwGetCursorPos(window, &mouseX, &mouseY);
-    bool explodeKeyWasDown = false, f1WasDown = false;
+    bool clickWasDown = false;
     for (int frame = 0; !glfwWindowShouldClose(window) && (o.frames == 0 || frame < o.frames); ++frame) {
         glfwPollEvents();
         const auto now = std::chrono::steady_clock::now();
@@ -119,10 +166,10 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
             if (materialNow != watchedMaterial) {
                 watchedMaterial = materialNow;
                 std::string note;
-                if (Status s = applyMaterial(o.material, o.files, o.settings, note); !s)
-                    std::fprintf(stderr, "heightpack-view: not reloaded: %s: %s\n", s.error().path.c_str(),
-                                 s.error().what.c_str());
-                else
+                if (Status s = applyMaterial(o.material, o.files, o.settings, note); !s) {
+                    panel.reloadError = s.error().path + ": " + s.error().what;
+                    std::fprintf(stderr, "heightpack-view: not reloaded: %s\n", panel.reloadError.c_str());
+                } else
                     watched.clear();  // load the scene again below, whatever the textures' times say
             }
             const auto current = fileTimes(o.files);
@@ -132,10 +179,11 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
                 if (reloaded) {
                     scene = std::move(*reloaded);
                     renderer.upload(scene);
+                    panel.reloadError.clear();
                     std::fprintf(stderr, "heightpack-view: reloaded\n");
                 } else {
-                    std::fprintf(stderr, "heightpack-view: not reloaded: %s: %s\n", reloaded.error().path.c_str(),
-                                 reloaded.error().what.c_str());
+                    panel.reloadError = reloaded.error().path + ": " + reloaded.error().what;
+                    std::fprintf(stderr, "heightpack-view: not reloaded: %s\n", panel.reloadError.c_str());
                 }
             }
         }
@@ -150,21 +198,21 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
             o.camera.fly({key(GLFW_KEY_W) - key(GLFW_KEY_S), key(GLFW_KEY_D) - key(GLFW_KEY_A),
                           key(GLFW_KEY_SPACE) - key(GLFW_KEY_LEFT_CONTROL)},
                          dt);
-            const bool f1 = glfwGetKey(window, GLFW_KEY_F1) == GLFW_PRESS;
-            if (f1 && !f1WasDown) panel.showPanel = !panel.showPanel;
-            f1WasDown = f1;
-            if (glfwGetKey(window, GLFW_KEY_ESCAPE) == GLFW_PRESS) glfwSetWindowShouldClose(window, 1);
         }
+        if (presses.togglePanel % 2) panel.showPanel = !panel.showPanel;
+        presses.togglePanel = 0;
+        if (presses.quit) glfwSetWindowShouldClose(window, 1);
         if (!io.WantCaptureMouse && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
             o.camera.look(float(x - mouseX), float(y - mouseY));
-        const bool explode = (!io.WantCaptureKeyboard && glfwGetKey(window, GLFW_KEY_E) == GLFW_PRESS) ||
-                             (!io.WantCaptureMouse && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS);
+        const bool click = !io.WantCaptureMouse && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+        const int explosions = presses.explode + (click && !clickWasDown ? 1 : 0);
+        presses.explode = 0;
+        clickWasDown = click;
         glm::vec2 hit;
-        if (explode && !explodeKeyWasDown && height > 0 && pickWater(o.camera, x, y, width, height, o.settings.waterLevel, hit)) {
+        if (explosions > 0 && height > 0 && pickWater(o.camera, x, y, width, height, o.settings.waterLevel, hit)) {
             if (o.settings.explosions.size() >= 8) o.settings.explosions.erase(o.settings.explosions.begin());
             o.settings.explosions.push_back({hit, time, 40.0f});
         }
-        explodeKeyWasDown = explode;
         mouseX = x;
         mouseY = y;
 
@@ -180,6 +228,7 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
+    glfwSetWindowUserPointer(window, nullptr);
     return 0;
 }
 
@@ -209,7 +258,7 @@ int runViewer(ViewerOptions& o, Scene& scene) {
             code = fail("shader build failed: " + error, "please report this with the GL_RENDERER string");
         } else {
             renderer.upload(scene);
-            code = offscreen ? renderOffscreen(o, renderer) : interactive(window, o, scene, renderer);
+            code = offscreen ? renderOffscreen(o, scene, renderer) : interactive(window, o, scene, renderer);
         }
     }
     glfwDestroyWindow(window);

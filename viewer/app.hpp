@@ -20,6 +20,7 @@ struct ViewerOptions {
     int bench = 0;                // render this many frames offscreen, print GPU time per pass, exit
     int frames = 0;               // interactive: close the window after this many frames (0: when the user does)
     bool json = false;
+    bool panelInScreenshot = false;  // draw the ImGui panel into the screenshot too
     Camera camera;
     RenderSettings settings;
 };

@@ -31,7 +31,7 @@ bool parseFloats(const std::string& text, std::vector<float>& out) {
 int main(int argc, char** argv) {
     using namespace heightpack::view;
     ViewerOptions o;
-    std::string size = "1280x720", camera, tiled, lookup = "trilinear", view = "shaded", tileSizes, amplitudes;
+    std::string size = "1280x720", camera, tiled, explosion, lookup = "trilinear", view = "shaded", tileSizes, amplitudes;
     bool frustumOff = false;
     float time = -1.0f;
     CLI::App app{"heightpack-view: water height maps on the GPU Gems 2 chapter 18 radial-grid renderer"};
@@ -42,6 +42,10 @@ int main(int argc, char** argv) {
     app.add_option("--normals", o.files.normals, "normal map from heightpack normal (else derived from the heights)");
     app.add_option("--fresnel", o.files.fresnel, "Fresnel ramp from heightpack fresnel (else Schlick and fixed colours)");
     app.add_option("--foam", o.files.foam, "foam texture, grey (else procedural)");
+    app.add_option("--channel", o.files.channel,
+                   "where the height is in a painted colour map: r, g, b, a, luma, or a channel's name (height.Y, Z)");
+    app.add_option("--explosion", explosion, "drop an explosion at x,y (metres) at t = 0 [,start time s [,strength I0]]");
+    app.add_flag("--panel", o.panelInScreenshot, "draw the panel into --screenshot too");
     app.add_option("--tiled", tiled, "flat view of the first map tiled NxM, to look for seams (e.g. 3x3)");
     app.add_flag("--seams", o.settings.seamLines, "draw the tile lines in the tiled view");
     app.add_option("--screenshot", o.screenshot, "render one frame offscreen to this PNG and exit (works under xvfb-run)");
@@ -72,17 +76,19 @@ int main(int argc, char** argv) {
         "  heightpack-view out/swell.exr --tiled 3x3\n"
         "  heightpack-view out/swell.exr --screenshot shot.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10\n"
         "  heightpack-view out/swell.exr --bench 300\n"
-        "Keys: WASD fly, Space/Ctrl up/down, right mouse look, E or left click drops an explosion, F1 panel.\n");
+        "Keys: WASD fly, Space/Ctrl up/down, right mouse look, E or left click drops an explosion, F1 panel, Esc quits.\n"
+        "Exit codes: 0 done, 2 usage error, 3 bad input (a map or material.json), 4 cannot write the screenshot,\n"
+        "70 no display, no OpenGL 3.3 or a shader that does not build (internal).\n");
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "heightpack: error: %s (see 'heightpack-view --help')\n", e.what());
+        std::fprintf(stderr, "heightpack-view: error: %s (see 'heightpack-view --help')\n", e.what());
         return 2;
     }
     auto usage = [](const std::string& what) {
-        std::fprintf(stderr, "heightpack: error: %s (see 'heightpack-view --help')\n", what.c_str());
+        std::fprintf(stderr, "heightpack-view: error: %s (see 'heightpack-view --help')\n", what.c_str());
         return 2;
     };
     if (std::sscanf(size.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 16 || o.height < 16 ||
@@ -97,7 +103,7 @@ int main(int argc, char** argv) {
         const std::string path = o.files.heights[0];  // a copy: applyMaterial replaces o.files
         if (heightpack::Status s = applyMaterial(path, o.files, o.settings, note); !s) {
             const heightpack::Error& e = s.error();
-            std::fprintf(stderr, "heightpack: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(), e.hint.c_str());
+            std::fprintf(stderr, "heightpack-view: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(), e.hint.c_str());
             return 3;
         }
         if (!note.empty()) std::fprintf(stderr, "heightpack-view: note: %s\n", note.c_str());
@@ -128,6 +134,11 @@ int main(int argc, char** argv) {
     if (o.settings.rings < 2 || o.settings.segments < 3 || o.settings.rings > 4096 || o.settings.segments > 4096)
         return usage("--grid and --segments must be 2..4096 and 3..4096");
     if (o.bench < 0) return usage("--bench takes a number of frames");
+    if (!explosion.empty()) {
+        if (!parseFloats(explosion, v) || v.size() < 2 || v.size() > 4)
+            return usage("--explosion must be x,y or x,y,start or x,y,start,strength");
+        o.settings.explosions.push_back({{v[0], v[1]}, v.size() > 2 ? v[2] : 0.0f, v.size() > 3 ? v[3] : 40.0f});
+    }
     if (time >= 0) o.time = time;
     o.settings.lookup = lookup == "bilinear"             ? Lookup::PackedBilinear
                         : lookup == "trilinear"          ? Lookup::PackedTrilinear
@@ -139,7 +150,7 @@ int main(int argc, char** argv) {
     auto scene = loadScene(o.files);
     if (!scene) {
         const heightpack::Error& e = scene.error();
-        std::fprintf(stderr, "heightpack: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(), e.hint.c_str());
+        std::fprintf(stderr, "heightpack-view: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(), e.hint.c_str());
         return 3;
     }
     return runViewer(o, *scene);

@@ -60,7 +60,7 @@ struct RenderSettings {
     float foamTileSize = 4.0f;
     // Perturbations (18.2.5)
     std::vector<Explosion> explosions;
-    glm::vec3 explosionShape{1.2f, 6.0f, 0.35f};  // k, w, b
+    glm::vec3 explosionShape{1.2f, -6.0f, 0.35f};  // k, w, b of I0 sin(k r + w t) exp(-b t) / r^2
     // Checking aids
     bool tiledView = false;
     glm::ivec2 tiles{3, 3};

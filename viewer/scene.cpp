@@ -26,7 +26,8 @@ double srgbToLinear(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 
 namespace {
 
 // One file's chain into frame; fills the layer's wrap, mid value and timing from the first file.
-Status loadFrame(const std::string& path, HeightLayer& layer, HeightFrame& frame, bool first) {
+Status loadFrame(const std::string& path, const std::string& channelChoice, HeightLayer& layer, HeightFrame& frame,
+                 bool first) {
     auto file = readTextureFile(path, true);
     if (!file) return file.error();
     const std::string layout = findAttribute(file->attributes, "heightpack:layout");
@@ -54,6 +55,12 @@ Status loadFrame(const std::string& path, HeightLayer& layer, HeightFrame& frame
     // A painted map: the same load, mip and pack as `heightpack pack` (periodic, kaiser).
     LoadOptions load;
     load.silenceDecoderMessages = true;
+    if (const auto select = parseChannelSelect(channelChoice)) {
+        load.channel = *select;
+    } else if (!channelChoice.empty()) {
+        load.channel = ChannelSelect::Named;
+        load.channelName = channelChoice;
+    }
     auto loaded = loadHeightMap(path, load);
     if (!loaded) return loaded.error();
     Image heights = std::move(loaded->heights);
@@ -68,13 +75,13 @@ Status loadFrame(const std::string& path, HeightLayer& layer, HeightFrame& frame
 
 }  // namespace
 
-Result<HeightLayer> loadHeightLayer(const std::string& path) {
+Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& channel) {
     HeightLayer layer;
     layer.path = path;
     const std::vector<std::string> files = expandSequence(path);
     for (size_t f = 0; f < files.size(); ++f) {
         HeightFrame frame;
-        if (Status s = loadFrame(files[f], layer, frame, f == 0); !s) return s.error();
+        if (Status s = loadFrame(files[f], channel, layer, frame, f == 0); !s) return s.error();
         if (f > 0 && (frame.packed.size() != layer.frames[0].packed.size() ||
                       frame.packed[0].width != layer.frames[0].packed[0].width ||
                       frame.packed[0].height != layer.frames[0].packed[0].height))
@@ -133,7 +140,7 @@ Result<FresnelRamp> loadFresnelRamp(const std::string& path) {
 Result<Scene> loadScene(const SceneFiles& files) {
     Scene scene;
     for (const std::string& path : files.heights) {
-        auto layer = loadHeightLayer(path);
+        auto layer = loadHeightLayer(path, files.channel);
         if (!layer) return layer.error();
         scene.layers.push_back(std::move(*layer));
     }

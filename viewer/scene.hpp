@@ -44,6 +44,7 @@ struct FresnelRamp {
 struct SceneFiles {
     std::vector<std::string> heights;
     std::string normals, fresnel, foam;
+    std::string channel;  // --channel for painted colour maps: r, g, b, a, luma or a channel's name; empty: auto
 };
 
 struct Scene {
@@ -54,7 +55,8 @@ struct Scene {
 };
 
 // Loads a map, or every frame of a sequence when path names one (see expandSequence).
-Result<HeightLayer> loadHeightLayer(const std::string& path);
+// channel: see SceneFiles::channel.
+Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& channel = {});
 Result<NormalMap> loadNormalMap(const std::string& path);
 Result<FresnelRamp> loadFresnelRamp(const std::string& path);
 Result<Scene> loadScene(const SceneFiles& files);

@@ -46,6 +46,10 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     report.threshold = options.threshold;
 
     // A texture with mip levels is checked as stored; anything else gets the chain pack would make.
+    auto progress = [&](std::string_view stage, double f) {
+        if (options.progress) options.progress(stage, f);
+    };
+    progress("load", 0.0);
     std::vector<Image> chain;
     SeamOptions seamOptions;
     seamOptions.threads = options.mip.threads;
@@ -68,10 +72,13 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
         auto loaded = detail::loadInput(path, options.load, options.mip.threads);
         if (!loaded) return loaded.error();
         report.kind = "image";
+        report.source = loaded->source;
+        progress("mip", 0.0);
         seamOptions.quantum = sampleQuantum(loaded->source);
         chain = seamChain(loaded->heights, options.mip, &report.note);
     }
 
+    progress("check", 0.0);
     ChainSeams seams = measureChainSeams(chain, options.threshold, seamOptions);
     report.tiles = seams.tiles();
     report.failure = seams.failure;

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include "image_input.hpp"
 #include "png_fast.hpp"
@@ -44,6 +45,46 @@ int findChannel(const OIIO::ImageSpec& spec, ChannelSelect select) {
     return which < spec.nchannels && which != spec.alpha_channel ? which : -1;
 }
 
+// Finds the channel called name: exactly, then ignoring case, then as a layer holding one channel
+// ("height" for "height.Y"). -1 when none or several match.
+int findNamedChannel(const OIIO::ImageSpec& spec, const std::string& name) {
+    const auto& names = spec.channelnames;
+    for (int c = 0; c < spec.nchannels; ++c)
+        if (names[c] == name) return c;
+    int found = -1, count = 0;
+    for (int c = 0; c < spec.nchannels; ++c)
+        if (lower(names[c]) == lower(name)) found = c, ++count;
+    if (count == 1) return found;
+    found = -1, count = 0;
+    for (int c = 0; c < spec.nchannels; ++c)
+        if (lower(names[c]).rfind(lower(name) + ".", 0) == 0) found = c, ++count;
+    return count == 1 ? found : -1;
+}
+
+std::string channelList(const OIIO::ImageSpec& spec) {
+    std::string list;
+    for (const std::string& n : spec.channelnames) list += (list.empty() ? "" : ", ") + n;
+    return list;
+}
+
+// A number the file records: a float in an EXR header, text in a PNG or TIFF.
+std::optional<double> recordedNumber(const OIIO::ImageSpec& spec, const char* name) {
+    const OIIO::ParamValue* p = spec.find_attribute(name);
+    if (!p) return std::nullopt;
+    if (p->type() == OIIO::TypeFloat) return p->get_float();
+    const std::string text = p->get_string();
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || !std::isfinite(v)) return std::nullopt;
+    return v;
+}
+
+std::string numberText(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
 }  // namespace
 
 std::optional<ChannelSelect> parseChannelSelect(std::string_view name) {
@@ -52,7 +93,7 @@ std::optional<ChannelSelect> parseChannelSelect(std::string_view name) {
     if (name == "b") return ChannelSelect::B;
     if (name == "a") return ChannelSelect::A;
     if (name == "luma") return ChannelSelect::Luma;
-    return std::nullopt;
+    return std::nullopt;  // Named is never parsed: it needs the name as well
 }
 
 Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& options) {
@@ -79,41 +120,85 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
 
     const int colourChannels = spec.nchannels - (spec.alpha_channel >= 0 ? 1 : 0);
     const bool colour = colourChannels > 1;
+    // A texture heightpack wrote: packed (R = H(i,j)) or plain (Y), its values recorded as offset + scale * value.
+    const std::string layout = spec.get_string_attribute("heightpack:layout");
+    const bool heightTexture = layout == "neighbour4" || layout == "plain";
+    const auto findName = [&](const char* name) {
+        const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
+        return it == spec.channelnames.end() ? -1 : static_cast<int>(it - spec.channelnames.begin());
+    };
     int channel = 0;
     bool luma = false;
     switch (options.channel) {
         case ChannelSelect::Auto:
+            if (layout == "normal")
+                return badInput(path, "is a normal map heightpack wrote, not a height map",
+                                "give the height map it was made from");
+            if (heightTexture) {
+                channel = std::max(0, findName(layout == "neighbour4" ? "R" : "Y"));
+                break;
+            }
             // A height with companions (synth's displacement) names its height channel Y.
-            if (const auto y = std::find(spec.channelnames.begin(), spec.channelnames.end(), "Y");
-                colour && y != spec.channelnames.end()) {
-                channel = static_cast<int>(y - spec.channelnames.begin());
+            if (const int y = findName("Y"); colour && y >= 0) {
+                channel = y;
                 break;
             }
             if (colour) {
                 return badInput(path,
-                                "is a colour image with " + std::to_string(spec.nchannels) + " channels",
-                                "choose the height channel with --channel r|g|b|a|luma");
+                                "is a colour image with " + std::to_string(spec.nchannels) + " channels (" +
+                                    channelList(spec) + ")",
+                                "choose the height channel with --channel r|g|b|a|luma or a channel's name");
             }
             channel = spec.alpha_channel == 0 && spec.nchannels > 1 ? 1 : 0;
+            if (spec.alpha_channel >= 0 && spec.nchannels > 1)
+                src.channelNote = "grey image with alpha: heights from '" + spec.channelnames[channel] + "', alpha '" +
+                                  spec.channelnames[spec.alpha_channel] + "' ignored";
             break;
         case ChannelSelect::Luma:
             luma = colour && colourChannels >= 3;
             channel = spec.alpha_channel == 0 && spec.nchannels > 1 ? 1 : 0;
+            if (!luma) src.channelNote = "not a colour image: heights from its grey '" + spec.channelnames[channel] + "'";
+            break;
+        case ChannelSelect::Named:
+            channel = findNamedChannel(spec, options.channelName);
+            if (channel < 0) {
+                return badInput(path, "has no channel named '" + options.channelName + "' (it has " + channelList(spec) + ")",
+                                "pick one it has with --channel");
+            }
             break;
         default:
             // A grey image is its own red, green and blue.
             channel = colour || options.channel == ChannelSelect::A ? findChannel(spec, options.channel)
                                                                       : (spec.alpha_channel == 0 ? 1 : 0);
             if (channel < 0) {
-                return badInput(path, "has no such channel (it has " + std::to_string(spec.nchannels) + ")",
+                return badInput(path, "has no such channel (it has " + channelList(spec) + ")",
                                 "pick one it has with --channel");
             }
+            if (!colour && options.channel != ChannelSelect::A)
+                src.channelNote = "grey image: its one grey channel '" + spec.channelnames[channel] +
+                                  "' stands for red, green and blue";
     }
     src.channelUsed = luma ? "luma" : spec.channelnames[channel];
+
+    // Values back from a heightpack texture: value = (stored - offset) / scale.
+    double scale = 1.0, offset = 0.0;
+    if (heightTexture && !luma) {
+        scale = recordedNumber(spec, "heightpack:heightScale").value_or(1.0);
+        offset = recordedNumber(spec, "heightpack:heightOffset").value_or(0.0);
+        if (scale == 0.0) scale = 1.0;
+        src.channelNote = std::string(layout == "neighbour4" ? "packed" : "plain") + " heightpack texture: heights from '" +
+                          src.channelUsed + "' of level 0, mapped back to values through its heightScale " +
+                          numberText(scale) + " and heightOffset " + numberText(offset);
+    }
+    const auto unmap = [&](Image& heights) {
+        if (scale == 1.0 && offset == 0.0) return;
+        for (float& v : heights.pixels) v = static_cast<float>((v - offset) / scale);
+    };
 
     if (!luma && src.format == "png" && spec.nchannels <= 2) {
         if (auto fast = detail::decodeGreyPng(path, spec.width, spec.height, channel, options.threads)) {
             out.heights = std::move(*fast);
+            unmap(out.heights);
             src.decoder = "heightpack-png";
             return out;  // integer samples: always finite
         }
@@ -142,6 +227,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     } else {
         heights.pixels = std::move(pixels);
     }
+    unmap(heights);
     if (Status finite = checkFinite(heights, path); !finite) return finite.error();
     return out;
 }

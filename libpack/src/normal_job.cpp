@@ -56,9 +56,9 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
     mip.filter = options.filter;
     mip.wrap = n.wrap;
     mip.threads = n.threads;
-    progress("normal", 0.0);
 
     if (options.format == NormalFormat::Png8) {
+        progress("normal", 0.0);
         Image normals = normalsFromHeights(heights, texelWidth(n, w0, w0), texelHeight(n, w0, h0, h0), n);
         double minZ = 1.0;
         for (size_t i = 0; i < normals.texelCount(); ++i) {
@@ -77,7 +77,9 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
                                                 "--format png8 for level 0 alone");
         if (!resized) return resized.error();
         report.resized = *resized;
+        progress("mip", 0.0);
         const std::vector<Image> heightChain = generateMipChain(heights, mip);
+        progress("normal", 0.0);
         std::vector<Image> momentChain;
         if (n.alpha == NormalAlpha::Variance) {
             const Image& top = heightChain[0];

@@ -18,8 +18,15 @@ Result<SynthReport> synthesise(const std::string& output, const SynthOptions& op
 
     const Ocean ocean(options.spectrum);
     const double period = options.spectrum.loopPeriod;
+    auto progress = [&](std::string_view stage, double f) {
+        if (options.progress) options.progress(stage, f);
+    };
     std::vector<Image> frames;
-    for (int f = 0; f < options.frames; ++f) frames.push_back(ocean.heights(options.frames > 1 ? f * period / options.frames : 0.0));
+    for (int f = 0; f < options.frames; ++f) {
+        progress("synth", double(f) / options.frames);
+        frames.push_back(ocean.heights(options.frames > 1 ? f * period / options.frames : 0.0));
+    }
+    progress("synth", 1.0);
 
     SynthReport report;
     report.expectedSignificantWaveHeight = 4.0 * std::sqrt(ocean.resolvedVariance());
@@ -41,6 +48,7 @@ Result<SynthReport> synthesise(const std::string& output, const SynthOptions& op
     char wind[64];
     std::snprintf(wind, sizeof wind, "%.4g m/s from %.4g deg", s.windSpeed, s.windDirection);
     for (int f = 0; f < options.frames; ++f) {
+        progress("write", double(f) / options.frames);
         Image image = frames[f];
         if (!metres)
             for (float& v : image.pixels) v = static_cast<float>((v - offset) / scale);

@@ -91,12 +91,18 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
 
 Result<TileReport> tileFile(const std::string& input, const std::string& output, const TileOptions& options) {
     if (Status s = checkWritable(output); !s) return s.error();
+    auto progress = [&](std::string_view stage, double f) {
+        if (options.progress) options.progress(stage, f);
+    };
+    progress("load", 0.0);
     auto loaded = detail::loadInput(input, options.load, options.mip.threads);
     if (!loaded) return loaded.error();
     TileReport report;
     report.input = input;
     report.output = output;
+    report.source = loaded->source;
     const Image& map = loaded->heights;
+    progress("check", 0.0);
     const auto [inLow, inHigh] = std::minmax_element(map.pixels.begin(), map.pixels.end());
     report.inputLow = *inLow;
     report.inputHigh = *inHigh;
@@ -105,6 +111,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     seamOptions.quantum = sampleQuantum(loaded->source);
     report.before = measureChainSeams(seamChain(map, options.mip), options.threshold, seamOptions);
     report.alreadyTiled = report.before.tiles() && !options.force;
+    progress("tile", 0.0);
 
     const std::string ext = lowerExtension(output);
     const std::string& type = loaded->source.pixelType;
@@ -127,6 +134,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
 
     Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, report.methodUsed, report.crossfadeWidth);
     if (report.alreadyTiled) report.methodUsed = "none";
+    progress("tile", 1.0);
     report.width = result.width;
     report.height = result.height;
     const auto [low, high] = std::minmax_element(result.pixels.begin(), result.pixels.end());
@@ -185,6 +193,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     };
     if (report.methodUsed.find("crossfade") != std::string::npos)
         flat.attributes.push_back({"heightpack:crossfadeWidth", static_cast<float>(report.crossfadeWidth)});
+    progress("write", 0.0);
     if (Status s = writeFlatImage(output, result, flat); !s) return s.error();
     report.written = true;
     return report;

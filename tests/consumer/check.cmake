@@ -14,6 +14,10 @@ file(COPY ${SOURCE_DIR}/ DESTINATION ${src})
 file(COPY_FILE ${EXAMPLES_DIR}/maps/choppy.png ${src}/water/chop.png)
 
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
+# Every manifest error points at docs/manifest.md: it must be installed with the package.
+if(NOT EXISTS ${WORK_DIR}/prefix/share/doc/heightpack/manifest.md)
+  message(FATAL_ERROR "docs/manifest.md was not installed under share/doc/heightpack")
+endif()
 run(${CMAKE_COMMAND} -S ${src} -B ${build} -G Ninja -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
 run(${CMAKE_COMMAND} --build ${build})
 run(${build}/consumer)

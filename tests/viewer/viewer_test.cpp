@@ -187,7 +187,7 @@ TEST(Viewer, BadInputGivesTheDocumentedErrorAndNoWindow) {
     for (const std::string& input : {dir.file("missing.exr"), dir.file("broken.exr")}) {
         const ViewRun run = view({input, "--screenshot", dir.file("shot.png")});
         EXPECT_EQ(run.code, 3) << run.err;
-        EXPECT_EQ(run.err.rfind("heightpack: error: " + input, 0), 0u) << run.err;
+        EXPECT_EQ(run.err.rfind("heightpack-view: error: " + input, 0), 0u) << run.err;
         EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
     }
     const ViewRun badNormals = view({kExamples + "swell.png", "--normals", dir.file("missing_n.exr"), "--screenshot",
@@ -319,4 +319,49 @@ TEST(Viewer, InteractiveWindowRunsWithItsPanel) {
     const ViewRun run = view({dir.file("m/material.json"), "--frames", "8", "--size", "480x270"});
     EXPECT_EQ(run.code, 0) << run.err;
     EXPECT_EQ(run.err.find("Assertion"), std::string::npos) << run.err;
+}
+
+TEST(Viewer, ChannelChoosesTheHeightOfAColourMapAndErrorsNameTheViewer) {
+    ScratchDir dir;
+    // The height in green; red and blue hold something else.
+    std::vector<float> rgb;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) rgb.insert(rgb.end(), {0.0f, float(0.5 + 0.4 * std::sin(x * 0.3)), 1.0f});
+    writeImage(dir.file("colour.png"), 64, 64, 3, rgb, OIIO::TypeDesc::UINT8);
+    const ViewRun refused = view({dir.file("colour.png"), "--screenshot", dir.file("shot.png")});
+    EXPECT_EQ(refused.code, 3);
+    EXPECT_EQ(refused.err.rfind("heightpack-view: error: ", 0), 0u) << refused.err;
+    EXPECT_NE(refused.err.find("--channel"), std::string::npos) << refused.err;  // the hint names an option it has
+    const ViewRun usage = view({dir.file("colour.png"), "--size", "huge"});
+    EXPECT_EQ(usage.err.rfind("heightpack-view: error: ", 0), 0u) << usage.err;
+    const ViewRun chosen = view({dir.file("colour.png"), "--channel", "g", "--screenshot", dir.file("shot.png")});
+    EXPECT_EQ(chosen.code, 0) << chosen.err;
+}
+
+TEST(Viewer, ExplosionFollowsTheChapterAndIsSmoothAtItsCentre) {
+    // Looking straight down at an explosion on flat water, height as grey: the grey at distance r from the
+    // centre is the chapter's I(r) = I0 sin(k r + w t) exp(-b t) / r^2 with r smoothed as sqrt(r^2 + 1),
+    // computed here. Clamping r at 1 m, as before, made a flat disc of one grey with a kink at its rim.
+    ScratchDir dir;
+    const double k = 1.2, w = -6.0, b = 0.35, t = 0.5, i0 = 1.0, camera = 6.0;
+    auto height = [&](double r) {
+        const double s2 = r * r + 1.0, s = std::sqrt(s2);
+        return i0 * std::sin(k * s + w * t) * std::exp(-b * t) / s2;
+    };
+    const int size = 401;
+    const Picture p = screenshot(dir, "explosion.png",
+                                 {kExamples + "swell.png", "--amplitude", "0", "--view", "height", "--size", "401x401",
+                                  "--time", "0.5", "--explosion", "0,0,0,1", "--camera", "0,0,6,0,-89.99"});
+    ASSERT_EQ(p.width, size);
+    // Pixel p from the centre sees the water at r = p * tan(30 deg) / 200 * (camera - h(r)).
+    const double perPixel = std::tan(30.0 * 3.14159265358979 / 180.0) / ((size - 1) / 2.0);
+    // From 8 px: the radial grid leaves a hole of radius r0 (10 cm, 6 px here) under the camera.
+    for (int offset : {8, 12, 20, 30, 40, 60, 80}) {
+        double r = offset * perPixel * camera;
+        for (int i = 0; i < 20; ++i) r = offset * perPixel * (camera - height(r));
+        const double expected = 255.0 * (0.1 + 0.8 * (height(r) + 2.0) / 4.0);
+        for (const auto& [x, y] : std::vector<std::pair<int, int>>{{200 + offset, 200}, {200 - offset, 200}, {200, 200 + offset}}) {
+            EXPECT_NEAR(p.at(x, y), expected, 2.5) << "at " << offset << " px, r = " << r << " m";
+        }
+    }
 }

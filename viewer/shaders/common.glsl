@@ -18,7 +18,10 @@ uniform float uPixelAngle;              // radians a pixel subtends, for the LOD
 uniform float uTime;
 uniform float uWaterLevel;
 
-// Explosions (18.2.5): I(r) = I0 sin(k r + w t) exp(-b t) / r^2, several at once.
+// Explosions (18.2.5): I(r) = I0 sin(k r + w t) exp(-b t) / r^2, several at once, with r taken as
+// s = sqrt(r^2 + R^2), R = 1 m: the chapter's formula wherever r >> R, and smooth at the centre, where
+// 1 / r^2 is infinite (clamping r at 1 m left a flat-topped spike with a kink around it). w < 0: the
+// rings run outward.
 const int kMaxExplosions = 8;
 uniform int uExplosionCount;
 uniform vec4 uExplosion[kMaxExplosions];  // centre x, y, start time, strength I0
@@ -99,8 +102,10 @@ float waterHeight(vec2 xy, float d, out float lod0) {
         if (e >= uExplosionCount) break;
         float age = uTime - uExplosion[e].z;
         if (age < 0.0) continue;
-        float r = max(distance(xy, uExplosion[e].xy), 1.0);
-        h += uExplosion[e].w * sin(uExplosionShape.x * r - uExplosionShape.y * age) * exp(-uExplosionShape.z * age) / (r * r);
+        vec2 toCentre = xy - uExplosion[e].xy;
+        float s2 = dot(toCentre, toCentre) + 1.0;
+        float s = sqrt(s2);
+        h += uExplosion[e].w * sin(uExplosionShape.x * s + uExplosionShape.y * age) * exp(-uExplosionShape.z * age) / s2;
     }
     return h;
 }

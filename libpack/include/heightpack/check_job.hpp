@@ -1,8 +1,10 @@
 // The whole `check` operation: does a map, or a texture heightpack wrote, tile at every mip level?
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "heightpack/io.hpp"
@@ -17,12 +19,15 @@ struct CheckOptions {
     MipOptions mip;  // the chain `pack` would make from a flat image (a texture's own levels are used as they are)
     double threshold = kDefaultSeamThreshold;
     std::string previewPath;  // write the 2x2 seam preview PNG here, if not empty
+    // Reports progress: the stage ("load", "mip", "check") and the fraction of it done; may be empty.
+    std::function<void(std::string_view stage, double fraction)> progress;
 };
 
 struct CheckReport {
     std::string input;
     std::string kind;   // "image" (levels made as pack would), "neighbour4", "plain", "normal" or "texture"
     std::string note;   // e.g. why only level 0 was scored
+    SourceInfo source;  // for an image: what it held and which channel was used (empty for a texture's levels)
     double threshold = kDefaultSeamThreshold;
     std::vector<LevelSeams> levels;
     LevelSeams worst;  // per edge pair, the highest scores over the measured levels

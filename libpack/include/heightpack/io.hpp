@@ -14,14 +14,19 @@
 
 namespace heightpack {
 
-// Which channel of a colour input holds the height.
-enum class ChannelSelect { Auto, R, G, B, A, Luma };
+// Which channel of a colour input holds the height. Named: the channel LoadOptions::channelName names
+// (an EXR layer's "height.Y", "Z", "depth"); the others find the channel by its usual names, then by position.
+enum class ChannelSelect { Auto, R, G, B, A, Luma, Named };
+// "r", "g", "b", "a", "luma"; nullopt for anything else (which a caller may take as a channel name).
 std::optional<ChannelSelect> parseChannelSelect(std::string_view name);
 
 struct LoadOptions {
     // Auto takes a one-channel image (or grey + alpha), or the channel named Y of any image, and
     // refuses a colour image.
+    // A heightpack texture (packed neighbour4 or plain) gives its height channel, R or Y, mapped back
+    // through its recorded heightScale and heightOffset to the values it was made from.
     ChannelSelect channel = ChannelSelect::Auto;
+    std::string channelName;  // with Named: matched exactly, else ignoring case
     // Images larger than this are refused from their header, before any pixel is allocated.
     int maxSide = 32768;
     int64_t maxTexels = int64_t(1) << 28;  // 1 GiB of floats
@@ -41,6 +46,9 @@ struct SourceInfo {
     int height = 0;
     int channels = 0;
     std::string channelUsed;  // the name of the channel the heights came from, or "luma"
+    // Set when the channel was chosen in a way a person may not expect (alpha of a grey image ignored,
+    // a colour choice on a grey image, a heightpack texture read back): one sentence saying what was used.
+    std::string channelNote;
     std::string decoder;      // "heightpack-png" (fast path for grey PNGs) or "openimageio"
     // Where the map sits in an animation, if its file says (heightpack:loopPeriod, heightpack:time):
     // carried into what is made from it, so a packed sequence still knows its timing.

@@ -1,7 +1,9 @@
 // The whole `synth` operation: a sea from a spectrum, written as one map or a looping sequence of frames.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "heightpack/io.hpp"
@@ -15,6 +17,8 @@ struct SynthOptions {
     int frames = 1;  // more than one needs spectrum.loopPeriod: frame f is the sea at f * loopPeriod / frames
     bool displacement = false;  // EXR only: add Tessendorf's horizontal displacement as channels Dx, Dy
     std::string version;
+    // Reports progress: the stage ("synth", "write") and the fraction of it done; may be empty.
+    std::function<void(std::string_view stage, double fraction)> progress;
 };
 
 struct SynthReport {

@@ -1,7 +1,9 @@
 // The whole `tile` operation: make a map tile, changing the painting as little as the method allows.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <string_view>
 
 #include "heightpack/io.hpp"
 #include "heightpack/mip.hpp"
@@ -28,11 +30,14 @@ struct TileOptions {
     double threshold = kDefaultSeamThreshold;
     int bits = 0;  // 8, 16 or 32 (float); 0 keeps the input's depth (float inputs stay float)
     std::string version;
+    // Reports progress: the stage ("load", "check", "tile", "write") and the fraction of it done; may be empty.
+    std::function<void(std::string_view stage, double fraction)> progress;
 };
 
 struct TileReport {
     std::string input;
     std::string output;
+    SourceInfo source;          // what the input held and which channel was used
     bool alreadyTiled = false;  // the input passed the check at every level and was written unchanged
     bool written = false;       // false when the method could not make the map tile: nothing was written
     std::string methodUsed;     // "none", the method's name, or what Periodic chose ("moisan+crossfade over 0.1 of the tile")
