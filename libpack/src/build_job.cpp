@@ -66,7 +66,9 @@ std::string number(double v) {
 Status checkOutputPath(const fs::path& path) {
     std::error_code ec;
     if (fs::exists(fs::symlink_status(path, ec))) return checkWritable(path.string());
-    for (fs::path up = path.parent_path(); !up.empty(); up = up.parent_path()) {
+    // The nearest folder above it that exists must be a writable folder (from the absolute path, so a
+    // relative output folder that does not exist yet is judged by the current folder).
+    for (fs::path up = fs::absolute(path, ec).parent_path(); !ec && !up.empty(); up = up.parent_path()) {
         if (!fs::exists(up, ec)) {
             if (up == up.parent_path()) break;
             continue;
@@ -77,7 +79,7 @@ Status checkOutputPath(const fs::path& path) {
             return cannotWrite(path.string(), "folder " + up.string() + " is not writable", "choose another output folder");
         return Done{};
     }
-    return checkWritable(path.string());  // relative, under the current folder
+    return cannotWrite(path.string(), "has no existing folder above it", "choose another output folder");
 }
 
 namespace {

@@ -678,3 +678,13 @@ TEST_F(BuildTest, ADamagedStateFileMeansAFullRebuildNeverAnError) {
         EXPECT_EQ(fingerprint(out), before) << what;  // the same bytes, and the state written afresh
     }
 }
+
+// Output paths are judged before writing, but a relative output folder that does not exist yet is
+// still made (the README's demo does this), with the depfile and the stamp inside it.
+TEST_F(BuildTest, ARelativeOutputFolderThatDoesNotExistYetIsMade) {
+    const ProcessResult r = runProcess({"sh", "-c", "cd \"$0\" && \"$1\" build water.toml -o new/out --depfile new/out/sea.d "
+                                                    "--stamp new/out/sea.stamp", dir.path().string(), HEIGHTPACK_EXE});
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* file : {"new/out/long.exr", "new/out/material.json", "new/out/sea.d", "new/out/sea.stamp"})
+        EXPECT_TRUE(fs::is_regular_file(dir.file(file))) << file;
+}
