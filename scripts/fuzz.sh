@@ -47,9 +47,12 @@ for f in "${fuzzers[@]}"; do
   extra=()
   if [ "$f" = fuzz_load_image ]; then extra=(-fork=1 -ignore_ooms=1 -ignore_timeouts=0 -ignore_crashes=0); fi
   # The first corpus folder receives what the run finds; the seeds in the repo are only read.
-  if build-fuzz/tests/fuzz/"$f" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 "${extra[@]}" -print_final_stats=1 \
-      -dict="tests/fuzz/$f.dict" -artifact_prefix="build-fuzz/findings/$f-" \
-      "build-fuzz/corpus/$f" "tests/fuzz/corpus/$f" >"$log" 2>&1; then
+  rc=0
+  build-fuzz/tests/fuzz/"$f" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 "${extra[@]}" -print_final_stats=1 \
+    -dict="tests/fuzz/$f.dict" -artifact_prefix="build-fuzz/findings/$f-" \
+    "build-fuzz/corpus/$f" "tests/fuzz/corpus/$f" >"$log" 2>&1 || rc=$?
+  # In fork mode the exit status is the last job's: 71 is libFuzzer's out-of-memory, ignored above.
+  if ((rc == 0 || (${#extra[@]} > 0 && rc == 71))); then
     # "#N DONE cov: C ft: F corp: K/SIZE ..." (or "#N: cov: C ft: F corp: K ..." in fork mode).
     summary=$(grep -E '^#[0-9]+' "$log" | tail -1)
     field() { sed -nE "s/.*$1:? ([0-9]+).*/\1/p" <<<"$summary"; }
