@@ -9,6 +9,7 @@
 
 #include "command.hpp"
 #include "heightpack/build_job.hpp"
+#include "heightpack/io.hpp"
 #include "heightpack/parallel.hpp"
 #include "heightpack/version.hpp"
 
@@ -111,6 +112,19 @@ public:
             checksPassed = checksPassed && build->report().checkFailures.empty();
             builds.push_back(std::move(*build));
         }
+        // The depfile and the stamp are judged before any material is written, as the materials' own
+        // outputs are in prepare(): a build that cannot write them must not write anything.
+        if (checksPassed && !checkOnly_)
+            for (const std::string& path : {depfile_, stamp_}) {
+                if (path.empty()) continue;
+                // A missing folder is refused, unless the build makes it (the output folder or one in it).
+                if (Status s = madeByBuild(path) ? checkOutputPath(path) : checkWritable(path); !s) return fail(s.error());
+                for (const MaterialBuild& b : builds)
+                    for (const std::string& source : b.report().dependencies)
+                        if (std::error_code ec; fs::equivalent(path, source, ec))
+                            return fail(cannotWrite(path, "is also a source the build reads (" + source + ")",
+                                                    "give the depfile and the stamp their own names"));
+            }
         nlohmann::json materials = nlohmann::json::array();
         std::vector<std::string> dependencies;
         for (size_t i = 0; i < builds.size(); ++i) {
@@ -141,10 +155,10 @@ public:
         if (checksPassed && !checkOnly_) {
             if (!depfile_.empty()) {
                 const std::string target = stamp_.empty() ? (fs::path(output_) / kMaterialFile).string() : stamp_;
-                if (ExitCode c = writeFile(depfile_, depfileText(target, dependencies)); c != ExitCode::Ok) return c;
+                if (Status s = writeBuildFile(depfile_, depfileText(target, dependencies)); !s) return fail(s.error());
             }
             if (!stamp_.empty())
-                if (ExitCode c = writeFile(stamp_, "heightpack build stamp\n"); c != ExitCode::Ok) return c;
+                if (Status s = writeBuildFile(stamp_, "heightpack build stamp\n"); !s) return fail(s.error());
         }
         if (common_.json)
             printJson({{"command", "build"}, {"checkOnly", checkOnly_}, {"ok", checksPassed}, {"jobs", jobs_},
@@ -247,12 +261,18 @@ private:
                 {"assets", assets}};
     }
 
-    ExitCode writeFile(const std::string& path, const std::string& text) const {
-        std::ofstream out(path, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.close();
-        if (!out) return fail(cannotWrite(path, "cannot be written", "check that its folder exists and is writable"));
-        return ExitCode::Ok;
+    // Whether path lies in the output folder (or deeper), whose folders the build creates.
+    bool madeByBuild(const std::string& path) const {
+        const fs::path rel = fs::absolute(path).lexically_normal().lexically_relative(fs::absolute(output_).lexically_normal());
+        return !rel.empty() && *rel.begin() != ".." && rel != ".";
+    }
+    // The depfile or the stamp, atomically, in its folder (made if the build makes it).
+    Status writeBuildFile(const std::string& path, const std::string& text) const {
+        if (madeByBuild(path)) {
+            std::error_code ec;
+            fs::create_directories(fs::path(path).parent_path(), ec);
+        }
+        return writeTextFile(path, text);
     }
 
     std::vector<std::string> manifests_;

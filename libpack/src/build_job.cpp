@@ -1,5 +1,6 @@
 #include "heightpack/build_job.hpp"
 
+#include <unistd.h>
 #include <xxhash.h>
 
 #include <algorithm>
@@ -60,6 +61,29 @@ std::string number(double v) {
     std::snprintf(text, sizeof text, "%.17g", v);
     return text;
 }
+
+}  // namespace
+
+Status checkOutputPath(const fs::path& path) {
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(path, ec))) return checkWritable(path.string());
+    // The nearest folder above it that exists must be a writable folder (from the absolute path, so a
+    // relative output folder that does not exist yet is judged by the current folder).
+    for (fs::path up = fs::absolute(path, ec).parent_path(); !ec && !up.empty(); up = up.parent_path()) {
+        if (!fs::exists(up, ec)) {
+            if (up == up.parent_path()) break;
+            continue;
+        }
+        if (!fs::is_directory(up, ec))
+            return cannotWrite(path.string(), up.string() + " is not a folder", "choose another output folder");
+        if (::access(up.c_str(), W_OK) != 0)
+            return cannotWrite(path.string(), "folder " + up.string() + " is not writable", "choose another output folder");
+        return Done{};
+    }
+    return cannotWrite(path.string(), "has no existing folder above it", "choose another output folder");
+}
+
+namespace {
 
 // Writes text to path atomically.
 Status writeText(const std::string& path, const std::string& text) {
@@ -253,16 +277,27 @@ struct StateEntry {
 };
 using State = std::map<std::string, StateEntry>;
 
+// A missing or damaged state file only means everything is rebuilt: anything not exactly as stateText
+// writes it (not JSON, truncated, a field of another type, a number where a string belongs, another
+// format) gives no state at all, never an error.
 State loadState(const std::string& path) {
-    State state;
     const nlohmann::json doc = nlohmann::json::parse(readText(path), nullptr, false);
-    // A missing or damaged state file only means everything is rebuilt.
-    if (doc.is_discarded() || !doc.is_object() || doc.value("format", 0) != kStateFormat || !doc.contains("outputs") ||
-        !doc["outputs"].is_object())
-        return state;
-    for (const auto& [output, entry] : doc["outputs"].items()) {
-        if (!entry.is_object()) continue;
-        state[output] = {entry.value("key", ""), entry.value("hash", ""), entry.value("checked", "")};
+    if (doc.is_discarded() || !doc.is_object()) return {};
+    const auto format = doc.find("format");
+    const auto outputs = doc.find("outputs");
+    if (format == doc.end() || !format->is_number_integer() || *format != kStateFormat || outputs == doc.end() ||
+        !outputs->is_object())
+        return {};
+    State state;
+    for (const auto& [output, entry] : outputs->items()) {
+        if (!entry.is_object()) return {};
+        StateEntry e;
+        for (auto [key, field] : {std::pair{"key", &e.key}, std::pair{"hash", &e.hash}, std::pair{"checked", &e.checked}}) {
+            const auto value = entry.find(key);
+            if (value == entry.end() || !value->is_string()) return {};
+            *field = value->get<std::string>();
+        }
+        state[output] = std::move(e);
     }
     return state;
 }
@@ -348,6 +383,8 @@ int BuildReport::upToDate() const {
     return static_cast<int>(std::count_if(assets.begin(), assets.end(), [](const AssetReport& a) { return a.status == AssetStatus::UpToDate; }));
 }
 
+Status writeTextFile(const std::string& path, const std::string& text) { return writeText(path, text); }
+
 std::string depfileText(const std::string& target, const std::vector<std::string>& dependencies) {
     auto escape = [](const std::string& path) {
         std::string out;
@@ -431,7 +468,15 @@ Status MaterialBuild::Impl::prepare() {
                                "is also a source this material reads (" + clash->second + ")", "choose another output folder");
     }
     statePath = (folder / kBuildStateFile).string();
-    if (!options.checkOnly) state = loadState(statePath);
+    // Every path the build will write is judged before anything is: a build that cannot finish must
+    // not leave half its outputs behind.
+    if (!options.checkOnly) {
+        std::vector<fs::path> outputs{statePath, folder / kMaterialFile};
+        for (const Step& s : steps) outputs.push_back(folder / s.report.output);
+        for (const fs::path& p : outputs)
+            if (Status ok = checkOutputPath(p); !ok) return ok.error();
+        state = loadState(statePath);
+    }
     jobs = std::max(1, options.jobs);
     threads = options.threads > 0 ? options.threads : std::max(1, resolveThreadCount(0) / jobs);
 

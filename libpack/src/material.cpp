@@ -1,5 +1,6 @@
 #include "heightpack/material.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -18,47 +19,69 @@ Json textureJson(const MaterialTexture& t) {
 
 Json pairJson(const std::array<double, 2>& v) { return Json::array({v[0], v[1]}); }
 
-// Reading: every lookup names the key path it wanted, so a damaged file says where.
+// Reading: every lookup names the key path it wanted, so a damaged file says where. Every value's type
+// and range is checked before it is used: a number where a string belongs, or 1e20 where an int
+// belongs (converting it would be undefined behaviour), is a damaged file like any other.
 class Reader {
 public:
     explicit Reader(std::string path) : path_(std::move(path)) {}
+
+    // Numbers beyond this are refused: the viewer and engines hold them as floats, and converting a
+    // double outside float's range is undefined behaviour.
+    static constexpr double kLargest = 1e30;
 
     const Json& at(const Json& object, const char* key, const std::string& where) const {
         if (!object.is_object() || !object.contains(key)) throw missing(where + key);
         return object.at(key);
     }
     double number(const Json& object, const char* key, const std::string& where) const {
+        return number(at(object, key, where), where + key);
+    }
+    double number(const Json& v, const std::string& name) const {
+        const double d = v.is_number() ? v.get<double>() : NAN;
+        if (!std::isfinite(d) || std::abs(d) > kLargest) throw missing(name + " (a number)");
+        return d;
+    }
+    // A whole number in [lo, hi], checked as a double before it becomes an int.
+    int integer(const Json& object, const char* key, const std::string& where, int lo, int hi) const {
         const Json& v = at(object, key, where);
-        if (!v.is_number()) throw missing(where + key + " (a number)");
-        return v.get<double>();
+        const double d = v.is_number() ? v.get<double>() : NAN;
+        if (!(d >= lo && d <= hi) || d != std::floor(d))
+            throw missing(where + key + " (a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ")");
+        return static_cast<int>(d);
     }
     std::string text(const Json& object, const char* key, const std::string& where) const {
         const Json& v = at(object, key, where);
         if (!v.is_string()) throw missing(where + key + " (a string)");
         return v.get<std::string>();
     }
+    // A string that may be left out.
+    std::string optionalText(const Json& object, const char* key, const std::string& where) const {
+        return object.contains(key) ? text(object, key, where) : std::string();
+    }
     std::array<double, 2> pair(const Json& object, const char* key, const std::string& where) const {
         const Json& v = at(object, key, where);
-        if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
-            throw missing(where + key + " (two numbers)");
-        return {v[0].get<double>(), v[1].get<double>()};
+        if (!v.is_array() || v.size() != 2) throw missing(where + key + " (two numbers)");
+        return {number(v[0], where + key + "[0]"), number(v[1], where + key + "[1]")};
     }
     MaterialTexture texture(const Json& object, const std::string& where) const {
         const Json& t = at(object, "texture", where);
         const std::string w = where + "texture.";
         MaterialTexture out;
         out.file = text(t, "file", w);
-        out.width = static_cast<int>(number(t, "width", w));
-        out.height = static_cast<int>(number(t, "height", w));
-        out.levels = static_cast<int>(number(t, "levels", w));
-        out.frames = t.contains("frames") ? static_cast<int>(number(t, "frames", w)) : 1;
-        if (out.file.empty() || out.width < 1 || out.height < 1 || out.levels < 1 || out.frames < 1)
-            throw missing(w + "file/width/height/levels (a file name and positive sizes)");
+        if (out.file.empty()) throw missing(w + "file (a file name)");
+        out.width = integer(t, "width", w, 1, kMaxSide);
+        out.height = integer(t, "height", w, 1, kMaxSide);
+        out.levels = integer(t, "levels", w, 1, 64);
+        out.frames = t.contains("frames") ? integer(t, "frames", w, 1, kMaxFrames) : 1;
         return out;
     }
     Error missing(const std::string& key) const {
         return badInput(path_, "has no valid '" + key + "'", "build the material again with heightpack build");
     }
+
+    static constexpr int kMaxSide = 1 << 24;
+    static constexpr int kMaxFrames = 100000;  // as many as expandSequence looks for
 
 private:
     std::string path_;
@@ -118,15 +141,18 @@ Result<MaterialDescription> readMaterial(const std::string& path) {
         if (r.text(doc, "schema", "") != kMaterialSchemaName)
             return badInput(path, "is not a heightpack material (schema is not 'heightpack-material')",
                             "give the material.json that heightpack build wrote");
-        const int version = static_cast<int>(r.number(doc, "version", ""));
-        if (version > kMaterialSchemaVersion || version < 1)
-            return badInput(path, "has material schema version " + std::to_string(version) + ", this heightpack reads " +
+        const Json& version = r.at(doc, "version", "");
+        if (!version.is_number()) throw r.missing("version (a number)");
+        // Judged as a double: 1e20 must not be converted to an int.
+        const double v = version.get<double>();
+        if (!(v >= 1 && v <= kMaterialSchemaVersion) || v != std::floor(v))
+            return badInput(path, "has material schema version " + version.dump() + ", this heightpack reads " +
                                       std::to_string(kMaterialSchemaVersion),
                             "use the heightpack that built it, or build it again with this one");
         MaterialDescription m;
         m.name = r.text(doc, "name", "");
-        m.generator = doc.value("generator", "");
-        m.manifest = doc.value("manifest", "");
+        m.generator = r.optionalText(doc, "generator", "");
+        m.manifest = r.optionalText(doc, "manifest", "");
         const Json& layers = r.at(doc, "displacement", "");
         if (!layers.is_array()) throw r.missing("displacement (an array)");
         for (size_t i = 0; i < layers.size(); ++i) {
@@ -155,7 +181,8 @@ Result<MaterialDescription> readMaterial(const std::string& path) {
             n.tileSize = r.number(j, "tileSize", "normals.");
             n.heightRange = r.number(j, "heightRange", "normals.");
             const Json& octaves = r.at(j, "octaves", "normals.");
-            for (size_t i = 0; octaves.is_array() && i < octaves.size(); ++i) {
+            if (!octaves.is_array()) throw r.missing("normals.octaves (an array)");
+            for (size_t i = 0; i < octaves.size(); ++i) {
                 const std::string w = "normals.octaves[" + std::to_string(i) + "].";
                 n.octaves.push_back({r.number(octaves[i], "tileSize", w), r.pair(octaves[i], "scroll", w),
                                      r.number(octaves[i], "strength", w)});

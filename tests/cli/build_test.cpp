@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -107,6 +108,13 @@ std::map<std::string, std::string> tree(const fs::path& root) {
     std::error_code ec;
     for (const auto& e : fs::recursive_directory_iterator(root, ec))
         if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = readText(e.path().string());
+    return files;
+}
+
+// Every file under root, relative path -> a hash of its bytes: short enough to print when it differs.
+std::map<std::string, size_t> fingerprint(const fs::path& root) {
+    std::map<std::string, size_t> files;
+    for (const auto& [name, bytes] : tree(root)) files[name] = std::hash<std::string>{}(bytes);
     return files;
 }
 
@@ -600,4 +608,83 @@ TEST_F(BuildTest, FoamTexturesSubfoldersAndTheThresholdWork) {
     std::vector<float> painted(64 * 64);
     ASSERT_TRUE(map->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, painted.data()));
     EXPECT_EQ(level0, painted);
+}
+
+// A build that cannot write its depfile or its stamp writes nothing at all: every path is judged first.
+TEST_F(BuildTest, AnUnwritableDepfileOrStampStopsTheBuildBeforeAnythingIsWritten) {
+    writeText(dir.file("a-file"), "not a folder\n");
+    for (const std::vector<std::string>& extra :
+         {std::vector<std::string>{"--depfile", dir.file("missing/sea.d")},
+          std::vector<std::string>{"--stamp", dir.file("missing/sea.stamp")},
+          std::vector<std::string>{"--depfile", dir.file("a-file/sea.d"), "--stamp", dir.file("sea.stamp")},
+          std::vector<std::string>{"--depfile", dir.file("sea.d"), "--stamp", dir.file("water.toml")}}) {
+        const auto before = fingerprint(dir.path());
+        const ProcessResult r = build(extra);
+        EXPECT_EQ(r.code, 4) << extra[1] << "\n" << r.err;
+        EXPECT_NE(r.err.find(extra.back() == dir.file("water.toml") ? "water.toml" : extra[1]), std::string::npos) << r.err;
+        EXPECT_EQ(fingerprint(dir.path()), before) << extra[1];  // no texture, no material.json, no state, no depfile
+        EXPECT_FALSE(fs::exists(out)) << extra[1];
+    }
+}
+
+// Inside the output folder the build makes the folders, for the depfile and the stamp too; both are
+// written whole (no temporary file left) and replace what was there.
+TEST_F(BuildTest, DepfileAndStampInTheOutputFolderAreWrittenAtomically) {
+    const std::string depfile = out + "/deps/sea.d", stamp = out + "/sea.stamp";
+    ASSERT_EQ(build({"--depfile", depfile, "--stamp", stamp}).code, 0);
+    EXPECT_EQ(readText(stamp), "heightpack build stamp\n");
+    EXPECT_EQ(readText(depfile).rfind(stamp + ":", 0), 0u);
+    writeText(stamp, "an older, longer stamp that must not survive in part\n");
+    ASSERT_EQ(build({"--depfile", depfile, "--stamp", stamp}).code, 0);
+    EXPECT_EQ(readText(stamp), "heightpack build stamp\n");
+    for (const auto& [name, bytes] : tree(out)) EXPECT_EQ(name.find(".hptmp-"), std::string::npos) << name;
+}
+
+// The docs promise that a damaged state file only means a full rebuild: whatever it holds.
+TEST_F(BuildTest, ADamagedStateFileMeansAFullRebuildNeverAnError) {
+    buildJson();
+    const auto before = fingerprint(out);
+    const std::string statePath = out + "/.heightpack-build.json";
+    const std::string good = readText(statePath);
+    const auto state = nlohmann::json::parse(good);
+    const std::string output = state["outputs"].begin().key();
+    auto with = [&](const std::function<void(nlohmann::json&)>& change) {
+        nlohmann::json s = state;
+        change(s);
+        return s.dump();
+    };
+    const std::vector<std::pair<std::string, std::string>> damaged = {
+        {"key a number", with([&](nlohmann::json& s) { s["outputs"][output]["key"] = 1; })},
+        {"hash null", with([&](nlohmann::json& s) { s["outputs"][output]["hash"] = nullptr; })},
+        {"checked an array", with([&](nlohmann::json& s) { s["outputs"][output]["checked"] = {1, 2}; })},
+        {"entry a string", with([&](nlohmann::json& s) { s["outputs"][output] = "x"; })},
+        {"format a string", with([&](nlohmann::json& s) { s["format"] = "1"; })},
+        {"format huge", with([&](nlohmann::json& s) { s["format"] = 1e20; })},
+        {"format huge integer", replaced(good, "\"format\": 1", "\"format\": 18446744073709551615")},
+        {"format another", with([&](nlohmann::json& s) { s["format"] = 2; })},
+        {"outputs an array", with([&](nlohmann::json& s) { s["outputs"] = {1}; })},
+        {"a top-level array", "[1, 2, 3]"},
+        {"truncated", good.substr(0, good.size() / 2)},
+        {"not JSON", "\x89PNG garbage\n"},
+        {"empty", ""},
+    };
+    for (const auto& [what, text] : damaged) {
+        writeText(statePath, text);
+        const ProcessResult r = build({"--json"});
+        ASSERT_EQ(r.code, 0) << what << ": " << r.err;
+        const auto report = nlohmann::json::parse(r.out, nullptr, false);
+        ASSERT_FALSE(report.is_discarded()) << what;
+        for (const auto& [name, status] : statuses(report["materials"][0])) EXPECT_EQ(status, "rebuilt") << what << " " << name;
+        EXPECT_EQ(fingerprint(out), before) << what;  // the same bytes, and the state written afresh
+    }
+}
+
+// Output paths are judged before writing, but a relative output folder that does not exist yet is
+// still made (the README's demo does this), with the depfile and the stamp inside it.
+TEST_F(BuildTest, ARelativeOutputFolderThatDoesNotExistYetIsMade) {
+    const ProcessResult r = runProcess({"sh", "-c", "cd \"$0\" && \"$1\" build water.toml -o new/out --depfile new/out/sea.d "
+                                                    "--stamp new/out/sea.stamp", dir.path().string(), HEIGHTPACK_EXE});
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* file : {"new/out/long.exr", "new/out/material.json", "new/out/sea.d", "new/out/sea.stamp"})
+        EXPECT_TRUE(fs::is_regular_file(dir.file(file))) << file;
 }

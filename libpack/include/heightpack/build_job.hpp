@@ -3,6 +3,7 @@
 // in material.json.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -113,6 +114,14 @@ private:
 // source, an unwritable output folder and the like; a failing tileability check is not an Error but a
 // report with checkFailures and nothing written.
 Result<BuildReport> buildMaterial(const Manifest& manifest, const BuildOptions& options);
+
+// Whether path can be written once the folders above it that are missing are made: the nearest existing
+// one is a writable folder, and path itself is not a folder or a read-only file. Creates nothing.
+Status checkOutputPath(const std::filesystem::path& path);
+
+// Writes text to path atomically (a temporary file beside it, renamed into place), after checking that
+// path can be written; for the depfile and the stamp.
+Status writeTextFile(const std::string& path, const std::string& text);
 
 // A Make-style depfile: "target: dep dep ...", paths escaped for Make and Ninja.
 std::string depfileText(const std::string& target, const std::vector<std::string>& dependencies);
