@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -117,6 +118,17 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     // Float in an EXR, text in a PNG: read either as text.
     if (const OIIO::ParamValue* p = spec.find_attribute("heightpack:loopPeriod")) src.loopPeriod = p->get_string();
     if (const OIIO::ParamValue* p = spec.find_attribute("heightpack:time")) src.time = p->get_string();
+    // Later steps write these as float attributes: anything else in them (a hand-edited PNG text chunk)
+    // is damaged metadata, not a crash or a non-finite attribute later.
+    for (const auto& [name, text] : {std::pair<const char*, const std::string&>{"heightpack:loopPeriod", src.loopPeriod},
+                                     std::pair<const char*, const std::string&>{"heightpack:time", src.time}}) {
+        if (text.empty()) continue;
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || std::abs(v) > 1e30)
+            return badInput(path, std::string("its ") + name + " metadata '" + text.substr(0, 64) + "' is not a finite number",
+                            "remove or correct that metadata in the file");
+    }
 
     const int colourChannels = spec.nchannels - (spec.alpha_channel >= 0 ? 1 : 0);
     const bool colour = colourChannels > 1;

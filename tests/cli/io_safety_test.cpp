@@ -500,3 +500,32 @@ TEST(IoSafety, MessagesSayWhatIsWrong) {
         expectOneLineError(full, "/dev/full");
     }
 }
+
+// A PNG's heightpack:loopPeriod text that is no number (hand-edited, or another tool's) was read with
+// std::stof when packing: an uncaught exception, exit 70. It is damaged metadata: exit 3, nothing written;
+// a real number is carried into the packed file.
+TEST(IoSafety, LoopPeriodMetadataThatIsNoNumberIsBadInput) {
+    ScratchDir dir;
+    for (const auto& [text, good] : {std::pair<std::string, bool>{"abc", false}, {"12.5x", false}, {"12.5", true}}) {
+        const std::string png = dir.file("seq.png"), out = dir.file("seq.exr");
+        auto writer = OIIO::ImageOutput::create(png);
+        ASSERT_TRUE(writer);
+        OIIO::ImageSpec spec(16, 16, 1, OIIO::TypeDesc::UINT8);
+        spec.attribute("heightpack:loopPeriod", text);
+        std::vector<unsigned char> pixels(256);
+        for (int i = 0; i < 256; ++i) pixels[i] = static_cast<unsigned char>(i);
+        ASSERT_TRUE(writer->open(png, spec) && writer->write_image(OIIO::TypeDesc::UINT8, pixels.data()) && writer->close());
+        const ProcessResult run = hp({"pack", png, "-o", out});
+        if (good) {
+            EXPECT_EQ(run.code, 0) << run.err;
+            auto in = OIIO::ImageInput::open(out);
+            ASSERT_TRUE(in);
+            EXPECT_FLOAT_EQ(in->spec().get_float_attribute("heightpack:loopPeriod"), 12.5f);
+        } else {
+            EXPECT_EQ(run.code, 3) << text << ": " << run.err;
+            expectOneLineError(run, png);
+            EXPECT_FALSE(fs::exists(out)) << text;
+        }
+        fs::remove(out);
+    }
+}
