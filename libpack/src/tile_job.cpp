@@ -49,6 +49,38 @@ double span(const Image& map) {
     return double(*high) - *low;
 }
 
+// How a result will be stored: the type asked for, else the input's (a PNG holds no floats: 16 bits there),
+// widened to float where an integer type would clip (or round a map that should stay unchanged) and the
+// format holds floats; `storable` is false where it cannot be stored faithfully at all.
+struct Storage {
+    int bits = 32;          // the type before widening
+    bool explicitBits = false;  // --depth asked for it: never widened
+    bool floatFormat = true;    // the output's format holds floats
+
+    struct Choice {
+        int bits = 32;
+        bool widened = false;
+        bool storable = true;
+    };
+    Choice choose(const Image& result, bool unchanged) const {
+        Choice c{bits, false, true};
+        if (bits == 32) return c;
+        const auto [low, high] = std::minmax_element(result.pixels.begin(), result.pixels.end());
+        const bool inRange = *low >= 0.0f && *high <= 1.0f;
+        if (inRange && !(unchanged && !exactIn(result, bits))) return c;
+        if (!floatFormat || explicitBits) return Choice{bits, false, false};
+        return Choice{32, true, true};
+    }
+    // The heights as that type stores them.
+    static Image rounded(Image result, int bits) {
+        if (bits == 32) return result;
+        const double steps = bits == 8 ? 255.0 : 65535.0;
+        for (float& v : result.pixels) v = static_cast<float>(std::round(double(v) * steps) / steps);
+        return result;
+    }
+    static double quantum(int bits) { return bits == 8 ? 1.0 / 255 : bits == 16 ? 1.0 / 65535 : 0.0; }
+};
+
 // The method's result; for Periodic, the first candidate that tiles at every level and keeps the height
 // span within 1.5x the input's: Moisan with the edge slopes bent together; Moisan crossfaded near the
 // edges (its heights already meet there, so the blend only hides kinks: a change of slope at a scale
@@ -56,8 +88,8 @@ double span(const Image& map) {
 // would stretch the span: a sheet of unrelated tiles); then the same two with a band of a fifth of the tile (wider would reach the middle half of the map,
 // which no candidate may change).
 // The last candidate is returned when none passes; the caller judges it again and writes nothing.
-Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, std::string& name,
-                  double& band) {
+Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, const Storage& storage,
+                  std::string& name, double& band) {
     name = tileMethodName(options.method);
     band = options.width;
     switch (options.method) {
@@ -67,9 +99,15 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         case TileMethod::Periodic: break;
     }
     const double maxSpan = 1.5 * span(map);
+    // Judged as it will be stored: a candidate the output cannot hold (a PNG, heights past [0,1]) is passed
+    // over for one it can.
     auto acceptable = [&](const Image& candidate) {
-        return span(candidate) <= maxSpan &&
-               measureChainSeams(seamChain(candidate, options.mip), options.threshold, seamOptions).tiles();
+        const Storage::Choice c = storage.choose(candidate, false);
+        if (!c.storable || span(candidate) > maxSpan) return false;
+        SeamOptions stored = seamOptions;
+        stored.quantum = Storage::quantum(c.bits);
+        return measureChainSeams(seamChain(Storage::rounded(candidate, c.bits), options.mip), options.threshold, stored)
+            .tiles();
     };
     Image result = periodicComponent(map);
     if (acceptable(result)) return result;
@@ -132,7 +170,14 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
         return report;
     }
 
-    Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, report.methodUsed, report.crossfadeWidth);
+    Storage storage;
+    storage.bits = options.bits ? options.bits : inputBits;
+    storage.explicitBits = options.bits != 0;
+    storage.floatFormat = holdsFloat(ext);
+    if (storage.bits == 32 && !storage.floatFormat) storage.bits = 16;
+    Image result = report.alreadyTiled
+                       ? map
+                       : applyMethod(map, options, seamOptions, storage, report.methodUsed, report.crossfadeWidth);
     if (report.alreadyTiled) report.methodUsed = "none";
     progress("tile", 1.0);
     report.width = result.width;
@@ -141,34 +186,25 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     report.low = *low;
     report.high = *high;
 
-    // The type: the one asked for, else the input's (PNG holds no floats: 16 bits there). Widened to
-    // float where an integer type would clip, or would round a map that should stay unchanged.
-    report.bits = options.bits ? options.bits : inputBits;
-    if (report.bits == 32 && !holdsFloat(ext)) report.bits = 16;
-    const bool inRange = *low >= 0.0f && *high <= 1.0f;
-    if (report.bits != 32 && (!inRange || (report.alreadyTiled && !exactIn(result, report.bits)))) {
-        if (!holdsFloat(ext) || options.bits != 0) {
-            char what[200];
-            if (inRange)
-                std::snprintf(what, sizeof what, "the heights are not whole %d-bit steps: writing them so would round them",
-                              report.bits);
-            else
-                std::snprintf(what, sizeof what, "the tiled heights reach [%.4g, %.4g], outside the [0,1] of %d-bit samples",
-                              double(*low), double(*high), report.bits);
-            return cannotWrite(output, what,
-                               "write float samples: an .exr or .tif output without --depth; heightpack never clips or "
-                               "rescales heights");
-        }
-        report.bits = 32;
-        report.widened = true;
+    const Storage::Choice stored = storage.choose(result, report.alreadyTiled);
+    report.bits = stored.bits;
+    report.widened = stored.widened;
+    if (!stored.storable) {
+        char what[200];
+        if (*low >= 0.0f && *high <= 1.0f)
+            std::snprintf(what, sizeof what, "the heights are not whole %d-bit steps: writing them so would round them",
+                          stored.bits);
+        else
+            std::snprintf(what, sizeof what, "the tiled heights reach [%.4g, %.4g], outside the [0,1] of %d-bit samples",
+                          double(*low), double(*high), stored.bits);
+        return cannotWrite(output, what,
+                           "write float samples: an .exr or .tif output without --depth; heightpack never clips or "
+                           "rescales heights");
     }
     // Judge what will be stored: rounded to the type.
-    if (report.bits != 32) {
-        const double steps = report.bits == 8 ? 255.0 : 65535.0;
-        for (float& v : result.pixels) v = static_cast<float>(std::round(double(v) * steps) / steps);
-    }
+    result = Storage::rounded(std::move(result), report.bits);
     SeamOptions afterOptions = seamOptions;
-    afterOptions.quantum = report.bits == 8 ? 1.0 / 255 : report.bits == 16 ? 1.0 / 65535 : 0.0;
+    afterOptions.quantum = Storage::quantum(report.bits);
     report.after = measureChainSeams(seamChain(result, options.mip), options.threshold, afterOptions);
     // Mirror tiling breaks slopes at its mirror lines by design (the help says so): it is written when its
     // heights meet, and the report still shows the kinks.
