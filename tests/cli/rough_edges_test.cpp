@@ -7,10 +7,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <regex>
 
 #include "support/test_support.hpp"
 
@@ -69,13 +69,38 @@ void expectResultLinesAtColumnZero(const std::string& screen, const std::vector<
     }
 }
 
-// The percentages the bar showed, in order.
+// The percentages the bar showed, in order: "] NN%". (Parsed by hand: GCC 12 warns inside <regex> under
+// the sanitizer build's -O2, and warnings are errors.)
 std::vector<int> percentages(const std::string& screen) {
     std::vector<int> out;
-    const std::regex percent(R"(\] +([0-9]+)%)");
-    for (auto it = std::sregex_iterator(screen.begin(), screen.end(), percent); it != std::sregex_iterator(); ++it)
-        out.push_back(std::stoi((*it)[1]));
+    for (size_t at = screen.find(']'); at != std::string::npos; at = screen.find(']', at + 1)) {
+        size_t i = at + 1;
+        while (i < screen.size() && screen[i] == ' ') ++i;
+        if (i == at + 1) continue;
+        const size_t digits = i;
+        while (i < screen.size() && std::isdigit(static_cast<unsigned char>(screen[i]))) ++i;
+        if (i > digits && i < screen.size() && screen[i] == '%') out.push_back(std::stoi(screen.substr(digits, i - digits)));
+    }
     return out;
+}
+
+// The labels of the bars drawn: "\r\x1b[K" LABEL ": " stage " [" 24 of '#' or ' ' "]".
+std::vector<std::string> barLabels(const std::string& screen) {
+    std::vector<std::string> labels;
+    const std::string start = "\r\x1b[K";
+    for (size_t at = screen.find(start); at != std::string::npos; at = screen.find(start, at + 1)) {
+        const size_t label = at + start.size();
+        const size_t colon = screen.find(": ", label);
+        const size_t lineEnd = screen.find_first_of("\r\n", label);
+        if (colon == std::string::npos || (lineEnd != std::string::npos && colon > lineEnd)) continue;
+        const size_t open = screen.find('[', colon);
+        if (open == std::string::npos || (lineEnd != std::string::npos && open > lineEnd) || open + 25 >= screen.size())
+            continue;
+        const std::string cells = screen.substr(open + 1, 24);
+        if (screen[open + 25] == ']' && cells.find_first_not_of("# ") == std::string::npos)
+            labels.push_back(screen.substr(label, colon - label));
+    }
+    return labels;
 }
 
 void expectNeverDown(const std::vector<int>& shown) {
@@ -155,11 +180,9 @@ TEST(RoughEdges, BuildShowsOneBarForAllJobs) {
     expectNeverDown(percentages(run.out));
     expectResultLinesAtColumnZero(run.out, {"  rebuilt", "building ocean", "ocean: ", "lagoon: "});
     // One bar: labelled by the build, never by one output of one material.
-    const std::regex bar(R"(\r\x1b\[K([^:\r\n]*): [^\r\n\[]*\[[# ]{24}\])");
-    int bars = 0;
-    for (auto it = std::sregex_iterator(run.out.begin(), run.out.end(), bar); it != std::sregex_iterator(); ++it, ++bars)
-        EXPECT_EQ((*it)[1].str(), "build");
-    EXPECT_GT(bars, 0) << run.out;
+    const std::vector<std::string> labels = barLabels(run.out);
+    for (const std::string& label : labels) EXPECT_EQ(label, "build");
+    EXPECT_FALSE(labels.empty()) << run.out;
 }
 
 TEST(RoughEdges, SequenceJsonIsOneDocumentAndInfoDescribesTheSequence) {
