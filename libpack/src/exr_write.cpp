@@ -246,8 +246,7 @@ Status writeWithImf(const std::string& finalPath, const std::string& path, const
 Status writeTiledExr(const std::string& path, const TiledExrContent& content, const ExrWriteOptions& options) {
     assert(content.width > 0 && content.height > 0 && !content.channelNames.empty() && content.fillRows);
     if (Status writable = checkWritable(path); !writable) return writable;
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = detail::lowerExtension(path);
     if (ext != ".exr")  // never EXR bytes under another format's name
         return cannotWrite(path, "is not an .exr name, but the file would be an EXR", "name the output .exr");
     detail::TemporaryFile temp(path);

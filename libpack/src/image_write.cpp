@@ -26,8 +26,7 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
     assert(image.channels >= 1 && image.channels <= 4 && !image.empty());
     if (Status writable = checkWritable(path); !writable) return writable;
     // The extension decides the format; only those that hold what is given faithfully are written.
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = detail::lowerExtension(path);
     if (ext != ".png" && ext != ".tif" && ext != ".tiff" && ext != ".exr")
         return cannotWrite(path, "names no format heightpack writes", "use .png, .tif or .exr");
     // The last guard before bytes reach a file: an output never holds NaN or infinity.

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include "strings.hpp"
 
 namespace heightpack {
 
@@ -295,8 +296,7 @@ private:
         if (given.empty() || p.is_absolute() || p.empty() || *p.begin() == ".." || p == "." || p.filename().empty())
             throw s.error("output", "is '" + shorten(given) + "', which is not a file inside the output folder",
                           "give a relative path such as textures/swell.exr, without '..'");
-        std::string ext = p.extension().string();
-        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        const std::string ext = detail::lowerExtension(p);
         if (ext != ".exr") throw s.error("output", "is '" + shorten(given) + "', but every texture is written as an .exr");
         if (p.filename().string().front() == '.')
             throw s.error("output", "is '" + shorten(given) + "': names starting with '.' are heightpack's own temporary files");

@@ -6,14 +6,14 @@
 #include <filesystem>
 
 #include "heightpack/io.hpp"
+#include "strings.hpp"
 
 namespace heightpack {
 
 Result<SynthReport> synthesise(const std::string& output, const SynthOptions& options) {
     for (int f = 0; f < options.frames; ++f)
         if (Status s = checkWritable(frameFileName(output, f, options.frames)); !s) return s.error();
-    std::string ext = std::filesystem::path(output).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = detail::lowerExtension(output);
     const bool metres = ext == ".exr";
 
     const Ocean ocean(options.spectrum);

@@ -8,6 +8,7 @@
 #include "heightpack/check_job.hpp"
 #include "heightpack/mip.hpp"
 #include "job_steps.hpp"
+#include "strings.hpp"
 
 namespace heightpack {
 
@@ -22,12 +23,6 @@ const char* tileMethodName(TileMethod method) {
 }
 
 namespace {
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
 
 bool holdsFloat(const std::string& ext) { return ext == ".exr" || ext == ".tif" || ext == ".tiff"; }
 
@@ -151,10 +146,10 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     report.alreadyTiled = report.before.tiles() && !options.force;
     progress("tile", 0.0);
 
-    const std::string ext = lowerExtension(output);
+    const std::string ext = detail::lowerExtension(output);
     const std::string& type = loaded->source.pixelType;
     const int inputBits = type == "uint8" ? 8 : type == "uint16" ? 16 : 32;
-    if (report.alreadyTiled && loaded->source.channels == 1 && lowerExtension(input) == ext) {
+    if (report.alreadyTiled && loaded->source.channels == 1 && detail::lowerExtension(input) == ext) {
         // The file itself: bit-exact, metadata and all.
         report.after = report.before;
         report.methodUsed = "none";

@@ -134,6 +134,14 @@ double edgeContrast(std::vector<double> s, int reach, int period, double floor) 
     return excess > 0 ? std::numeric_limits<double>::infinity() : 0.0;
 }
 
+// The map with rows and columns swapped: its columns become lines that read contiguously.
+Image transposed(const Image& map) {
+    Image out(map.height, map.width, 1);
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x) out.at(y, x) = map.at(x, y);
+    return out;
+}
+
 // Scores along one direction: lines holds m lines of n texels, the tile edge between texel n-1 and 0.
 SeamScore scoreAlong(const float* lines, int n, int m, const SeamOptions& options) {
     SeamScore score;
@@ -242,10 +250,8 @@ LevelSeams measureSeams(const Image& level, const SeamOptions& options) {
     seams.height = level.height;
     seams.leftRight = scoreAlong(level.pixels.data(), level.width, level.height, options);
     // Columns as lines: the same code then reads every line contiguously.
-    std::vector<float> columns(level.texelCount());
-    for (int y = 0; y < level.height; ++y)
-        for (int x = 0; x < level.width; ++x) columns[size_t(x) * level.height + y] = level.at(x, y);
-    seams.topBottom = scoreAlong(columns.data(), level.height, level.width, options);
+    const Image columns = transposed(level);
+    seams.topBottom = scoreAlong(columns.pixels.data(), level.height, level.width, options);
     return seams;
 }
 
@@ -399,13 +405,6 @@ void bendAwayEdgeKinks(Image& map, int band) {
             map.at(w - 1 - i, y) += static_cast<float>(g);
         }
     }
-}
-
-Image transposed(const Image& map) {
-    Image out(map.height, map.width, 1);
-    for (int y = 0; y < map.height; ++y)
-        for (int x = 0; x < map.width; ++x) out.at(y, x) = map.at(x, y);
-    return out;
 }
 
 }  // namespace
