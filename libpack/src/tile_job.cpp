@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "heightpack/check_job.hpp"
 #include "heightpack/mip.hpp"
@@ -80,11 +81,12 @@ struct Storage {
 // span within 1.5x the input's: Moisan with the edge slopes bent together; Moisan crossfaded near the
 // edges (its heights already meet there, so the blend only hides kinks: a change of slope at a scale
 // the bend did not reach, a line along the edge); the map itself crossfaded (when Moisan's smooth field
-// would stretch the span: a sheet of unrelated tiles); then the same two with a band of a fifth of the tile (wider would reach the middle half of the map,
-// which no candidate may change).
-// The last candidate is returned when none passes; the caller judges it again and writes nothing.
+// would stretch the span: a sheet of unrelated tiles); then the same two with a band of a fifth of the
+// tile (wider would reach the middle half of the map, which no candidate may change). The last candidate
+// is returned when none passes, and the caller writes nothing. `judged` is set to the verdict on the
+// returned candidate as stored when one was reached, so the caller need not judge it again.
 Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, const Storage& storage,
-                  std::string& name, double& band) {
+                  std::string& name, double& band, std::optional<ChainSeams>& judged) {
     name = tileMethodName(options.method);
     band = options.width;
     switch (options.method) {
@@ -97,12 +99,13 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
     // Judged as it will be stored: a candidate the output cannot hold (a PNG, heights past [0,1]) is passed
     // over for one it can.
     auto acceptable = [&](const Image& candidate) {
+        judged.reset();
         const Storage::Choice c = storage.choose(candidate, false);
         if (!c.storable || span(candidate) > maxSpan) return false;
         SeamOptions stored = seamOptions;
         stored.quantum = Storage::quantum(c.bits);
-        return measureChainSeams(seamChain(Storage::rounded(candidate, c.bits), options.mip), options.threshold, stored)
-            .tiles();
+        judged = measureChainSeams(seamChain(Storage::rounded(candidate, c.bits), options.mip), options.threshold, stored);
+        return judged->tiles();
     };
     Image result = periodicComponent(map);
     if (acceptable(result)) return result;
@@ -170,9 +173,10 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     storage.explicitBits = options.bits != 0;
     storage.floatFormat = holdsFloat(ext);
     if (storage.bits == 32 && !storage.floatFormat) storage.bits = 16;
-    Image result = report.alreadyTiled
-                       ? map
-                       : applyMethod(map, options, seamOptions, storage, report.methodUsed, report.crossfadeWidth);
+    std::optional<ChainSeams> judged;
+    Image result = report.alreadyTiled ? map
+                                       : applyMethod(map, options, seamOptions, storage, report.methodUsed,
+                                                     report.crossfadeWidth, judged);
     if (report.alreadyTiled) report.methodUsed = "none";
     progress("tile", 1.0);
     report.width = result.width;
@@ -196,11 +200,16 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
                            "write float samples: an .exr or .tif output without --depth; heightpack never clips or "
                            "rescales heights");
     }
-    // Judge what will be stored: rounded to the type.
+    // Judge what will be stored: rounded to the type (Periodic's candidates were judged so already, with
+    // the same type: the same rounding and quantum).
     result = Storage::rounded(std::move(result), report.bits);
-    SeamOptions afterOptions = seamOptions;
-    afterOptions.quantum = Storage::quantum(report.bits);
-    report.after = measureChainSeams(seamChain(result, options.mip), options.threshold, afterOptions);
+    if (judged) {
+        report.after = std::move(*judged);
+    } else {
+        SeamOptions afterOptions = seamOptions;
+        afterOptions.quantum = Storage::quantum(report.bits);
+        report.after = measureChainSeams(seamChain(result, options.mip), options.threshold, afterOptions);
+    }
     // Mirror tiling breaks slopes at its mirror lines by design (the help says so): it is written when its
     // heights meet, and the report still shows the kinks.
     const bool onlyDesignedKinks =
