@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "heightpack/fresnel.hpp"
+#include "heightpack/core/fresnel.hpp"
 
 using namespace heightpack;
 

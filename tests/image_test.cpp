@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "heightpack/image.hpp"
+#include "heightpack/core/image.hpp"
 
 using namespace heightpack;
 

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "heightpack/info.hpp"
-#include "heightpack/mip.hpp"
-#include "heightpack/pack_job.hpp"
+#include "heightpack/io/info.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/build/pack_job.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;

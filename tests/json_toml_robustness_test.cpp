@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/manifest.hpp"
-#include "heightpack/material.hpp"
+#include "heightpack/build/manifest.hpp"
+#include "heightpack/build/material.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "heightpack/mip.hpp"
+#include "heightpack/core/mip.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;

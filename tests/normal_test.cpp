@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "heightpack/mip.hpp"
-#include "heightpack/normal.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/normal.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "heightpack/mip.hpp"
-#include "heightpack/pack.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/pack.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;

@@ -15,9 +15,9 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 
-#include "heightpack/check_job.hpp"
-#include "heightpack/io.hpp"
-#include "heightpack/tile_job.hpp"
+#include "heightpack/build/check_job.hpp"
+#include "heightpack/io/read.hpp"
+#include "heightpack/build/tile_job.hpp"
 #include "support/seam_families.hpp"
 #include "support/test_support.hpp"
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <opencv2/core.hpp>
 
-#include "heightpack/mip.hpp"
-#include "heightpack/spectrum.hpp"
-#include "heightpack/tileable.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/spectrum.hpp"
+#include "heightpack/core/tileable.hpp"
 
 using namespace heightpack;
 

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "heightpack/check_job.hpp"
-#include "heightpack/mip.hpp"
-#include "heightpack/pack.hpp"
-#include "heightpack/tileable.hpp"
+#include "heightpack/build/check_job.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/pack.hpp"
+#include "heightpack/core/tileable.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;

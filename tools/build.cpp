@@ -8,10 +8,11 @@
 #include <map>
 
 #include "command.hpp"
-#include "heightpack/build_job.hpp"
-#include "heightpack/io.hpp"
-#include "heightpack/parallel.hpp"
+#include "heightpack/build/build_job.hpp"
+#include "heightpack/io/files.hpp"
+#include "heightpack/core/parallel.hpp"
 #include "heightpack/version.hpp"
+#include "heightpack/io/threads.hpp"
 
 namespace heightpack::cli {
 

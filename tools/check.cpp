@@ -5,8 +5,10 @@
 #include <iostream>
 
 #include "command.hpp"
-#include "heightpack/check_job.hpp"
-#include "heightpack/parallel.hpp"
+#include "heightpack/build/check_job.hpp"
+#include "heightpack/core/parallel.hpp"
+#include "heightpack/io/threads.hpp"
+#include "heightpack/io/files.hpp"
 
 namespace heightpack::cli {
 

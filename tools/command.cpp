@@ -9,7 +9,8 @@
 #include <filesystem>
 #include <iostream>
 
-#include "heightpack/io.hpp"
+#include "heightpack/io/read.hpp"
+#include "heightpack/io/files.hpp"
 
 namespace heightpack::cli {
 

@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "command.hpp"
-#include "heightpack/fresnel_job.hpp"
+#include "heightpack/build/fresnel_job.hpp"
 #include "heightpack/version.hpp"
 
 namespace heightpack::cli {

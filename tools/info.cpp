@@ -3,9 +3,10 @@
 #include <iostream>
 
 #include "command.hpp"
-#include "heightpack/info.hpp"
-#include "heightpack/io.hpp"
-#include "heightpack/parallel.hpp"
+#include "heightpack/io/info.hpp"
+#include "heightpack/io/files.hpp"
+#include "heightpack/core/parallel.hpp"
+#include "heightpack/io/threads.hpp"
 
 namespace heightpack::cli {
 

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "command.hpp"
-#include "heightpack/io.hpp"
+#include "heightpack/io/files.hpp"
 #include "heightpack/version.hpp"
 
 namespace {

@@ -5,9 +5,12 @@
 #include <sstream>
 
 #include "command.hpp"
-#include "heightpack/pack_job.hpp"
-#include "heightpack/parallel.hpp"
+#include "heightpack/build/pack_job.hpp"
+#include "heightpack/core/parallel.hpp"
 #include "heightpack/version.hpp"
+#include "heightpack/io/threads.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/files.hpp"
 
 namespace heightpack::cli {
 

@@ -5,9 +5,10 @@
 #include <filesystem>
 
 #include "command.hpp"
-#include "heightpack/mip.hpp"
-#include "heightpack/synth_job.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/build/synth_job.hpp"
 #include "heightpack/version.hpp"
+#include "heightpack/io/files.hpp"
 
 namespace heightpack::cli {
 

@@ -6,9 +6,10 @@
 #include <iostream>
 
 #include "command.hpp"
-#include "heightpack/parallel.hpp"
-#include "heightpack/tile_job.hpp"
+#include "heightpack/core/parallel.hpp"
+#include "heightpack/build/tile_job.hpp"
 #include "heightpack/version.hpp"
+#include "heightpack/io/threads.hpp"
 
 namespace heightpack::cli {
 

@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "heightpack/io.hpp"
+#include "heightpack/io/image_write.hpp"
 #include "material_settings.hpp"
 #include "panel.hpp"
 

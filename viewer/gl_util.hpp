@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/image.hpp"
+#include "heightpack/core/image.hpp"
 
 namespace heightpack::view {
 

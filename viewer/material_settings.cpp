@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "heightpack/material.hpp"
+#include "heightpack/build/material.hpp"
 
 namespace heightpack::view {
 

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "heightpack/info.hpp"
-#include "heightpack/io.hpp"
-#include "heightpack/mip.hpp"
-#include "heightpack/pack.hpp"
+#include "heightpack/io/info.hpp"
+#include "heightpack/io/read.hpp"
+#include "heightpack/io/files.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/pack.hpp"
 
 namespace heightpack::view {
 

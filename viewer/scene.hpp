@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/image.hpp"
-#include "heightpack/result.hpp"
+#include "heightpack/core/image.hpp"
+#include "heightpack/core/result.hpp"
 
 namespace heightpack::view {
 

@@ -3,9 +3,9 @@
 
 #include <random>
 
-#include "heightpack/io.hpp"
-#include "heightpack/mip.hpp"
-#include "heightpack/pack.hpp"
+#include "heightpack/io/read.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/pack.hpp"
 
 using namespace heightpack;
 

@@ -12,10 +12,10 @@
 #include <sstream>
 #include <thread>
 
-#include "heightpack/io.hpp"
-#include "heightpack/fresnel.hpp"
-#include "heightpack/mip.hpp"
-#include "heightpack/normal.hpp"
+#include "heightpack/io/read.hpp"
+#include "heightpack/core/fresnel.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/normal.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;

@@ -1,6 +1,6 @@
 // Packs a 4x4 ramp through the installed library and checks one packed texel.
-#include <heightpack/mip.hpp>
-#include <heightpack/pack.hpp>
+#include <heightpack/core/mip.hpp>
+#include <heightpack/core/pack.hpp>
 #include <heightpack/version.hpp>
 
 #include <cstdio>

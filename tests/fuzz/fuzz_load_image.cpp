@@ -9,7 +9,7 @@
 #include <iterator>
 
 #include "fuzz_support.hpp"
-#include "heightpack/io.hpp"
+#include "heightpack/io/read.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     OIIO::attribute("threads", 1);  // no thread pools: one input, one thread, reproducible

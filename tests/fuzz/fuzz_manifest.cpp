@@ -6,7 +6,8 @@
 #include <set>
 
 #include "fuzz_support.hpp"
-#include "heightpack/manifest.hpp"
+#include "heightpack/build/manifest.hpp"
+#include "heightpack/io/files.hpp"
 
 namespace {
 

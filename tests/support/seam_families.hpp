@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/check_job.hpp"
-#include "heightpack/image.hpp"
+#include "heightpack/build/check_job.hpp"
+#include "heightpack/core/image.hpp"
 
 namespace heightpack::test {
 

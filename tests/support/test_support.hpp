@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/image.hpp"
+#include "heightpack/core/image.hpp"
 
 namespace heightpack::test {
 

@@ -1,0 +1,110 @@
+#include "heightpack/build/check_job.hpp"
+
+#include <algorithm>
+
+#include "heightpack/io/info.hpp"
+#include "heightpack/io/read.hpp"
+#include "heightpack/io/image_write.hpp"
+#include "heightpack/io/files.hpp"
+#include "job_steps.hpp"
+
+namespace heightpack {
+
+namespace {
+
+Image channelZero(const Image& image) {
+    if (image.channels == 1) return image;
+    Image out(image.width, image.height, 1);
+    for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = image.pixels[i * image.channels];
+    return out;
+}
+
+void keepWorst(SeamScore& worst, const SeamScore& s) {
+    if (!s.measured) return;
+    if (!worst.measured) {
+        worst = s;
+        return;
+    }
+    worst.value = std::max(worst.value, s.value);
+    worst.slope = std::max(worst.slope, s.slope);
+}
+
+}  // namespace
+
+double sampleQuantum(const SourceInfo& source) {
+    return source.pixelType == "uint8" ? 1.0 / 255 : source.pixelType == "uint16" ? 1.0 / 65535 : 0.0;
+}
+
+std::vector<Image> seamChain(const Image& heights, const MipOptions& mip, std::string* note) {
+    if (isPowerOfTwo(heights.width) && isPowerOfTwo(heights.height)) return generateMipChain(heights, mip);
+    if (note) *note = "sides are not powers of two: level 0 only (pack would need --resize pow2)";
+    return {heights};
+}
+
+Result<CheckReport> checkFile(const std::string& path, const CheckOptions& options) {
+    if (!options.previewPath.empty())
+        if (Status s = checkWritable(options.previewPath); !s) return s.error();
+    CheckReport report;
+    report.input = path;
+    report.threshold = options.threshold;
+
+    // A texture with mip levels is checked as stored; anything else gets the chain pack would make.
+    auto progress = [&](std::string_view stage, double f) {
+        if (options.progress) options.progress(stage, f);
+    };
+    progress("load", 0.0);
+    std::vector<Image> chain;
+    SeamOptions seamOptions;
+    seamOptions.threads = options.mip.threads;
+    auto texture = readTextureFile(path, options.load.silenceDecoderMessages);
+    if (!texture) return texture.error();  // unreadable or damaged at any level: no verdict on part of it
+    if (texture->levels.size() > 1) {
+        const std::string layout = findAttribute(texture->attributes, "heightpack:layout");
+        report.kind = layout.empty() ? "texture" : layout;
+        if (layout == "neighbour4" && texture->levels[0].channels == 4) {
+            const Wrap wrap = findAttribute(texture->attributes, "heightpack:wrap") == "clamp" ? Wrap::Clamp : Wrap::Periodic;
+            report.packing = checkPacking(texture->levels, wrap);
+        }
+        for (const Image& level : texture->levels) {
+            chain.push_back(channelZero(level));
+            // A NaN is bad input, not a seam: the verdict would be meaningless.
+            if (Status s = checkFinite(chain.back(), path, 0, "level " + std::to_string(chain.size() - 1)); !s)
+                return s.error();
+        }
+    } else {
+        auto loaded = detail::loadInput(path, options.load, options.mip.threads);
+        if (!loaded) return loaded.error();
+        report.kind = "image";
+        report.source = loaded->source;
+        progress("mip", 0.0);
+        seamOptions.quantum = sampleQuantum(loaded->source);
+        chain = seamChain(loaded->heights, options.mip, &report.note);
+    }
+
+    progress("check", 0.0);
+    ChainSeams seams = measureChainSeams(chain, options.threshold, seamOptions);
+    report.tiles = seams.tiles();
+    report.failure = seams.failure;
+    report.levels = std::move(seams.levels);
+    for (const LevelSeams& s : report.levels) {
+        keepWorst(report.worst.leftRight, s.leftRight);
+        keepWorst(report.worst.topBottom, s.topBottom);
+    }
+    report.worst.width = chain[0].width;
+    report.worst.height = chain[0].height;
+    if (report.packing && !report.packing->consistent) report.tiles = false;
+
+    if (!options.previewPath.empty()) {
+        FlatImageOptions flat;
+        flat.bits = 8;
+        flat.attributes = {{"heightpack:layout", std::string("seamPreview")},
+                           {"heightpack:source", path},
+                           {"heightpack:threshold", static_cast<float>(options.threshold)}};
+        if (Status s = writeFlatImage(options.previewPath, seamPreview(chain[0], report.worst, options.threshold), flat);
+            !s)
+            return s.error();
+    }
+    return report;
+}
+
+}  // namespace heightpack

@@ -1,0 +1,52 @@
+#include "job_steps.hpp"
+#include "heightpack/io/read.hpp"
+
+#include <filesystem>
+
+namespace heightpack::detail {
+
+Result<LoadedInput> loadInput(const std::string& input, LoadOptions options, int threads) {
+    options.threads = threads;
+    auto loaded = loadHeightMap(input, options);
+    if (!loaded) return loaded.error();
+    LoadedInput out;
+    out.hash = hashPixels(loaded->heights);
+    out.heights = std::move(loaded->heights);
+    out.source = std::move(loaded->source);
+    return out;
+}
+
+Result<bool> ensurePowerOfTwo(Image& heights, const std::string& input, bool resize, const MipOptions& mip,
+                              std::string_view alternative) {
+    if (isPowerOfTwo(heights.width) && isPowerOfTwo(heights.height)) return false;
+    const int w = nextPowerOfTwo(heights.width), h = nextPowerOfTwo(heights.height);
+    if (!resize) {
+        std::string hint = "pass --resize pow2 to resample it to " + std::to_string(w) + "x" + std::to_string(h);
+        if (!alternative.empty()) hint += ", or " + std::string(alternative);
+        return badInput(input,
+                        "is " + std::to_string(heights.width) + "x" + std::to_string(heights.height) +
+                            ", but mip chains need power-of-two sides",
+                        hint);
+    }
+    heights = resample(heights, w, h, mip);
+    return true;
+}
+
+std::vector<ExrAttribute> commonAttributes(std::string_view layout, Wrap wrap, Filter filter, const SourceInfo& source,
+                                           const std::string& hash, const std::string& version) {
+    const std::string wrapText = wrapName(wrap);
+    return {
+        {"heightpack:layout", std::string(layout)},
+        {"heightpack:wrap", wrapText},
+        // The standard attribute OpenImageIO's texture system reads for its wrap modes.
+        {"wrapmodes", wrapText + "," + wrapText},
+        {"heightpack:filter", std::string(filterName(filter))},
+        {"heightpack:texelCentre", 0.5f},
+        // The file name only: the same input packed from another folder gives the same bytes.
+        {"heightpack:source", std::filesystem::path(source.path).filename().string()},
+        {"heightpack:sourceHash", hash},
+        {"heightpack:version", version},
+    };
+}
+
+}  // namespace heightpack::detail

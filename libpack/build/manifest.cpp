@@ -1,0 +1,453 @@
+#include "heightpack/build/manifest.hpp"
+
+#include "heightpack/core/tileable.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include "heightpack/io/read.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/files.hpp"
+
+namespace heightpack {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kHint = "see docs/manifest.md for every key";
+
+// A key or value as quoted in a message: long ones are cut, so an error stays one readable line.
+std::string shorten(const std::string& text) {
+    constexpr size_t kMax = 64;
+    return text.size() <= kMax ? text : text.substr(0, kMax) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
+// Edit distance, to suggest the key a typo meant.
+size_t distance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+int lineOf(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
+
+// One table of the manifest. Every key read is remembered, so finish() can reject the ones nobody
+// asked for; every error names file:line and the key's full path.
+class Section {
+public:
+    Section(const toml::table& table, std::string prefix, const std::string& file)
+        : table_(table), prefix_(std::move(prefix)), file_(file) {}
+
+    int line() const { return std::max(1, lineOf(table_)); }
+    const std::string& prefix() const { return prefix_; }
+    std::string key(const std::string& k) const { return shorten(prefix_.empty() ? k : prefix_ + "." + k); }
+
+    Error error(int line, const std::string& what, const std::string& hint = kHint) const {
+        return badInput(file_ + ":" + std::to_string(line), what, hint);
+    }
+    Error error(const std::string& k, const std::string& what, const std::string& hint = kHint) const {
+        const toml::node* n = table_.get(k);
+        return error(n ? lineOf(*n) : line(), "key '" + key(k) + "' " + what, hint);
+    }
+
+    const toml::node* find(const std::string& k) {
+        known_.insert(k);
+        return table_.get(k);
+    }
+    const toml::node& require(const std::string& k) {
+        const toml::node* n = find(k);
+        if (n) return *n;
+        // A misspelt key is the likelier mistake: name it rather than the key it was meant to be.
+        for (auto&& [other, node] : table_) {
+            const std::string name(other.str());
+            if (!known_.count(name) && distance(name, k) <= 2)
+                throw error(lineOf(node), "unknown key '" + key(name) + "'", "did you mean '" + k + "'? " + kHint);
+        }
+        throw error(line(), "missing key '" + key(k) + "'");
+    }
+
+    double number(const std::string& k, std::optional<double> fallback, double lo, double hi, bool openLow = false) {
+        const toml::node* n = fallback ? find(k) : &require(k);
+        if (!n) return *fallback;
+        if (!n->is_number()) throw error(k, "must be a number, not " + typeName(*n));
+        const double v = n->value<double>().value_or(NAN);
+        if (!std::isfinite(v) || v < lo || v > hi || (openLow && v == lo))
+            throw error(k, "is " + formatNumber(v) + ", but must be " + rangeText(lo, hi, openLow));
+        return v;
+    }
+    int integer(const std::string& k, int fallback, int lo, int hi) {
+        const toml::node* n = find(k);
+        if (!n) return fallback;
+        if (!n->is_integer()) throw error(k, "must be a whole number, not " + typeName(*n));
+        const long long v = n->value<long long>().value_or(0);
+        if (v < lo || v > hi)
+            throw error(k, "is " + std::to_string(v) + ", but must be " + std::to_string(lo) + " to " + std::to_string(hi));
+        return static_cast<int>(v);
+    }
+    std::optional<std::string> text(const std::string& k) {
+        const toml::node* n = find(k);
+        if (!n) return std::nullopt;
+        if (!n->is_string()) throw error(k, "must be a string, not " + typeName(*n));
+        return n->value<std::string>().value_or("");
+    }
+    std::string requiredText(const std::string& k) {
+        require(k);
+        return *text(k);
+    }
+    std::optional<bool> boolean(const std::string& k) {
+        const toml::node* n = find(k);
+        if (!n) return std::nullopt;
+        if (!n->is_boolean()) throw error(k, "must be true or false, not " + typeName(*n));
+        return n->value<bool>().value_or(false);
+    }
+    // One of a fixed set of words.
+    std::string choice(const std::string& k, const std::string& fallback, std::initializer_list<const char*> allowed) {
+        const std::optional<std::string> v = text(k);
+        if (!v) return fallback;
+        std::string list;
+        for (const char* a : allowed) {
+            if (*v == a) return *v;
+            list += list.empty() ? a : std::string(", ") + a;
+        }
+        throw error(k, "is '" + shorten(*v) + "', but must be one of: " + list);
+    }
+    std::vector<double> numbers(const std::string& k, std::vector<double> fallback, size_t count, double lo, double hi) {
+        const toml::node* n = find(k);
+        if (!n) return fallback;
+        const toml::array* a = n->as_array();
+        if (!a || a->size() != count) throw error(k, "must be an array of " + std::to_string(count) + " numbers");
+        std::vector<double> out;
+        for (const toml::node& e : *a) {
+            const double v = e.is_number() ? e.value<double>().value_or(NAN) : NAN;
+            if (!std::isfinite(v) || v < lo || v > hi)
+                throw error(k, "must hold " + std::to_string(count) + " numbers, each " + rangeText(lo, hi, false));
+            out.push_back(v);
+        }
+        return out;
+    }
+    const toml::table* table(const std::string& k) {
+        const toml::node* n = find(k);
+        if (!n) return nullptr;
+        if (!n->is_table()) throw error(k, "must be a table [" + key(k) + "], not " + typeName(*n));
+        return n->as_table();
+    }
+    // Rejects any key that was never asked for, suggesting the nearest one that was.
+    void finish() const {
+        for (auto&& [k, node] : table_) {
+            const std::string name(k.str());
+            if (known_.count(name)) continue;
+            std::string best;
+            size_t bestDistance = 3;
+            for (const std::string& candidate : known_) {
+                const size_t d = distance(name, candidate);
+                if (d < bestDistance) bestDistance = d, best = candidate;
+            }
+            const std::string where = prefix_.empty() ? "at the top level" : "in [" + prefix_ + "]";
+            throw error(lineOf(node), "unknown key '" + key(name) + "' " + where,
+                        best.empty() ? kHint : "did you mean '" + best + "'? " + kHint);
+        }
+    }
+
+    static std::string typeName(const toml::node& n) {
+        switch (n.type()) {
+            case toml::node_type::string: return "a string";
+            case toml::node_type::integer:
+            case toml::node_type::floating_point: return "a number";
+            case toml::node_type::boolean: return "true/false";
+            case toml::node_type::array: return "an array";
+            case toml::node_type::table: return "a table";
+            default: return "a date or time";
+        }
+    }
+    static std::string formatNumber(double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", v);
+        return text;
+    }
+    static std::string rangeText(double lo, double hi, bool openLow) {
+        if (std::isinf(hi)) return std::string(openLow ? "greater than " : "at least ") + formatNumber(lo);
+        return std::string(openLow ? "greater than " : "from ") + formatNumber(lo) + (openLow ? " and at most " : " to ") +
+               formatNumber(hi);
+    }
+
+private:
+    const toml::table& table_;
+    std::string prefix_;
+    const std::string& file_;
+    std::set<std::string> known_;
+};
+
+// The same limits as the command line's --tile-size and --height: a tile up to 100 km across, waves up
+// to 1 km high. Anything larger is a typo, and would overflow float maths downstream.
+constexpr double kMaxTileSize = 1e5;
+constexpr double kMaxHeight = 1e3;
+
+bool validName(const std::string& name) {
+    if (name.empty() || name.size() > 64) return false;
+    return std::all_of(name.begin(), name.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+    }) && name.front() != '.';
+}
+
+class ManifestParser {
+public:
+    explicit ManifestParser(std::string path) : path_(std::move(path)), folder_(fs::path(path_).parent_path()) {}
+
+    Manifest parse(const toml::table& root) {
+        Section top(root, "", path_);
+        Manifest m;
+        m.path = path_;
+        const double format = top.number("format", std::nullopt, 1, 1e9);
+        if (format != kManifestFormat)
+            throw top.error("format", "is " + Section::formatNumber(format) + ", but this heightpack reads format " +
+                                          std::to_string(kManifestFormat));
+        m.name = top.requiredText("name");
+        if (!validName(m.name)) throw top.error("name", "must be 1-64 letters, digits, '_', '-' or '.'");
+        m.threshold = top.number("threshold", kDefaultSeamThreshold, 1.0, 1e6);
+        if (const toml::table* d = top.table("defaults")) {
+            Section s(*d, "defaults", path_);
+            defaults_ = settings(s, MapSettings{});
+            defaultsMustTile_ = s.boolean("tileable");
+            s.finish();
+        }
+
+        const toml::array* array = top.require("displacement").as_array();
+        if (!array || !array->is_array_of_tables() || array->empty())
+            throw top.error("displacement", "must be one or more [[displacement]] tables");
+        if (array->size() > 8) throw top.error("displacement", "has " + std::to_string(array->size()) + " maps; at most 8");
+        for (size_t i = 0; i < array->size(); ++i) {
+            Section s(*(*array)[i].as_table(), "displacement[" + std::to_string(i) + "]", path_);
+            m.displacement.push_back(displacement(s));
+        }
+        if (const toml::table* t = top.table("normals")) {
+            Section s(*t, "normals", path_);
+            m.normals = normals(s);
+        }
+        if (const toml::table* t = top.table("fresnel")) {
+            Section s(*t, "fresnel", path_);
+            m.fresnel = fresnel(s);
+        }
+        if (const toml::table* t = top.table("foam")) {
+            Section s(*t, "foam", path_);
+            m.foam = foam(s);
+        }
+        top.finish();
+        return m;
+    }
+
+private:
+    MapSettings settings(Section& s, const MapSettings& base) {
+        MapSettings out = base;
+        out.wrap = s.choice("wrap", wrapName(base.wrap), {"periodic", "clamp"}) == "clamp" ? Wrap::Clamp : Wrap::Periodic;
+        out.filter = *parseFilter(s.choice("filter", filterName(base.filter), {"box", "triangle", "lanczos3", "kaiser"}));
+        out.compression = *parseCompression(
+            s.choice("compression", compressionName(base.compression), {"none", "rle", "zips", "zip", "piz"}));
+        out.resize = s.boolean("resize").value_or(base.resize);
+        if (const auto c = s.text("channel")) {
+            const auto parsed = parseChannelSelect(*c);
+            if (!parsed || *c == "auto") throw s.error("channel", "is '" + shorten(*c) + "', but must be one of: r, g, b, a, luma");
+            out.channel = *parsed;
+        }
+        return out;
+    }
+
+    // The name, source, output and map settings of an asset made from a file.
+    SourcedAsset sourced(Section& s, const std::string& name, bool sourceRequired = true) {
+        SourcedAsset a;
+        a.line = s.line();
+        a.settings = settings(s, defaults_);
+        a.mustTile = s.boolean("tileable").value_or(defaultsMustTile_.value_or(a.settings.wrap == Wrap::Periodic));
+        const std::optional<std::string> source = sourceRequired ? s.requiredText("source") : s.text("source");
+        if (!source) {
+            if (s.find("output")) throw s.error("output", "is given, but there is no 'source' to make it from");
+            return a;
+        }
+        if (source->empty()) throw s.error("source", "is empty; give the map's path relative to the manifest");
+        const fs::path given(*source);
+        a.source = (given.is_absolute() ? given : folder_ / given).lexically_normal().string();
+        if (a.source.empty()) a.source = ".";
+        a.frames = expandSequence(a.source);
+        std::error_code ec;
+        if (!fs::is_regular_file(a.frames[0], ec))
+            throw s.error("source", "names '" + shorten(*source) + "', which " +
+                                        (fs::exists(a.frames[0], ec) ? "is not a file" : "does not exist") + " (looked for " +
+                                        a.source + ")",
+                          "paths are relative to the manifest's folder; a sequence NAME.EXT is NAME.0000.EXT, ...");
+        a.output = output(s, name);
+        return a;
+    }
+
+    // The output's path inside the output folder: relative, normalised, an .exr, never escaping it.
+    std::string output(Section& s, const std::string& name) {
+        const std::string given = s.text("output").value_or(name + ".exr");
+        const fs::path p = fs::path(given).lexically_normal();
+        if (given.empty() || p.is_absolute() || p.empty() || *p.begin() == ".." || p == "." || p.filename().empty())
+            throw s.error("output", "is '" + shorten(given) + "', which is not a file inside the output folder",
+                          "give a relative path such as textures/swell.exr, without '..'");
+        const std::string ext = lowerExtension(p);
+        if (ext != ".exr") throw s.error("output", "is '" + shorten(given) + "', but every texture is written as an .exr");
+        if (p.filename().string().front() == '.')
+            throw s.error("output", "is '" + shorten(given) + "': names starting with '.' are heightpack's own temporary files");
+        claim(s, p.string());
+        return p.string();
+    }
+
+    // Every file a manifest makes must have its own name (frames of a sequence included).
+    void claim(Section& s, const std::string& output) {
+        const auto [it, fresh] = outputs_.emplace(output, s.line());
+        if (!fresh)
+            throw s.error(s.line(), "[" + s.prefix() + "] writes '" + output + "', as does the asset on line " +
+                                        std::to_string(it->second),
+                          "give each asset its own name or output");
+    }
+
+    std::string assetName(Section& s, const std::string& fallback) {
+        const std::string name = s.text("name").value_or(fallback);
+        if (!validName(name)) throw s.error("name", "is '" + shorten(name) + "': use 1-64 letters, digits, '_', '-' or '.'");
+        const auto [it, fresh] = names_.emplace(name, s.line());
+        if (!fresh)
+            throw s.error("name", "is '" + name + "', already the name of the asset on line " + std::to_string(it->second));
+        return name;
+    }
+
+    std::array<double, 2> scroll(Section& s) {
+        const auto v = s.numbers("scroll", {0.0, 0.0}, 2, -1e3, 1e3);
+        return {v[0], v[1]};
+    }
+
+    DisplacementAsset displacement(Section& s) {
+        DisplacementAsset d;
+        d.layer.name = assetName(s, "");
+        static_cast<SourcedAsset&>(d) = sourced(s, d.layer.name);
+        d.layer.tileSize = s.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
+        d.layer.scroll = scroll(s);
+        d.layer.amplitude = s.number("amplitude", 1.0, -1e6, 1e6);
+        d.layer.heightScale = s.number("height_scale", 1.0, -1e6, 1e6);
+        d.layer.heightOffset = s.number("height_offset", 0.0, -1e6, 1e6);
+        if (d.layer.heightScale == 0) throw s.error("height_scale", "is 0, which would flatten the map");
+        d.layer.wrap = wrapName(d.settings.wrap);
+        d.layer.filter = filterName(d.settings.filter);
+        claimFrames(s, d);
+        s.finish();
+        return d;
+    }
+
+    // A sequence writes NAME.0000.exr ...: those names are claimed too.
+    void claimFrames(Section& s, const SourcedAsset& a) {
+        for (size_t f = 0; a.frames.size() > 1 && f < a.frames.size(); ++f)
+            claim(s, frameFileName(a.output, static_cast<int>(f), static_cast<int>(a.frames.size())));
+    }
+
+    NormalAsset normals(Section& s) {
+        NormalAsset n;
+        n.layer.name = assetName(s, "normals");
+        static_cast<SourcedAsset&>(n) = sourced(s, n.layer.name);
+        n.layer.tileSize = s.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
+        n.layer.heightRange = s.number("height", std::nullopt, 0, kMaxHeight, true);
+        n.kernel = *parseSlopeKernel(s.choice("kernel", "central", {"central", "sobel3", "scharr"}));
+        n.layer.convention = s.choice("convention", "opengl", {"opengl", "directx"});
+        n.layer.alpha = s.choice("alpha", "none", {"none", "height", "variance"});
+        if (const toml::node* octaves = s.find("octave")) {
+            const toml::array* a = octaves->as_array();
+            if (!a || !a->is_array_of_tables() || a->empty() || a->size() > 4)
+                throw s.error("octave", "must be one to four [[normals.octave]] tables");
+            for (size_t i = 0; i < a->size(); ++i) {
+                Section o(*(*a)[i].as_table(), "normals.octave[" + std::to_string(i) + "]", path_);
+                NormalOctave octave;
+                octave.tileSize = o.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
+                octave.scroll = scroll(o);
+                octave.strength = o.number("strength", 1.0, 0, 100);
+                o.finish();
+                n.layer.octaves.push_back(octave);
+            }
+        } else {
+            n.layer.octaves.push_back({n.layer.tileSize, {0.0, 0.0}, 1.0});
+        }
+        claimFrames(s, n);
+        s.finish();
+        return n;
+    }
+
+    FresnelAsset fresnel(Section& s) {
+        FresnelAsset f;
+        f.line = s.line();
+        f.layer.name = assetName(s, "fresnel");
+        f.output = output(s, f.layer.name);
+        f.options.ior = s.number("ior", 1.333, 1.0, 4.0);
+        f.options.model = s.choice("model", "exact", {"exact", "schlick"}) == "schlick" ? FresnelModel::Schlick
+                                                                                       : FresnelModel::Exact;
+        f.options.index = s.choice("index", "nv", {"nv", "2nv"}) == "2nv" ? FresnelIndex::TwoNdotV : FresnelIndex::NdotV;
+        f.options.size = s.integer("size", 256, 2, 65536);
+        const auto deep = s.numbers("deep", {0.02, 0.10, 0.16}, 3, 0.0, 1.0);
+        const auto shallow = s.numbers("shallow", {0.10, 0.40, 0.45}, 3, 0.0, 1.0);
+        f.options.deep = {deep[0], deep[1], deep[2]};
+        f.options.shallow = {shallow[0], shallow[1], shallow[2]};
+        f.layer.ior = f.options.ior;
+        f.layer.model = fresnelModelName(f.options.model);
+        f.layer.index = fresnelIndexName(f.options.index);
+        s.finish();
+        return f;
+    }
+
+    FoamAsset foam(Section& s) {
+        FoamAsset f;
+        f.line = s.line();
+        f.layer.name = assetName(s, "foam");
+        f.layer.h0 = s.number("h0", std::nullopt, -1e4, 1e4);
+        f.layer.hmax = s.number("hmax", std::nullopt, -1e4, 1e4);
+        if (f.layer.hmax <= f.layer.h0)
+            throw s.error("hmax", "is " + Section::formatNumber(f.layer.hmax) + ", but must be above h0 (" +
+                                      Section::formatNumber(f.layer.h0) + ")");
+        f.layer.tileSize = s.number("tile_size", 4.0, 0, kMaxTileSize, true);
+        SourcedAsset texture = sourced(s, f.layer.name, false);
+        if (!texture.source.empty()) {
+            if (texture.frames.size() > 1) throw s.error("source", "names a sequence; foam is one texture");
+            f.texture = std::move(texture);
+        }
+        s.finish();
+        return f;
+    }
+
+    std::string path_;
+    fs::path folder_;
+    MapSettings defaults_;
+    std::optional<bool> defaultsMustTile_;
+    std::map<std::string, int> outputs_;  // output path -> line that claimed it
+    std::map<std::string, int> names_;
+};
+
+}  // namespace
+
+Result<Manifest> parseManifest(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        return badInput(path, fs::exists(path, ec) ? "is not a file" : "does not exist", "give a manifest .toml file");
+    toml::table root;
+    try {
+        root = toml::parse_file(path);
+    } catch (const toml::parse_error& e) {
+        return badInput(path + ":" + std::to_string(e.source().begin.line),
+                        "TOML syntax error: " + std::string(e.description()), "fix the manifest's syntax");
+    }
+    try {
+        return ManifestParser(path).parse(root);
+    } catch (const Error& e) {
+        return e;
+    }
+}
+
+}  // namespace heightpack

@@ -1,0 +1,122 @@
+#include "heightpack/build/normal_job.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "heightpack/core/parallel.hpp"
+#include "heightpack/io/read.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/image_write.hpp"
+#include "heightpack/io/files.hpp"
+#include "job_steps.hpp"
+
+namespace heightpack {
+
+namespace {
+
+std::vector<ExrAttribute> normalAttributes(const NormalJobOptions& options, const SourceInfo& source,
+                                           const std::string& hash, int width, int height) {
+    const NormalOptions& n = options.normal;
+    const double tileHeight = texelHeight(n, width, height, height) * height;
+    auto attributes = detail::commonAttributes("normal", n.wrap, options.filter, source, hash, options.version);
+    const std::vector<ExrAttribute> own = {
+        {"heightpack:kernel", std::string(slopeKernelName(n.kernel))},
+        {"heightpack:convention", std::string(n.convention == NormalConvention::OpenGL ? "opengl" : "directx")},
+        {"heightpack:alpha", std::string(n.alpha == NormalAlpha::None     ? "none"
+                                         : n.alpha == NormalAlpha::Height ? "height"
+                                                                          : "slopeVariance")},
+        {"heightpack:tileWidth", static_cast<float>(n.tileWidth)},
+        {"heightpack:tileHeight", static_cast<float>(tileHeight)},
+        {"heightpack:heightRange", static_cast<float>(n.heightRange)},
+    };
+    attributes.insert(attributes.end(), own.begin(), own.end());
+    return attributes;
+}
+
+}  // namespace
+
+Result<NormalReport> makeNormalMap(const std::string& input, const std::string& output,
+                                   const NormalJobOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    auto progress = [&](std::string_view stage, double f) {
+        if (options.progress) options.progress(stage, f);
+    };
+    if (Status s = checkWritable(output); !s) return s.error();
+
+    NormalReport report;
+    report.input = input;
+    report.output = output;
+    progress("load", 0.0);
+    auto loaded = detail::loadInput(input, options.load, options.normal.threads);
+    if (!loaded) return loaded.error();
+    report.source = loaded->source;
+    report.sourceHash = loaded->hash;
+    Image heights = std::move(loaded->heights);
+    const int w0 = heights.width, h0 = heights.height;
+
+    const NormalOptions& n = options.normal;
+    MipOptions mip;
+    mip.filter = options.filter;
+    mip.wrap = n.wrap;
+    mip.threads = n.threads;
+
+    if (options.format == NormalFormat::Png8) {
+        progress("normal", 0.0);
+        Image normals = normalsFromHeights(heights, texelWidth(n, w0, w0), texelHeight(n, w0, h0, h0), n);
+        double minZ = 1.0;
+        for (size_t i = 0; i < normals.texelCount(); ++i) {
+            float* t = &normals.pixels[i * normals.channels];
+            minZ = std::min(minZ, double(t[2]));
+            for (int c = 0; c < 3; ++c) t[c] = 0.5f + 0.5f * t[c];
+        }
+        report.maxSlopeDegrees = std::acos(minZ) * 180.0 / 3.14159265358979323846;
+        report.levelSizes.emplace_back(w0, h0);
+        FlatImageOptions flat;
+        flat.bits = 8;
+        flat.attributes = normalAttributes(options, report.source, report.sourceHash, w0, h0);
+        if (Status s = writeFlatImage(output, normals, flat); !s) return s.error();
+    } else {
+        auto resized = detail::ensurePowerOfTwo(heights, input, options.resizeToPowerOfTwo, mip,
+                                                "--format png8 for level 0 alone");
+        if (!resized) return resized.error();
+        report.resized = *resized;
+        progress("mip", 0.0);
+        const std::vector<Image> heightChain = generateMipChain(heights, mip);
+        progress("normal", 0.0);
+        std::vector<Image> momentChain;
+        if (n.alpha == NormalAlpha::Variance) {
+            const Image& top = heightChain[0];
+            momentChain = generateMipChain(
+                slopeMoment(top, texelWidth(n, top.width, top.width), texelHeight(n, top.width, top.height, top.height), n),
+                mip);
+        }
+        const std::vector<Image> chain = generateNormalChain(heightChain, n, momentChain);
+        double minZ = 1.0;
+        for (size_t i = 0; i < chain[0].texelCount(); ++i) minZ = std::min(minZ, double(chain[0].pixels[i * chain[0].channels + 2]));
+        report.maxSlopeDegrees = std::acos(minZ) * 180.0 / 3.14159265358979323846;
+        for (const Image& level : chain) report.levelSizes.emplace_back(level.width, level.height);
+        progress("normal", 1.0);
+
+        TiledExrContent content;
+        content.width = chain[0].width;
+        content.height = chain[0].height;
+        content.channelNames = {"R", "G", "B"};
+        if (chain[0].channels == 4) content.channelNames.push_back("A");
+        content.fillRows = [&](int level, int y0, int rows, float* dst) {
+            const Image& l = chain[level];
+            std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width * l.channels, dst);
+        };
+        content.attributes = normalAttributes(options, report.source, report.sourceHash, content.width, content.height);
+        ExrWriteOptions write;
+        write.compression = options.compression;
+        write.threads = n.threads;
+        write.progress = [&](double f) { progress("write", f); };
+        if (Status s = writeTiledExr(output, content, write); !s) return s.error();
+    }
+    progress("write", 1.0);
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return report;
+}
+
+}  // namespace heightpack

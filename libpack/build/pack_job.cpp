@@ -1,0 +1,113 @@
+#include "heightpack/build/pack_job.hpp"
+
+#include <chrono>
+#include <filesystem>
+
+#include "heightpack/core/pack.hpp"
+#include "heightpack/core/parallel.hpp"
+#include "heightpack/io/read.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/files.hpp"
+#include "job_steps.hpp"
+
+namespace heightpack {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::vector<ExrAttribute> heightAttributes(std::string_view layout, const PackOptions& options,
+                                           const SourceInfo& source, const std::string& sourceHash) {
+    auto attributes =
+        detail::commonAttributes(layout, options.mip.wrap, options.mip.filter, source, sourceHash, options.version);
+    attributes.push_back({"heightpack:heightScale", options.scale});
+    attributes.push_back({"heightpack:heightOffset", options.offset});
+    if (!source.loopPeriod.empty()) {
+        attributes.push_back({"heightpack:loopPeriod", std::stof(source.loopPeriod)});
+        attributes.push_back({"heightpack:time", source.time.empty() ? 0.0f : std::stof(source.time)});
+    }
+    return attributes;
+}
+
+Result<PackReport> packHeightMap(const std::string& input, const std::string& output, const PackOptions& options) {
+    auto progress = [&](std::string_view stage, double fraction) {
+        if (options.progress) options.progress(stage, fraction);
+    };
+    // Fail on an unwritable output before spending any time on the input.
+    if (Status s = checkWritable(output); !s) return s.error();
+    if (options.packed && !options.plainOutput.empty()) {
+        if (std::filesystem::path(options.plainOutput).lexically_normal() ==
+            std::filesystem::path(output).lexically_normal())
+            return cannotWrite(options.plainOutput, "is also the packed output", "give --emit-plain another name");
+        if (Status s = checkWritable(options.plainOutput); !s) return s.error();
+    }
+
+    PackReport report;
+    report.input = input;
+    report.output = output;
+    report.plainOutput = options.packed ? options.plainOutput : output;
+
+    auto start = std::chrono::steady_clock::now();
+    progress("load", 0.0);
+    auto loaded = detail::loadInput(input, options.load, options.mip.threads);
+    if (!loaded) return loaded.error();
+    report.source = loaded->source;
+    report.sourceHash = loaded->hash;
+    Image heights = std::move(loaded->heights);
+    progress("load", 1.0);
+    report.loadSeconds = secondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    progress("mip", 0.0);
+    auto resized = detail::ensurePowerOfTwo(heights, input, options.resizeToPowerOfTwo, options.mip);
+    if (!resized) return resized.error();
+    report.resized = *resized;
+    if (options.scale != 1.0f || options.offset != 0.0f)
+        for (float& v : heights.pixels) v = options.offset + options.scale * v;
+    const std::vector<Image> chain = generateMipChain(heights, options.mip);
+    heights = Image();  // level 0 lives on in the chain
+    for (const Image& level : chain) report.levelSizes.emplace_back(level.width, level.height);
+    progress("mip", 1.0);
+    report.mipSeconds = secondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    ExrWriteOptions writeOptions;
+    writeOptions.compression = options.compression;
+    writeOptions.threads = options.mip.threads;
+    // The plain chain goes to plainOutput beside the packed one, or alone to output.
+    const std::string plainPath = options.packed ? options.plainOutput : output;
+    const bool both = options.packed && !plainPath.empty();
+    writeOptions.progress = [&](double f) { progress("write", both ? f * 0.8 : f); };
+
+    const Wrap wrap = options.mip.wrap;
+    TiledExrContent content;
+    content.width = chain[0].width;
+    content.height = chain[0].height;
+    if (options.packed) {
+        content.channelNames = {"R", "G", "B", "A"};
+        content.fillRows = [&](int level, int y0, int rows, float* dst) {
+            packNeighbour4Rows(chain[level], wrap, y0, rows, dst);
+        };
+        content.attributes = heightAttributes("neighbour4", options, report.source, report.sourceHash);
+        if (Status s = writeTiledExr(output, content, writeOptions); !s) return s.error();
+    }
+    if (!plainPath.empty()) {
+        content.channelNames = {"Y"};
+        content.fillRows = [&](int level, int y0, int rows, float* dst) {
+            const Image& l = chain[level];
+            std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width, dst);
+        };
+        content.attributes = heightAttributes("plain", options, report.source, report.sourceHash);
+        if (both) writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
+        if (Status s = writeTiledExr(plainPath, content, writeOptions); !s) return s.error();
+    }
+    progress("write", 1.0);
+    report.writeSeconds = secondsSince(start);
+    return report;
+}
+
+}  // namespace heightpack

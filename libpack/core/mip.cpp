@@ -1,0 +1,201 @@
+#include "heightpack/core/mip.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "heightpack/core/parallel.hpp"
+
+namespace heightpack {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kKaiserAlpha = 4.0;
+
+double sinc(double x) {
+    if (std::abs(x) < 1e-9) return 1.0;
+    const double px = kPi * x;
+    return std::sin(px) / px;
+}
+
+// Modified Bessel function of the first kind, order 0, by its power series (converges fast for the
+// arguments the Kaiser window uses, |x| <= alpha).
+double besselI0(double x) {
+    double sum = 1.0, term = 1.0;
+    const double q = x * x / 4.0;
+    for (int k = 1; k < 64; ++k) {
+        term *= q / (double(k) * k);
+        sum += term;
+        if (term < sum * 1e-17) break;
+    }
+    return sum;
+}
+
+// For each destination index along one axis: which source texels it reads, with which weights.
+// Weights are normalised to sum to one, so a constant image stays constant at every level.
+struct AxisTaps {
+    std::vector<int> first;  // offset of output i's taps in index/weight
+    std::vector<int> count;
+    std::vector<int> index;  // source texel, already wrapped
+    std::vector<float> weight;
+};
+
+AxisTaps computeTaps(int srcSize, int dstSize, Filter filter, Wrap wrap) {
+    AxisTaps taps;
+    const double ratio = double(srcSize) / dstSize;
+    const double widen = std::max(1.0, ratio);  // shrinking: the filter spans `ratio` source texels per unit
+    const double support = filterRadius(filter) * widen;
+    std::vector<double> w;
+    for (int i = 0; i < dstSize; ++i) {
+        const double centre = (i + 0.5) * ratio - 0.5;
+        const long long lo = static_cast<long long>(std::ceil(centre - support));
+        const long long hi = static_cast<long long>(std::floor(centre + support));
+        w.clear();
+        double sum = 0.0;
+        for (long long t = lo; t <= hi; ++t) {
+            w.push_back(filterWeight(filter, (double(t) - centre) / widen));
+            sum += w.back();
+        }
+        taps.first.push_back(static_cast<int>(taps.index.size()));
+        int n = 0;
+        for (long long t = lo; t <= hi; ++t) {
+            const double wt = w[static_cast<size_t>(t - lo)];
+            if (wt == 0.0) continue;
+            taps.index.push_back(wrapIndex(t, srcSize, wrap));
+            taps.weight.push_back(static_cast<float>(wt / sum));
+            ++n;
+        }
+        taps.count.push_back(n);
+    }
+    return taps;
+}
+
+// Filters along x: src (W x H) -> dst (dstWidth x H).
+Image resampleRows(const Image& src, int dstWidth, const AxisTaps& taps, int threads) {
+    Image dst(dstWidth, src.height, src.channels);
+    const int c = src.channels;
+    parallelFor(src.height, threads, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+            const float* in = src.row(y);
+            float* out = dst.row(y);
+            for (int x = 0; x < dstWidth; ++x) {
+                const int* idx = &taps.index[taps.first[x]];
+                const float* wt = &taps.weight[taps.first[x]];
+                for (int ch = 0; ch < c; ++ch) {
+                    float acc = 0.0f;
+                    for (int k = 0; k < taps.count[x]; ++k) acc += wt[k] * in[idx[k] * c + ch];
+                    out[x * c + ch] = acc;
+                }
+            }
+        }
+    });
+    return dst;
+}
+
+// Filters along y: src (W x H) -> dst (W x dstHeight). Whole rows at a time, so the inner loop is a
+// contiguous multiply-add that the compiler vectorises.
+Image resampleColumns(const Image& src, int dstHeight, const AxisTaps& taps, int threads) {
+    Image dst(src.width, dstHeight, src.channels);
+    const size_t rowLength = static_cast<size_t>(src.width) * src.channels;
+    parallelFor(dstHeight, threads, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+            float* out = dst.row(y);
+            std::fill(out, out + rowLength, 0.0f);
+            for (int k = 0; k < taps.count[y]; ++k) {
+                const float wt = taps.weight[taps.first[y] + k];
+                const float* in = src.row(taps.index[taps.first[y] + k]);
+                for (size_t i = 0; i < rowLength; ++i) out[i] += wt * in[i];
+            }
+        }
+    });
+    return dst;
+}
+
+}  // namespace
+
+const char* filterName(Filter filter) {
+    switch (filter) {
+        case Filter::Box: return "box";
+        case Filter::Triangle: return "triangle";
+        case Filter::Lanczos3: return "lanczos3";
+        case Filter::Kaiser: return "kaiser";
+    }
+    return "?";
+}
+
+std::optional<Filter> parseFilter(std::string_view name) {
+    for (Filter f : {Filter::Box, Filter::Triangle, Filter::Lanczos3, Filter::Kaiser})
+        if (name == filterName(f)) return f;
+    return std::nullopt;
+}
+
+double filterRadius(Filter filter) {
+    switch (filter) {
+        case Filter::Box: return 0.5;
+        case Filter::Triangle: return 1.0;
+        case Filter::Lanczos3: return 3.0;
+        case Filter::Kaiser: return 3.0;
+    }
+    return 0.0;
+}
+
+double filterWeight(Filter filter, double x) {
+    const double ax = std::abs(x);
+    switch (filter) {
+        case Filter::Box: return (x >= -0.5 && x < 0.5) ? 1.0 : 0.0;  // half-open: ties go to one side
+        case Filter::Triangle: return ax < 1.0 ? 1.0 - ax : 0.0;
+        case Filter::Lanczos3: return ax < 3.0 ? sinc(x) * sinc(x / 3.0) : 0.0;
+        case Filter::Kaiser: {
+            if (ax >= 3.0) return 0.0;
+            const double r = x / 3.0;
+            return sinc(x) * besselI0(kKaiserAlpha * std::sqrt(1.0 - r * r)) / besselI0(kKaiserAlpha);
+        }
+    }
+    return 0.0;
+}
+
+Image resample(const Image& src, int width, int height, const MipOptions& options) {
+    assert(width > 0 && height > 0 && !src.empty());
+    // Columns first: that pass streams whole rows and vectorises, so it takes the larger share of work.
+    auto columns = [&](const Image& in) {
+        return resampleColumns(in, height, computeTaps(src.height, height, options.filter, options.wrap),
+                               options.threads);
+    };
+    auto rows = [&](const Image& in) {
+        return resampleRows(in, width, computeTaps(src.width, width, options.filter, options.wrap),
+                            options.threads);
+    };
+    if (height != src.height) return width != src.width ? rows(columns(src)) : columns(src);
+    return width != src.width ? rows(src) : src;
+}
+
+bool isPowerOfTwo(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
+int nextPowerOfTwo(int n) {
+    int p = 1;
+    while (p < n) p <<= 1;
+    return p;
+}
+
+int mipLevelCount(int width, int height) {
+    int levels = 1;
+    for (int side = std::max(width, height); side > 1; side >>= 1) ++levels;
+    return levels;
+}
+
+std::vector<Image> generateMipChain(const Image& level0, const MipOptions& options) {
+    assert(isPowerOfTwo(level0.width) && isPowerOfTwo(level0.height));
+    const int levels = mipLevelCount(level0.width, level0.height);
+    std::vector<Image> chain;
+    chain.reserve(levels);
+    chain.push_back(level0);
+    for (int level = 1; level < levels; ++level) {
+        const Image& above = chain.back();
+        // Each level is made from the one above (not from level 0): the filter at ratio 2 has a fixed
+        // set of weights, so the chain is exactly shift-invariant for periodic maps.
+        chain.push_back(resample(above, std::max(1, above.width / 2), std::max(1, above.height / 2), options));
+    }
+    return chain;
+}
+
+}  // namespace heightpack

@@ -1,0 +1,51 @@
+// The whole `check` operation: does a map, or a texture heightpack wrote, tile at every mip level?
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "heightpack/io/read.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/result.hpp"
+#include "heightpack/core/tileable.hpp"
+
+namespace heightpack {
+
+struct CheckOptions {
+    LoadOptions load;
+    MipOptions mip;  // the chain `pack` would make from a flat image (a texture's own levels are used as they are)
+    double threshold = kDefaultSeamThreshold;
+    std::string previewPath;  // write the 2x2 seam preview PNG here, if not empty
+    // Reports progress: the stage ("load", "mip", "check") and the fraction of it done; may be empty.
+    std::function<void(std::string_view stage, double fraction)> progress;
+};
+
+struct CheckReport {
+    std::string input;
+    std::string kind;   // "image" (levels made as pack would), "neighbour4", "plain", "normal" or "texture"
+    std::string note;   // e.g. why only level 0 was scored
+    SourceInfo source;  // for an image: what it held and which channel was used (empty for a texture's levels)
+    double threshold = kDefaultSeamThreshold;
+    std::vector<LevelSeams> levels;
+    LevelSeams worst;  // per edge pair, the highest scores over the measured levels
+    std::optional<SeamFailure> failure;  // the first failing edge, finest level first
+    std::optional<PackingCheck> packing;  // for neighbour4 textures
+    bool tiles = true;  // every measured level passes (and the packing is consistent)
+};
+
+// The quantum of a source's samples: 1/255 for 8 bits, 1/65535 for 16, 0 for float.
+double sampleQuantum(const SourceInfo& source);
+
+// The mip chain `pack` would make from a flat map, for the seam measure: the whole chain when the sides
+// are powers of two, else level 0 alone (pack would resize first). Sets *note to say which.
+std::vector<Image> seamChain(const Image& heights, const MipOptions& mip, std::string* note = nullptr);
+
+// Scores the seams of the file at path at every level. A flat image gets the mip chain pack would make;
+// an EXR with mip levels is scored level by level as stored, on its first channel (the height R of a
+// packed texel). Fails only when the file cannot be read or the preview cannot be written.
+Result<CheckReport> checkFile(const std::string& path, const CheckOptions& options);
+
+}  // namespace heightpack

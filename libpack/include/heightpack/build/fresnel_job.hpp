@@ -1,0 +1,20 @@
+// The whole `fresnel` operation: make the ramp and write it.
+#pragma once
+
+#include <string>
+
+#include "heightpack/core/fresnel.hpp"
+#include "heightpack/core/result.hpp"
+
+namespace heightpack {
+
+enum class RampFormat {
+    Exr,   // RGBA 32-bit float, linear
+    Png8,  // 8-bit, rgb sRGB-encoded, alpha (the reflectance) linear
+};
+
+// Writes the ramp of options to output, atomically, with its parameters in the metadata.
+Status writeFresnelRamp(const std::string& output, const FresnelOptions& options, RampFormat format,
+                        const std::string& version);
+
+}  // namespace heightpack

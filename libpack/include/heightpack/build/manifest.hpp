@@ -1,0 +1,78 @@
+// A water material manifest (TOML, docs/manifest.md): which maps make the material, how each is
+// packed, and the parameters that go into material.json. Parsed strictly: an unknown key, a missing
+// one, a wrong type or a value out of range is an error naming the file, the line and the key.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heightpack/core/fresnel.hpp"
+#include "heightpack/io/read.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/build/material.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/normal.hpp"
+#include "heightpack/core/result.hpp"
+
+namespace heightpack {
+
+inline constexpr int kManifestFormat = 1;
+
+// How one source map becomes a texture: the settings every map has, from [defaults] or its own table.
+struct MapSettings {
+    Wrap wrap = Wrap::Periodic;
+    Filter filter = Filter::Kaiser;
+    Compression compression = Compression::Zip;
+    bool resize = false;  // resample sides that are not powers of two up to the next ones
+    ChannelSelect channel = ChannelSelect::Auto;
+};
+
+// What every asset built from a source file shares.
+struct SourcedAsset {
+    std::string source;               // resolved path (the manifest's folder joined with what it says)
+    std::vector<std::string> frames;  // the files source names: itself, or NAME.0000.EXT ... for a sequence
+    std::string output;               // relative to the output folder, normalised; frames get numbered names
+    MapSettings settings;
+    bool mustTile = true;             // the tileability check must pass (default: wrap is periodic)
+    int line = 0;                     // the line of the asset's table in the manifest
+};
+
+struct DisplacementAsset : SourcedAsset {
+    DisplacementLayer layer;          // name, tile size, scroll, amplitude, height scale and offset
+};
+
+struct NormalAsset : SourcedAsset {
+    NormalLayer layer;                // name, octaves, tile size, height range, convention, alpha
+    SlopeKernel kernel = SlopeKernel::Central;
+};
+
+struct FresnelAsset {
+    FresnelLayer layer;
+    FresnelOptions options;
+    std::string output;
+    int line = 0;
+};
+
+struct FoamAsset {
+    FoamLayer layer;
+    std::optional<SourcedAsset> texture;
+    int line = 0;
+};
+
+struct Manifest {
+    std::string path;                 // the manifest file, as given
+    std::string name;                 // the material's name
+    double threshold = 2.0;           // seam score that fails the tileability check
+    std::vector<DisplacementAsset> displacement;
+    std::optional<NormalAsset> normals;
+    std::optional<FresnelAsset> fresnel;
+    std::optional<FoamAsset> foam;
+};
+
+// Reads and validates the manifest at path: TOML syntax, keys, types, ranges, that every source exists,
+// that output names are unique and stay inside the output folder. Errors are BadInput with path
+// "FILE:LINE" and the key in the message.
+Result<Manifest> parseManifest(const std::string& path);
+
+}  // namespace heightpack

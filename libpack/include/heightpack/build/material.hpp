@@ -1,0 +1,93 @@
+// A built water material, as `heightpack build` describes it in material.json: every texture it wrote
+// and the parameters a renderer needs to combine them (chapter 18's H(x, y, t) sum, the normal-map
+// octaves, the Fresnel ramp, foam). The viewer and engines read it; docs/manifest.md gives the schema.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heightpack/core/result.hpp"
+
+namespace heightpack {
+
+// Bumped whenever a field changes meaning or goes away; added fields keep the version.
+inline constexpr int kMaterialSchemaVersion = 1;
+inline constexpr const char* kMaterialSchemaName = "heightpack-material";
+
+// One texture the build wrote. file is relative to the folder holding material.json; a sequence's
+// frames are NAME.0000.EXT ... (see frameFileName) and file names the sequence.
+struct MaterialTexture {
+    std::string file;
+    int width = 0;
+    int height = 0;
+    int levels = 0;
+    int frames = 1;
+};
+
+// One height map of the sum H(x, y, t) = sum_i amplitude_i * h_i(x / tileSize_i + scroll_i * t).
+struct DisplacementLayer {
+    std::string name;
+    MaterialTexture texture;           // neighbour4 packed RGBA32F
+    std::string wrap = "periodic";
+    std::string filter = "kaiser";
+    double heightScale = 1.0;          // stored = heightOffset + heightScale * painted value
+    double heightOffset = 0.0;
+    double tileSize = 64.0;            // metres one tile spans: A_i = 1 / tileSize
+    std::array<double, 2> scroll{0.0, 0.0};  // B_i, tiles per second along u and v
+    double amplitude = 1.0;            // metres per stored unit
+    double loopPeriod = 0.0;           // seconds a sequence's frames span (0: one frame)
+};
+
+// One octave of the normal map's detail: the map sampled at its own scale and scroll, weighted.
+struct NormalOctave {
+    double tileSize = 8.0;             // metres
+    std::array<double, 2> scroll{0.0, 0.0};  // tiles per second
+    double strength = 1.0;
+};
+
+struct NormalLayer {
+    std::string name;
+    MaterialTexture texture;           // RGB(A) float normals, one per mip level
+    std::string convention = "opengl"; // opengl or directx (green flipped)
+    std::string alpha = "none";        // none, height or variance
+    double tileSize = 8.0;             // metres the map spans when its slopes were measured
+    double heightRange = 0.25;         // metres between a stored 0 and 1 when its slopes were measured
+    std::vector<NormalOctave> octaves;
+};
+
+struct FresnelLayer {
+    std::string name;
+    MaterialTexture texture;           // RGBA ramp: rgb water colour, a reflectance
+    double ior = 1.333;
+    std::string model = "exact";
+    std::string index = "nv";          // nv: u = N.V; 2nv: u = saturate(2 N.V)
+};
+
+struct FoamLayer {
+    std::string name;
+    std::optional<MaterialTexture> texture;  // plain one-channel chain; none: the renderer's own pattern
+    double h0 = 1.2;                   // metres: foam starts at this height
+    double hmax = 2.2;                 // and is full at this one
+    double tileSize = 4.0;             // metres the foam texture spans
+};
+
+struct MaterialDescription {
+    std::string name;
+    std::string generator;             // "heightpack 0.1.0"
+    std::string manifest;              // the manifest's file name
+    std::vector<DisplacementLayer> displacement;
+    std::optional<NormalLayer> normals;
+    std::optional<FresnelLayer> fresnel;
+    std::optional<FoamLayer> foam;
+};
+
+// material.json's text: keys in a fixed order, numbers printed the shortest way that reads back
+// exactly, no timestamps, so the same material always gives the same bytes.
+std::string materialJson(const MaterialDescription& material);
+
+// Reads a material.json. Texture files stay relative; resolve them against the file's folder.
+Result<MaterialDescription> readMaterial(const std::string& path);
+
+}  // namespace heightpack

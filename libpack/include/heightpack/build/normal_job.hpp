@@ -1,0 +1,48 @@
+// The whole `normal` operation: load heights, filter a mip chain, derive normals per level, write.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "heightpack/io/read.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/normal.hpp"
+#include "heightpack/core/result.hpp"
+
+namespace heightpack {
+
+enum class NormalFormat {
+    Exr,   // RGB(A) 32-bit float, xyz in [-1,1], tiled and mip-mapped like the packed heights
+    Png8,  // level 0 only, 8-bit, rgb = 0.5 + 0.5 n
+};
+
+struct NormalJobOptions {
+    LoadOptions load;
+    NormalOptions normal;             // tile size, height range, kernel, wrap, convention, alpha, threads
+    Filter filter = Filter::Kaiser;   // for the height mip chain the normals are derived from
+    bool resizeToPowerOfTwo = false;  // EXR only: a mip chain needs power-of-two sides
+    NormalFormat format = NormalFormat::Exr;
+    Compression compression = Compression::Zip;
+    std::string version;
+    std::function<void(std::string_view stage, double fraction)> progress;
+};
+
+struct NormalReport {
+    std::string input;
+    std::string output;
+    SourceInfo source;
+    std::string sourceHash;
+    bool resized = false;
+    std::vector<std::pair<int, int>> levelSizes;
+    double maxSlopeDegrees = 0.0;  // steepest normal at level 0, for a sanity check of the units
+    double seconds = 0.0;
+};
+
+Result<NormalReport> makeNormalMap(const std::string& input, const std::string& output,
+                                   const NormalJobOptions& options);
+
+}  // namespace heightpack

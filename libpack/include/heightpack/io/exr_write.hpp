@@ -1,0 +1,44 @@
+// Tiled, mip-mapped 32-bit float OpenEXR files, written a band at a time, atomically.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "heightpack/core/result.hpp"
+#include "heightpack/io/attributes.hpp"
+
+namespace heightpack {
+
+// EXR compressions offered: the lossless ones, since heights must come back exactly as computed.
+enum class Compression { None, Rle, Zips, Zip, Piz };
+const char* compressionName(Compression compression);
+std::optional<Compression> parseCompression(std::string_view name);
+
+// A tiled, mip-mapped float EXR described by its level-0 size, channel names, and a function that fills
+// any band of rows of any level on demand, so the writer never holds more than a band of output.
+struct TiledExrContent {
+    int width = 0;
+    int height = 0;
+    std::vector<std::string> channelNames;  // interleaved in this order in the rows fillRows writes
+    // Writes `rows` rows of level `level` starting at y0 into dst (levelWidth * channels floats a row).
+    std::function<void(int level, int y0, int rows, float* dst)> fillRows;
+    std::vector<ExrAttribute> attributes;
+};
+
+struct ExrWriteOptions {
+    Compression compression = Compression::Zip;
+    int tileSize = 64;
+    int threads = 0;  // for packing and compressing tiles; 0 = all cores; the bytes do not depend on it
+    // Called after each row of tiles with the fraction written so far; may be empty.
+    std::function<void(double fraction)> progress;
+};
+
+// Writes content as a tiled (tileSize^2), MIPMAP_LEVELS, ROUND_DOWN EXR of 32-bit float channels. The
+// file appears at path only once complete: it is written to a temporary file in the same folder and
+// renamed, so a failure or interruption leaves no partial file and any existing file untouched.
+Status writeTiledExr(const std::string& path, const TiledExrContent& content, const ExrWriteOptions& options);
+
+}  // namespace heightpack

@@ -1,0 +1,67 @@
+// Files as the tools handle them: outputs that appear whole or not at all, checks before any work,
+// frame sequences, and the names that choose a format.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "heightpack/core/result.hpp"
+
+namespace heightpack {
+
+// Whether a and b name the same existing file: same device and inode, so hard links, symbolic links
+// and other spellings of one path all count. False when either does not exist.
+bool sameFile(const std::string& a, const std::string& b);
+
+// Copies the file at from to to, atomically (to appears whole or not at all).
+Status copyFile(const std::string& from, const std::string& to);
+
+// Checks, before any work, that path can be written: it is not empty, its folder exists and is
+// writable, and anything already there is a regular file that is not read-only (a folder, a symbolic
+// link, a device, FIFO or socket is refused). Fails with CannotWrite naming the problem.
+Status checkWritable(const std::string& path);
+
+// Sequences of frames are numbered files: NAME.0000.EXT, NAME.0001.EXT, ... The file frame f of n goes
+// to: path itself when n is 1, else NAME.FFFF.EXT.
+std::string frameFileName(const std::string& path, int frame, int frames);
+
+// The files a path names: itself when it exists; else, when NAME.0000.EXT exists, every consecutive
+// frame from there; else itself (so that loading it reports the missing file).
+std::vector<std::string> expandSequence(const std::string& path);
+
+// Removes the temporary files in folder that a heightpack process killed mid-write (SIGKILL, power
+// loss) left behind: those whose writing process no longer runs; with stem, only those of outputs
+// named STEM.EXT. Every atomic write calls it for its own output first. Returns how many it removed.
+int removeStaleTemporaryFiles(const std::string& folder, const std::string& stem = {});
+
+// Removes every temporary file an unfinished write in this process has open. Async-signal-safe: meant
+// for a SIGINT/SIGTERM handler, so an interrupted run leaves nothing behind.
+void removePendingTemporaryFiles();
+
+// A file name's extension in lower case, with its dot (".exr"); empty when it has none. Formats are
+// chosen and checked by it, and "MAP.EXR" is an EXR too.
+std::string lowerExtension(const std::filesystem::path& path);
+
+// A temporary file beside the final output (same folder, so rename is atomic; same extension, so
+// libraries that choose a format by name still see it). commit() renames it over the output; otherwise
+// the destructor removes it. While it exists its path is registered for removePendingTemporaryFiles().
+class TemporaryFile {
+public:
+    explicit TemporaryFile(const std::string& finalPath);
+    ~TemporaryFile();
+    TemporaryFile(const TemporaryFile&) = delete;
+    TemporaryFile& operator=(const TemporaryFile&) = delete;
+
+    const std::string& path() const { return path_; }
+    // Moves the finished file into place, keeping the permissions of a file it replaces.
+    Status commit();
+
+private:
+    std::string finalPath_;
+    std::string path_;
+    int slot_ = -1;
+    bool committed_ = false;
+};
+
+}  // namespace heightpack

@@ -1,0 +1,25 @@
+// Flat (one-level) image files: PNG, TIFF, scanline EXR, chosen by the extension, written atomically.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "heightpack/core/image.hpp"
+#include "heightpack/core/result.hpp"
+#include "heightpack/io/attributes.hpp"
+
+namespace heightpack {
+
+// A flat (single-level, scanline) image file: a PNG, a TIFF, a scanline EXR, chosen by the extension.
+struct FlatImageOptions {
+    int bits = 32;          // 8 or 16 (unsigned integer) or 32 (float)
+    int srgbChannels = 0;   // the first this many channels are linear colours to encode as sRGB (8/16-bit)
+    std::vector<ExrAttribute> attributes;  // metadata; a PNG holds numbers as text
+    std::vector<std::string> channelNames; // empty: Y, RGB or RGBA by count
+};
+
+// Writes image (1 to 4 channels: Y, RGB or RGBA) atomically, as writeTiledExr does. Integer formats clamp
+// to [0,1] and round to nearest; alpha is stored unassociated.
+Status writeFlatImage(const std::string& path, const Image& image, const FlatImageOptions& options);
+
+}  // namespace heightpack

@@ -1,0 +1,69 @@
+// What is in an image file: size, channels, mip levels with per-level statistics, and header attributes.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "heightpack/core/image.hpp"
+#include "heightpack/core/result.hpp"
+
+namespace heightpack {
+
+struct ChannelStats {
+    std::string name;
+    double min = 0.0;
+    double max = 0.0;
+    double mean = 0.0;
+};
+
+struct LevelInfo {
+    int width = 0;
+    int height = 0;
+    std::vector<ChannelStats> channels;
+};
+
+using Attributes = std::vector<std::pair<std::string, std::string>>;
+
+// What a texture file's header says.
+struct TextureHeader {
+    std::string path;
+    std::string format;     // OpenImageIO's format name
+    std::string pixelType;  // of the file's channels: "float", "half", "uint16", ...
+    std::vector<std::string> channelNames;
+    bool tiled = false;
+    int tileWidth = 0;
+    int tileHeight = 0;
+    Attributes attributes;  // header metadata, as text
+};
+
+// A file's header and per-level statistics.
+struct FileInfo : TextureHeader {
+    std::vector<LevelInfo> levels;  // level 0 first; one entry for a file without mip levels
+};
+
+// Every level of a texture file as float images, all channels, with the header.
+struct TextureFile : TextureHeader {
+    std::vector<Image> levels;  // level 0 first; one entry for a file without mip levels
+};
+
+// Reads every level of the image at path through OpenImageIO. Fails with BadInput when the file cannot
+// be read. silenceDecoderMessages: see LoadOptions.
+Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoderMessages = false);
+
+// A file's header and the size of each level, without reading any pixels.
+struct TextureLayout : TextureHeader {
+    std::vector<std::pair<int, int>> levelSizes;  // level 0 first
+};
+Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDecoderMessages = false);
+
+// readTextureFile, summarised: per-level, per-channel statistics instead of pixels.
+Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages = false);
+
+// The value of the attribute called name, or empty.
+std::string findAttribute(const Attributes& attributes, const std::string& name);
+inline std::string findAttribute(const FileInfo& info, const std::string& name) {
+    return findAttribute(info.attributes, name);
+}
+
+}  // namespace heightpack

@@ -1,0 +1,182 @@
+#include "heightpack/io/files.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <mutex>
+
+
+namespace heightpack {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Paths of temporary files being written, kept in plain arrays so a signal handler can unlink them
+// without allocating or locking.
+constexpr int kMaxPending = 32;
+constexpr size_t kMaxPath = 4096;
+char pendingPath[kMaxPending][kMaxPath];
+std::atomic<bool> pendingUsed[kMaxPending];
+std::mutex pendingMutex;
+
+}  // namespace
+
+void removePendingTemporaryFiles() {
+    for (int i = 0; i < kMaxPending; ++i)
+        if (pendingUsed[i].load()) ::unlink(pendingPath[i]);
+}
+
+Status checkWritable(const std::string& path) {
+    if (path.empty()) return cannotWrite("''", "the output path is empty", "give an output file name");
+    std::error_code ec;
+    const fs::path target(path);
+    if (target.filename().empty()) return cannotWrite(path, "names a folder, not a file", "give an output file name");
+    const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    if (!fs::exists(folder, ec))
+        return cannotWrite(path, "folder " + folder.string() + " does not exist", "create it first");
+    if (!fs::is_directory(folder, ec))
+        return cannotWrite(path, folder.string() + " is not a folder", "choose another output path");
+    if (::access(folder.c_str(), W_OK) != 0)
+        return cannotWrite(path, "folder " + folder.string() + " is not writable", "choose another output folder");
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) == 0) {
+        if (S_ISDIR(st.st_mode)) return cannotWrite(path, "is a folder", "give an output file name");
+        // The rename would replace the link itself with a file, leaving what it points to as it was:
+        // neither is what the link's owner meant, so a link is refused rather than guessed about.
+        if (S_ISLNK(st.st_mode)) {
+            std::string target = fs::read_symlink(path, ec).string();
+            return cannotWrite(path, "is a symbolic link" + (target.empty() ? std::string() : " to " + target),
+                               "write to the file it points to, or remove the link first");
+        }
+        // A device, FIFO or socket would be replaced by a regular file (as root, even /dev/full).
+        if (!S_ISREG(st.st_mode))
+            return cannotWrite(path, "exists and is not a regular file (a device, FIFO or socket)",
+                               "choose an output file name");
+        // Checked by mode bits too: root passes access(W_OK) on any file, but a read-only output was
+        // made read-only on purpose.
+        if ((st.st_mode & 0222) == 0 || ::access(path.c_str(), W_OK) != 0)
+            return cannotWrite(path, "exists and is read-only", "make it writable or choose another output");
+    }
+    return Done{};
+}
+
+int removeStaleTemporaryFiles(const std::string& folder, const std::string& stem) {
+    std::error_code ec;
+    int removed = 0;
+    const std::string prefix = stem.empty() ? std::string() : "." + stem + ".hptmp-";
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder.empty() ? "." : folder, ec)) {
+        // .STEM.hptmp-PID-N.EXT, as TemporaryFile names them.
+        const std::string name = entry.path().filename().string();
+        const size_t mark = prefix.empty() ? name.find(".hptmp-") : (name.rfind(prefix, 0) == 0 ? stem.size() + 1 : std::string::npos);
+        if (name.empty() || name[0] != '.' || mark == std::string::npos) continue;
+        if (!entry.is_regular_file(ec) || entry.is_symlink(ec)) continue;
+        const long pid = std::strtol(name.c_str() + mark + 7, nullptr, 10);
+        if (pid <= 0 || pid == ::getpid()) continue;
+        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // its writer still runs
+        if (fs::remove(entry.path(), ec)) ++removed;
+    }
+    return removed;
+}
+
+std::string frameFileName(const std::string& path, int frame, int frames) {
+    if (frames <= 1) return path;
+    const fs::path p(path);
+    char number[16];
+    std::snprintf(number, sizeof number, ".%04d", frame);
+    return (p.parent_path() / (p.stem().string() + number + p.extension().string())).string();
+}
+
+std::vector<std::string> expandSequence(const std::string& path) {
+    std::error_code ec;
+    if (fs::exists(path, ec) || !fs::exists(frameFileName(path, 0, 2), ec)) return {path};
+    std::vector<std::string> frames;
+    for (int f = 0; f < 100000 && fs::exists(frameFileName(path, f, 2), ec); ++f) frames.push_back(frameFileName(path, f, 2));
+    return frames;
+}
+
+Status copyFile(const std::string& from, const std::string& to) {
+    if (Status s = checkWritable(to); !s) return s;
+    TemporaryFile temp(to);
+    std::error_code ec;
+    fs::copy_file(from, temp.path(), fs::copy_options::overwrite_existing, ec);
+    if (ec) return cannotWrite(to, "copying " + from + " failed: " + ec.message(), "check free disk space");
+    return temp.commit();
+}
+
+
+TemporaryFile::TemporaryFile(const std::string& finalPath) : finalPath_(finalPath) {
+    static std::atomic<unsigned> counter{0};
+    const fs::path target(finalPath);
+    // Built with append: GCC 12 gives a false -Wrestrict on a chain of operator+ here.
+    std::string name = ".";
+    name.append(target.stem().string()).append(".hptmp-").append(std::to_string(::getpid()));
+    name.append("-").append(std::to_string(counter++)).append(target.extension().string());
+    path_ = (target.parent_path() / name).string();
+    // What a killed earlier run left of this same output goes first: one mechanism for every writer.
+    removeStaleTemporaryFiles(target.parent_path().string(), target.stem().string());
+    std::lock_guard<std::mutex> lock(pendingMutex);
+    for (int i = 0; i < kMaxPending && path_.size() < kMaxPath; ++i) {
+        if (!pendingUsed[i].load()) {
+            std::memcpy(pendingPath[i], path_.c_str(), path_.size() + 1);
+            pendingUsed[i].store(true);
+            slot_ = i;
+            break;
+        }
+    }
+}
+
+TemporaryFile::~TemporaryFile() {
+    if (!committed_) ::unlink(path_.c_str());
+    if (slot_ >= 0) pendingUsed[slot_].store(false);
+}
+
+Status TemporaryFile::commit() {
+    struct stat st {};
+    if (::stat(finalPath_.c_str(), &st) == 0) ::chmod(path_.c_str(), st.st_mode & 07777);
+    // The bytes reach the disk before the name does, and the name before commit() returns: after a
+    // power loss the output is the old file or the whole new one (README, "Outputs").
+    const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+    // EINVAL / ENOTSUP: a file system without fsync (some FUSE mounts); nothing more can be promised there.
+    if (fd < 0 || (::fsync(fd) != 0 && errno != EINVAL && errno != ENOTSUP)) {
+        const std::string why = std::strerror(errno);
+        if (fd >= 0) ::close(fd);
+        return cannotWrite(finalPath_, "cannot flush the finished file to disk: " + why, "check free disk space");
+    }
+    ::close(fd);
+    if (::rename(path_.c_str(), finalPath_.c_str()) != 0)
+        return cannotWrite(finalPath_, std::string("cannot move the finished file into place: ") + std::strerror(errno),
+                           "check the folder's permissions");
+    committed_ = true;
+    const std::string folder = fs::path(finalPath_).parent_path().string();
+    const int dir = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir >= 0) {
+        ::fsync(dir);  // some file systems refuse a folder's fsync; the rename has happened either way
+        ::close(dir);
+    }
+    return Done{};
+}
+
+
+bool sameFile(const std::string& a, const std::string& b) {
+    struct stat sa {}, sb {};
+    if (a.empty() || b.empty() || ::stat(a.c_str(), &sa) != 0 || ::stat(b.c_str(), &sb) != 0) return false;
+    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+std::string lowerExtension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+}  // namespace heightpack

@@ -1,0 +1,35 @@
+// Internal: the one place an input image file is opened, so every reader (height maps, textures, info)
+// refuses the same things the same way before a pixel is read.
+#pragma once
+
+#include <OpenImageIO/imageio.h>
+
+#include <memory>
+#include <string>
+
+#include "heightpack/core/result.hpp"
+
+namespace heightpack::detail {
+
+// Largest image a reader accepts, judged from the header before anything is allocated.
+struct SizeLimits {
+    int maxSide = 32768;
+    int64_t maxTexels = int64_t(1) << 28;  // per level
+    int64_t maxSamples = int64_t(1) << 30; // texels * channels per level: 4 GiB of floats
+};
+
+// Fails with BadInput when spec (one level of path) is empty, 3D, or larger than limits.
+Status judgeSize(const std::string& path, const OIIO::ImageSpec& spec, const SizeLimits& limits);
+
+// Opens path for reading through OpenImageIO, after checking that it is a readable, non-empty regular
+// file (checkReadable) in a form heightpack decodes faithfully (no RLE-compressed BMP), and judging the
+// first level's size against limits. Every failure is BadInput naming path, with a hint.
+Result<std::unique_ptr<OIIO::ImageInput>> openImage(const std::string& path, const SizeLimits& limits);
+
+// Reads channels [chBegin, chEnd) of the current subimage and level as floats into dst, failing with
+// BadInput when the decoder reports any error, even one it did not fail on (OpenImageIO 2.4 returns
+// true for a TIFF with missing strips and fills them with zeros).
+Status readPixels(OIIO::ImageInput& in, const std::string& path, int subimage, int level, int chBegin, int chEnd,
+                  float* dst, const std::string& what = "is damaged or truncated");
+
+}  // namespace heightpack::detail

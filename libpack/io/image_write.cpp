@@ -1,0 +1,92 @@
+// Flat image files through OpenImageIO, written to a temporary file and renamed into place.
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "heightpack/io/image_write.hpp"
+#include "heightpack/io/files.hpp"
+#include "text.hpp"
+
+namespace heightpack {
+
+namespace {
+
+// The sRGB transfer function (IEC 61966-2-1), linear [0,1] to encoded [0,1].
+double encodeSrgb(double linear) {
+    const double v = std::clamp(linear, 0.0, 1.0);
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+}
+
+}  // namespace
+
+Status writeFlatImage(const std::string& path, const Image& image, const FlatImageOptions& options) {
+    assert(image.channels >= 1 && image.channels <= 4 && !image.empty());
+    if (Status writable = checkWritable(path); !writable) return writable;
+    // The extension decides the format; only those that hold what is given faithfully are written.
+    const std::string ext = lowerExtension(path);
+    if (ext != ".png" && ext != ".tif" && ext != ".tiff" && ext != ".exr")
+        return cannotWrite(path, "names no format heightpack writes", "use .png, .tif or .exr");
+    // The last guard before bytes reach a file: an output never holds NaN or infinity.
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        if (!std::isfinite(image.pixels[i]))
+            return Error{ErrorKind::Internal, path, "internal error: the image holds a non-finite value; nothing was written",
+                         "please report this with the command line"};
+    TemporaryFile temp(path);
+
+    const OIIO::TypeDesc type = options.bits == 8    ? OIIO::TypeDesc::UINT8
+                                : options.bits == 16 ? OIIO::TypeDesc::UINT16
+                                                     : OIIO::TypeDesc::FLOAT;
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
+    if (image.channels == 1) spec.channelnames = {"Y"};
+    if (image.channels == 4) spec.alpha_channel = 3;
+    if (!options.channelNames.empty()) {
+        assert(int(options.channelNames.size()) == image.channels);
+        spec.channelnames = options.channelNames;
+        spec.alpha_channel = -1;
+    }
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    // OpenImageIO's EXR writer stamps the current time (capDate) when no DateTime is given; a fixed,
+    // empty one keeps the same inputs giving the same bytes.
+    spec.attribute("DateTime", "");
+    if (options.srgbChannels > 0 && options.bits != 32) spec.attribute("oiio:ColorSpace", "sRGB");
+    // PNG keeps text chunks only: numbers go in as text there, so nothing recorded is lost.
+    const bool textOnly = ext == ".png";
+    for (const ExrAttribute& a : options.attributes) {
+        if (const auto* s = std::get_if<std::string>(&a.value)) {
+            spec.attribute(a.name, *s);
+        } else if (textOnly) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.9g", std::get<float>(a.value));
+            spec.attribute(a.name, std::string(text));
+        } else {
+            spec.attribute(a.name, std::get<float>(a.value));
+        }
+    }
+
+    std::vector<float> pixels = image.pixels;
+    if (options.bits != 32) {
+        for (size_t i = 0; i < pixels.size(); ++i) {
+            const int channel = static_cast<int>(i % image.channels);
+            double v = pixels[i];
+            if (channel < options.srgbChannels) v = encodeSrgb(v);
+            pixels[i] = static_cast<float>(std::clamp(v, 0.0, 1.0));
+        }
+    }
+
+    // Messages name the output, never the temporary file the user did not ask for.
+    auto named = [&](std::string text) {
+        for (size_t at; (at = text.find(temp.path())) != std::string::npos;) text.replace(at, temp.path().size(), path);
+        return detail::firstLine(text);
+    };
+    auto out = OIIO::ImageOutput::create(temp.path());
+    if (!out) return cannotWrite(path, "no writer for this file type: " + named(OIIO::geterror()), "use .png, .tif or .exr");
+    if (!out->open(temp.path(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close())
+        return cannotWrite(path, "writing failed: " + named(out->geterror()), "check free disk space and permissions");
+    out.reset();
+    return temp.commit();
+}
+
+}  // namespace heightpack

@@ -1,0 +1,105 @@
+#include "heightpack/io/info.hpp"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <limits>
+#include <memory>
+
+#include "image_input.hpp"
+#include "stderr_silencer.hpp"
+
+namespace heightpack {
+
+namespace {
+
+// Opens path and fills header from its first level; the caller walks the levels.
+Result<std::unique_ptr<OIIO::ImageInput>> openTexture(const std::string& path, TextureHeader& header) {
+    auto opened = detail::openImage(path, detail::SizeLimits{});
+    if (!opened) return opened.error();
+    std::unique_ptr<OIIO::ImageInput> in = std::move(*opened);
+    header.path = path;
+    header.format = in->format_name();
+    const OIIO::ImageSpec& top = in->spec();
+    header.pixelType = top.format.c_str();
+    header.channelNames = top.channelnames;
+    header.tiled = top.tile_width > 0;
+    header.tileWidth = top.tile_width;
+    header.tileHeight = top.tile_height;
+    for (const OIIO::ParamValue& p : top.extra_attribs) header.attributes.emplace_back(p.name().string(), p.get_string());
+    return in;
+}
+
+}  // namespace
+
+Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoderMessages) {
+    detail::StderrSilencer quiet(silenceDecoderMessages);
+    TextureFile file;
+    auto in = openTexture(path, file);
+    if (!in) return in.error();
+    for (int mip = 0; (*in)->seek_subimage(0, mip); ++mip) {
+        const OIIO::ImageSpec spec = (*in)->spec();
+        // Every level's header is judged before its pixels are allocated.
+        if (Status s = detail::judgeSize(path, spec, detail::SizeLimits{}); !s) return s.error();
+        Image level;
+        try {
+            level = Image(spec.width, spec.height, spec.nchannels);
+        } catch (const std::bad_alloc&) {
+            return badInput(path, "level " + std::to_string(mip) + " is too large for this machine's memory",
+                            "split or downsize the map");
+        }
+        if (Status s = detail::readPixels(**in, path, 0, mip, 0, spec.nchannels, level.pixels.data(),
+                                          "level " + std::to_string(mip) + " is damaged or truncated");
+            !s)
+            return s.error();
+        file.levels.push_back(std::move(level));
+    }
+    return file;
+}
+
+Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDecoderMessages) {
+    detail::StderrSilencer quiet(silenceDecoderMessages);
+    TextureLayout layout;
+    auto in = openTexture(path, layout);
+    if (!in) return in.error();
+    for (int mip = 0; (*in)->seek_subimage(0, mip); ++mip)
+        layout.levelSizes.emplace_back((*in)->spec().width, (*in)->spec().height);
+    return layout;
+}
+
+Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages) {
+    auto file = readTextureFile(path, silenceDecoderMessages);
+    if (!file) return file.error();
+    FileInfo info;
+    static_cast<TextureHeader&>(info) = *file;
+    for (const Image& image : file->levels) {
+        LevelInfo level;
+        level.width = image.width;
+        level.height = image.height;
+        for (int c = 0; c < image.channels; ++c) {
+            ChannelStats stats;
+            stats.name = c < int(file->channelNames.size()) ? file->channelNames[c] : std::to_string(c);
+            stats.min = std::numeric_limits<double>::infinity();
+            stats.max = -stats.min;
+            double sum = 0.0;
+            for (size_t i = c; i < image.pixels.size(); i += image.channels) {
+                stats.min = std::min<double>(stats.min, image.pixels[i]);
+                stats.max = std::max<double>(stats.max, image.pixels[i]);
+                sum += image.pixels[i];
+            }
+            stats.mean = sum / double(image.texelCount());
+            level.channels.push_back(stats);
+        }
+        info.levels.push_back(std::move(level));
+    }
+    return info;
+}
+
+std::string findAttribute(const Attributes& attributes, const std::string& name) {
+    for (const auto& [key, value] : attributes)
+        if (key == name) return value;
+    return {};
+}
+
+}  // namespace heightpack

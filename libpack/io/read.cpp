@@ -1,0 +1,362 @@
+#include "heightpack/io/read.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+
+#include "image_input.hpp"
+#include "png_fast.hpp"
+#include "stderr_silencer.hpp"
+#include "text.hpp"
+
+namespace heightpack {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+std::string sizeText(long long w, long long h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+// Finds the channel that --channel names: by name first (R, red, ...), then by position.
+int findChannel(const OIIO::ImageSpec& spec, ChannelSelect select) {
+    static const char* names[][2] = {{"r", "red"}, {"g", "green"}, {"b", "blue"}, {"a", "alpha"}};
+    const int which = select == ChannelSelect::R ? 0 : select == ChannelSelect::G ? 1 : select == ChannelSelect::B ? 2 : 3;
+    for (int c = 0; c < spec.nchannels; ++c) {
+        const std::string n = lower(spec.channelnames[c]);
+        if (n == names[which][0] || n == names[which][1]) return c;
+    }
+    if (which == 3) return spec.alpha_channel;
+    return which < spec.nchannels && which != spec.alpha_channel ? which : -1;
+}
+
+// Finds the channel called name: exactly, then ignoring case, then as a layer holding one channel
+// ("height" for "height.Y"). -1 when none or several match.
+int findNamedChannel(const OIIO::ImageSpec& spec, const std::string& name) {
+    const auto& names = spec.channelnames;
+    for (int c = 0; c < spec.nchannels; ++c)
+        if (names[c] == name) return c;
+    int found = -1, count = 0;
+    for (int c = 0; c < spec.nchannels; ++c)
+        if (lower(names[c]) == lower(name)) found = c, ++count;
+    if (count == 1) return found;
+    found = -1, count = 0;
+    for (int c = 0; c < spec.nchannels; ++c)
+        if (lower(names[c]).rfind(lower(name) + ".", 0) == 0) found = c, ++count;
+    return count == 1 ? found : -1;
+}
+
+std::string channelList(const OIIO::ImageSpec& spec) {
+    std::string list;
+    for (const std::string& n : spec.channelnames) list += (list.empty() ? "" : ", ") + n;
+    return list;
+}
+
+// A number the file records: a float in an EXR header, text in a PNG or TIFF.
+std::optional<double> recordedNumber(const OIIO::ImageSpec& spec, const char* name) {
+    const OIIO::ParamValue* p = spec.find_attribute(name);
+    if (!p) return std::nullopt;
+    if (p->type() == OIIO::TypeFloat) return p->get_float();
+    const std::string text = p->get_string();
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || !std::isfinite(v)) return std::nullopt;
+    return v;
+}
+
+std::string numberText(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+}  // namespace
+
+std::optional<ChannelSelect> parseChannelSelect(std::string_view name) {
+    if (name == "r") return ChannelSelect::R;
+    if (name == "g") return ChannelSelect::G;
+    if (name == "b") return ChannelSelect::B;
+    if (name == "a") return ChannelSelect::A;
+    if (name == "luma") return ChannelSelect::Luma;
+    return std::nullopt;  // Named is never parsed: it needs the name as well
+}
+
+Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& options) {
+    detail::StderrSilencer quiet(options.silenceDecoderMessages);
+    detail::SizeLimits limits;
+    limits.maxSide = options.maxSide;
+    limits.maxTexels = options.maxTexels;
+    auto opened = detail::openImage(path, limits);
+    if (!opened) return opened.error();
+    std::unique_ptr<OIIO::ImageInput>& in = *opened;
+    const OIIO::ImageSpec spec = in->spec();
+
+    LoadedHeights out;
+    SourceInfo& src = out.source;
+    src.path = path;
+    src.format = in->format_name();
+    src.pixelType = spec.format.c_str();
+    src.width = spec.width;
+    src.height = spec.height;
+    src.channels = spec.nchannels;
+    // Float in an EXR, text in a PNG: read either as text.
+    if (const OIIO::ParamValue* p = spec.find_attribute("heightpack:loopPeriod")) src.loopPeriod = p->get_string();
+    if (const OIIO::ParamValue* p = spec.find_attribute("heightpack:time")) src.time = p->get_string();
+    // Later steps write these as float attributes: anything else in them (a hand-edited PNG text chunk)
+    // is damaged metadata, not a crash or a non-finite attribute later.
+    for (const auto& [name, text] : {std::pair<const char*, const std::string&>{"heightpack:loopPeriod", src.loopPeriod},
+                                     std::pair<const char*, const std::string&>{"heightpack:time", src.time}}) {
+        if (text.empty()) continue;
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || std::abs(v) > 1e30)
+            return badInput(path, std::string("its ") + name + " metadata '" + text.substr(0, 64) + "' is not a finite number",
+                            "remove or correct that metadata in the file");
+    }
+
+    const int colourChannels = spec.nchannels - (spec.alpha_channel >= 0 ? 1 : 0);
+    const bool colour = colourChannels > 1;
+    // A texture heightpack wrote: packed (R = H(i,j)) or plain (Y), its values recorded as offset + scale * value.
+    const std::string layout = spec.get_string_attribute("heightpack:layout");
+    const bool heightTexture = layout == "neighbour4" || layout == "plain";
+    const auto findName = [&](const char* name) {
+        const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
+        return it == spec.channelnames.end() ? -1 : static_cast<int>(it - spec.channelnames.begin());
+    };
+    int channel = 0;
+    bool luma = false;
+    switch (options.channel) {
+        case ChannelSelect::Auto:
+            if (layout == "normal")
+                return badInput(path, "is a normal map heightpack wrote, not a height map",
+                                "give the height map it was made from");
+            if (heightTexture) {
+                channel = std::max(0, findName(layout == "neighbour4" ? "R" : "Y"));
+                break;
+            }
+            // A height with companions (synth's displacement) names its height channel Y.
+            if (const int y = findName("Y"); colour && y >= 0) {
+                channel = y;
+                break;
+            }
+            if (colour) {
+                return badInput(path,
+                                "is a colour image with " + std::to_string(spec.nchannels) + " channels (" +
+                                    channelList(spec) + ")",
+                                "choose the height channel with --channel r|g|b|a|luma or a channel's name");
+            }
+            channel = spec.alpha_channel == 0 && spec.nchannels > 1 ? 1 : 0;
+            if (spec.alpha_channel >= 0 && spec.nchannels > 1)
+                src.channelNote = "grey image with alpha: heights from '" + spec.channelnames[channel] + "', alpha '" +
+                                  spec.channelnames[spec.alpha_channel] + "' ignored";
+            break;
+        case ChannelSelect::Luma:
+            luma = colour && colourChannels >= 3;
+            channel = spec.alpha_channel == 0 && spec.nchannels > 1 ? 1 : 0;
+            if (!luma) src.channelNote = "not a colour image: heights from its grey '" + spec.channelnames[channel] + "'";
+            break;
+        case ChannelSelect::Named:
+            channel = findNamedChannel(spec, options.channelName);
+            if (channel < 0) {
+                return badInput(path, "has no channel named '" + options.channelName + "' (it has " + channelList(spec) + ")",
+                                "pick one it has with --channel");
+            }
+            break;
+        default:
+            // A grey image is its own red, green and blue.
+            channel = colour || options.channel == ChannelSelect::A ? findChannel(spec, options.channel)
+                                                                      : (spec.alpha_channel == 0 ? 1 : 0);
+            if (channel < 0) {
+                return badInput(path, "has no such channel (it has " + channelList(spec) + ")",
+                                "pick one it has with --channel");
+            }
+            if (!colour && options.channel != ChannelSelect::A)
+                src.channelNote = "grey image: its one grey channel '" + spec.channelnames[channel] +
+                                  "' stands for red, green and blue";
+    }
+    src.channelUsed = luma ? "luma" : spec.channelnames[channel];
+
+    // Values back from a heightpack texture: value = (stored - offset) / scale.
+    double scale = 1.0, offset = 0.0;
+    if (heightTexture && !luma) {
+        scale = recordedNumber(spec, "heightpack:heightScale").value_or(1.0);
+        offset = recordedNumber(spec, "heightpack:heightOffset").value_or(0.0);
+        if (scale == 0.0) scale = 1.0;
+        src.channelNote = std::string(layout == "neighbour4" ? "packed" : "plain") + " heightpack texture: heights from '" +
+                          src.channelUsed + "' of level 0, mapped back to values through its heightScale " +
+                          numberText(scale) + " and heightOffset " + numberText(offset);
+    }
+    const auto unmap = [&](Image& heights) {
+        if (scale == 1.0 && offset == 0.0) return;
+        for (float& v : heights.pixels) v = static_cast<float>((v - offset) / scale);
+    };
+
+    if (!luma && src.format == "png" && spec.nchannels <= 2) {
+        if (auto fast = detail::decodeGreyPng(path, spec.width, spec.height, channel, options.threads)) {
+            out.heights = std::move(*fast);
+            unmap(out.heights);
+            src.decoder = "heightpack-png";
+            return out;  // integer samples: always finite
+        }
+    }
+    src.decoder = "openimageio";
+
+    const int chBegin = luma ? 0 : channel;
+    const int chCount = luma ? 3 : 1;
+    std::vector<float> pixels;
+    try {
+        pixels.resize(spec.image_pixels() * chCount);
+    } catch (const std::bad_alloc&) {
+        return badInput(path, "is " + sizeText(spec.width, spec.height) + ", too large for this machine's memory",
+                        "split or downsize the map");
+    }
+    if (Status read = detail::readPixels(*in, path, 0, 0, chBegin, chBegin + chCount, pixels.data()); !read)
+        return read.error();
+    in->close();
+
+    Image& heights = out.heights;
+    heights = Image(spec.width, spec.height, 1);
+    if (luma) {
+        // Rec. 709 weights on the stored values: heights are data, so no transfer curve is undone.
+        for (size_t i = 0; i < heights.pixels.size(); ++i)
+            heights.pixels[i] = 0.2126f * pixels[3 * i] + 0.7152f * pixels[3 * i + 1] + 0.0722f * pixels[3 * i + 2];
+    } else {
+        heights.pixels = std::move(pixels);
+    }
+    unmap(heights);
+    if (Status finite = checkFinite(heights, path); !finite) return finite.error();
+    return out;
+}
+
+Status checkFinite(const Image& image, const std::string& path, int channel, const std::string& where) {
+    for (size_t t = 0; t < image.texelCount(); ++t) {
+        const float v = image.pixels[t * image.channels + channel];
+        if (std::isfinite(v)) continue;
+        const size_t x = t % image.width, y = t / image.width;
+        return badInput(path,
+                        (where.empty() ? "" : where + " ") + "holds " + (std::isnan(v) ? "NaN" : "an infinite value") +
+                            " at texel " + std::to_string(x) + "," + std::to_string(y),
+                        "fix the map in the tool that made it");
+    }
+    return Done{};
+}
+
+Status checkReadable(const std::string& path) {
+    if (path.empty()) return badInput("''", "the input path is empty", "name an image file");
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) {
+        if (errno == EACCES)
+            return badInput(path, "permission denied", "make its folder readable (chmod) or run as a user who may read it");
+        if (errno == ENOTDIR) return badInput(path, "no such file (a part of the path is not a folder)", "check the path");
+        return badInput(path, "no such file", "check the path");
+    }
+    if (S_ISDIR(st.st_mode)) return badInput(path, "is a folder, not an image", "name an image file");
+    if (!S_ISREG(st.st_mode)) {
+        const char* what = S_ISFIFO(st.st_mode)                          ? "is a FIFO (named pipe)"
+                           : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "is a device"
+                           : S_ISSOCK(st.st_mode)                       ? "is a socket"
+                                                                        : "is not a regular file";
+        return badInput(path, std::string(what) + ", not a regular file",
+                        "save the image to a file first; heightpack reads only regular files");
+    }
+    // Opened without blocking (a regular file never blocks) to learn whether this user may read it.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        if (errno == EACCES || errno == EPERM)
+            return badInput(path, "permission denied", "make it readable (chmod u+r) or run as a user who may read it");
+        return badInput(path, std::string("cannot be opened: ") + std::strerror(errno), "check the file");
+    }
+    ::close(fd);
+    if (st.st_size == 0) return badInput(path, "file is empty", "export the height map again");
+    return Done{};
+}
+
+
+namespace detail {
+
+Status judgeSize(const std::string& path, const OIIO::ImageSpec& spec, const SizeLimits& limits) {
+    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0)
+        return badInput(path, "has no 2D pixel data", "export it as a flat 2D image");
+    const int64_t texels = int64_t(spec.width) * spec.height;
+    if (spec.width > limits.maxSide || spec.height > limits.maxSide || texels > limits.maxTexels ||
+        texels * spec.nchannels > limits.maxSamples) {
+        return badInput(path, "is " + sizeText(spec.width, spec.height) + " with " + std::to_string(spec.nchannels) +
+                                  " channels, larger than heightpack accepts (" + std::to_string(limits.maxSide) +
+                                  " texels a side, " + std::to_string(limits.maxTexels) + " texels in all)",
+                        "split or downsize the map");
+    }
+    return Done{};
+}
+
+namespace {
+
+// BMP's RLE8 and RLE4 (compression 1 and 2 in the info header): OpenImageIO 2.4 decodes them wrongly.
+bool isRleBmp(const std::string& path) {
+    unsigned char h[34] = {};
+    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!f || std::fread(h, 1, sizeof h, f.get()) != sizeof h || h[0] != 'B' || h[1] != 'M') return false;
+    auto le32 = [&](int at) {
+        return uint32_t(h[at]) | uint32_t(h[at + 1]) << 8 | uint32_t(h[at + 2]) << 16 | uint32_t(h[at + 3]) << 24;
+    };
+    const uint32_t infoSize = le32(14), compression = le32(30);
+    return infoSize >= 40 && (compression == 1 || compression == 2);
+}
+
+}  // namespace
+
+Result<std::unique_ptr<OIIO::ImageInput>> openImage(const std::string& path, const SizeLimits& limits) {
+    if (Status s = checkReadable(path); !s) return s.error();
+    if (isRleBmp(path))
+        return badInput(path, "is an RLE-compressed BMP, which heightpack cannot decode faithfully",
+                        "re-export it as PNG (or as an uncompressed BMP)");
+    // Keep colour and alpha as stored: an RGBA height map's channels are data, not premultiplied colour.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in) {
+        return badInput(path, "cannot be read as an image: " + firstLine(OIIO::geterror()),
+                        "export it as PNG, TIFF or EXR");
+    }
+    if (Status s = judgeSize(path, in->spec(), limits); !s) return s.error();
+    return in;
+}
+
+Status readPixels(OIIO::ImageInput& in, const std::string& path, int subimage, int level, int chBegin, int chEnd,
+                  float* dst, const std::string& what) {
+    (void)in.geterror();  // forget anything said while opening: only this read's errors count
+    const bool ok = in.read_image(subimage, level, chBegin, chEnd, OIIO::TypeDesc::FLOAT, dst);
+    const std::string error = in.geterror();
+    if (!ok || !error.empty())
+        return badInput(path, what + ": " + firstLine(error.empty() ? "the decoder failed" : error),
+                        "export the file again");
+    return Done{};
+}
+
+}  // namespace detail
+
+std::string hashPixels(const Image& image) {
+    const XXH64_hash_t h = XXH3_64bits(image.pixels.data(), image.pixels.size() * sizeof(float));
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+    return text;
+}
+
+
+
+}  // namespace heightpack

@@ -1,7 +1,0 @@
-#include "heightpack/image.hpp"
-
-namespace heightpack {
-
-const char* wrapName(Wrap wrap) { return wrap == Wrap::Periodic ? "periodic" : "clamp"; }
-
-}  // namespace heightpack
