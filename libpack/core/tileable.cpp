@@ -1,6 +1,6 @@
+// The seam measure: whether a tile edge is unlike every other place the tile could have been cut, per
+// level and direction; the verdicts, their wording, the preview. The fixes are in tile_fix.cpp.
 #include "heightpack/core/tileable.hpp"
-
-#include <opencv2/core.hpp>
 
 #include <algorithm>
 #include <array>
@@ -15,8 +15,6 @@
 namespace heightpack {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Levels with fewer texels than this along a direction are not judged in that direction: the spread of
 // the cut statistic is estimated from the other cuts, and fewer than about two dozen of them (after
@@ -134,13 +132,6 @@ double edgeContrast(std::vector<double> s, int reach, int period, double floor) 
     return excess > 0 ? std::numeric_limits<double>::infinity() : 0.0;
 }
 
-// The map with rows and columns swapped: its columns become lines that read contiguously.
-Image transposed(const Image& map) {
-    Image out(map.height, map.width, 1);
-    for (int y = 0; y < map.height; ++y)
-        for (int x = 0; x < map.width; ++x) out.at(y, x) = map.at(x, y);
-    return out;
-}
 
 // Scores along one direction: lines holds m lines of n texels, the tile edge between texel n-1 and 0.
 SeamScore scoreAlong(const float* lines, int n, int m, const SeamOptions& options) {
@@ -172,74 +163,6 @@ SeamScore scoreAlong(const float* lines, int n, int m, const SeamOptions& option
     score.slope = z[kKink];
     return score;
 }
-
-double smoothstep(double edge, double x) {
-    const double t = std::clamp(x / edge, 0.0, 1.0);
-    return t * t * (3 - 2 * t);
-}
-
-// The standard normal CDF and its inverse (Acklam's rational approximation refined by one Halley step,
-// accurate to about 1e-15).
-double normalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
-
-double inverseNormalCdf(double p) {
-    static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
-                               1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
-    static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
-                               6.680131188771972e+01, -1.328068155288572e+01};
-    static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
-                               -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
-    static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
-                               3.754408661907416e+00};
-    const double low = 0.02425;
-    double x;
-    if (p < low) {
-        const double q = std::sqrt(-2 * std::log(p));
-        x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
-    } else if (p > 1 - low) {
-        const double q = std::sqrt(-2 * std::log(1 - p));
-        x = -(((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
-    } else {
-        const double q = p - 0.5, r = q * q;
-        x = (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
-            (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
-    }
-    const double e = normalCdf(x) - p;
-    const double u = e * std::sqrt(2 * kPi) * std::exp(x * x / 2);
-    return x - u / (1 + x * u / 2);
-}
-
-// The Gaussianising transform of Heitz & Neyret: each value to the standard normal quantile of its
-// (mid-)rank, so equal values map to equal Gaussians; and back through the sorted values.
-struct Gaussianiser {
-    std::vector<float> sorted;
-    std::vector<double> gaussian;  // per texel of the map it was built from
-
-    explicit Gaussianiser(const std::vector<float>& values) : sorted(values), gaussian(values.size()) {
-        const size_t n = values.size();
-        std::vector<size_t> order(n);
-        std::iota(order.begin(), order.end(), size_t(0));
-        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] < values[b]; });
-        std::sort(sorted.begin(), sorted.end());
-        for (size_t start = 0; start < n;) {
-            size_t end = start + 1;
-            while (end < n && values[order[end]] == values[order[start]]) ++end;
-            const double midRank = 0.5 * (start + end - 1);
-            const double g = inverseNormalCdf((midRank + 0.5) / n);
-            for (size_t k = start; k < end; ++k) gaussian[order[k]] = g;
-            start = end;
-        }
-    }
-
-    float back(double g) const {
-        const double pos = std::clamp(normalCdf(g) * sorted.size() - 0.5, 0.0, double(sorted.size() - 1));
-        const size_t i = static_cast<size_t>(pos);
-        const size_t j = std::min(i + 1, sorted.size() - 1);
-        return static_cast<float>(sorted[i] + (double(sorted[j]) - sorted[i]) * (pos - i));
-    }
-};
 
 }  // namespace
 
@@ -307,162 +230,6 @@ std::string seamScoreText(double score, double threshold) {
         if ((std::strtod(text, nullptr) > threshold) == (score > threshold)) break;
     }
     return text;
-}
-
-namespace {
-
-// relativeToSlope: the jump across an edge is measured from the line through the slopes beside it
-// (the step minus their mean), so a smooth slope running through the edge is kept rather than flattened
-// into one level step; Moisan's original measures it from the edge texel repeated.
-Image moisanPeriodic(const Image& map, bool relativeToSlope) {
-    assert(map.channels == 1);
-    const int w = map.width, h = map.height;
-    // The boundary image v: what the periodic Laplacian of the map has at the texels beside a tile edge
-    // that the map's own interior does not: the jump across the edge. Its sum over each line is zero, so
-    // the smooth field has no net curvature to spread over the tile (no dome).
-    cv::Mat v(h, w, CV_64F, cv::Scalar(0.0));
-    auto add = [&](int x, int y, double value) { v.at<double>(y, x) += value; };
-    for (int y = 0; y < h; ++y) {
-        const double first = map.at(0, y), last = map.at(w - 1, y);
-        const double slope = relativeToSlope && w >= 3
-                                 ? 0.5 * (double(map.at(1, y)) - first + last - map.at(w - 2, y)) : 0.0;
-        add(0, y, last - first + slope);
-        add(w - 1, y, first - last - slope);
-    }
-    for (int x = 0; x < w; ++x) {
-        const double first = map.at(x, 0), last = map.at(x, h - 1);
-        const double slope = relativeToSlope && h >= 3
-                                 ? 0.5 * (double(map.at(x, 1)) - first + last - map.at(x, h - 2)) : 0.0;
-        add(x, 0, last - first + slope);
-        add(x, h - 1, first - last - slope);
-    }
-    // The smooth field s solves the periodic Poisson equation laplacian(s) = v with zero mean; the map
-    // minus s has, everywhere, the Laplacian of the map's interior: no seam, and its mean kept.
-    cv::Mat spectrum;
-    cv::dft(v, spectrum, cv::DFT_COMPLEX_OUTPUT);
-    for (int r = 0; r < h; ++r) {
-        for (int q = 0; q < w; ++q) {
-            auto& z = spectrum.at<cv::Vec2d>(r, q);
-            const double denominator = 2 * std::cos(2 * kPi * q / w) + 2 * std::cos(2 * kPi * r / h) - 4;
-            if (q == 0 && r == 0) {
-                z = cv::Vec2d(0, 0);
-            } else {
-                z[0] /= denominator;
-                z[1] /= denominator;
-            }
-        }
-    }
-    cv::Mat smooth;
-    cv::dft(spectrum, smooth, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
-    Image out(w, h, 1);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) out.at(x, y) = static_cast<float>(map.at(x, y) - smooth.at<double>(y, x));
-    return out;
-}
-
-// The bend's height at distance u (in bands) from the edge: G(u) = integral from u to 1 of w, where the
-// slope profile w is 1 up to half the band and eases to 0 by its end with a smoothstep. So the bend's slope
-// is constant over the half band next to the edge (the change of slope is cancelled at every scale up
-// to half a band, as the coarse mip levels see it too) and its curvature stays spread over the outer half.
-double bendProfile(double u) {
-    if (u >= 1) return 0.0;
-    if (u <= 0.5) return 0.75 - u;
-    const double x = 2 * (u - 0.5);
-    return 0.5 * (0.5 - x + x * x * x - 0.5 * x * x * x * x);
-}
-
-// Removes the change of slope that the periodic component leaves at the left/right tile edge (call it on
-// a transposed map for top/bottom). The change is measured per line from the mean slopes over a few
-// texels on each side and smoothed along the edge (the part that varies from line to line is like the
-// interior's own bends), then bent away within `band` texels on each side: heights stay continuous and
-// nothing beyond the band changes. Unlike a global smooth field that matches slopes, which must bend the
-// whole tile into a dome when the slopes differ on average, the change is local: at most 3/8 of the
-// slope difference times the band.
-void bendAwayEdgeKinks(Image& map, int band) {
-    const int w = map.width, h = map.height;
-    const int span = std::max(1, std::min(4, band / 4));
-    std::vector<double> kink(h);
-    for (int y = 0; y < h; ++y) {
-        const double after = (double(map.at(span, y)) - map.at(0, y)) / span;
-        const double before = (double(map.at(w - 1, y)) - map.at(w - 1 - span, y)) / span;
-        kink[y] = after - before;
-    }
-    // Smooth along the edge (itself periodic) with a Gaussian of a sixteenth of its length.
-    const double sigma = std::max(1.0, h / 16.0);
-    const int reach = static_cast<int>(std::ceil(3 * sigma));
-    std::vector<double> weights(2 * reach + 1);
-    double total = 0;
-    for (int k = -reach; k <= reach; ++k) total += weights[k + reach] = std::exp(-0.5 * k * k / (sigma * sigma));
-    std::vector<double> smooth(h, 0.0);
-    for (int y = 0; y < h; ++y)
-        for (int k = -reach; k <= reach; ++k) smooth[y] += weights[k + reach] / total * kink[wrapIndex(y + k, h, Wrap::Periodic)];
-    for (int y = 0; y < h; ++y) {
-        // Slope -kink/2 after the edge and +kink/2 before it: the bend's own change of slope is -kink.
-        const double amplitude = 0.5 * smooth[y] * band;
-        for (int i = 0; i < band && i < w / 2; ++i) {
-            const double g = amplitude * bendProfile((i + 0.5) / band);
-            map.at(i, y) += static_cast<float>(g);
-            map.at(w - 1 - i, y) += static_cast<float>(g);
-        }
-    }
-}
-
-}  // namespace
-
-Image periodicComponent(const Image& map, PeriodicContinuity continuity) {
-    const bool slopes = continuity == PeriodicContinuity::HeightsAndSlopes;
-    Image out = moisanPeriodic(map, slopes);
-    if (!slopes || map.width < 8 || map.height < 8) return out;
-    bendAwayEdgeKinks(out, std::max(4, map.width / 8));
-    out = transposed(out);
-    bendAwayEdgeKinks(out, std::max(4, map.height / 8));
-    return transposed(out);
-}
-
-double crossfadeWeight(int x, int y, int width, int height, double band) {
-    // Distance to the nearest tile edge as a fraction of the tile, zero on the edge texels themselves so the
-    // shifted copy (continuous across the edge) is used alone there.
-    const double dx = double(std::min(x, width - 1 - x)) / width;
-    const double dy = double(std::min(y, height - 1 - y)) / height;
-    return smoothstep(band, dx) * smoothstep(band, dy);
-}
-
-Image crossfadeTile(const Image& map, double width, CrossfadeBlend blend) {
-    assert(map.channels == 1 && width > 0 && width <= 0.5);
-    const int w = map.width, h = map.height;
-    auto shifted = [&](int x, int y) { return map.at((x + w / 2) % w, (y + h / 2) % h); };
-    Image out(w, h, 1);
-    if (blend == CrossfadeBlend::Linear) {
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                const double a = crossfadeWeight(x, y, w, h, width);
-                out.at(x, y) = static_cast<float>(a * map.at(x, y) + (1 - a) * shifted(x, y));
-            }
-        return out;
-    }
-    // The shifted copy has the same histogram, so one transform serves both.
-    const Gaussianiser g(map.pixels);
-    for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-            const double a = crossfadeWeight(x, y, w, h, width);
-            const double original = g.gaussian[size_t(y) * w + x];
-            const double other = g.gaussian[size_t((y + h / 2) % h) * w + (x + w / 2) % w];
-            // Weights whose squares sum to one keep the variance of the Gaussian blend at one.
-            const double blended = (a * original + (1 - a) * other) / std::sqrt(a * a + (1 - a) * (1 - a));
-            out.at(x, y) = g.back(blended);
-        }
-    }
-    return out;
-}
-
-Image mirrorTile(const Image& map) {
-    const int w = map.width, h = map.height;
-    Image out(2 * w, 2 * h, map.channels);
-    for (int y = 0; y < 2 * h; ++y)
-        for (int x = 0; x < 2 * w; ++x)
-            for (int c = 0; c < map.channels; ++c)
-                out.at(x, y, c) = map.at(x < w ? x : 2 * w - 1 - x, y < h ? y : 2 * h - 1 - y, c);
-    return out;
 }
 
 PackingCheck checkPacking(const std::vector<Image>& packedLevels, Wrap wrap) {

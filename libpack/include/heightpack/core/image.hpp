@@ -56,4 +56,7 @@ private:
     }
 };
 
+// The image with rows and columns swapped (one channel): its columns become rows that read contiguously.
+Image transposed(const Image& image);
+
 }  // namespace heightpack
