@@ -9,6 +9,7 @@
 
 #include "command.hpp"
 #include "heightpack/build/build_job.hpp"
+#include "heightpack/build/depfile.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/version.hpp"

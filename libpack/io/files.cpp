@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
 
 
@@ -177,6 +178,37 @@ std::string lowerExtension(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return ext;
+}
+
+Status checkOutputPath(const fs::path& path) {
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(path, ec))) return checkWritable(path.string());
+    // The nearest folder above it that exists must be a writable folder (from the absolute path, so a
+    // relative output folder that does not exist yet is judged by the current folder).
+    for (fs::path up = fs::absolute(path, ec).parent_path(); !ec && !up.empty(); up = up.parent_path()) {
+        if (!fs::exists(up, ec)) {
+            if (up == up.parent_path()) break;
+            continue;
+        }
+        if (!fs::is_directory(up, ec))
+            return cannotWrite(path.string(), up.string() + " is not a folder", "choose another output folder");
+        if (::access(up.c_str(), W_OK) != 0)
+            return cannotWrite(path.string(), "folder " + up.string() + " is not writable", "choose another output folder");
+        return Done{};
+    }
+    return cannotWrite(path.string(), "has no existing folder above it", "choose another output folder");
+}
+
+Status writeTextFile(const std::string& path, const std::string& text) {
+    if (Status s = checkWritable(path); !s) return s;
+    TemporaryFile temp(path);
+    {
+        std::ofstream out(temp.path(), std::ios::binary);
+        out << text;
+        out.flush();
+        if (!out) return cannotWrite(path, "could not be written", "check free disk space");
+    }
+    return temp.commit();
 }
 
 }  // namespace heightpack

@@ -22,6 +22,14 @@ Status copyFile(const std::string& from, const std::string& to);
 // link, a device, FIFO or socket is refused). Fails with CannotWrite naming the problem.
 Status checkWritable(const std::string& path);
 
+// Whether path can be written once the folders above it that are missing are made: the nearest existing
+// one is a writable folder, and path itself is not a folder or a read-only file. Creates nothing.
+Status checkOutputPath(const std::filesystem::path& path);
+
+// Writes text to path atomically (a temporary file beside it, renamed into place), after checking that
+// path can be written (checkWritable: its folder must exist).
+Status writeTextFile(const std::string& path, const std::string& text);
+
 // Sequences of frames are numbered files: NAME.0000.EXT, NAME.0001.EXT, ... The file frame f of n goes
 // to: path itself when n is 1, else NAME.FFFF.EXT.
 std::string frameFileName(const std::string& path, int frame, int frames);

@@ -1,0 +1,135 @@
+#include "build_plan.hpp"
+
+#include <filesystem>
+
+#include "heightpack/build/cache_key.hpp"
+#include "heightpack/build/fresnel_job.hpp"
+#include "heightpack/build/normal_job.hpp"
+#include "heightpack/build/pack_job.hpp"
+#include "heightpack/io/files.hpp"
+
+namespace heightpack::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+LoadOptions loadOptions(const MapSettings& s) {
+    LoadOptions load;
+    load.channel = s.channel;
+    load.silenceDecoderMessages = true;
+    return load;
+}
+
+// The steps of one asset made from a file: one per frame, with the tileability check it asks for.
+// options are the job's options; make(options, input, output, threads, progress) runs the job.
+template <class Options, class MakeFn>
+void addSourcedSteps(std::vector<Step>& steps, const SourcedAsset& a, const std::string& name, const char* kind,
+                     double threshold, const Options& options, MakeFn make) {
+    const int frames = static_cast<int>(a.frames.size());
+    for (int f = 0; f < frames; ++f) {
+        Step step;
+        step.report.name = name;
+        step.report.kind = kind;
+        step.report.frame = frames > 1 ? f : -1;
+        step.report.line = a.line;
+        step.report.input = a.frames[f];
+        step.report.output = frameFileName(a.output, f, frames);
+        step.mustTile = a.mustTile;
+        // The source's file name is recorded in the output (heightpack:source), so it shapes it too.
+        step.optionsText = std::string("kind=") + kind + "\nsource=" + fs::path(a.frames[f]).filename().string() +
+                           "\n" + keyText(options, std::string(kind) + ".");
+        step.check.load = loadOptions(a.settings);
+        step.check.mip.wrap = a.settings.wrap;
+        step.check.mip.filter = a.settings.filter;
+        step.check.threshold = threshold;
+        step.checkText = "check\n" + keyText(step.check, "check.");
+        const std::string input = a.frames[f];
+        step.make = [make, options, input](const std::string& output, int threads, const ProgressFn& progress) {
+            return make(options, input, output, threads, progress);
+        };
+        steps.push_back(std::move(step));
+    }
+}
+
+PackOptions packOptions(const MapSettings& s, const std::string& version) {
+    PackOptions pack;
+    pack.load = loadOptions(s);
+    pack.mip.wrap = s.wrap;
+    pack.mip.filter = s.filter;
+    pack.resizeToPowerOfTwo = s.resize;
+    pack.compression = s.compression;
+    pack.version = version;
+    return pack;
+}
+
+// A packed (or plain) chain, with the threads and progress of the moment.
+Status makePacked(PackOptions o, const std::string& in, const std::string& out, int threads, const ProgressFn& progress) {
+    o.mip.threads = threads;
+    o.progress = progress;
+    auto r = packHeightMap(in, out, o);
+    return r ? Status(Done{}) : Status(r.error());
+}
+
+Status makeNormals(NormalJobOptions o, const std::string& in, const std::string& out, int threads,
+                   const ProgressFn& progress) {
+    o.normal.threads = threads;
+    o.progress = progress;
+    auto r = makeNormalMap(in, out, o);
+    return r ? Status(Done{}) : Status(r.error());
+}
+
+NormalJobOptions normalOptions(const NormalAsset& n, const std::string& version) {
+    NormalJobOptions job;
+    job.load = loadOptions(n.settings);
+    job.normal.tileWidth = n.layer.tileSize;
+    job.normal.heightRange = n.layer.heightRange;
+    job.normal.kernel = n.kernel;
+    job.normal.wrap = n.settings.wrap;
+    job.normal.convention = n.layer.convention == "directx" ? NormalConvention::DirectX : NormalConvention::OpenGL;
+    job.normal.alpha = n.layer.alpha == "height"     ? NormalAlpha::Height
+                       : n.layer.alpha == "variance" ? NormalAlpha::Variance
+                                                     : NormalAlpha::None;
+    job.filter = n.settings.filter;
+    job.resizeToPowerOfTwo = n.settings.resize;
+    job.compression = n.settings.compression;
+    job.version = version;
+    return job;
+}
+
+}  // namespace
+
+std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
+    std::vector<Step> steps;
+    for (const DisplacementAsset& d : m.displacement) {
+        PackOptions pack = packOptions(d.settings, version);
+        pack.scale = static_cast<float>(d.layer.heightScale);
+        pack.offset = static_cast<float>(d.layer.heightOffset);
+        addSourcedSteps(steps, d, d.layer.name, "displacement", m.threshold, pack, makePacked);
+    }
+    if (m.normals)
+        addSourcedSteps(steps, *m.normals, m.normals->layer.name, "normals", m.threshold,
+                        normalOptions(*m.normals, version), makeNormals);
+    if (m.fresnel) {
+        const FresnelAsset& f = *m.fresnel;
+        Step step;
+        step.report.name = f.layer.name;
+        step.report.kind = "fresnel";
+        step.report.line = f.line;
+        step.report.output = f.output;
+        const FresnelOptions& o = f.options;
+        step.optionsText = "kind=fresnel\n" + keyText(o, "fresnel.");  // always an EXR ramp
+        step.make = [o, version](const std::string& out, int, const ProgressFn&) {
+            return writeFresnelRamp(out, o, RampFormat::Exr, version);
+        };
+        steps.push_back(std::move(step));
+    }
+    if (m.foam && m.foam->texture) {
+        PackOptions pack = packOptions(m.foam->texture->settings, version);
+        pack.packed = false;
+        addSourcedSteps(steps, *m.foam->texture, m.foam->layer.name, "foam", m.threshold, pack, makePacked);
+    }
+    return steps;
+}
+
+}  // namespace heightpack::detail

@@ -1,0 +1,132 @@
+#include "heightpack/build/cache_key.hpp"
+
+#include <cstdint>
+#include <type_traits>
+
+#include "build_common.hpp"
+#include "heightpack/build/build_state.hpp"
+
+namespace heightpack {
+
+namespace {
+
+// One line of key text per field; the value spelt so that different values never read alike.
+class Key {
+public:
+    Key(std::string& text, std::string_view prefix) : text_(text), prefix_(prefix) {}
+
+    void put(std::string_view name, const std::string& s) { line(name, std::to_string(s.size()) + ":" + s); }
+    void put(std::string_view name, double v) { line(name, detail::number(v)); }
+    void put(std::string_view name, float v) { line(name, detail::number(v)); }
+    void put(std::string_view name, bool v) { line(name, v ? "1" : "0"); }
+    void put(std::string_view name, int v) { line(name, std::to_string(v)); }
+    void put(std::string_view name, int64_t v) { line(name, std::to_string(v)); }
+    template <class E>
+        requires std::is_enum_v<E>
+    void put(std::string_view name, E v) {
+        line(name, std::to_string(static_cast<long long>(v)));
+    }
+    template <class Options>
+        requires std::is_class_v<Options>
+    void nested(std::string_view name, const Options& o) {
+        appendKeyText(text_, std::string(prefix_).append(name).append("."), o);
+    }
+
+private:
+    void line(std::string_view name, const std::string& value) {
+        text_.append(prefix_).append(name).append("=").append(value).append("\n");
+    }
+    std::string& text_;
+    std::string_view prefix_;
+};
+
+}  // namespace
+
+void appendKeyText(std::string& text, std::string_view prefix, const LoadOptions& o) {
+    static_assert(fieldCount<LoadOptions>() == 6, "LoadOptions changed: put the new field in its key text");
+    Key k(text, prefix);
+    k.put("channel", o.channel);
+    k.put("channelName", o.channelName);
+    k.put("maxSide", o.maxSide);
+    k.put("maxTexels", static_cast<int64_t>(o.maxTexels));
+    // silenceDecoderMessages: where a decoder's messages go, not what is decoded
+    // threads: the decoded heights do not depend on it
+}
+
+void appendKeyText(std::string& text, std::string_view prefix, const MipOptions& o) {
+    static_assert(fieldCount<MipOptions>() == 3, "MipOptions changed: put the new field in its key text");
+    Key k(text, prefix);
+    k.put("filter", o.filter);
+    k.put("wrap", o.wrap);
+    // threads: the chain does not depend on it
+}
+
+void appendKeyText(std::string& text, std::string_view prefix, const NormalOptions& o) {
+    static_assert(fieldCount<NormalOptions>() == 8, "NormalOptions changed: put the new field in its key text");
+    Key k(text, prefix);
+    k.put("tileWidth", o.tileWidth);
+    k.put("tileHeight", o.tileHeight);
+    k.put("heightRange", o.heightRange);
+    k.put("kernel", o.kernel);
+    k.put("wrap", o.wrap);
+    k.put("convention", o.convention);
+    k.put("alpha", o.alpha);
+    // threads: the normals do not depend on it
+}
+
+void appendKeyText(std::string& text, std::string_view prefix, const FresnelOptions& o) {
+    static_assert(fieldCount<FresnelOptions>() == 6, "FresnelOptions changed: put the new field in its key text");
+    Key k(text, prefix);
+    k.put("ior", o.ior);
+    k.put("model", o.model);
+    k.put("index", o.index);
+    k.put("size", o.size);
+    for (size_t c = 0; c < o.deep.size(); ++c) k.put("deep" + std::to_string(c), o.deep[c]);
+    for (size_t c = 0; c < o.shallow.size(); ++c) k.put("shallow" + std::to_string(c), o.shallow[c]);
+}
+
+void appendKeyText(std::string& text, std::string_view prefix, const PackOptions& o) {
+    static_assert(fieldCount<PackOptions>() == 10, "PackOptions changed: put the new field in its key text");
+    Key k(text, prefix);
+    k.nested("load", o.load);
+    k.nested("mip", o.mip);
+    k.put("scale", o.scale);
+    k.put("offset", o.offset);
+    k.put("resizeToPowerOfTwo", o.resizeToPowerOfTwo);
+    k.put("compression", o.compression);
+    k.put("plainOutput", o.plainOutput);
+    k.put("packed", o.packed);
+    k.put("version", o.version);
+    // progress: reports, makes nothing
+}
+
+void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOptions& o) {
+    static_assert(fieldCount<NormalJobOptions>() == 8, "NormalJobOptions changed: put the new field in its key text");
+    Key k(text, prefix);
+    k.nested("load", o.load);
+    k.nested("normal", o.normal);
+    k.put("filter", o.filter);
+    k.put("resizeToPowerOfTwo", o.resizeToPowerOfTwo);
+    k.put("format", o.format);
+    k.put("compression", o.compression);
+    k.put("version", o.version);
+    // progress: reports, makes nothing
+}
+
+void appendKeyText(std::string& text, std::string_view prefix, const CheckOptions& o) {
+    static_assert(fieldCount<CheckOptions>() == 5, "CheckOptions changed: put the new field in its key text");
+    Key k(text, prefix);
+    k.nested("load", o.load);
+    k.nested("mip", o.mip);
+    k.put("threshold", o.threshold);
+    k.put("previewPath", o.previewPath);
+    // progress: reports, judges nothing
+}
+
+std::string cacheKey(std::string_view version, std::string_view text, std::string_view inputHash) {
+    std::string all = "heightpack ";
+    all.append(version).append("\n").append(text).append("input=").append(inputHash).append("\n");
+    return hashText(all);
+}
+
+}  // namespace heightpack

@@ -1,0 +1,73 @@
+// What a build reports: per output, its status, key and check; per material, the outputs, the check
+// failures and the files it read. Shared by the build's rooms (plan, state, job) and its callers.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "heightpack/core/result.hpp"
+#include "heightpack/core/tileable.hpp"
+
+namespace heightpack {
+
+// The build's record of what it made, kept beside the outputs: for each output the key it was made
+// with and the output's own hash. Deleting it rebuilds everything.
+inline constexpr const char* kBuildStateFile = ".heightpack-build.json";
+inline constexpr const char* kMaterialFile = "material.json";
+
+enum class AssetStatus {
+    UpToDate,  // its key matched and the output is the file this build made
+    Rebuilt,   // written by this build
+    Checked,   // --check-only: checked, nothing written
+    Skipped,   // --check-only and no check asked for
+};
+const char* assetStatusName(AssetStatus status);
+
+// The tileability verdict on one asset's source, if a check ran (or passed in an earlier build).
+struct AssetCheck {
+    bool ran = false;       // in this build
+    bool earlier = false;   // not run: it passed in the build that made the output, with the same key
+    bool tiles = true;
+    LevelSeams worst;       // per edge pair, the highest scores over the judged levels
+    std::string failure;    // what failed, for a person: edge, level, score
+};
+
+// One output of the material (a sequence gives one per frame).
+struct AssetReport {
+    std::string name;       // the asset's name in the manifest
+    std::string kind;       // displacement, normals, fresnel, foam
+    int frame = -1;         // frame of a sequence, else -1
+    int line = 0;           // manifest line of the asset's table
+    std::string input;      // source file; empty for the Fresnel ramp
+    std::string inputHash;  // XXH3-128 of the source file's bytes, 32 hex digits
+    std::string output;     // relative to the output folder
+    std::string key;        // hash of everything the output depends on: input bytes, options, version
+    AssetStatus status = AssetStatus::UpToDate;
+    double seconds = 0.0;
+    std::optional<AssetCheck> check;  // empty when the manifest does not ask for one
+};
+
+struct BuildReport {
+    std::string manifest;
+    std::string material;   // the material's name
+    std::string outputDir;
+    std::vector<AssetReport> assets;  // in manifest order
+    bool materialWritten = false;     // material.json was (re)written
+    int staleTemporariesRemoved = 0;  // files an earlier, killed build left behind
+    std::vector<Error> checkFailures; // assets that must tile and do not: the build wrote nothing
+    std::vector<std::string> dependencies;  // every file the build reads: the manifest and the sources
+    int rebuilt() const;
+    int upToDate() const;
+};
+
+// What the build tells its caller while it runs; calls are serialised.
+struct BuildEvent {
+    enum class Type { Start, Progress, Done } type;
+    const AssetReport& asset;
+    std::string_view stage;  // "hash", "check", "load", "mip", "write"
+    double fraction = 0.0;
+};
+
+}  // namespace heightpack
