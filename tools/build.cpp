@@ -3,13 +3,11 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 
 #include "command.hpp"
-#include "heightpack/build/build_job.hpp"
-#include "heightpack/build/depfile.hpp"
+#include "heightpack/build/build_materials.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/version.hpp"
@@ -79,88 +77,52 @@ public:
         setLibraryThreads(common_.threads);
 
         // Everything is parsed before anything is built: a bad manifest stops the build before it starts.
-        std::vector<Manifest> manifests;
-        std::map<std::string, std::string> names;
-        for (const std::string& path : manifests_) {
-            auto m = parseManifest(path);
-            if (!m) return fail(m.error());
-            const auto [it, fresh] = names.emplace(m->name, path);
-            if (!fresh && manifests_.size() > 1)
-                return fail(badInput(path, "names its material '" + m->name + "', as " + it->second + " does",
-                                     "give each material its own name: each is built into OUTPUT/NAME"));
-            manifests.push_back(std::move(*m));
-        }
+        auto manifests = parseManifests(manifests_);
+        if (!manifests) return fail(manifests.error());
 
-        // Every material is hashed and checked before any is written: a map that must tile and does
-        // not, in any of them, stops the whole build with nothing written.
         const auto start = std::chrono::steady_clock::now();
         Tracker tracker(*this);  // one bar for the whole build, every material's outputs
-        std::vector<MaterialBuild> builds;
-        bool checksPassed = true;
-        for (const Manifest& m : manifests) {
-            BuildOptions options;
-            options.outputDir = manifests.size() == 1 ? output_ : (fs::path(output_) / m.name).string();
-            options.jobs = jobs_;
-            options.threads = common_.threads;
-            options.checkOnly = checkOnly_;
-            options.force = force_;
-            options.version = kVersion;
-            options.onEvent = [&tracker](const BuildEvent& e) { tracker.event(e); };
-            auto build = MaterialBuild::prepare(m, options);
+        BuildOptions options;
+        options.outputDir = output_;
+        options.jobs = jobs_;
+        options.threads = common_.threads;
+        options.checkOnly = checkOnly_;
+        options.force = force_;
+        options.version = kVersion;
+        options.onEvent = [&tracker](const BuildEvent& e) { tracker.event(e); };
+        MaterialsOptions files;
+        files.depfile = depfile_;
+        files.stamp = stamp_;
+        files.onPrepared = [&](const BuildReport& r) {
             tracker.progress.clear();
-            if (!build) return fail(build.error());
-            tracker.total += static_cast<double>(build->report().assets.size());
-            for (const Error& e : build->report().checkFailures) printError(e);
-            checksPassed = checksPassed && build->report().checkFailures.empty();
-            builds.push_back(std::move(*build));
-        }
-        // The depfile and the stamp are judged before any material is written, as the materials' own
-        // outputs are in prepare(): a build that cannot write them must not write anything.
-        if (checksPassed && !checkOnly_)
-            for (const std::string& path : {depfile_, stamp_}) {
-                if (path.empty()) continue;
-                // A missing folder is refused, unless the build makes it (the output folder or one in it).
-                if (Status s = madeByBuild(path) ? checkOutputPath(path) : checkWritable(path); !s) return fail(s.error());
-                for (const MaterialBuild& b : builds)
-                    for (const std::string& source : b.report().dependencies)
-                        if (std::error_code ec; fs::equivalent(path, source, ec))
-                            return fail(cannotWrite(path, "is also a source the build reads (" + source + ")",
-                                                    "give the depfile and the stamp their own names"));
-            }
+            tracker.total += static_cast<double>(r.assets.size());
+            for (const Error& e : r.checkFailures) printError(e);
+        };
+        files.onBuilding = [&](const BuildReport& r) {
+            if (chatty()) std::printf("building %s (%s) into %s\n", r.material.c_str(), r.manifest.c_str(), r.outputDir.c_str());
+            std::fflush(stdout);
+        };
+        files.onBuilt = [&](const BuildReport& r, double seconds) {
+            tracker.progress.clear();
+            if (chatty()) printSummary(r, seconds);
+        };
+        auto built = buildMaterials(*manifests, options, files);
+        tracker.progress.clear();
+        if (!built) return fail(built.error());
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+        // Nothing was made when a check failed or only checks were asked for: say so per material.
+        const bool checksPassed = built->checksPassed;
         nlohmann::json materials = nlohmann::json::array();
-        std::vector<std::string> dependencies;
-        for (size_t i = 0; i < builds.size(); ++i) {
-            const Manifest& m = manifests[i];
-            BuildReport report = builds[i].report();
-            if (checksPassed && builds[i].runnable()) {
-                if (chatty())
-                    std::printf("building %s (%s) into %s\n", m.name.c_str(), m.path.c_str(), report.outputDir.c_str());
-                std::fflush(stdout);
-                const auto began = std::chrono::steady_clock::now();
-                auto ran = builds[i].run();
-                tracker.progress.clear();
-                if (!ran) return fail(ran.error());
-                report = std::move(*ran);
-                if (chatty())
-                    printSummary(report, std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count());
-            } else if (chatty()) {
+        for (size_t i = 0; i < built->materials.size(); ++i) {
+            const BuildReport& report = built->materials[i];
+            if ((checkOnly_ || !checksPassed) && chatty()) {
                 if (checkOnly_ || !report.checkFailures.empty())
                     printSummary(report, 0.0);
                 else
-                    std::printf("%s: nothing written: another material's maps failed their checks\n", m.name.c_str());
+                    std::printf("%s: nothing written: another material's maps failed their checks\n", report.material.c_str());
             }
-            dependencies.insert(dependencies.end(), report.dependencies.begin(), report.dependencies.end());
-            materials.push_back(reportJson(report, m.threshold));
-        }
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-        if (checksPassed && !checkOnly_) {
-            if (!depfile_.empty()) {
-                const std::string target = stamp_.empty() ? (fs::path(output_) / kMaterialFile).string() : stamp_;
-                if (Status s = writeBuildFile(depfile_, depfileText(target, dependencies)); !s) return fail(s.error());
-            }
-            if (!stamp_.empty())
-                if (Status s = writeBuildFile(stamp_, "heightpack build stamp\n"); !s) return fail(s.error());
+            materials.push_back(reportJson(report, (*manifests)[i].threshold));
         }
         if (common_.json)
             printJson({{"command", "build"}, {"checkOnly", checkOnly_}, {"ok", checksPassed}, {"jobs", jobs_},
@@ -261,20 +223,6 @@ private:
                 {"staleTemporariesRemoved", r.staleTemporariesRemoved},
                 {"checkFailures", failures},
                 {"assets", assets}};
-    }
-
-    // Whether path lies in the output folder (or deeper), whose folders the build creates.
-    bool madeByBuild(const std::string& path) const {
-        const fs::path rel = fs::absolute(path).lexically_normal().lexically_relative(fs::absolute(output_).lexically_normal());
-        return !rel.empty() && *rel.begin() != ".." && rel != ".";
-    }
-    // The depfile or the stamp, atomically, in its folder (made if the build makes it).
-    Status writeBuildFile(const std::string& path, const std::string& text) const {
-        if (madeByBuild(path)) {
-            std::error_code ec;
-            fs::create_directories(fs::path(path).parent_path(), ec);
-        }
-        return writeTextFile(path, text);
     }
 
     std::vector<std::string> manifests_;
