@@ -27,10 +27,10 @@ public:
         previewOption_ = cmd->add_option("--preview", options_.previewPath, "write a PNG of the map tiled 2x2 with failing seams marked");
         cmd->add_option("--wrap", wrap_, "wrap of the mip chain made from a flat image, as pack would")
             ->capture_default_str()
-            ->check(CLI::IsMember({"periodic", "clamp"}));
+            ->check(CLI::IsMember(allNames<Wrap>()));
         cmd->add_option("--filter", filter_, "filter of that chain")
             ->capture_default_str()
-            ->check(CLI::IsMember({"box", "triangle", "lanczos3", "kaiser"}));
+            ->check(CLI::IsMember(allNames<Filter>()));
         addChannelOption(*cmd, channel_);
         addCommonOptions(*cmd);
         cmd->footer(
@@ -49,8 +49,8 @@ public:
     ExitCode run() override {
         applyChannel(channel_, options_.load);
         options_.load.silenceDecoderMessages = true;
-        options_.mip.wrap = wrap_ == "clamp" ? Wrap::Clamp : Wrap::Periodic;
-        options_.mip.filter = *parseFilter(filter_);
+        options_.mip.wrap = *parseName<Wrap>(wrap_);
+        options_.mip.filter = *parseName<Filter>(filter_);
         options_.mip.threads = common_.threads;
         setLibraryThreads(common_.threads);
         // A sequence is checked frame by frame; it tiles when every frame does. --json prints one document.
@@ -142,7 +142,7 @@ private:
         if (!options_.previewPath.empty()) std::printf("  preview: %s\n", options_.previewPath.c_str());
     }
 
-    std::string input_, channel_, wrap_ = "periodic", filter_ = "kaiser";
+    std::string input_, channel_, wrap_ = nameOf(MipOptions{}.wrap), filter_ = nameOf(MipOptions{}.filter);
     CheckOptions options_;
     CLI::Option* previewOption_ = nullptr;
 };

@@ -339,4 +339,10 @@ std::string outputFormat(const std::string& requested, const std::string& output
     return requested.empty() || requested == byName ? byName : "";
 }
 
+std::string colourText(const std::array<double, 3>& colour) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.2f,%.2f,%.2f", colour[0], colour[1], colour[2]);
+    return text;
+}
+
 }  // namespace heightpack::cli

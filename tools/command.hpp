@@ -154,6 +154,8 @@ CLI::Validator finiteRange(double lo, double hi);
 // A linear colour "r,g,b", each in [0,1].
 std::optional<std::array<double, 3>> parseColour(const std::string& text);
 CLI::Validator colourValidator();
+// "0.02,0.10,0.16": a colour as parseColour reads it, two decimals.
+std::string colourText(const std::array<double, 3>& colour);
 
 // The output format the output's extension says ("exr" for .exr, "png8" for .png), checked against an
 // explicit --format value. Empty when the extension is neither or the two disagree.

@@ -20,10 +20,10 @@ public:
             ->check(finiteRange(1.0, 4.0));  // the manifest's range too (docs/manifest.md)
         cmd->add_option("--model", model_, "exact: unpolarised Fresnel equations; schlick: Schlick's approximation")
             ->capture_default_str()
-            ->check(CLI::IsMember({"exact", "schlick"}));
+            ->check(CLI::IsMember(allNames<FresnelModel>()));
         cmd->add_option("--index", index_, "nv: u = N.V; 2nv: u = saturate(2 N.V), as the Isidoro shader indexes it")
             ->capture_default_str()
-            ->check(CLI::IsMember({"nv", "2nv"}));
+            ->check(CLI::IsMember(allNames<FresnelIndex>()));
         cmd->add_option("--deep", deep_, "linear colour seen looking straight down")
             ->capture_default_str()
             ->check(colourValidator());
@@ -36,7 +36,7 @@ public:
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
-            "  heightpack fresnel --ior 1.333 --deep 0.02,0.10,0.16 --shallow 0.10,0.40,0.45 --size 256 -o out/fresnel.exr\n"
+            "  heightpack fresnel --ior 1.333 --deep " + deep_ + " --shallow " + shallow_ + " --size 256 -o out/fresnel.exr\n"
             "  heightpack fresnel --ior 1.333 --model schlick --format png8 -o fresnel.png\n"
             "Texel i stands for N.V = (i + 0.5) / size (half that with --index 2nv); rgb = mix(shallow, deep, N.V),\n"
             "alpha = the reflectance F, so a shader does mix(rgb, reflection, F) with one fetch.\n");
@@ -47,8 +47,8 @@ public:
         if (const ExitCode code = checkOutputs({}, {{output_, "-o", {".exr", ".png"}}}); code != ExitCode::Ok) return code;
         const std::string format = outputFormat(format_, output_);
         if (format.empty()) return usage("the output must end in .exr or .png, matching --format if given");
-        options_.model = model_ == "schlick" ? FresnelModel::Schlick : FresnelModel::Exact;
-        options_.index = index_ == "2nv" ? FresnelIndex::TwoNdotV : FresnelIndex::NdotV;
+        options_.model = *parseName<FresnelModel>(model_);
+        options_.index = *parseName<FresnelIndex>(index_);
         options_.deep = *parseColour(deep_);
         options_.shallow = *parseColour(shallow_);
         const Status written = writeFresnelRamp(output_, options_, format == "png8" ? RampFormat::Png8 : RampFormat::Exr,
@@ -70,8 +70,9 @@ public:
 
 private:
     std::string output_, format_;
-    std::string model_ = "exact", index_ = "nv", deep_ = "0.02,0.10,0.16", shallow_ = "0.10,0.40,0.45";
     FresnelOptions options_;
+    std::string model_ = nameOf(options_.model), index_ = nameOf(options_.index);
+    std::string deep_ = colourText(options_.deep), shallow_ = colourText(options_.shallow);
 };
 
 }  // namespace

@@ -32,16 +32,16 @@ public:
             ->check(lengthValidator(1e3));
         cmd->add_option("--kernel", kernel_, "slope kernel; each measures a plane's slope exactly")
             ->capture_default_str()
-            ->check(CLI::IsMember({"central", "sobel3", "scharr"}));
+            ->check(CLI::IsMember(allNames<SlopeKernel>()));
         cmd->add_option("--wrap", wrap_, "periodic: no seam at the tile edge; clamp: one-sided at the border")
             ->capture_default_str()
-            ->check(CLI::IsMember({"periodic", "clamp"}));
+            ->check(CLI::IsMember(allNames<Wrap>()));
         cmd->add_option("--filter", filter_, "filter of the height mip chain each level's normals come from")
             ->capture_default_str()
-            ->check(CLI::IsMember({"box", "triangle", "lanczos3", "kaiser"}));
+            ->check(CLI::IsMember(allNames<Filter>()));
         cmd->add_option("--convention", convention_, "opengl: green toward the top of the image; directx: flipped")
             ->capture_default_str()
-            ->check(CLI::IsMember({"opengl", "directx"}));
+            ->check(CLI::IsMember(allNames<NormalConvention>()));
         CLI::Option* heightAlpha = cmd->add_flag("--height-in-alpha", heightInAlpha_,
                                                  "store the height (stored value) in alpha, as the D3D11 demo does");
         cmd->add_flag("--variance-in-alpha", varianceInAlpha_,
@@ -51,7 +51,7 @@ public:
             ->check(CLI::IsMember({"exr", "png8"}));
         cmd->add_option("--compression", compression_, "EXR compression")
             ->capture_default_str()
-            ->check(CLI::IsMember({"none", "rle", "zips", "zip", "piz"}));
+            ->check(CLI::IsMember(allNames<Compression>()));
         addChannelOption(*cmd, channel_);
         cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two (EXR)")
             ->check(CLI::IsMember({"none", "pow2"}));
@@ -76,16 +76,16 @@ public:
         n.tileWidth = *parseLength(tileSize_.substr(0, comma));
         n.tileHeight = comma == std::string::npos ? 0.0 : *parseLength(tileSize_.substr(comma + 1));
         n.heightRange = *parseLength(height_);
-        n.kernel = *parseSlopeKernel(kernel_);
-        n.wrap = wrap_ == "clamp" ? Wrap::Clamp : Wrap::Periodic;
-        n.convention = convention_ == "directx" ? NormalConvention::DirectX : NormalConvention::OpenGL;
-        n.alpha = heightInAlpha_ ? NormalAlpha::Height : varianceInAlpha_ ? NormalAlpha::Variance : NormalAlpha::None;
+        n.kernel = *parseName<SlopeKernel>(kernel_);
+        n.wrap = *parseName<Wrap>(wrap_);
+        n.convention = *parseName<NormalConvention>(convention_);
+        n.alpha = heightInAlpha_ ? NormalAlpha::Height : varianceInAlpha_ ? NormalAlpha::SlopeVariance : NormalAlpha::None;
         n.threads = common_.threads;
         if (format == "png8" && varianceInAlpha_)
             return usage("--variance-in-alpha describes mip levels, which a PNG does not have; write .exr");
-        o.filter = *parseFilter(filter_);
+        o.filter = *parseName<Filter>(filter_);
         o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
-        o.compression = *parseCompression(compression_);
+        o.compression = *parseName<Compression>(compression_);
         o.resizeToPowerOfTwo = resize_ == "pow2";
         applyChannel(channel_, o.load);
         o.load.silenceDecoderMessages = true;
@@ -164,8 +164,9 @@ private:
     }
 
     std::string input_, output_, tileSize_, height_, channel_, format_;
-    std::string kernel_ = "central", wrap_ = "periodic", filter_ = "kaiser", convention_ = "opengl";
-    std::string compression_ = "zip", resize_ = "none";
+    std::string kernel_ = nameOf(NormalOptions{}.kernel), wrap_ = nameOf(NormalOptions{}.wrap);
+    std::string filter_ = nameOf(NormalJobOptions{}.filter), convention_ = nameOf(NormalOptions{}.convention);
+    std::string compression_ = nameOf(NormalJobOptions{}.compression), resize_ = "none";
     bool heightInAlpha_ = false, varianceInAlpha_ = false;
 };
 

@@ -29,11 +29,11 @@ public:
             ->check(finiteRange(-1e6, 1e6));
         cmd->add_option("--offset", options_.offset, "see --scale")->capture_default_str()->check(finiteRange(-1e6, 1e6));
         cmd->add_option("--wrap", wrap_, "how filters and neighbours see past the edge")->capture_default_str()
-            ->check(CLI::IsMember({"periodic", "clamp"}));
+            ->check(CLI::IsMember(allNames<Wrap>()));
         cmd->add_option("--filter", filter_, "mip filter")->capture_default_str()
-            ->check(CLI::IsMember({"box", "triangle", "lanczos3", "kaiser"}));
+            ->check(CLI::IsMember(allNames<Filter>()));
         cmd->add_option("--compression", compression_, "EXR compression (lossless only)")->capture_default_str()
-            ->check(CLI::IsMember({"none", "rle", "zips", "zip", "piz"}));
+            ->check(CLI::IsMember(allNames<Compression>()));
         cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two up to the "
                                               "next ones, with the mip filter")
             ->check(CLI::IsMember({"none", "pow2"}));
@@ -54,10 +54,10 @@ public:
             return usage("--scale and --offset must be finite numbers");
         options_.load.silenceDecoderMessages = true;  // errors come back in the result, as one line
         applyChannel(channel_, options_.load);
-        options_.mip.wrap = wrap_ == "clamp" ? Wrap::Clamp : Wrap::Periodic;
-        options_.mip.filter = *parseFilter(filter_);
+        options_.mip.wrap = *parseName<Wrap>(wrap_);
+        options_.mip.filter = *parseName<Filter>(filter_);
         options_.mip.threads = common_.threads;
-        options_.compression = *parseCompression(compression_);
+        options_.compression = *parseName<Compression>(compression_);
         options_.resizeToPowerOfTwo = resize_ == "pow2";
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
@@ -145,7 +145,8 @@ private:
     }
 
     std::string input_, output_, channel_;
-    std::string wrap_ = "periodic", filter_ = "kaiser", compression_ = "zip", resize_ = "none";
+    std::string wrap_ = nameOf(MipOptions{}.wrap), filter_ = nameOf(MipOptions{}.filter);
+    std::string compression_ = nameOf(PackOptions{}.compression), resize_ = "none";
     PackOptions options_;
 };
 

@@ -50,7 +50,7 @@ public:
             ->required();
         cmd->add_option("--spectrum", spectrum_, "phillips or jonswap (fetch-limited)")
             ->capture_default_str()
-            ->check(CLI::IsMember({"phillips", "jonswap"}));
+            ->check(CLI::IsMember(allNames<SpectrumModel>()));
         cmd->add_option("--wind", wind_, "wind speed at 10 m: 12m/s, 20kn, 40km/h")->required()->check(unitValidator(kSpeedUnits, 100.0, "12m/s"));
         cmd->add_option("--direction", options_.spectrum.windDirection, "wind direction in degrees, from +x toward +y")
             ->capture_default_str()
@@ -90,7 +90,7 @@ public:
         std::string ext = std::filesystem::path(output_).extension().string();
         for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         if (options_.displacement && ext != ".exr") return usage("--displacement needs an .exr output (channels Y, Dx, Dy)");
-        s.model = *parseSpectrumModel(spectrum_);
+        s.model = *parseName<SpectrumModel>(spectrum_);
         if (s.model == SpectrumModel::Phillips && !common_.quiet)
             for (const CLI::Option* o : {fetchOption_, gammaOption_})
                 if (o->count() > 0)
@@ -124,7 +124,7 @@ public:
     }
 
 private:
-    std::string output_, spectrum_ = "jonswap", wind_, fetch_, tileSize_, loop_;
+    std::string output_, spectrum_ = nameOf(SpectrumOptions{}.model), wind_, fetch_, tileSize_, loop_;
     SynthOptions options_;
     CLI::Option* fetchOption_ = nullptr;
     CLI::Option* gammaOption_ = nullptr;

@@ -46,7 +46,7 @@ public:
             ->check(finiteRange(1.0, 1e6));
         cmd->add_option("--filter", filter_, "mip filter of the chain the map is judged on, as pack would make it")
             ->capture_default_str()
-            ->check(CLI::IsMember({"box", "triangle", "lanczos3", "kaiser"}));
+            ->check(CLI::IsMember(allNames<Filter>()));
         cmd->add_option("--depth", depth_, "output sample type; keep = the input's")
             ->capture_default_str()
             ->check(CLI::IsMember({"keep", "uint8", "uint16", "float"}));
@@ -74,7 +74,7 @@ public:
         options_.bits = depth_ == "uint8" ? 8 : depth_ == "uint16" ? 16 : depth_ == "float" ? 32 : 0;
         applyChannel(channel_, options_.load);
         options_.load.silenceDecoderMessages = true;
-        options_.mip.filter = *parseFilter(filter_);
+        options_.mip.filter = *parseName<Filter>(filter_);
         options_.mip.threads = common_.threads;
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
@@ -131,7 +131,7 @@ public:
 private:
     bool widthGiven() const { return widthOption_ && widthOption_->count() > 0; }
 
-    std::string input_, output_, channel_, method_ = "periodic", depth_ = "keep", filter_ = "kaiser";
+    std::string input_, output_, channel_, method_ = "periodic", depth_ = "keep", filter_ = nameOf(MipOptions{}.filter);
     TileOptions options_;
     CLI::Option* widthOption_ = nullptr;
 };

@@ -10,10 +10,15 @@
 #include <vector>
 
 #include "camera.hpp"
+#include "heightpack/core/fresnel.hpp"
 #include "gl_util.hpp"
 #include "scene.hpp"
 
 namespace heightpack::view {
+
+inline glm::vec3 toVec3(const Rgb& c) {
+    return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])};
+}
 
 enum class Lookup { PackedBilinear = 0, PackedTrilinear = 1, ReferenceBilinear = 2, ReferenceTrilinear = 3 };
 enum class ViewMode { Shaded = 0, Height = 1, Lod = 2 };
@@ -53,7 +58,8 @@ struct RenderSettings {
     std::array<glm::vec4, 4> normalOctaves{glm::vec4(1.0f / 8, 0.02f, 0.01f, 1.0f), glm::vec4(1.0f / 8, -0.015f, 0.02f, 1.0f),
                                            glm::vec4(1.0f / 2, 0.05f, -0.03f, 0.5f), glm::vec4(1.0f / 2, -0.04f, -0.05f, 0.5f)};
     float ior = 1.333f;
-    glm::vec3 deep{0.02f, 0.10f, 0.16f}, shallow{0.10f, 0.40f, 0.45f};
+    // The ramp's own defaults (FresnelOptions), for shading without a ramp file.
+    glm::vec3 deep = toVec3(FresnelOptions{}.deep), shallow = toVec3(FresnelOptions{}.shallow);
     glm::vec3 sunDirection{0.3f, 0.6f, 0.35f};
     float tilt = 0.08f;
     glm::vec2 foamRange{1.2f, 2.2f};  // H0, Hmax

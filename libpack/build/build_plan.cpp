@@ -86,10 +86,8 @@ NormalJobOptions normalOptions(const NormalAsset& n, const std::string& version)
     job.normal.heightRange = n.layer.heightRange;
     job.normal.kernel = n.kernel;
     job.normal.wrap = n.settings.wrap;
-    job.normal.convention = n.layer.convention == "directx" ? NormalConvention::DirectX : NormalConvention::OpenGL;
-    job.normal.alpha = n.layer.alpha == "height"     ? NormalAlpha::Height
-                       : n.layer.alpha == "variance" ? NormalAlpha::Variance
-                                                     : NormalAlpha::None;
+    job.normal.convention = n.layer.convention;
+    job.normal.alpha = n.layer.alpha;
     job.filter = n.settings.filter;
     job.resizeToPowerOfTwo = n.settings.resize;
     job.compression = n.settings.compression;

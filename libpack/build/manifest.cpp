@@ -114,16 +114,13 @@ public:
         if (!n->is_boolean()) throw error(k, "must be true or false, not " + typeName(*n));
         return n->value<bool>().value_or(false);
     }
-    // One of a fixed set of words.
-    std::string choice(const std::string& k, const std::string& fallback, std::initializer_list<const char*> allowed) {
+    // One of the names in E's table.
+    template <class E>
+    E choice(const std::string& k, E fallback) {
         const std::optional<std::string> v = text(k);
         if (!v) return fallback;
-        std::string list;
-        for (const char* a : allowed) {
-            if (*v == a) return *v;
-            list += list.empty() ? a : std::string(", ") + a;
-        }
-        throw error(k, "is '" + shorten(*v) + "', but must be one of: " + list);
+        if (const std::optional<E> e = parseName<E>(*v)) return *e;
+        throw error(k, "is '" + shorten(*v) + "', but must be one of: " + joinedNames<E>());
     }
     std::vector<double> numbers(const std::string& k, std::vector<double> fallback, size_t count, double lo, double hi) {
         const toml::node* n = find(k);
@@ -252,14 +249,13 @@ public:
 private:
     MapSettings settings(Section& s, const MapSettings& base) {
         MapSettings out = base;
-        out.wrap = s.choice("wrap", wrapName(base.wrap), {"periodic", "clamp"}) == "clamp" ? Wrap::Clamp : Wrap::Periodic;
-        out.filter = *parseFilter(s.choice("filter", filterName(base.filter), {"box", "triangle", "lanczos3", "kaiser"}));
-        out.compression = *parseCompression(
-            s.choice("compression", compressionName(base.compression), {"none", "rle", "zips", "zip", "piz"}));
+        out.wrap = s.choice("wrap", base.wrap);
+        out.filter = s.choice("filter", base.filter);
+        out.compression = s.choice("compression", base.compression);
         out.resize = s.boolean("resize").value_or(base.resize);
         if (const auto c = s.text("channel")) {
-            const auto parsed = parseChannelSelect(*c);
-            if (!parsed || *c == "auto") throw s.error("channel", "is '" + shorten(*c) + "', but must be one of: r, g, b, a, luma");
+            const auto parsed = parseName<ChannelSelect>(*c);
+            if (!parsed) throw s.error("channel", "is '" + shorten(*c) + "', but must be one of: " + joinedNames<ChannelSelect>());
             out.channel = *parsed;
         }
         return out;
@@ -339,8 +335,8 @@ private:
         d.layer.heightScale = s.number("height_scale", 1.0, -1e6, 1e6);
         d.layer.heightOffset = s.number("height_offset", 0.0, -1e6, 1e6);
         if (d.layer.heightScale == 0) throw s.error("height_scale", "is 0, which would flatten the map");
-        d.layer.wrap = wrapName(d.settings.wrap);
-        d.layer.filter = filterName(d.settings.filter);
+        d.layer.wrap = d.settings.wrap;
+        d.layer.filter = d.settings.filter;
         claimFrames(s, d);
         s.finish();
         return d;
@@ -358,9 +354,9 @@ private:
         static_cast<SourcedAsset&>(n) = sourced(s, n.layer.name);
         n.layer.tileSize = s.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
         n.layer.heightRange = s.number("height", std::nullopt, 0, kMaxHeight, true);
-        n.kernel = *parseSlopeKernel(s.choice("kernel", "central", {"central", "sobel3", "scharr"}));
-        n.layer.convention = s.choice("convention", "opengl", {"opengl", "directx"});
-        n.layer.alpha = s.choice("alpha", "none", {"none", "height", "variance"});
+        n.kernel = s.choice("kernel", NormalOptions{}.kernel);
+        n.layer.convention = s.choice("convention", NormalOptions{}.convention);
+        n.layer.alpha = s.choice("alpha", NormalOptions{}.alpha);
         if (const toml::node* octaves = s.find("octave")) {
             const toml::array* a = octaves->as_array();
             if (!a || !a->is_array_of_tables() || a->empty() || a->size() > 4)
@@ -387,18 +383,18 @@ private:
         f.line = s.line();
         f.layer.name = assetName(s, "fresnel");
         f.output = output(s, f.layer.name);
-        f.options.ior = s.number("ior", 1.333, 1.0, 4.0);
-        f.options.model = s.choice("model", "exact", {"exact", "schlick"}) == "schlick" ? FresnelModel::Schlick
-                                                                                       : FresnelModel::Exact;
-        f.options.index = s.choice("index", "nv", {"nv", "2nv"}) == "2nv" ? FresnelIndex::TwoNdotV : FresnelIndex::NdotV;
-        f.options.size = s.integer("size", 256, 2, 65536);
-        const auto deep = s.numbers("deep", {0.02, 0.10, 0.16}, 3, 0.0, 1.0);
-        const auto shallow = s.numbers("shallow", {0.10, 0.40, 0.45}, 3, 0.0, 1.0);
+        const FresnelOptions defaults;
+        f.options.ior = s.number("ior", defaults.ior, 1.0, 4.0);
+        f.options.model = s.choice("model", defaults.model);
+        f.options.index = s.choice("index", defaults.index);
+        f.options.size = s.integer("size", defaults.size, 2, 65536);
+        const auto deep = s.numbers("deep", {defaults.deep.begin(), defaults.deep.end()}, 3, 0.0, 1.0);
+        const auto shallow = s.numbers("shallow", {defaults.shallow.begin(), defaults.shallow.end()}, 3, 0.0, 1.0);
         f.options.deep = {deep[0], deep[1], deep[2]};
         f.options.shallow = {shallow[0], shallow[1], shallow[2]};
         f.layer.ior = f.options.ior;
-        f.layer.model = fresnelModelName(f.options.model);
-        f.layer.index = fresnelIndexName(f.options.index);
+        f.layer.model = f.options.model;
+        f.layer.index = f.options.index;
         s.finish();
         return f;
     }

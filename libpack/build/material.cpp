@@ -59,6 +59,14 @@ public:
     std::string optionalText(const Json& object, const char* key, const std::string& where) const {
         return object.contains(key) ? text(object, key, where) : std::string();
     }
+    // A name from E's table.
+    template <class E>
+    E choice(const Json& object, const char* key, const std::string& where) const {
+        const Json& v = at(object, key, where);
+        const std::optional<E> e = v.is_string() ? parseName<E>(v.get<std::string>()) : std::nullopt;
+        if (!e) throw missing(where + key + " (one of: " + joinedNames<E>() + ")");
+        return *e;
+    }
     std::array<double, 2> pair(const Json& object, const char* key, const std::string& where) const {
         const Json& v = at(object, key, where);
         if (!v.is_array() || v.size() != 2) throw missing(where + key + " (two numbers)");
@@ -95,7 +103,7 @@ std::string materialJson(const MaterialDescription& m) {
     Json layers = Json::array();
     for (const DisplacementLayer& d : m.displacement) {
         Json j = {{"name", d.name},         {"texture", textureJson(d.texture)}, {"layout", "neighbour4"},
-                  {"wrap", d.wrap},         {"filter", d.filter},                {"heightScale", d.heightScale},
+                  {"wrap", nameOf(d.wrap)}, {"filter", nameOf(d.filter)},                {"heightScale", d.heightScale},
                   {"heightOffset", d.heightOffset}, {"tileSize", d.tileSize},    {"scroll", pairJson(d.scroll)},
                   {"amplitude", d.amplitude}};
         if (d.loopPeriod > 0) j["loopPeriod"] = d.loopPeriod;
@@ -107,14 +115,14 @@ std::string materialJson(const MaterialDescription& m) {
         Json octaves = Json::array();
         for (const NormalOctave& o : n.octaves)
             octaves.push_back({{"tileSize", o.tileSize}, {"scroll", pairJson(o.scroll)}, {"strength", o.strength}});
-        doc["normals"] = {{"name", n.name},           {"texture", textureJson(n.texture)}, {"convention", n.convention},
-                          {"alpha", n.alpha},         {"tileSize", n.tileSize},            {"heightRange", n.heightRange},
+        doc["normals"] = {{"name", n.name},           {"texture", textureJson(n.texture)}, {"convention", nameOf(n.convention)},
+                          {"alpha", nameOf(n.alpha)},         {"tileSize", n.tileSize},            {"heightRange", n.heightRange},
                           {"octaves", std::move(octaves)}};
     }
     if (m.fresnel) {
         const FresnelLayer& f = *m.fresnel;
-        doc["fresnel"] = {{"name", f.name}, {"texture", textureJson(f.texture)}, {"ior", f.ior}, {"model", f.model},
-                          {"index", f.index}};
+        doc["fresnel"] = {{"name", f.name}, {"texture", textureJson(f.texture)}, {"ior", f.ior}, {"model", nameOf(f.model)},
+                          {"index", nameOf(f.index)}};
     }
     if (m.foam) {
         const FoamLayer& f = *m.foam;
@@ -161,8 +169,8 @@ Result<MaterialDescription> readMaterial(const std::string& path) {
             DisplacementLayer d;
             d.name = r.text(j, "name", w);
             d.texture = r.texture(j, w);
-            d.wrap = r.text(j, "wrap", w);
-            d.filter = r.text(j, "filter", w);
+            d.wrap = r.choice<Wrap>(j, "wrap", w);
+            d.filter = r.choice<Filter>(j, "filter", w);
             d.heightScale = r.number(j, "heightScale", w);
             d.heightOffset = r.number(j, "heightOffset", w);
             d.tileSize = r.number(j, "tileSize", w);
@@ -176,8 +184,8 @@ Result<MaterialDescription> readMaterial(const std::string& path) {
             NormalLayer n;
             n.name = r.text(j, "name", "normals.");
             n.texture = r.texture(j, "normals.");
-            n.convention = r.text(j, "convention", "normals.");
-            n.alpha = r.text(j, "alpha", "normals.");
+            n.convention = r.choice<NormalConvention>(j, "convention", "normals.");
+            n.alpha = r.choice<NormalAlpha>(j, "alpha", "normals.");
             n.tileSize = r.number(j, "tileSize", "normals.");
             n.heightRange = r.number(j, "heightRange", "normals.");
             const Json& octaves = r.at(j, "octaves", "normals.");
@@ -195,8 +203,8 @@ Result<MaterialDescription> readMaterial(const std::string& path) {
             f.name = r.text(j, "name", "fresnel.");
             f.texture = r.texture(j, "fresnel.");
             f.ior = r.number(j, "ior", "fresnel.");
-            f.model = r.text(j, "model", "fresnel.");
-            f.index = r.text(j, "index", "fresnel.");
+            f.model = r.choice<FresnelModel>(j, "model", "fresnel.");
+            f.index = r.choice<FresnelIndex>(j, "index", "fresnel.");
             m.fresnel = std::move(f);
         }
         if (doc.contains("foam")) {

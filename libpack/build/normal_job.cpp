@@ -85,7 +85,7 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         const std::vector<Image> heightChain = generateMipChain(heights, mip);
         progress("normal", 0.0);
         std::vector<Image> momentChain;
-        if (n.alpha == NormalAlpha::Variance) {
+        if (n.alpha == NormalAlpha::SlopeVariance) {
             const Image& top = heightChain[0];
             momentChain = generateMipChain(
                 slopeMoment(top, texelWidth(n, top.width, top.width), texelHeight(n, top.width, top.height, top.height), n),

@@ -5,9 +5,6 @@
 
 namespace heightpack {
 
-const char* fresnelModelName(FresnelModel model) { return model == FresnelModel::Exact ? "exact" : "schlick"; }
-const char* fresnelIndexName(FresnelIndex index) { return index == FresnelIndex::NdotV ? "nv" : "2nv"; }
-
 double fresnelReflectance(double cosTheta, double ior, FresnelModel model) {
     const double ci = std::clamp(cosTheta, 0.0, 1.0);
     if (model == FresnelModel::Schlick) {

@@ -2,8 +2,6 @@
 
 namespace heightpack {
 
-const char* wrapName(Wrap wrap) { return wrap == Wrap::Periodic ? "periodic" : "clamp"; }
-
 Image transposed(const Image& image) {
     assert(image.channels == 1);
     Image out(image.height, image.width, 1);

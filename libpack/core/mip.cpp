@@ -113,22 +113,6 @@ Image resampleColumns(const Image& src, int dstHeight, const AxisTaps& taps, int
 
 }  // namespace
 
-const char* filterName(Filter filter) {
-    switch (filter) {
-        case Filter::Box: return "box";
-        case Filter::Triangle: return "triangle";
-        case Filter::Lanczos3: return "lanczos3";
-        case Filter::Kaiser: return "kaiser";
-    }
-    return "?";
-}
-
-std::optional<Filter> parseFilter(std::string_view name) {
-    for (Filter f : {Filter::Box, Filter::Triangle, Filter::Lanczos3, Filter::Kaiser})
-        if (name == filterName(f)) return f;
-    return std::nullopt;
-}
-
 double filterRadius(Filter filter) {
     switch (filter) {
         case Filter::Box: return 0.5;

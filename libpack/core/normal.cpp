@@ -7,21 +7,6 @@
 
 namespace heightpack {
 
-const char* slopeKernelName(SlopeKernel kernel) {
-    switch (kernel) {
-        case SlopeKernel::Central: return "central";
-        case SlopeKernel::Sobel3: return "sobel3";
-        case SlopeKernel::Scharr: return "scharr";
-    }
-    return "?";
-}
-
-std::optional<SlopeKernel> parseSlopeKernel(std::string_view name) {
-    for (SlopeKernel k : {SlopeKernel::Central, SlopeKernel::Sobel3, SlopeKernel::Scharr})
-        if (name == slopeKernelName(k)) return k;
-    return std::nullopt;
-}
-
 double texelWidth(const NormalOptions& options, int level0Width, int levelWidth) {
     (void)level0Width;
     return options.tileWidth / levelWidth;
@@ -135,7 +120,7 @@ Image normalsWithAlpha(const Image& heights, double texelX, double texelY, const
             n[1] = static_cast<float>(green * sy * inv);
             n[2] = static_cast<float>(inv);
             if (options.alpha == NormalAlpha::Height) n[3] = heights.pixels[i];
-            if (options.alpha == NormalAlpha::Variance)
+            if (options.alpha == NormalAlpha::SlopeVariance)
                 n[3] = moment ? static_cast<float>(std::max(0.0, double(moment->pixels[i]) - (sx * sx + sy * sy)))
                               : 0.0f;
         }
@@ -152,13 +137,13 @@ Image normalsFromHeights(const Image& heights, double texelX, double texelY, con
 std::vector<Image> generateNormalChain(const std::vector<Image>& heightChain, const NormalOptions& options,
                                        const std::vector<Image>& slopeMomentChain) {
     assert(!heightChain.empty());
-    assert(options.alpha != NormalAlpha::Variance || slopeMomentChain.size() == heightChain.size());
+    assert(options.alpha != NormalAlpha::SlopeVariance || slopeMomentChain.size() == heightChain.size());
     const int w0 = heightChain[0].width, h0 = heightChain[0].height;
     std::vector<Image> chain;
     chain.reserve(heightChain.size());
     for (size_t level = 0; level < heightChain.size(); ++level) {
         const Image& h = heightChain[level];
-        const Image* moment = options.alpha == NormalAlpha::Variance ? &slopeMomentChain[level] : nullptr;
+        const Image* moment = options.alpha == NormalAlpha::SlopeVariance ? &slopeMomentChain[level] : nullptr;
         chain.push_back(normalsWithAlpha(h, texelWidth(options, w0, h.width), texelHeight(options, w0, h0, h.height),
                                          options, moment));
     }

@@ -42,13 +42,6 @@ private:
 
 }  // namespace
 
-const char* spectrumModelName(SpectrumModel model) { return model == SpectrumModel::Phillips ? "phillips" : "jonswap"; }
-
-std::optional<SpectrumModel> parseSpectrumModel(std::string_view name) {
-    if (name == "phillips") return SpectrumModel::Phillips;
-    if (name == "jonswap") return SpectrumModel::Jonswap;
-    return std::nullopt;
-}
 
 double omnidirectionalSpectrum(const SpectrumOptions& o, double k) {
     if (k <= 0.0) return 0.0;

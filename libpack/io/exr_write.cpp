@@ -259,21 +259,4 @@ Status writeTiledExr(const std::string& path, const TiledExrContent& content, co
     return temp.commit();
 }
 
-const char* compressionName(Compression compression) {
-    switch (compression) {
-        case Compression::None: return "none";
-        case Compression::Rle: return "rle";
-        case Compression::Zips: return "zips";
-        case Compression::Zip: return "zip";
-        case Compression::Piz: return "piz";
-    }
-    return "?";
-}
-
-std::optional<Compression> parseCompression(std::string_view name) {
-    for (Compression c : {Compression::None, Compression::Rle, Compression::Zips, Compression::Zip, Compression::Piz})
-        if (name == compressionName(c)) return c;
-    return std::nullopt;
-}
-
 }  // namespace heightpack

@@ -88,15 +88,6 @@ std::string numberText(double v) {
 
 }  // namespace
 
-std::optional<ChannelSelect> parseChannelSelect(std::string_view name) {
-    if (name == "r") return ChannelSelect::R;
-    if (name == "g") return ChannelSelect::G;
-    if (name == "b") return ChannelSelect::B;
-    if (name == "a") return ChannelSelect::A;
-    if (name == "luma") return ChannelSelect::Luma;
-    return std::nullopt;  // Named is never parsed: it needs the name as well
-}
-
 Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& options) {
     detail::StderrSilencer quiet(options.silenceDecoderMessages);
     detail::SizeLimits limits;
@@ -190,7 +181,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
                 src.channelNote = "grey image: its one grey channel '" + spec.channelnames[channel] +
                                   "' stands for red, green and blue";
     }
-    src.channelUsed = luma ? "luma" : spec.channelnames[channel];
+    src.channelUsed = luma ? nameOf(ChannelSelect::Luma) : spec.channelnames[channel];
 
     // Values back from a heightpack texture: value = (stored - offset) / scale.
     double scale = 1.0, offset = 0.0;

@@ -74,7 +74,7 @@ TEST(CacheKey, NormalOptions) {
         {"kernel", [](NormalOptions& o) { o.kernel = SlopeKernel::Scharr; }, true},
         {"wrap", [](NormalOptions& o) { o.wrap = Wrap::Clamp; }, true},
         {"convention", [](NormalOptions& o) { o.convention = NormalConvention::DirectX; }, true},
-        {"alpha", [](NormalOptions& o) { o.alpha = NormalAlpha::Variance; }, true},
+        {"alpha", [](NormalOptions& o) { o.alpha = NormalAlpha::SlopeVariance; }, true},
         {"threads", [](NormalOptions& o) { o.threads = 2; }, false},
     }});
 }

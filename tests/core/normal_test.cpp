@@ -183,7 +183,7 @@ TEST(Normal, VarianceInAlphaIsTheSlopeVarianceTheFilterRemoved) {
     NormalOptions o;
     o.tileWidth = tile;
     o.heightRange = 1.0;
-    o.alpha = NormalAlpha::Variance;
+    o.alpha = NormalAlpha::SlopeVariance;
     const Image heights = makeImage(size, size, [&](int i, int) {
         const double x = (i + 0.5) * tile / size;
         return static_cast<float>(0.5 + 0.2 * std::sin(2 * kPi * x / tile) + a2 * std::sin(2 * kPi * x / l2));

@@ -8,6 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "heightpack/core/fresnel.hpp"
+#include "heightpack/core/image.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/normal.hpp"
 #include "heightpack/core/result.hpp"
 
 namespace heightpack {
@@ -30,8 +34,8 @@ struct MaterialTexture {
 struct DisplacementLayer {
     std::string name;
     MaterialTexture texture;           // neighbour4 packed RGBA32F
-    std::string wrap = "periodic";
-    std::string filter = "kaiser";
+    Wrap wrap = Wrap::Periodic;
+    Filter filter = Filter::Kaiser;
     double heightScale = 1.0;          // stored = heightOffset + heightScale * painted value
     double heightOffset = 0.0;
     double tileSize = 64.0;            // metres one tile spans: A_i = 1 / tileSize
@@ -50,8 +54,8 @@ struct NormalOctave {
 struct NormalLayer {
     std::string name;
     MaterialTexture texture;           // RGB(A) float normals, one per mip level
-    std::string convention = "opengl"; // opengl or directx (green flipped)
-    std::string alpha = "none";        // none, height or variance
+    NormalConvention convention = NormalConvention::OpenGL;  // opengl or directx (green flipped)
+    NormalAlpha alpha = NormalAlpha::None;                   // none, height or variance
     double tileSize = 8.0;             // metres the map spans when its slopes were measured
     double heightRange = 0.25;         // metres between a stored 0 and 1 when its slopes were measured
     std::vector<NormalOctave> octaves;
@@ -61,8 +65,8 @@ struct FresnelLayer {
     std::string name;
     MaterialTexture texture;           // RGBA ramp: rgb water colour, a reflectance
     double ior = 1.333;
-    std::string model = "exact";
-    std::string index = "nv";          // nv: u = N.V; 2nv: u = saturate(2 N.V)
+    FresnelModel model = FresnelModel::Exact;
+    FresnelIndex index = FresnelIndex::NdotV;  // nv: u = N.V; 2nv: u = saturate(2 N.V)
 };
 
 struct FoamLayer {
@@ -87,7 +91,8 @@ struct MaterialDescription {
 // exactly, no timestamps, so the same material always gives the same bytes.
 std::string materialJson(const MaterialDescription& material);
 
-// Reads a material.json. Texture files stay relative; resolve them against the file's folder.
+// Reads a material.json. Every name (wrap, filter, convention, alpha, model, index) must be one its
+// enum's table lists; any other is a damaged file. Texture files stay relative; resolve them against the file's folder.
 Result<MaterialDescription> readMaterial(const std::string& path);
 
 }  // namespace heightpack

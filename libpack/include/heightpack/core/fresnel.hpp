@@ -14,14 +14,28 @@ enum class FresnelModel {
     Exact,    // unpolarised dielectric Fresnel reflectance, (Rs + Rp) / 2
     Schlick,  // R0 + (1 - R0)(1 - cos)^5, R0 = ((n - 1) / (n + 1))^2
 };
-const char* fresnelModelName(FresnelModel model);
+template <>
+struct NameTable<FresnelModel> {
+    static constexpr EnumName<FresnelModel> entries[] = {
+        {FresnelModel::Exact, "exact", "unpolarised dielectric Fresnel reflectance"},
+        {FresnelModel::Schlick, "schlick", "Schlick's approximation"},
+    };
+};
+inline const char* fresnelModelName(FresnelModel model) { return nameOf(model); }
 
 // What the texture coordinate is.
 enum class FresnelIndex {
     NdotV,     // u = N.V
     TwoNdotV,  // u = saturate(2 N.V), as the Isidoro shader indexes it: the ramp covers N.V in [0, 0.5]
 };
-const char* fresnelIndexName(FresnelIndex index);
+template <>
+struct NameTable<FresnelIndex> {
+    static constexpr EnumName<FresnelIndex> entries[] = {
+        {FresnelIndex::NdotV, "nv", "u = N.V"},
+        {FresnelIndex::TwoNdotV, "2nv", "u = saturate(2 N.V)"},
+    };
+};
+inline const char* fresnelIndexName(FresnelIndex index) { return nameOf(index); }
 
 using Rgb = std::array<double, 3>;  // linear RGB in [0,1]
 

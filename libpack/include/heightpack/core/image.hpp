@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "heightpack/core/names.hpp"
+
 namespace heightpack {
 
 // How a lookup past an edge of an image finds its texel. One mode serves both axes.
@@ -13,8 +15,16 @@ enum class Wrap {
     Clamp,     // the edge texel repeats outward
 };
 
+template <>
+struct NameTable<Wrap> {
+    static constexpr EnumName<Wrap> entries[] = {
+        {Wrap::Periodic, "periodic", "the map is one tile of an endless plane"},
+        {Wrap::Clamp, "clamp", "the edge texel repeats outward"},
+    };
+};
+
 // "periodic" or "clamp".
-const char* wrapName(Wrap wrap);
+inline const char* wrapName(Wrap wrap) { return nameOf(wrap); }
 
 // Maps any integer texel index onto [0, size) with the wrap mode. size must be positive.
 inline int wrapIndex(long long i, int size, Wrap wrap) {

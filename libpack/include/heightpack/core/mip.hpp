@@ -17,8 +17,17 @@ enum class Filter {
     Kaiser,    // sinc windowed by a Kaiser-Bessel window (alpha 4), radius 3; sharp with little ringing
 };
 
-const char* filterName(Filter filter);
-std::optional<Filter> parseFilter(std::string_view name);
+template <>
+struct NameTable<Filter> {
+    static constexpr EnumName<Filter> entries[] = {
+        {Filter::Box, "box", "2x2 average when halving"},
+        {Filter::Triangle, "triangle", "tent, radius 1"},
+        {Filter::Lanczos3, "lanczos3", "sinc windowed by sinc, radius 3"},
+        {Filter::Kaiser, "kaiser", "sinc windowed by Kaiser-Bessel, radius 3"},
+    };
+};
+inline const char* filterName(Filter filter) { return nameOf(filter); }
+inline std::optional<Filter> parseFilter(std::string_view name) { return parseName<Filter>(name); }
 
 // The filter's value at distance x (in destination texels). Exposed for tests and documentation.
 double filterWeight(Filter filter, double x);

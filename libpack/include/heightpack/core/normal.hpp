@@ -15,18 +15,41 @@ enum class SlopeKernel {
     Sobel3,   // central difference smoothed across by (1 2 1) / 4
     Scharr,   // central difference smoothed across by (3 10 3) / 16
 };
-const char* slopeKernelName(SlopeKernel kernel);
-std::optional<SlopeKernel> parseSlopeKernel(std::string_view name);
+template <>
+struct NameTable<SlopeKernel> {
+    static constexpr EnumName<SlopeKernel> entries[] = {
+        {SlopeKernel::Central, "central", "central difference"},
+        {SlopeKernel::Sobel3, "sobel3", "central difference smoothed across by (1 2 1) / 4"},
+        {SlopeKernel::Scharr, "scharr", "central difference smoothed across by (3 10 3) / 16"},
+    };
+};
+inline const char* slopeKernelName(SlopeKernel kernel) { return nameOf(kernel); }
+inline std::optional<SlopeKernel> parseSlopeKernel(std::string_view name) { return parseName<SlopeKernel>(name); }
 
 // Which way green points. OpenGL: +y toward the top of the image as stored (row 0); DirectX: toward the
 // bottom (green negated).
 enum class NormalConvention { OpenGL, DirectX };
+template <>
+struct NameTable<NormalConvention> {
+    static constexpr EnumName<NormalConvention> entries[] = {
+        {NormalConvention::OpenGL, "opengl", "green points toward the top of the stored image"},
+        {NormalConvention::DirectX, "directx", "green flipped"},
+    };
+};
 
 // What the fourth channel holds, if any.
 enum class NormalAlpha {
     None,
     Height,    // the painted height in [0,1], as the D3D11 demo stores it
-    Variance,  // slope variance lost by filtering to this level (Toksvig-style): E[|s|^2] - |E[s]|^2
+    SlopeVariance,  // slope variance lost by filtering to this level (Toksvig-style): E[|s|^2] - |E[s]|^2
+};
+template <>
+struct NameTable<NormalAlpha> {
+    static constexpr EnumName<NormalAlpha> entries[] = {
+        {NormalAlpha::None, "none", "three channels"},
+        {NormalAlpha::Height, "height", "alpha holds the painted height"},
+        {NormalAlpha::SlopeVariance, "variance", "alpha holds the slope variance lost by filtering"},
+    };
 };
 
 struct NormalOptions {
@@ -51,7 +74,7 @@ Image normalsFromHeights(const Image& heights, double texelX, double texelY, con
 
 // The normal of every level of a height mip chain (see generateMipChain), each computed from that
 // level's heights with that level's texel size: tileWidth / levelWidth. Not averaged normals, which
-// flatten too little. With NormalAlpha::Variance, slopeMomentChain must be the chain of |slope|^2 of
+// flatten too little. With NormalAlpha::SlopeVariance, slopeMomentChain must be the chain of |slope|^2 of
 // level 0 filtered like the heights (see slopeMoment); alpha is then max(0, moment - |slope|^2).
 std::vector<Image> generateNormalChain(const std::vector<Image>& heightChain, const NormalOptions& options,
                                        const std::vector<Image>& slopeMomentChain = {});

@@ -14,8 +14,15 @@ enum class SpectrumModel {
     Phillips,  // (alpha/2) k^-3, cut below the largest wind wave exp(-1/(k Lw)^2) and above exp(-k^2 l^2)
     Jonswap,   // fetch-limited: Hasselmann et al. 1973, peak enhancement gamma
 };
-const char* spectrumModelName(SpectrumModel model);
-std::optional<SpectrumModel> parseSpectrumModel(std::string_view name);
+template <>
+struct NameTable<SpectrumModel> {
+    static constexpr EnumName<SpectrumModel> entries[] = {
+        {SpectrumModel::Phillips, "phillips", "Phillips spectrum"},
+        {SpectrumModel::Jonswap, "jonswap", "fetch-limited JONSWAP spectrum"},
+    };
+};
+inline const char* spectrumModelName(SpectrumModel model) { return nameOf(model); }
+inline std::optional<SpectrumModel> parseSpectrumModel(std::string_view name) { return parseName<SpectrumModel>(name); }
 
 inline constexpr double kGravity = 9.81;
 

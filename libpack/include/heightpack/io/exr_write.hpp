@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "heightpack/core/names.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/attributes.hpp"
 
@@ -14,8 +15,18 @@ namespace heightpack {
 
 // EXR compressions offered: the lossless ones, since heights must come back exactly as computed.
 enum class Compression { None, Rle, Zips, Zip, Piz };
-const char* compressionName(Compression compression);
-std::optional<Compression> parseCompression(std::string_view name);
+template <>
+struct NameTable<Compression> {
+    static constexpr EnumName<Compression> entries[] = {
+        {Compression::None, "none", "no compression"},
+        {Compression::Rle, "rle", "run-length"},
+        {Compression::Zips, "zips", "zlib, one scanline at a time"},
+        {Compression::Zip, "zip", "zlib, 16 scanlines at a time"},
+        {Compression::Piz, "piz", "wavelet"},
+    };
+};
+inline const char* compressionName(Compression compression) { return nameOf(compression); }
+inline std::optional<Compression> parseCompression(std::string_view name) { return parseName<Compression>(name); }
 
 // A tiled, mip-mapped float EXR described by its level-0 size, channel names, and a function that fills
 // any band of rows of any level on demand, so the writer never holds more than a band of output.

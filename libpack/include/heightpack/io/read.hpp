@@ -16,8 +16,19 @@ namespace heightpack {
 // Which channel of a colour input holds the height. Named: the channel LoadOptions::channelName names
 // (an EXR layer's "height.Y", "Z", "depth"); the others find the channel by its usual names, then by position.
 enum class ChannelSelect { Auto, R, G, B, A, Luma, Named };
+// Auto and Named have no name: Auto is what no choice means, and Named needs the channel's own name.
+template <>
+struct NameTable<ChannelSelect> {
+    static constexpr EnumName<ChannelSelect> entries[] = {
+        {ChannelSelect::R, "r", "the red channel"},
+        {ChannelSelect::G, "g", "the green channel"},
+        {ChannelSelect::B, "b", "the blue channel"},
+        {ChannelSelect::A, "a", "the alpha channel"},
+        {ChannelSelect::Luma, "luma", "Rec. 709 luma of the colour"},
+    };
+};
 // "r", "g", "b", "a", "luma"; nullopt for anything else (which a caller may take as a channel name).
-std::optional<ChannelSelect> parseChannelSelect(std::string_view name);
+inline std::optional<ChannelSelect> parseChannelSelect(std::string_view name) { return parseName<ChannelSelect>(name); }
 
 struct LoadOptions {
     // Auto takes a one-channel image (or grey + alpha), or the channel named Y of any image, and
