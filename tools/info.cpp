@@ -82,7 +82,7 @@ private:
             levels.push_back({{"level", i}, {"width", info.levels[i].width}, {"height", info.levels[i].height},
                               {"channels", channels}});
         }
-        auto attr = [&](const char* name) {
+        auto text = [&](const char* name) {
             const std::string v = findAttribute(info, name);
             return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(v);
         };
@@ -98,11 +98,11 @@ private:
             {"width", info.levels.empty() ? 0 : info.levels[0].width},
             {"height", info.levels.empty() ? 0 : info.levels[0].height},
             {"levelCount", info.levels.size()},
-            {"layout", attr("heightpack:layout")},
-            {"wrap", attr("heightpack:wrap")},
-            {"filter", attr("heightpack:filter")},
-            {"heightScale", attr("heightpack:heightScale")},
-            {"heightOffset", attr("heightpack:heightOffset")},
+            {"layout", text(attr::layout.name)},
+            {"wrap", text(attr::wrap.name)},
+            {"filter", text(attr::filter.name)},
+            {"heightScale", text(attr::heightScale.name)},
+            {"heightOffset", text(attr::heightOffset.name)},
             {"levels", levels},
             {"attributes", attributes},
         };
@@ -118,7 +118,7 @@ private:
         if (info.tiled) std::printf(", tiled %dx%d", info.tileWidth, info.tileHeight);
         std::printf("\n");
         // Every heightpack attribute, in the order the file lists them.
-        const std::string prefix = "heightpack:";
+        const std::string prefix = attr::kPrefix;
         for (const auto& [key, value] : info.attributes)
             if (key.rfind(prefix, 0) == 0) std::printf("  %-13s %s\n", key.substr(prefix.size()).c_str(), value.c_str());
         // Heights are channel 0 in every layout heightpack writes (R of a packed texel is H(i,j)).

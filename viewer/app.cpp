@@ -116,7 +116,7 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer) {
         for (size_t i = 0; i < rgb.size(); ++i) image.pixels[i] = rgb[i] / 255.0f;
         FlatImageOptions flat;
         flat.bits = 8;
-        flat.attributes = {{"heightpack:layout", std::string("screenshot")}, {"heightpack:time", time}};
+        flat.attributes = {attribute(attr::layout, "screenshot"), attribute(attr::time, time)};
         const Status written = writeFlatImage(o.screenshot, image, flat);
         target.destroy();
         if (!written)

@@ -31,14 +31,14 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
                  bool first) {
     auto file = readTextureFile(path, true);
     if (!file) return file.error();
-    const std::string layout = findAttribute(file->attributes, "heightpack:layout");
+    const std::string layout = findAttribute(file->attributes, attr::layout);
     if (first) {
-        const std::string period = findAttribute(file->attributes, "heightpack:loopPeriod");
+        const std::string period = findAttribute(file->attributes, attr::loopPeriod);
         layer.loopPeriod = period.empty() ? 0.0 : std::stod(period);
     }
     if (layout == "neighbour4" || layout == "plain") {
         if (first) {
-            layer.wrap = findAttribute(file->attributes, "heightpack:wrap") == "clamp" ? Wrap::Clamp : Wrap::Periodic;
+            layer.wrap = findAttribute(file->attributes, attr::wrap).value_or(Wrap::Periodic);
             layer.source = layout == "neighbour4" ? "packed texture" : "plain texture, packed in memory";
         }
         for (const Image& level : file->levels) {
@@ -119,7 +119,7 @@ Result<NormalMap> loadNormalMap(const std::string& path) {
     if (file->pixelType != "float" && file->pixelType != "half")
         for (Image& level : map.levels)
             for (float& v : level.pixels) v = 2.0f * v - 1.0f;
-    const bool directx = findAttribute(file->attributes, "heightpack:convention") == "directx";
+    const bool directx = findAttribute(file->attributes, attr::convention) == NormalConvention::DirectX;
     map.greenSign = directx ? 1.0f : -1.0f;
     return map;
 }
@@ -134,7 +134,7 @@ Result<FresnelRamp> loadFresnelRamp(const std::string& path) {
     if (file->pixelType != "float" && file->pixelType != "half")  // a PNG ramp's colours are sRGB-encoded
         for (size_t i = 0; i < ramp.ramp.pixels.size(); ++i)
             if (i % 4 != 3) ramp.ramp.pixels[i] = static_cast<float>(srgbToLinear(ramp.ramp.pixels[i]));
-    ramp.indexScale = findAttribute(file->attributes, "heightpack:index") == "2nv" ? 2.0f : 1.0f;
+    ramp.indexScale = findAttribute(file->attributes, attr::index) == FresnelIndex::TwoNdotV ? 2.0f : 1.0f;
     return ramp;
 }
 

@@ -59,10 +59,10 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     auto texture = readTextureFile(path, options.load.silenceDecoderMessages);
     if (!texture) return texture.error();  // unreadable or damaged at any level: no verdict on part of it
     if (texture->levels.size() > 1) {
-        const std::string layout = findAttribute(texture->attributes, "heightpack:layout");
+        const std::string layout = findAttribute(texture->attributes, attr::layout);
         report.kind = layout.empty() ? "texture" : layout;
         if (layout == "neighbour4" && texture->levels[0].channels == 4) {
-            const Wrap wrap = findAttribute(texture->attributes, "heightpack:wrap") == "clamp" ? Wrap::Clamp : Wrap::Periodic;
+            const Wrap wrap = findAttribute(texture->attributes, attr::wrap).value_or(Wrap::Periodic);
             report.packing = checkPacking(texture->levels, wrap);
         }
         for (const Image& level : texture->levels) {
@@ -97,9 +97,8 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     if (!options.previewPath.empty()) {
         FlatImageOptions flat;
         flat.bits = 8;
-        flat.attributes = {{"heightpack:layout", std::string("seamPreview")},
-                           {"heightpack:source", path},
-                           {"heightpack:threshold", static_cast<float>(options.threshold)}};
+        flat.attributes = {attribute(attr::layout, "seamPreview"), attribute(attr::source, path),
+                           attribute(attr::threshold, static_cast<float>(options.threshold))};
         if (Status s = writeFlatImage(options.previewPath, seamPreview(chain[0], report.worst, options.threshold), flat);
             !s)
             return s.error();

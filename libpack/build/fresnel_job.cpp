@@ -22,14 +22,14 @@ Status writeFresnelRamp(const std::string& output, const FresnelOptions& options
     flat.bits = format == RampFormat::Png8 ? 8 : 32;
     flat.srgbChannels = 3;  // the water colours; the reflectance in alpha stays linear
     flat.attributes = {
-        {"heightpack:layout", std::string("fresnel")},
-        {"heightpack:ior", static_cast<float>(options.ior)},
-        {"heightpack:model", std::string(fresnelModelName(options.model))},
-        {"heightpack:index", std::string(fresnelIndexName(options.index))},
-        {"heightpack:deep", rgbText(options.deep)},
-        {"heightpack:shallow", rgbText(options.shallow)},
-        {"heightpack:texelCentre", 0.5f},
-        {"heightpack:version", version},
+        attribute(attr::layout, "fresnel"),
+        attribute(attr::ior, static_cast<float>(options.ior)),
+        attribute(attr::model, options.model),
+        attribute(attr::index, options.index),
+        attribute(attr::deep, rgbText(options.deep)),
+        attribute(attr::shallow, rgbText(options.shallow)),
+        attribute(attr::texelCentre, 0.5f),
+        attribute(attr::version, version),
     };
     return writeFlatImage(output, makeFresnelRamp(options), flat);
 }

@@ -34,18 +34,18 @@ Result<bool> ensurePowerOfTwo(Image& heights, const std::string& input, bool res
 
 std::vector<ExrAttribute> commonAttributes(std::string_view layout, Wrap wrap, Filter filter, const SourceInfo& source,
                                            const std::string& hash, const std::string& version) {
-    const std::string wrapText = wrapName(wrap);
+    const std::string wrapText = attributeText(wrap);
     return {
-        {"heightpack:layout", std::string(layout)},
-        {"heightpack:wrap", wrapText},
+        attribute(attr::layout, std::string(layout)),
+        attribute(attr::wrap, wrap),
         // The standard attribute OpenImageIO's texture system reads for its wrap modes.
         {"wrapmodes", wrapText + "," + wrapText},
-        {"heightpack:filter", std::string(filterName(filter))},
-        {"heightpack:texelCentre", 0.5f},
+        attribute(attr::filter, filter),
+        attribute(attr::texelCentre, 0.5f),
         // The file name only: the same input packed from another folder gives the same bytes.
-        {"heightpack:source", std::filesystem::path(source.path).filename().string()},
-        {"heightpack:sourceHash", hash},
-        {"heightpack:version", version},
+        attribute(attr::source, std::filesystem::path(source.path).filename().string()),
+        attribute(attr::sourceHash, hash),
+        attribute(attr::version, version),
     };
 }
 

@@ -23,7 +23,7 @@ Result<MaterialTexture> describeTexture(const std::string& folder, const std::st
     t.levels = static_cast<int>(layout->levelSizes.size());
     t.frames = frames;
     if (loopPeriod) {
-        const std::string period = findAttribute(layout->attributes, "heightpack:loopPeriod");
+        const std::string period = findAttribute(layout->attributes, attr::loopPeriod);
         *loopPeriod = period.empty() ? 0.0 : std::stod(period);
     }
     return t;

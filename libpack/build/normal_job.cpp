@@ -21,14 +21,12 @@ std::vector<ExrAttribute> normalAttributes(const NormalJobOptions& options, cons
     const double tileHeight = texelHeight(n, width, height, height) * height;
     auto attributes = detail::commonAttributes("normal", n.wrap, options.filter, source, hash, options.version);
     const std::vector<ExrAttribute> own = {
-        {"heightpack:kernel", std::string(slopeKernelName(n.kernel))},
-        {"heightpack:convention", std::string(n.convention == NormalConvention::OpenGL ? "opengl" : "directx")},
-        {"heightpack:alpha", std::string(n.alpha == NormalAlpha::None     ? "none"
-                                         : n.alpha == NormalAlpha::Height ? "height"
-                                                                          : "slopeVariance")},
-        {"heightpack:tileWidth", static_cast<float>(n.tileWidth)},
-        {"heightpack:tileHeight", static_cast<float>(tileHeight)},
-        {"heightpack:heightRange", static_cast<float>(n.heightRange)},
+        attribute(attr::kernel, n.kernel),
+        attribute(attr::convention, n.convention),
+        attribute(attr::alpha, n.alpha),
+        attribute(attr::tileWidth, static_cast<float>(n.tileWidth)),
+        attribute(attr::tileHeight, static_cast<float>(tileHeight)),
+        attribute(attr::heightRange, static_cast<float>(n.heightRange)),
     };
     attributes.insert(attributes.end(), own.begin(), own.end());
     return attributes;

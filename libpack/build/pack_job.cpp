@@ -24,11 +24,11 @@ std::vector<ExrAttribute> heightAttributes(std::string_view layout, const PackOp
                                            const SourceInfo& source, const std::string& sourceHash) {
     auto attributes =
         detail::commonAttributes(layout, options.mip.wrap, options.mip.filter, source, sourceHash, options.version);
-    attributes.push_back({"heightpack:heightScale", options.scale});
-    attributes.push_back({"heightpack:heightOffset", options.offset});
+    attributes.push_back(attribute(attr::heightScale, options.scale));
+    attributes.push_back(attribute(attr::heightOffset, options.offset));
     if (!source.loopPeriod.empty()) {
-        attributes.push_back({"heightpack:loopPeriod", std::stof(source.loopPeriod)});
-        attributes.push_back({"heightpack:time", source.time.empty() ? 0.0f : std::stof(source.time)});
+        attributes.push_back(attribute(attr::loopPeriod, std::stof(source.loopPeriod)));
+        attributes.push_back(attribute(attr::time, source.time.empty() ? 0.0f : std::stof(source.time)));
     }
     return attributes;
 }

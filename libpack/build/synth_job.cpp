@@ -66,20 +66,20 @@ Result<SynthReport> synthesise(const std::string& output, const SynthOptions& op
         }
         flat.bits = metres ? 32 : 16;
         flat.attributes = {
-            {"heightpack:layout", std::string("synthesised")},
-            {"heightpack:spectrum", std::string(spectrumModelName(s.model))},
-            {"heightpack:wind", std::string(wind)},
-            {"heightpack:tileWidth", static_cast<float>(s.tileSize)},
-            {"heightpack:seed", std::to_string(s.seed)},
-            {"heightpack:heightScale", static_cast<float>(scale)},
-            {"heightpack:heightOffset", static_cast<float>(offset)},
-            {"heightpack:version", options.version},
+            attribute(attr::layout, "synthesised"),
+            attribute(attr::spectrum, s.model),
+            attribute(attr::wind, std::string(wind)),
+            attribute(attr::tileWidth, static_cast<float>(s.tileSize)),
+            attribute(attr::seed, std::to_string(s.seed)),
+            attribute(attr::heightScale, static_cast<float>(scale)),
+            attribute(attr::heightOffset, static_cast<float>(offset)),
+            attribute(attr::version, options.version),
         };
-        if (s.model == SpectrumModel::Jonswap) flat.attributes.push_back({"heightpack:fetch", static_cast<float>(s.fetch)});
+        if (s.model == SpectrumModel::Jonswap) flat.attributes.push_back(attribute(attr::fetch, static_cast<float>(s.fetch)));
         if (options.frames > 1) {
-            flat.attributes.push_back({"heightpack:frame", std::to_string(f) + "/" + std::to_string(options.frames)});
-            flat.attributes.push_back({"heightpack:loopPeriod", static_cast<float>(period)});
-            flat.attributes.push_back({"heightpack:time", static_cast<float>(f * period / options.frames)});
+            flat.attributes.push_back(attribute(attr::frame, std::to_string(f) + "/" + std::to_string(options.frames)));
+            flat.attributes.push_back(attribute(attr::loopPeriod, static_cast<float>(period)));
+            flat.attributes.push_back(attribute(attr::time, static_cast<float>(f * period / options.frames)));
         }
         const std::string path = frameFileName(output, f, options.frames);
         if (Status w = writeFlatImage(path, image, flat); !w) return w.error();

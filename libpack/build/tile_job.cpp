@@ -225,15 +225,15 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     FlatImageOptions flat;
     flat.bits = report.bits;
     flat.attributes = {
-        {"heightpack:tileMethod", report.methodUsed},
-        {"heightpack:source", std::filesystem::path(input).filename().string()},
-        {"heightpack:sourceHash", loaded->hash},
-        {"heightpack:seamsBefore", verdictText(report.before)},
-        {"heightpack:seamsAfter", verdictText(report.after)},
-        {"heightpack:version", options.version},
+        attribute(attr::tileMethod, report.methodUsed),
+        attribute(attr::source, std::filesystem::path(input).filename().string()),
+        attribute(attr::sourceHash, loaded->hash),
+        attribute(attr::seamsBefore, verdictText(report.before)),
+        attribute(attr::seamsAfter, verdictText(report.after)),
+        attribute(attr::version, options.version),
     };
     if (report.methodUsed.find("crossfade") != std::string::npos)
-        flat.attributes.push_back({"heightpack:crossfadeWidth", static_cast<float>(report.crossfadeWidth)});
+        flat.attributes.push_back(attribute(attr::crossfadeWidth, static_cast<float>(report.crossfadeWidth)));
     progress("write", 0.0);
     if (Status s = writeFlatImage(output, result, flat); !s) return s.error();
     report.written = true;

@@ -1,5 +1,7 @@
 #include "heightpack/io/read.hpp"
 
+#include "heightpack/io/attributes.hpp"
+
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -107,12 +109,12 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     src.height = spec.height;
     src.channels = spec.nchannels;
     // Float in an EXR, text in a PNG: read either as text.
-    if (const OIIO::ParamValue* p = spec.find_attribute("heightpack:loopPeriod")) src.loopPeriod = p->get_string();
-    if (const OIIO::ParamValue* p = spec.find_attribute("heightpack:time")) src.time = p->get_string();
+    if (const OIIO::ParamValue* p = spec.find_attribute(attr::loopPeriod.name)) src.loopPeriod = p->get_string();
+    if (const OIIO::ParamValue* p = spec.find_attribute(attr::time.name)) src.time = p->get_string();
     // Later steps write these as float attributes: anything else in them (a hand-edited PNG text chunk)
     // is damaged metadata, not a crash or a non-finite attribute later.
-    for (const auto& [name, text] : {std::pair<const char*, const std::string&>{"heightpack:loopPeriod", src.loopPeriod},
-                                     std::pair<const char*, const std::string&>{"heightpack:time", src.time}}) {
+    for (const auto& [name, text] : {std::pair<const char*, const std::string&>{attr::loopPeriod.name, src.loopPeriod},
+                                     std::pair<const char*, const std::string&>{attr::time.name, src.time}}) {
         if (text.empty()) continue;
         char* end = nullptr;
         const double v = std::strtod(text.c_str(), &end);
@@ -124,7 +126,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     const int colourChannels = spec.nchannels - (spec.alpha_channel >= 0 ? 1 : 0);
     const bool colour = colourChannels > 1;
     // A texture heightpack wrote: packed (R = H(i,j)) or plain (Y), its values recorded as offset + scale * value.
-    const std::string layout = spec.get_string_attribute("heightpack:layout");
+    const std::string layout = spec.get_string_attribute(attr::layout.name);
     const bool heightTexture = layout == "neighbour4" || layout == "plain";
     const auto findName = [&](const char* name) {
         const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
@@ -186,8 +188,8 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     // Values back from a heightpack texture: value = (stored - offset) / scale.
     double scale = 1.0, offset = 0.0;
     if (heightTexture && !luma) {
-        scale = recordedNumber(spec, "heightpack:heightScale").value_or(1.0);
-        offset = recordedNumber(spec, "heightpack:heightOffset").value_or(0.0);
+        scale = recordedNumber(spec, attr::heightScale.name).value_or(1.0);
+        offset = recordedNumber(spec, attr::heightOffset.name).value_or(0.0);
         if (scale == 0.0) scale = 1.0;
         src.channelNote = std::string(layout == "neighbour4" ? "packed" : "plain") + " heightpack texture: heights from '" +
                           src.channelUsed + "' of level 0, mapped back to values through its heightScale " +

@@ -140,4 +140,60 @@ TEST(Material, BadFilesAreBadInputNamingTheFile) {
 }
 
 }  // namespace
+// material.json holds the tables' names; its parsed form holds the enums.
+// A name no table lists is a damaged file.
+TEST(Material, NamesInTheFileEnumsInTheParsedForm) {
+    MaterialDescription m;
+    m.name = "sea";
+    DisplacementLayer d;
+    d.name = "long";
+    d.texture = {"long.exr", 64, 64, 7, 1};
+    d.wrap = Wrap::Clamp;
+    d.filter = Filter::Lanczos3;
+    m.displacement.push_back(d);
+    NormalLayer n;
+    n.name = "n";
+    n.texture = {"n.exr", 64, 64, 7, 1};
+    n.convention = NormalConvention::DirectX;
+    n.alpha = NormalAlpha::SlopeVariance;
+    n.octaves.push_back({8.0, {0.0, 0.0}, 1.0});
+    m.normals = n;
+    FresnelLayer f;
+    f.name = "f";
+    f.texture = {"f.exr", 256, 1, 1, 1};
+    f.model = FresnelModel::Schlick;
+    f.index = FresnelIndex::TwoNdotV;
+    m.fresnel = f;
+    const std::string text = materialJson(m);
+    for (const char* word : {"\"wrap\": \"clamp\"", "\"filter\": \"lanczos3\"", "\"convention\": \"directx\"",
+                             "\"alpha\": \"variance\"", "\"model\": \"schlick\"", "\"index\": \"2nv\""})
+        EXPECT_NE(text.find(word), std::string::npos) << word << "\n" << text;
+
+    const std::string path = ::testing::TempDir() + "names_material.json";
+    {
+        std::ofstream out(path, std::ios::binary);
+        out << text;
+    }
+    auto read = readMaterial(path);
+    ASSERT_TRUE(read.ok()) << read.error().what;
+    EXPECT_EQ(read->displacement[0].wrap, Wrap::Clamp);
+    EXPECT_EQ(read->displacement[0].filter, Filter::Lanczos3);
+    EXPECT_EQ(read->normals->convention, NormalConvention::DirectX);
+    EXPECT_EQ(read->normals->alpha, NormalAlpha::SlopeVariance);
+    EXPECT_EQ(read->fresnel->model, FresnelModel::Schlick);
+    EXPECT_EQ(read->fresnel->index, FresnelIndex::TwoNdotV);
+    EXPECT_EQ(materialJson(*read), text);
+
+    std::string damaged = text;
+    damaged.replace(damaged.find("\"clamp\""), 7, "\"mirror\"");
+    {
+        std::ofstream out(path, std::ios::binary);
+        out << damaged;
+    }
+    auto refused = readMaterial(path);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().what.find("displacement[0].wrap (one of: periodic, clamp)"), std::string::npos)
+        << refused.error().what;
+}
+
 }  // namespace heightpack

@@ -1,8 +1,17 @@
-// Metadata written into texture headers.
+// Metadata written into texture headers, and the typed schema of the heightpack:* keys: one constant per
+// key, carrying the type of its value, used by every writer and reader instead of string literals.
 #pragma once
 
 #include <string>
+#include <utility>
 #include <variant>
+
+#include "heightpack/core/fresnel.hpp"
+#include "heightpack/core/image.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/names.hpp"
+#include "heightpack/core/normal.hpp"
+#include "heightpack/core/spectrum.hpp"
 
 namespace heightpack {
 
@@ -11,5 +20,74 @@ struct ExrAttribute {
     std::string name;
     std::variant<std::string, float> value;
 };
+
+// A heightpack:* key and the type of its value: std::string, float, or an enum with a NameTable (written
+// as its name).
+template <class T>
+struct AttributeKey {
+    const char* name;
+};
+
+namespace attr {
+inline constexpr const char* kPrefix = "heightpack:";  // every key below starts with it
+// Every file heightpack writes.
+inline constexpr AttributeKey<std::string> layout{"heightpack:layout"};  // neighbour4, plain, normal, fresnel, ...
+inline constexpr AttributeKey<std::string> version{"heightpack:version"};
+inline constexpr AttributeKey<float> texelCentre{"heightpack:texelCentre"};
+inline constexpr AttributeKey<std::string> source{"heightpack:source"};  // the input's file name
+inline constexpr AttributeKey<std::string> sourceHash{"heightpack:sourceHash"};
+// Height textures (packed, plain) and synthesised maps: stored = offset + scale * value.
+inline constexpr AttributeKey<Wrap> wrap{"heightpack:wrap"};
+inline constexpr AttributeKey<Filter> filter{"heightpack:filter"};
+inline constexpr AttributeKey<float> heightScale{"heightpack:heightScale"};
+inline constexpr AttributeKey<float> heightOffset{"heightpack:heightOffset"};
+// Sequences: a float in an EXR, text in a PNG.
+inline constexpr AttributeKey<float> loopPeriod{"heightpack:loopPeriod"};
+inline constexpr AttributeKey<float> time{"heightpack:time"};
+inline constexpr AttributeKey<std::string> frame{"heightpack:frame"};  // "F/FRAMES"
+// Normal maps.
+inline constexpr AttributeKey<SlopeKernel> kernel{"heightpack:kernel"};
+inline constexpr AttributeKey<NormalConvention> convention{"heightpack:convention"};
+inline constexpr AttributeKey<NormalAlpha> alpha{"heightpack:alpha"};
+inline constexpr AttributeKey<float> tileWidth{"heightpack:tileWidth"};  // metres; synth: the tile's size
+inline constexpr AttributeKey<float> tileHeight{"heightpack:tileHeight"};
+inline constexpr AttributeKey<float> heightRange{"heightpack:heightRange"};
+// Fresnel ramps.
+inline constexpr AttributeKey<float> ior{"heightpack:ior"};
+inline constexpr AttributeKey<FresnelModel> model{"heightpack:model"};
+inline constexpr AttributeKey<FresnelIndex> index{"heightpack:index"};
+inline constexpr AttributeKey<std::string> deep{"heightpack:deep"};  // "r,g,b"
+inline constexpr AttributeKey<std::string> shallow{"heightpack:shallow"};
+// Synthesised seas.
+inline constexpr AttributeKey<SpectrumModel> spectrum{"heightpack:spectrum"};
+inline constexpr AttributeKey<std::string> wind{"heightpack:wind"};
+inline constexpr AttributeKey<std::string> seed{"heightpack:seed"};
+inline constexpr AttributeKey<float> fetch{"heightpack:fetch"};
+// Tiled maps.
+inline constexpr AttributeKey<std::string> tileMethod{"heightpack:tileMethod"};
+inline constexpr AttributeKey<std::string> seamsBefore{"heightpack:seamsBefore"};
+inline constexpr AttributeKey<std::string> seamsAfter{"heightpack:seamsAfter"};
+inline constexpr AttributeKey<float> crossfadeWidth{"heightpack:crossfadeWidth"};
+// Seam previews.
+inline constexpr AttributeKey<float> threshold{"heightpack:threshold"};
+}  // namespace attr
+
+// The word a header holds for an enum value: its table name, except that a variance normal map has
+// always said "slopeVariance" in its header (the manifest and material.json say "variance").
+template <class E>
+const char* attributeText(E value) {
+    return nameOf(value);
+}
+inline const char* attributeText(NormalAlpha alpha) {
+    return alpha == NormalAlpha::SlopeVariance ? "slopeVariance" : nameOf(alpha);
+}
+
+// One attribute of the schema with its value.
+inline ExrAttribute attribute(AttributeKey<std::string> key, std::string value) { return {key.name, std::move(value)}; }
+inline ExrAttribute attribute(AttributeKey<float> key, float value) { return {key.name, value}; }
+template <class E>
+ExrAttribute attribute(AttributeKey<E> key, E value) {
+    return {key.name, std::string(attributeText(value))};
+}
 
 }  // namespace heightpack

@@ -1,12 +1,14 @@
 // What is in an image file: size, channels, mip levels with per-level statistics, and header attributes.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/io/attributes.hpp"
 
 namespace heightpack {
 
@@ -64,6 +66,18 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
 std::string findAttribute(const Attributes& attributes, const std::string& name);
 inline std::string findAttribute(const FileInfo& info, const std::string& name) {
     return findAttribute(info.attributes, name);
+}
+// The text of a schema key (see attributes.hpp), or empty.
+inline std::string findAttribute(const Attributes& attributes, AttributeKey<std::string> key) {
+    return findAttribute(attributes, key.name);
+}
+inline std::string findAttribute(const Attributes& attributes, AttributeKey<float> key) {
+    return findAttribute(attributes, key.name);
+}
+// The value of an enum key through its table; nullopt when absent or not a name the table lists.
+template <class E>
+std::optional<E> findAttribute(const Attributes& attributes, AttributeKey<E> key) {
+    return parseName<E>(findAttribute(attributes, key.name));
 }
 
 }  // namespace heightpack
