@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "command.hpp"
+#include "hints.hpp"
 #include "heightpack/build/check_job.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/threads.hpp"
@@ -91,7 +92,7 @@ private:
                               {"failure", seamFailureJson(r.failure, t)},
                               {"worst", {{"leftRight", seamScoreJson(r.worst.leftRight, t)},
                                          {"topBottom", seamScoreJson(r.worst.topBottom, t)}}}};
-        if (!r.note.empty()) doc["note"] = r.note;
+        if (!r.note.empty()) doc["note"] = cliNote(r.note, r.noteFix);
         if (r.packing)
             doc["packing"] = {{"consistent", r.packing->consistent}, {"maxError", r.packing->maxError},
                               {"firstBadLevel", r.packing->firstBadLevel}};
@@ -112,7 +113,7 @@ private:
         const double t = r.threshold;
         std::printf("%s: %s (threshold %s; 0 to about 5 is how any cut scores by chance)\n", r.input.c_str(),
                     r.tiles ? "tiles" : "does NOT tile", seamScoreText(t, t).c_str());
-        if (!r.note.empty()) std::printf("  note: %s\n", r.note.c_str());
+        if (!r.note.empty()) std::printf("  note: %s\n", cliNote(r.note, r.noteFix).c_str());
         if (!r.source.channelNote.empty()) std::printf("  note: %s\n", r.source.channelNote.c_str());
         std::printf("  %-5s %-11s %-26s %-26s\n", "level", "size", "left/right value  slope", "top/bottom value  slope");
         auto cell = [&](const SeamScore& s) {

@@ -1,4 +1,5 @@
 #include "command.hpp"
+#include "hints.hpp"
 
 #include <unistd.h>
 
@@ -28,7 +29,7 @@ void printError(const Error& error) {
     std::string line = "heightpack: error: ";
     if (!error.path.empty()) line += error.path + ": ";
     line += error.what;
-    if (!error.hint.empty()) line += " (" + error.hint + ")";
+    if (const std::string hint = cliHint(error); !hint.empty()) line += " (" + hint + ")";
     // One line, whatever a library put in its message.
     for (char& c : line)
         if (c == '\n' || c == '\r') c = ' ';

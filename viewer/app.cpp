@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "heightpack/io/image_write.hpp"
+#include "hints.hpp"
 #include "material_settings.hpp"
 #include "panel.hpp"
 
@@ -120,7 +121,7 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer) {
         const Status written = writeFlatImage(o.screenshot, image, flat);
         target.destroy();
         if (!written)
-            return fail(written.error().path + ": " + written.error().what, written.error().hint, 4);
+            return fail(written.error().path + ": " + written.error().what, viewerHint(written.error()), 4);
         if (!o.json && o.bench == 0) std::printf("wrote %s: %dx%d at t = %.2f s\n", o.screenshot.c_str(), o.width, o.height, time);
     }
     target.destroy();

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "app.hpp"
+#include "hints.hpp"
 #include "material_settings.hpp"
 #include "heightpack/version.hpp"
 
@@ -103,7 +104,8 @@ int main(int argc, char** argv) {
         const std::string path = o.files.heights[0];  // a copy: applyMaterial replaces o.files
         if (heightpack::Status s = applyMaterial(path, o.files, o.settings, note); !s) {
             const heightpack::Error& e = s.error();
-            std::fprintf(stderr, "heightpack-view: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(), e.hint.c_str());
+            std::fprintf(stderr, "heightpack-view: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(),
+                         viewerHint(e).c_str());
             return 3;
         }
         if (!note.empty()) std::fprintf(stderr, "heightpack-view: note: %s\n", note.c_str());
@@ -150,7 +152,8 @@ int main(int argc, char** argv) {
     auto scene = loadScene(o.files);
     if (!scene) {
         const heightpack::Error& e = scene.error();
-        std::fprintf(stderr, "heightpack-view: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(), e.hint.c_str());
+        std::fprintf(stderr, "heightpack-view: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(),
+                         viewerHint(e).c_str());
         return 3;
     }
     return runViewer(o, *scene);

@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <new>
 
+#include "manifest_hints.hpp"
+
 namespace heightpack::detail {
 
 std::string describeFailure(const CheckReport& r) {
@@ -16,13 +18,15 @@ void guarded(Step& s, const std::function<void()>& body) {
     try {
         body();
     } catch (const std::bad_alloc&) {
-        s.error = Error{ErrorKind::Internal, s.report.input, "out of memory", "use fewer --jobs or --threads"};
+        s.error = withFix(Error{ErrorKind::Internal, s.report.input, "out of memory", "run fewer jobs or threads at once"},
+                          Fix::FewerJobs);
     } catch (const std::exception& e) {
         s.error = Error{ErrorKind::Internal, s.report.input, std::string("internal error: ") + e.what(), "please report this"};
     }
 }
 
 Error inAsset(Error e, const Step& s, const std::string& manifestPath) {
+    e = inManifestTerms(std::move(e));
     e.hint += (e.hint.empty() ? "" : "; ") + std::string("asset '") + s.report.name + "' of " + manifestPath + ":" +
               std::to_string(s.report.line);
     return e;
@@ -33,19 +37,16 @@ Error tileFailure(const Step& s, const std::string& manifestPath) {
     if (s.report.frame >= 0) what += " frame " + std::to_string(s.report.frame);
     what += " (" + s.report.input + ") does not tile: " + s.report.check->failure;
     // The fix that works: tile judges with the same measure and threshold, on the chain this filter makes,
-    // and a float EXR holds whatever heights the fix needs.
+    // and a float EXR holds whatever heights the fix needs. The shell words the tile command.
     const std::filesystem::path source(s.report.input);
-    std::string fix = "heightpack tile " + s.report.input + " -o " +
-                      (source.parent_path() / (source.stem().string() + "_tiled.exr")).string();
-    if (s.check.mip.filter != Filter::Kaiser) fix += std::string(" --filter ") + filterName(s.check.mip.filter);
-    if (s.check.threshold != kDefaultSeamThreshold) {
-        char threshold[32];
-        std::snprintf(threshold, sizeof threshold, " --threshold %g", s.check.threshold);
-        fix += threshold;
-    }
-    return badInput(manifestPath + ":" + std::to_string(s.report.line), what,
-                    "make it tile with '" + fix + "' and use that as the source, or set "
-                    "tileable = false if it is not meant to tile");
+    const std::string tiled = (source.parent_path() / (source.stem().string() + "_tiled.exr")).string();
+    char threshold[32] = "";
+    if (s.check.threshold != kDefaultSeamThreshold) std::snprintf(threshold, sizeof threshold, "%g", s.check.threshold);
+    const std::string filter = s.check.mip.filter != Filter::Kaiser ? filterName(s.check.mip.filter) : "";
+    return withFix(badInput(manifestPath + ":" + std::to_string(s.report.line), what,
+                            "make it tile with heightpack tile (same filter and threshold) and use that as the "
+                            "source, or set tileable = false if it is not meant to tile"),
+                   Fix::MakeTileable, {s.report.input, tiled, filter, threshold});
 }
 
 }  // namespace heightpack::detail

@@ -37,7 +37,7 @@ double sampleQuantum(const SourceInfo& source) {
 
 std::vector<Image> seamChain(const Image& heights, const MipOptions& mip, std::string* note) {
     if (isPowerOfTwo(heights.width) && isPowerOfTwo(heights.height)) return generateMipChain(heights, mip);
-    if (note) *note = "sides are not powers of two: level 0 only (pack would need --resize pow2)";
+    if (note) *note = "sides are not powers of two: level 0 only";
     return {heights};
 }
 
@@ -79,6 +79,7 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
         progress("mip", 0.0);
         seamOptions.quantum = sampleQuantum(loaded->source);
         chain = seamChain(loaded->heights, options.mip, &report.note);
+        if (!report.note.empty()) report.noteFix = Fix::ResizeToPowerOfTwo;  // pack would have to resize
     }
 
     progress("check", 0.0);

@@ -17,16 +17,18 @@ Result<LoadedInput> loadInput(const std::string& input, LoadOptions options, int
 }
 
 Result<bool> ensurePowerOfTwo(Image& heights, const std::string& input, bool resize, const MipOptions& mip,
-                              std::string_view alternative) {
+                              bool levelZeroAlone) {
     if (isPowerOfTwo(heights.width) && isPowerOfTwo(heights.height)) return false;
     const int w = nextPowerOfTwo(heights.width), h = nextPowerOfTwo(heights.height);
     if (!resize) {
-        std::string hint = "pass --resize pow2 to resample it to " + std::to_string(w) + "x" + std::to_string(h);
-        if (!alternative.empty()) hint += ", or " + std::string(alternative);
-        return badInput(input,
-                        "is " + std::to_string(heights.width) + "x" + std::to_string(heights.height) +
-                            ", but mip chains need power-of-two sides",
-                        hint);
+        const std::string size = std::to_string(w) + "x" + std::to_string(h);
+        std::string hint = "resample it to " + size;
+        if (levelZeroAlone) hint += ", or write level 0 alone as an 8-bit PNG";
+        return withFix(badInput(input,
+                                "is " + std::to_string(heights.width) + "x" + std::to_string(heights.height) +
+                                    ", but mip chains need power-of-two sides",
+                                hint),
+                       levelZeroAlone ? Fix::ResizeOrLevelZeroOnly : Fix::ResizeToPowerOfTwo, {size});
     }
     heights = resample(heights, w, h, mip);
     return true;

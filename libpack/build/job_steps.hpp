@@ -22,10 +22,11 @@ struct LoadedInput {
 Result<LoadedInput> loadInput(const std::string& input, LoadOptions options, int threads);
 
 // Makes heights' sides powers of two: resamples them up to the next ones with mip's filter and wrap when
-// resize is set (returns true), else fails with BadInput naming the size and the --resize hint, plus
-// `alternative` when not empty. Returns false when nothing needed doing.
+// resize is set (returns true), else fails with BadInput and Fix::ResizeToPowerOfTwo (the size it would
+// get in fixArgs), or Fix::ResizeOrLevelZeroOnly when levelZeroAlone says that writing level 0 alone is
+// another way out. Returns false when nothing needed doing.
 Result<bool> ensurePowerOfTwo(Image& heights, const std::string& input, bool resize, const MipOptions& mip,
-                              std::string_view alternative = {});
+                              bool levelZeroAlone = false);
 
 // The attributes every heightpack texture carries: layout, wrap (and OpenImageIO's wrapmodes), filter,
 // texel centre, source file name, source hash, version.

@@ -75,8 +75,7 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         flat.attributes = normalAttributes(options, report.source, report.sourceHash, w0, h0);
         if (Status s = writeFlatImage(output, normals, flat); !s) return s.error();
     } else {
-        auto resized = detail::ensurePowerOfTwo(heights, input, options.resizeToPowerOfTwo, mip,
-                                                "--format png8 for level 0 alone");
+        auto resized = detail::ensurePowerOfTwo(heights, input, options.resizeToPowerOfTwo, mip, true);
         if (!resized) return resized.error();
         report.resized = *resized;
         progress("mip", 0.0);

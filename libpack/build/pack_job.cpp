@@ -42,7 +42,8 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     if (options.packed && !options.plainOutput.empty()) {
         if (std::filesystem::path(options.plainOutput).lexically_normal() ==
             std::filesystem::path(output).lexically_normal())
-            return cannotWrite(options.plainOutput, "is also the packed output", "give --emit-plain another name");
+            return withFix(cannotWrite(options.plainOutput, "is also the packed output", "give the plain output another name"),
+                           Fix::RenamePlainOutput);
         if (Status s = checkWritable(options.plainOutput); !s) return s.error();
     }
 

@@ -197,9 +197,9 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
         else
             std::snprintf(what, sizeof what, "the tiled heights reach [%.4g, %.4g], outside the [0,1] of %d-bit samples",
                           double(*low), double(*high), stored.bits);
-        return cannotWrite(output, what,
-                           "write float samples: an .exr or .tif output without --depth; heightpack never clips or "
-                           "rescales heights");
+        return withFix(cannotWrite(output, what,
+                                   "write float samples (an .exr or .tif output); heightpack never clips or rescales heights"),
+                       Fix::WriteFloat);
     }
     // Judge what will be stored: rounded to the type (Periodic's candidates were judged so already, with
     // the same type: the same rounding and quantum).

@@ -149,10 +149,11 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
                 break;
             }
             if (colour) {
-                return badInput(path,
-                                "is a colour image with " + std::to_string(spec.nchannels) + " channels (" +
-                                    channelList(spec) + ")",
-                                "choose the height channel with --channel r|g|b|a|luma or a channel's name");
+                return withFix(badInput(path,
+                                        "is a colour image with " + std::to_string(spec.nchannels) + " channels (" +
+                                            channelList(spec) + ")",
+                                        "choose the height channel: " + joinedNames<ChannelSelect>() + " or a channel's name"),
+                               Fix::ChooseChannel);
             }
             channel = spec.alpha_channel == 0 && spec.nchannels > 1 ? 1 : 0;
             if (spec.alpha_channel >= 0 && spec.nchannels > 1)
@@ -167,8 +168,9 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
         case ChannelSelect::Named:
             channel = findNamedChannel(spec, options.channelName);
             if (channel < 0) {
-                return badInput(path, "has no channel named '" + options.channelName + "' (it has " + channelList(spec) + ")",
-                                "pick one it has with --channel");
+                return withFix(badInput(path, "has no channel named '" + options.channelName + "' (it has " + channelList(spec) + ")",
+                                        "pick a channel it has"),
+                               Fix::ChooseExistingChannel);
             }
             break;
         default:
@@ -176,8 +178,8 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
             channel = colour || options.channel == ChannelSelect::A ? findChannel(spec, options.channel)
                                                                       : (spec.alpha_channel == 0 ? 1 : 0);
             if (channel < 0) {
-                return badInput(path, "has no such channel (it has " + channelList(spec) + ")",
-                                "pick one it has with --channel");
+                return withFix(badInput(path, "has no such channel (it has " + channelList(spec) + ")", "pick a channel it has"),
+                               Fix::ChooseExistingChannel);
             }
             if (!colour && options.channel != ChannelSelect::A)
                 src.channelNote = "grey image: its one grey channel '" + spec.channelnames[channel] +

@@ -381,6 +381,42 @@ TEST_F(BuildTest, SeveralManifestsBuildIntoOneFolderEach) {
     EXPECT_EQ(clash.code, 3);
 }
 
+// A manifest user is told the manifest key that fixes an input, never a command-line flag.
+TEST_F(BuildTest, HintsNameManifestKeysNotFlags) {
+    writeImage(dir.file("maps/odd.png"), periodicMap(100, 0.08, 4), OIIO::TypeDesc::UINT16);
+    writeText(manifest, replaced(kManifest, "maps/a.png", "maps/odd.png"));
+    const ProcessResult odd = build();
+    EXPECT_EQ(odd.code, 3) << odd.err;
+    EXPECT_NE(odd.err.find("set resize = true to resample it to 128x128"), std::string::npos) << odd.err;
+    EXPECT_NE(odd.err.find("asset 'long'"), std::string::npos) << odd.err;
+    EXPECT_EQ(odd.err.find("--resize"), std::string::npos) << odd.err;
+
+    // The normal map's remedy too: a manifest cannot ask for an 8-bit PNG, so only resize is offered.
+    writeText(manifest, replaced(kManifest, "maps/r.png", "maps/odd.png"));
+    const ProcessResult normals = build();
+    EXPECT_EQ(normals.code, 3) << normals.err;
+    EXPECT_NE(normals.err.find("set resize = true to resample it to 128x128"), std::string::npos) << normals.err;
+    EXPECT_EQ(normals.err.find("--"), std::string::npos) << normals.err;
+
+    const Image grey = periodicMap(64, 0.06, 5);
+    std::vector<float> rgb;
+    for (float v : grey.pixels) rgb.insert(rgb.end(), {v, 0.5f * v, 0.25f});
+    writeImage(dir.file("maps/colour.png"), 64, 64, 3, rgb, OIIO::TypeDesc::UINT8);
+    writeText(manifest, replaced(kManifest, "maps/b.png", "maps/colour.png"));
+    const ProcessResult colour = build();
+    EXPECT_EQ(colour.code, 3) << colour.err;
+    EXPECT_NE(colour.err.find("choose the height channel with channel = \"r\", \"g\", \"b\", \"a\", \"luma\" or a "
+                              "channel's name"),
+              std::string::npos)
+        << colour.err;
+    EXPECT_EQ(colour.err.find("--channel"), std::string::npos) << colour.err;
+
+    // The command line keeps its flags for the same inputs.
+    const ProcessResult packed = heightpackRun({"pack", dir.file("maps/odd.png"), "-o", dir.file("odd.exr")});
+    EXPECT_EQ(packed.code, 3);
+    EXPECT_NE(packed.err.find("(pass --resize pow2 to resample it to 128x128)"), std::string::npos) << packed.err;
+}
+
 // Each bad manifest: an error on one line naming file:line and the key, the documented exit code, and
 // the previous build's outputs untouched.
 TEST_F(BuildTest, BadManifestsNameFileLineAndKeepThePreviousOutputs) {

@@ -27,6 +27,7 @@ struct CheckReport {
     std::string input;
     std::string kind;   // "image" (levels made as pack would), "neighbour4", "plain", "normal" or "texture"
     std::string note;   // e.g. why only level 0 was scored
+    Fix noteFix = Fix::None;  // the remedy the note points at, for the shell to word (ResizeToPowerOfTwo)
     SourceInfo source;  // for an image: what it held and which channel was used (empty for a texture's levels)
     double threshold = kDefaultSeamThreshold;
     std::vector<LevelSeams> levels;

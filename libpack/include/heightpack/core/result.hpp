@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 namespace heightpack {
 
@@ -15,11 +16,30 @@ enum class ErrorKind {
     Internal,     // a bug or an unexpected library failure
 };
 
+// A remedy that the library knows but does not word: the library never names a command-line flag or a
+// manifest key for it, each shell does (the CLI in its flags, the manifest build in its keys, the viewer
+// in its own flags). Error::hint holds the library's neutral words for it; fixArgs the values the
+// wording needs, as listed here.
+enum class Fix {
+    None,                   // the hint says it all
+    ChooseChannel,          // a colour input: say which channel holds the heights (r, g, b, a, luma or a name)
+    ChooseExistingChannel,  // the chosen channel is not in the file
+    ResizeToPowerOfTwo,     // resample to power-of-two sides; fixArgs: {"WxH"}, the sides it would get
+    ResizeOrLevelZeroOnly,  // as ResizeToPowerOfTwo, or write level 0 alone as an 8-bit PNG; fixArgs: {"WxH"}
+    RenamePlainOutput,      // the unpacked chain's output is the packed output
+    FewerJobs,              // out of memory: fewer jobs or threads at once
+    WriteFloat,             // heights that integer samples cannot hold: write float samples
+    MakeTileable,           // a map that must tile does not: make it tile with `heightpack tile`;
+                            // fixArgs: {input, output, filter ("" for the default), threshold ("" for the default)}
+};
+
 struct Error {
     ErrorKind kind = ErrorKind::Internal;
     std::string path;  // the file it is about; may be empty
     std::string what;  // what is wrong, lower case, no trailing period
-    std::string hint;  // what to do about it; may be empty
+    std::string hint;  // what to do about it, in neutral words (no flags, no keys); may be empty
+    Fix fix = Fix::None;               // the remedy, for a shell to word in its own terms
+    std::vector<std::string> fixArgs{};  // what that wording needs (see Fix)
 };
 
 inline Error badInput(std::string path, std::string what, std::string hint = {}) {
@@ -27,6 +47,12 @@ inline Error badInput(std::string path, std::string what, std::string hint = {})
 }
 inline Error cannotWrite(std::string path, std::string what, std::string hint = {}) {
     return {ErrorKind::CannotWrite, std::move(path), std::move(what), std::move(hint)};
+}
+// The error with a remedy a shell words (hint stays the neutral words).
+inline Error withFix(Error error, Fix fix, std::vector<std::string> fixArgs = {}) {
+    error.fix = fix;
+    error.fixArgs = std::move(fixArgs);
+    return error;
 }
 
 // Either a value or an Error, like C++23's std::expected.

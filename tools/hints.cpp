@@ -1,0 +1,36 @@
+#include "hints.hpp"
+
+#include "heightpack/io/read.hpp"
+
+namespace heightpack::cli {
+
+std::string cliHint(const Error& error) {
+    const auto arg = [&](size_t i) { return i < error.fixArgs.size() ? error.fixArgs[i] : std::string(); };
+    switch (error.fix) {
+        case Fix::None: return error.hint;
+        case Fix::ChooseChannel:
+            return "choose the height channel with --channel " + joinedNames<ChannelSelect>("|") + " or a channel's name";
+        case Fix::ChooseExistingChannel: return "pick one it has with --channel";
+        case Fix::ResizeToPowerOfTwo: return "pass --resize pow2 to resample it to " + arg(0);
+        case Fix::ResizeOrLevelZeroOnly:
+            return "pass --resize pow2 to resample it to " + arg(0) + ", or --format png8 for level 0 alone";
+        case Fix::RenamePlainOutput: return "give --emit-plain another name";
+        case Fix::FewerJobs: return "use fewer --jobs or --threads";
+        case Fix::WriteFloat:
+            return "write float samples: an .exr or .tif output without --depth; heightpack never clips or rescales heights";
+        case Fix::MakeTileable: {
+            std::string command = "heightpack tile " + arg(0) + " -o " + arg(1);
+            if (!arg(2).empty()) command += " --filter " + arg(2);
+            if (!arg(3).empty()) command += " --threshold " + arg(3);
+            return "make it tile with '" + command +
+                   "' and use that as the source, or set tileable = false if it is not meant to tile";
+        }
+    }
+    return error.hint;
+}
+
+std::string cliNote(const std::string& note, Fix fix) {
+    return fix == Fix::ResizeToPowerOfTwo ? note + " (pack would need --resize pow2)" : note;
+}
+
+}  // namespace heightpack::cli

@@ -1,0 +1,15 @@
+// The command line's words for a remedy the library reports (see Fix): its own flags.
+#pragma once
+
+#include <string>
+
+#include "heightpack/core/result.hpp"
+
+namespace heightpack::cli {
+
+// What to do about error, in heightpack's flags; the library's own hint when it has no Fix.
+std::string cliHint(const Error& error);
+// A report's note followed by the remedy it points at (fix), in heightpack's flags.
+std::string cliNote(const std::string& note, Fix fix);
+
+}  // namespace heightpack::cli
