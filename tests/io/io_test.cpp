@@ -82,7 +82,10 @@ TEST(Io, ColourNeedsAChannelAndEachChannelIsTakenAsStored) {
 
     const Error e = loadError(path);
     EXPECT_EQ(e.kind, ErrorKind::BadInput);
-    EXPECT_NE(e.hint.find("--channel"), std::string::npos) << e.hint;
+    // The reason, not a flag: each shell names its own way to choose the channel.
+    EXPECT_EQ(e.fix, Fix::ChooseChannel);
+    EXPECT_NE(e.hint.find("r, g, b, a, luma"), std::string::npos) << e.hint;
+    EXPECT_EQ(e.hint.find("--"), std::string::npos) << e.hint;
 
     const std::pair<ChannelSelect, int> channels[] = {
         {ChannelSelect::R, 0}, {ChannelSelect::G, 1}, {ChannelSelect::B, 2}, {ChannelSelect::A, 3}};
