@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "heightpack/build/pack_job.hpp"
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/read.hpp"
 #include "heightpack/io/files.hpp"
-#include "heightpack/core/mip.hpp"
 #include "heightpack/core/pack.hpp"
 
 namespace heightpack::view {
@@ -64,12 +64,13 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
     }
     auto loaded = loadHeightMap(path, load);
     if (!loaded) return loaded.error();
-    Image heights = std::move(loaded->heights);
-    MipOptions mip;
-    if (!isPowerOfTwo(heights.width) || !isPowerOfTwo(heights.height))
-        heights = resample(heights, nextPowerOfTwo(heights.width), nextPowerOfTwo(heights.height), mip);
-    frame.plain = generateMipChain(heights, mip);
-    frame.packed = packMipChain(frame.plain, layer.wrap);
+    PackOptions pack;
+    pack.resizeToPowerOfTwo = true;  // a viewer shows any size; pack would ask for --resize pow2
+    pack.mip.wrap = layer.wrap;      // periodic, unless the sequence's first frame said otherwise
+    auto maps = packHeights(std::move(loaded->heights), loaded->source, pack);
+    if (!maps) return maps.error();
+    frame.plain = std::move(maps->plain);
+    frame.packed = std::move(maps->packed);
     if (first) layer.source = "painted map, packed in memory";
     return Done{};
 }

@@ -18,7 +18,27 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// packHeights' first half, which packHeightMap shares: resize, scale, mip. Leaves maps.packed empty.
+Result<PackedMaps> plainChain(Image heights, const SourceInfo& source, const PackOptions& options) {
+    if (options.progress) options.progress("mip", 0.0);
+    PackedMaps maps;
+    auto resized = detail::ensurePowerOfTwo(heights, source.path, options.resizeToPowerOfTwo, options.mip);
+    if (!resized) return resized.error();
+    maps.resized = *resized;
+    if (options.scale != 1.0f || options.offset != 0.0f)
+        for (float& v : heights.pixels) v = options.offset + options.scale * v;
+    maps.plain = generateMipChain(heights, options.mip);
+    if (options.progress) options.progress("mip", 1.0);
+    return maps;
+}
+
 }  // namespace
+
+Result<PackedMaps> packHeights(Image heights, const SourceInfo& source, const PackOptions& options) {
+    auto maps = plainChain(std::move(heights), source, options);
+    if (maps && options.packed) maps->packed = packMipChain(maps->plain, options.mip.wrap);
+    return maps;
+}
 
 std::vector<ExrAttribute> heightAttributes(std::string_view layout, const PackOptions& options,
                                            const SourceInfo& source, const std::string& sourceHash) {
@@ -63,16 +83,12 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     report.loadSeconds = secondsSince(start);
 
     start = std::chrono::steady_clock::now();
-    progress("mip", 0.0);
-    auto resized = detail::ensurePowerOfTwo(heights, input, options.resizeToPowerOfTwo, options.mip);
-    if (!resized) return resized.error();
-    report.resized = *resized;
-    if (options.scale != 1.0f || options.offset != 0.0f)
-        for (float& v : heights.pixels) v = options.offset + options.scale * v;
-    const std::vector<Image> chain = generateMipChain(heights, options.mip);
-    heights = Image();  // level 0 lives on in the chain
+    // The plain chain only: the writer packs it a band at a time, so the packed chain is never held whole.
+    auto maps = plainChain(std::move(heights), report.source, options);
+    if (!maps) return maps.error();
+    const std::vector<Image>& chain = maps->plain;
+    report.resized = maps->resized;
     for (const Image& level : chain) report.levelSizes.emplace_back(level.width, level.height);
-    progress("mip", 1.0);
     report.mipSeconds = secondsSince(start);
 
     start = std::chrono::steady_clock::now();

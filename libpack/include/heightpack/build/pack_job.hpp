@@ -1,4 +1,5 @@
-// The whole `pack` operation in one call: load, scale, mip, pack, write. The CLI and build steps call this.
+// The whole `pack` operation in one call: load, scale, mip, pack, write. The CLI and build steps call this;
+// packHeights is the same operation on heights already in memory (the viewer, an engine).
 #pragma once
 
 #include <functional>
@@ -39,6 +40,19 @@ struct PackReport {
     double mipSeconds = 0.0;
     double writeSeconds = 0.0;
 };
+
+// The chains `pack` writes, made in memory.
+struct PackedMaps {
+    std::vector<Image> plain;   // one channel per level, level 0 first: the stored heights (offset + scale * value)
+    std::vector<Image> packed;  // the same levels 4-neighbour packed (RGBA); empty when options.packed is false
+    bool resized = false;       // level 0 was resampled to power-of-two sides
+};
+
+// What packHeightMap would write for heights already loaded: sides made powers of two (when
+// options.resizeToPowerOfTwo, else such heights fail with BadInput naming source.path), scaled, mip-mapped
+// with options.mip and packed with its wrap mode. Reports the "mip" stage to options.progress. Output
+// paths, compression and version in options are not used.
+Result<PackedMaps> packHeights(Image heights, const SourceInfo& source, const PackOptions& options);
 
 // Packs the height map at input into a 4-neighbour packed, mip-mapped RGBA32F EXR at output.
 Result<PackReport> packHeightMap(const std::string& input, const std::string& output, const PackOptions& options);
