@@ -34,6 +34,44 @@ std::vector<ExrAttribute> normalAttributes(const NormalJobOptions& options, cons
 
 }  // namespace
 
+Result<NormalMaps> makeNormalChain(Image heights, const SourceInfo& source, const NormalJobOptions& options) {
+    auto progress = [&](std::string_view stage, double f) {
+        if (options.progress) options.progress(stage, f);
+    };
+    const NormalOptions& n = options.normal;
+    NormalMaps maps;
+    if (options.format == NormalFormat::Png8) {
+        progress("normal", 0.0);
+        const int w0 = heights.width, h0 = heights.height;
+        maps.chain.push_back(normalsFromHeights(heights, texelWidth(n, w0, w0), texelHeight(n, w0, h0, h0), n));
+    } else {
+        MipOptions mip;
+        mip.filter = options.filter;
+        mip.wrap = n.wrap;
+        mip.threads = n.threads;
+        auto resized = detail::ensurePowerOfTwo(heights, source.path, options.resizeToPowerOfTwo, mip, true);
+        if (!resized) return resized.error();
+        maps.resized = *resized;
+        progress("mip", 0.0);
+        const std::vector<Image> heightChain = generateMipChain(heights, mip);
+        progress("normal", 0.0);
+        std::vector<Image> momentChain;
+        if (n.alpha == NormalAlpha::SlopeVariance) {
+            const Image& top = heightChain[0];
+            momentChain = generateMipChain(
+                slopeMoment(top, texelWidth(n, top.width, top.width), texelHeight(n, top.width, top.height, top.height), n),
+                mip);
+        }
+        maps.chain = generateNormalChain(heightChain, n, momentChain);
+        progress("normal", 1.0);
+    }
+    const Image& top = maps.chain[0];
+    double minZ = 1.0;
+    for (size_t i = 0; i < top.texelCount(); ++i) minZ = std::min(minZ, double(top.pixels[i * top.channels + 2]));
+    maps.maxSlopeDegrees = std::acos(minZ) * 180.0 / 3.14159265358979323846;
+    return maps;
+}
+
 Result<NormalReport> makeNormalMap(const std::string& input, const std::string& output,
                                    const NormalJobOptions& options) {
     const auto start = std::chrono::steady_clock::now();
@@ -50,51 +88,25 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
     if (!loaded) return loaded.error();
     report.source = loaded->source;
     report.sourceHash = loaded->hash;
-    Image heights = std::move(loaded->heights);
-    const int w0 = heights.width, h0 = heights.height;
 
-    const NormalOptions& n = options.normal;
-    MipOptions mip;
-    mip.filter = options.filter;
-    mip.wrap = n.wrap;
-    mip.threads = n.threads;
+    auto maps = makeNormalChain(std::move(loaded->heights), report.source, options);
+    if (!maps) return maps.error();
+    const std::vector<Image>& chain = maps->chain;
+    report.resized = maps->resized;
+    report.maxSlopeDegrees = maps->maxSlopeDegrees;
+    for (const Image& level : chain) report.levelSizes.emplace_back(level.width, level.height);
 
     if (options.format == NormalFormat::Png8) {
-        progress("normal", 0.0);
-        Image normals = normalsFromHeights(heights, texelWidth(n, w0, w0), texelHeight(n, w0, h0, h0), n);
-        double minZ = 1.0;
+        Image& normals = maps->chain[0];
         for (size_t i = 0; i < normals.texelCount(); ++i) {
             float* t = &normals.pixels[i * normals.channels];
-            minZ = std::min(minZ, double(t[2]));
             for (int c = 0; c < 3; ++c) t[c] = 0.5f + 0.5f * t[c];
         }
-        report.maxSlopeDegrees = std::acos(minZ) * 180.0 / 3.14159265358979323846;
-        report.levelSizes.emplace_back(w0, h0);
         FlatImageOptions flat;
         flat.bits = 8;
-        flat.attributes = normalAttributes(options, report.source, report.sourceHash, w0, h0);
+        flat.attributes = normalAttributes(options, report.source, report.sourceHash, normals.width, normals.height);
         if (Status s = writeFlatImage(output, normals, flat); !s) return s.error();
     } else {
-        auto resized = detail::ensurePowerOfTwo(heights, input, options.resizeToPowerOfTwo, mip, true);
-        if (!resized) return resized.error();
-        report.resized = *resized;
-        progress("mip", 0.0);
-        const std::vector<Image> heightChain = generateMipChain(heights, mip);
-        progress("normal", 0.0);
-        std::vector<Image> momentChain;
-        if (n.alpha == NormalAlpha::SlopeVariance) {
-            const Image& top = heightChain[0];
-            momentChain = generateMipChain(
-                slopeMoment(top, texelWidth(n, top.width, top.width), texelHeight(n, top.width, top.height, top.height), n),
-                mip);
-        }
-        const std::vector<Image> chain = generateNormalChain(heightChain, n, momentChain);
-        double minZ = 1.0;
-        for (size_t i = 0; i < chain[0].texelCount(); ++i) minZ = std::min(minZ, double(chain[0].pixels[i * chain[0].channels + 2]));
-        report.maxSlopeDegrees = std::acos(minZ) * 180.0 / 3.14159265358979323846;
-        for (const Image& level : chain) report.levelSizes.emplace_back(level.width, level.height);
-        progress("normal", 1.0);
-
         TiledExrContent content;
         content.width = chain[0].width;
         content.height = chain[0].height;
@@ -107,7 +119,7 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         content.attributes = normalAttributes(options, report.source, report.sourceHash, content.width, content.height);
         ExrWriteOptions write;
         write.compression = options.compression;
-        write.threads = n.threads;
+        write.threads = options.normal.threads;
         write.progress = [&](double f) { progress("write", f); };
         if (Status s = writeTiledExr(output, content, write); !s) return s.error();
     }

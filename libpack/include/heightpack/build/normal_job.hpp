@@ -42,6 +42,20 @@ struct NormalReport {
     double seconds = 0.0;
 };
 
+// The normals `normal` writes, made in memory.
+struct NormalMaps {
+    std::vector<Image> chain;      // RGB(A) per level, xyz in [-1, 1]; level 0 alone for NormalFormat::Png8
+    bool resized = false;          // the heights were resampled to power-of-two sides first
+    double maxSlopeDegrees = 0.0;  // steepest normal at level 0
+};
+
+// What makeNormalMap would write (before a PNG's 0.5 + 0.5 n encoding) for heights already loaded: for
+// NormalFormat::Exr a mip chain of the heights (power-of-two sides, resized when
+// options.resizeToPowerOfTwo, else BadInput naming source.path) with a normal level per height level; for
+// Png8 the normals of level 0 alone, at any size. Reports the "mip" and "normal" stages to options.progress.
+Result<NormalMaps> makeNormalChain(Image heights, const SourceInfo& source, const NormalJobOptions& options);
+
+// Loads input, makes its normals with makeNormalChain and writes them to output in options.format.
 Result<NormalReport> makeNormalMap(const std::string& input, const std::string& output,
                                    const NormalJobOptions& options);
 
