@@ -29,6 +29,23 @@ void keepWorst(SeamScore& worst, const SeamScore& s) {
     worst.slope = std::max(worst.slope, s.slope);
 }
 
+// Scores chain level by level into report: levels, worst, failure and the verdict.
+void scoreChain(const std::vector<Image>& chain, const SeamOptions& seamOptions, const CheckOptions& options,
+                CheckReport& report) {
+    if (options.progress) options.progress("check", 0.0);
+    ChainSeams seams = measureChainSeams(chain, options.threshold, seamOptions);
+    report.tiles = seams.tiles();
+    report.failure = seams.failure;
+    report.levels = std::move(seams.levels);
+    for (const LevelSeams& s : report.levels) {
+        keepWorst(report.worst.leftRight, s.leftRight);
+        keepWorst(report.worst.topBottom, s.topBottom);
+    }
+    report.worst.width = chain[0].width;
+    report.worst.height = chain[0].height;
+    if (report.packing && !report.packing->consistent) report.tiles = false;
+}
+
 }  // namespace
 
 double sampleQuantum(const SourceInfo& source) {
@@ -39,6 +56,21 @@ std::vector<Image> seamChain(const Image& heights, const MipOptions& mip, std::s
     if (isPowerOfTwo(heights.width) && isPowerOfTwo(heights.height)) return generateMipChain(heights, mip);
     if (note) *note = "sides are not powers of two: level 0 only";
     return {heights};
+}
+
+CheckReport checkHeights(const Image& heights, const SourceInfo& source, const CheckOptions& options) {
+    CheckReport report;
+    report.input = source.path;
+    report.kind = "image";
+    report.source = source;
+    report.threshold = options.threshold;
+    if (options.progress) options.progress("mip", 0.0);
+    SeamOptions seamOptions;
+    seamOptions.threads = options.mip.threads;
+    seamOptions.quantum = sampleQuantum(source);
+    scoreChain(seamChain(heights, options.mip, &report.note), seamOptions, options, report);
+    if (!report.note.empty()) report.noteFix = Fix::ResizeToPowerOfTwo;  // pack would have to resize
+    return report;
 }
 
 Result<CheckReport> checkFile(const std::string& path, const CheckOptions& options) {
@@ -71,29 +103,14 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
             if (Status s = checkFinite(chain.back(), path, 0, "level " + std::to_string(chain.size() - 1)); !s)
                 return s.error();
         }
+        scoreChain(chain, seamOptions, options, report);
     } else {
         auto loaded = detail::loadInput(path, options.load, options.mip.threads);
         if (!loaded) return loaded.error();
-        report.kind = "image";
-        report.source = loaded->source;
-        progress("mip", 0.0);
-        seamOptions.quantum = sampleQuantum(loaded->source);
-        chain = seamChain(loaded->heights, options.mip, &report.note);
-        if (!report.note.empty()) report.noteFix = Fix::ResizeToPowerOfTwo;  // pack would have to resize
+        report = checkHeights(loaded->heights, loaded->source, options);
+        report.input = path;
+        chain = {std::move(loaded->heights)};  // level 0, for the preview
     }
-
-    progress("check", 0.0);
-    ChainSeams seams = measureChainSeams(chain, options.threshold, seamOptions);
-    report.tiles = seams.tiles();
-    report.failure = seams.failure;
-    report.levels = std::move(seams.levels);
-    for (const LevelSeams& s : report.levels) {
-        keepWorst(report.worst.leftRight, s.leftRight);
-        keepWorst(report.worst.topBottom, s.topBottom);
-    }
-    report.worst.width = chain[0].width;
-    report.worst.height = chain[0].height;
-    if (report.packing && !report.packing->consistent) report.tiles = false;
 
     if (!options.previewPath.empty()) {
         FlatImageOptions flat;

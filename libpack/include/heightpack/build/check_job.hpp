@@ -44,6 +44,11 @@ double sampleQuantum(const SourceInfo& source);
 // are powers of two, else level 0 alone (pack would resize first). Sets *note to say which.
 std::vector<Image> seamChain(const Image& heights, const MipOptions& mip, std::string* note = nullptr);
 
+// The verdict on heights already loaded (a flat map): the chain seamChain makes from them, scored level by
+// level, the sample quantum taken from source. Kind "image"; input is source.path. Writes nothing:
+// options.previewPath is not used (seamPreview(heights, report.worst, report.threshold) draws the preview).
+CheckReport checkHeights(const Image& heights, const SourceInfo& source, const CheckOptions& options);
+
 // Scores the seams of the file at path at every level. A flat image gets the mip chain pack would make;
 // an EXR with mip levels is scored level by level as stored, on its first channel (the height R of a
 // packed texel). Fails only when the file cannot be read or the preview cannot be written.
