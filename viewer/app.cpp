@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "exit_codes.hpp"
 #include "heightpack/io/image_write.hpp"
 #include "hints.hpp"
 #include "material_settings.hpp"
@@ -20,11 +21,6 @@ namespace heightpack::view {
 namespace {
 
 void onGlfwError(int code, const char* description) { std::fprintf(stderr, "heightpack-view: GLFW error %d: %s\n", code, description); }
-
-int fail(const std::string& what, const std::string& hint, int code = 70) {
-    std::fprintf(stderr, "heightpack-view: error: %s (%s)\n", what.c_str(), hint.c_str());
-    return code;
-}
 
 // Key presses, counted by GLFW's key callback as they happen: a press shorter than a frame still counts
 // (polling glfwGetKey once a frame misses it). Held keys (flying) are still polled.
@@ -80,7 +76,8 @@ bool pickWater(const Camera& camera, double x, double y, int width, int height, 
 int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer) {
     RenderTarget target;
     if (!target.create(o.width, o.height, GL_RGBA8)) return fail("cannot create a " + std::to_string(o.width) + "x" +
-                                                                     std::to_string(o.height) + " render target", "try a smaller --size");
+                                                                     std::to_string(o.height) + " render target", "try a smaller --size",
+                                                                 ExitCode::NoOpenGL);
     const float time = o.time.value_or(0.0f);
     if (o.bench > 0) {
         PassTimes total;
@@ -121,7 +118,7 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer) {
         const Status written = writeFlatImage(o.screenshot, image, flat);
         target.destroy();
         if (!written)
-            return fail(written.error().path + ": " + written.error().what, viewerHint(written.error()), 4);
+            return fail(written.error());
         if (!o.json && o.bench == 0) std::printf("wrote %s: %dx%d at t = %.2f s\n", o.screenshot.c_str(), o.width, o.height, time);
     }
     target.destroy();
@@ -237,7 +234,7 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
 
 int runViewer(ViewerOptions& o, Scene& scene) {
     glfwSetErrorCallback(onGlfwError);
-    if (!glfwInit()) return fail("cannot start GLFW", "is there a display? run headless under xvfb-run");
+    if (!glfwInit()) return fail("cannot start GLFW", "is there a display? run headless under xvfb-run", ExitCode::NoOpenGL);
     const bool offscreen = !o.screenshot.empty() || o.bench > 0;
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -247,7 +244,8 @@ int runViewer(ViewerOptions& o, Scene& scene) {
     GLFWwindow* window = glfwCreateWindow(offscreen ? 64 : o.width, offscreen ? 64 : o.height, "heightpack-view", nullptr, nullptr);
     if (!window) {
         glfwTerminate();
-        return fail("cannot create an OpenGL 3.3 core context", "is there a display? run headless under xvfb-run");
+        return fail("cannot create an OpenGL 3.3 core context", "is there a display? run headless under xvfb-run",
+                    ExitCode::NoOpenGL);
     }
     glfwMakeContextCurrent(window);
     glfwSwapInterval(1);
@@ -256,7 +254,8 @@ int runViewer(ViewerOptions& o, Scene& scene) {
         Renderer renderer;
         std::string error;
         if (!renderer.init(error)) {
-            code = fail("shader build failed: " + error, "please report this with the GL_RENDERER string");
+            code = fail("shader build failed: " + error, "please report this with the GL_RENDERER string",
+                        ExitCode::Internal);
         } else {
             renderer.upload(scene);
             code = offscreen ? renderOffscreen(o, scene, renderer) : interactive(window, o, scene, renderer);

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "app.hpp"
-#include "hints.hpp"
+#include "exit_codes.hpp"
 #include "material_settings.hpp"
 #include "heightpack/version.hpp"
 
@@ -78,20 +78,22 @@ int main(int argc, char** argv) {
         "  heightpack-view out/swell.exr --screenshot shot.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10\n"
         "  heightpack-view out/swell.exr --bench 300\n"
         "Keys: WASD fly, Space/Ctrl up/down, right mouse look, E or left click drops an explosion, F1 panel, Esc quits.\n"
-        "Exit codes: 0 done, 2 usage error, 3 bad input (a map or material.json), 4 cannot write the screenshot,\n"
-        "70 no display, no OpenGL 3.3 or a shader that does not build (internal).\n");
+        "Exit codes:\n"
+        "  0   done\n"
+        "  2   usage error\n"
+        "  3   bad input: a map, sequence frame, normal map, Fresnel ramp, foam texture or material.json\n"
+        "  4   cannot write the screenshot\n"
+        "  5   no usable OpenGL: no display, no OpenGL 3.3 core context, no render target of that --size\n"
+        "      (run it under xvfb-run with Mesa)\n"
+        "  70  internal: a shader that does not build, or a bug\n");
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "heightpack-view: error: %s (see 'heightpack-view --help')\n", e.what());
-        return 2;
+        return fail(e.what(), "see 'heightpack-view --help'", ExitCode::Usage);
     }
-    auto usage = [](const std::string& what) {
-        std::fprintf(stderr, "heightpack-view: error: %s (see 'heightpack-view --help')\n", what.c_str());
-        return 2;
-    };
+    auto usage = [](const std::string& what) { return fail(what, "see 'heightpack-view --help'", ExitCode::Usage); };
     if (std::sscanf(size.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 16 || o.height < 16 ||
         o.width > 8192 || o.height > 8192)
         return usage("--size must be WxH between 16 and 8192, e.g. 1280x720");
@@ -102,12 +104,7 @@ int main(int argc, char** argv) {
             return usage("a material.json names its own textures; leave out --normals, --fresnel and --foam");
         std::string note;
         const std::string path = o.files.heights[0];  // a copy: applyMaterial replaces o.files
-        if (heightpack::Status s = applyMaterial(path, o.files, o.settings, note); !s) {
-            const heightpack::Error& e = s.error();
-            std::fprintf(stderr, "heightpack-view: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(),
-                         viewerHint(e).c_str());
-            return 3;
-        }
+        if (heightpack::Status s = applyMaterial(path, o.files, o.settings, note); !s) return fail(s.error());
         if (!note.empty()) std::fprintf(stderr, "heightpack-view: note: %s\n", note.c_str());
         o.material = path;
     }
@@ -150,11 +147,6 @@ int main(int argc, char** argv) {
     o.settings.frustumBranch = !frustumOff;
 
     auto scene = loadScene(o.files);
-    if (!scene) {
-        const heightpack::Error& e = scene.error();
-        std::fprintf(stderr, "heightpack-view: error: %s: %s (%s)\n", e.path.c_str(), e.what.c_str(),
-                         viewerHint(e).c_str());
-        return 3;
-    }
+    if (!scene) return fail(scene.error());
     return runViewer(o, *scene);
 }

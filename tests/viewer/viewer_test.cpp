@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -19,16 +20,17 @@ namespace {
 
 using ViewRun = ProcessResult;
 
-// Runs heightpack-view under its own virtual X server.
-ViewRun view(const std::vector<std::string>& args) {
-    std::vector<std::string> argv = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", HEIGHTPACK_VIEW_EXE};
-    argv.insert(argv.end(), args.begin(), args.end());
+// This process's environment for the viewer, less the variables named in `without`.
+std::vector<std::string> viewerEnvironment(const std::vector<std::string>& without = {}) {
     // Mesa's GL driver keeps small allocations until it is unloaded at exit, where LeakSanitizer cannot
     // even name them; leak checking stays on for everything else, address and UB checks stay on here.
     std::vector<std::string> env;
     bool sawAsan = false;
     for (char** e = environ; *e; ++e) {
         std::string entry = *e;
+        if (std::any_of(without.begin(), without.end(),
+                        [&](const std::string& name) { return entry.rfind(name + "=", 0) == 0; }))
+            continue;
         if (entry.rfind("ASAN_OPTIONS=", 0) == 0) {
             entry += ":detect_leaks=0";
             sawAsan = true;
@@ -36,7 +38,14 @@ ViewRun view(const std::vector<std::string>& args) {
         env.push_back(entry);
     }
     if (!sawAsan) env.push_back("ASAN_OPTIONS=detect_leaks=0");
-    return runProcess(argv, env);
+    return env;
+}
+
+// Runs heightpack-view under its own virtual X server.
+ViewRun view(const std::vector<std::string>& args) {
+    std::vector<std::string> argv = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", HEIGHTPACK_VIEW_EXE};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return runProcess(argv, viewerEnvironment());
 }
 
 struct Picture {
@@ -195,6 +204,42 @@ TEST(Viewer, BadInputGivesTheDocumentedErrorAndNoWindow) {
     EXPECT_EQ(badNormals.code, 3);
     EXPECT_EQ(view({kExamples + "swell.png", "--size", "huge"}).code, 2);
     EXPECT_EQ(dir.listing(), (std::vector<std::string>{"broken.exr"}));  // no screenshot written
+}
+
+// Each exit code of `heightpack-view --help` that a test can provoke, with its one error line.
+TEST(Viewer, ExitCodesAreTheDocumentedOnes) {
+    ScratchDir dir;
+    auto oneErrorLine = [](const ViewRun& run, const std::string& start) {
+        EXPECT_EQ(run.err.rfind("heightpack-view: error: " + start, 0), 0u) << run.err;
+        EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    };
+    const ViewRun help = view({"--help"});
+    EXPECT_EQ(help.code, 0);
+    for (const char* line : {"  2   usage error", "  3   bad input", "  4   cannot write the screenshot",
+                             "  5   no usable OpenGL", "  70  internal"})
+        EXPECT_NE(help.out.find(line), std::string::npos) << line << "\n" << help.out;
+
+    const ViewRun badFlag = view({kExamples + "swell.png", "--no-such-flag"});
+    EXPECT_EQ(badFlag.code, 2) << badFlag.err;
+    EXPECT_NE(badFlag.err.find("heightpack-view --help"), std::string::npos) << badFlag.err;
+
+    writeBytes(dir.file("material.json"), {'{', 'n', 'o'});
+    const ViewRun badMaterial = view({dir.file("material.json"), "--screenshot", dir.file("shot.png")});
+    EXPECT_EQ(badMaterial.code, 3) << badMaterial.err;
+    oneErrorLine(badMaterial, dir.file("material.json"));
+
+    const std::string unwritable = dir.file("no_such_folder/shot.png");
+    const ViewRun cannotWrite = view({kExamples + "swell.png", "--screenshot", unwritable, "--size", "64x64"});
+    EXPECT_EQ(cannotWrite.code, 4) << cannotWrite.err;
+    oneErrorLine(cannotWrite, unwritable);
+
+    // No display at all (not under xvfb-run): GLFW cannot start, so there is no OpenGL to draw with.
+    const ViewRun noDisplay = runProcess({HEIGHTPACK_VIEW_EXE, kExamples + "swell.png", "--screenshot", dir.file("shot.png")},
+                                         viewerEnvironment({"DISPLAY", "WAYLAND_DISPLAY"}));
+    EXPECT_EQ(noDisplay.code, 5) << noDisplay.err;
+    EXPECT_NE(noDisplay.err.find("heightpack-view: error: cannot start GLFW (is there a display?"), std::string::npos)
+        << noDisplay.err;
+    EXPECT_EQ(dir.listing(), (std::vector<std::string>{"material.json"}));  // no screenshot written
 }
 
 TEST(Viewer, BenchReportsGpuTimePerPass) {
