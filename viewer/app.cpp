@@ -12,7 +12,6 @@
 
 #include "exit_codes.hpp"
 #include "heightpack/io/image_write.hpp"
-#include "hints.hpp"
 #include "material_settings.hpp"
 #include "panel.hpp"
 
