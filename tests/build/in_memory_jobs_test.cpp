@@ -164,7 +164,7 @@ TEST(MakeNormalChain, TheFileJobWritesTheInMemoryNormals) {
     NormalJobOptions options;
     options.normal.tileWidth = 8.0;
     options.normal.heightRange = 0.5;
-    options.normal.alpha = NormalAlpha::Variance;
+    options.normal.alpha = NormalAlpha::SlopeVariance;
     const auto maps = makeNormalChain(loaded->heights, loaded->source, options);
     ASSERT_TRUE(maps) << maps.error().what;
     ASSERT_EQ(maps->chain.size(), 6u);
