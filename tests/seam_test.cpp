@@ -6,18 +6,19 @@
 // the scheduling. HEIGHTPACK_SEAM_SCALE=4 runs four times as many generated maps (never fewer than the
 // issue's minimum: 500 periodic, 100 of each seamed family).
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
-#include <opencv2/core.hpp>
 #include <sstream>
 
 #include "heightpack/build/check_job.hpp"
-#include "heightpack/io/read.hpp"
 #include "heightpack/build/tile_job.hpp"
+#include "heightpack/io/read.hpp"
+
 #include "support/seam_families.hpp"
 #include "support/test_support.hpp"
 

@@ -6,12 +6,13 @@
 #include <iostream>
 #include <map>
 
-#include "command.hpp"
 #include "heightpack/build/build_materials.hpp"
-#include "heightpack/io/files.hpp"
 #include "heightpack/core/parallel.hpp"
-#include "heightpack/version.hpp"
+#include "heightpack/io/files.hpp"
 #include "heightpack/io/threads.hpp"
+#include "heightpack/version.hpp"
+
+#include "command.hpp"
 
 namespace heightpack::cli {
 

@@ -4,12 +4,13 @@
 #include <filesystem>
 #include <iostream>
 
-#include "command.hpp"
-#include "hints.hpp"
 #include "heightpack/build/check_job.hpp"
 #include "heightpack/core/parallel.hpp"
-#include "heightpack/io/threads.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/threads.hpp"
+
+#include "command.hpp"
+#include "hints.hpp"
 
 namespace heightpack::cli {
 

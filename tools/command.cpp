@@ -1,5 +1,4 @@
 #include "command.hpp"
-#include "hints.hpp"
 
 #include <unistd.h>
 
@@ -10,8 +9,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "heightpack/io/read.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/read.hpp"
+
+#include "hints.hpp"
 
 namespace heightpack::cli {
 

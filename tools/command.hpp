@@ -11,10 +11,10 @@
 #include <string_view>
 #include <vector>
 
-#include "heightpack/io/read.hpp"
-#include "heightpack/io/files.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/core/tileable.hpp"
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/read.hpp"
 
 namespace heightpack::cli {
 

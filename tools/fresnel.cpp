@@ -2,9 +2,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "command.hpp"
 #include "heightpack/build/fresnel_job.hpp"
 #include "heightpack/version.hpp"
+
+#include "command.hpp"
 
 namespace heightpack::cli {
 

@@ -2,11 +2,12 @@
 #include <cstdio>
 #include <iostream>
 
-#include "command.hpp"
-#include "heightpack/io/info.hpp"
-#include "heightpack/io/files.hpp"
 #include "heightpack/core/parallel.hpp"
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/info.hpp"
 #include "heightpack/io/threads.hpp"
+
+#include "command.hpp"
 
 namespace heightpack::cli {
 

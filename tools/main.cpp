@@ -3,9 +3,10 @@
 #include <iostream>
 #include <vector>
 
-#include "command.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/version.hpp"
+
+#include "command.hpp"
 
 namespace {
 

@@ -3,13 +3,14 @@
 #include <iostream>
 #include <sstream>
 
-#include "command.hpp"
 #include "heightpack/build/normal_job.hpp"
 #include "heightpack/core/parallel.hpp"
-#include "heightpack/version.hpp"
-#include "heightpack/io/threads.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/threads.hpp"
+#include "heightpack/version.hpp"
+
+#include "command.hpp"
 
 namespace heightpack::cli {
 

@@ -4,11 +4,12 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "command.hpp"
-#include "heightpack/core/mip.hpp"
 #include "heightpack/build/synth_job.hpp"
-#include "heightpack/version.hpp"
+#include "heightpack/core/mip.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/version.hpp"
+
+#include "command.hpp"
 
 namespace heightpack::cli {
 

@@ -5,11 +5,12 @@
 #include <filesystem>
 #include <iostream>
 
-#include "command.hpp"
-#include "heightpack/core/parallel.hpp"
 #include "heightpack/build/tile_job.hpp"
-#include "heightpack/version.hpp"
+#include "heightpack/core/parallel.hpp"
 #include "heightpack/io/threads.hpp"
+#include "heightpack/version.hpp"
+
+#include "command.hpp"
 
 namespace heightpack::cli {
 

@@ -4,8 +4,9 @@
 #include <functional>
 #include <string>
 
-#include "build_plan.hpp"
 #include "heightpack/build/check_job.hpp"
+
+#include "build_plan.hpp"
 
 namespace heightpack::detail {
 

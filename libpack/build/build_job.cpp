@@ -9,14 +9,15 @@
 #include <mutex>
 #include <set>
 
-#include "build_common.hpp"
-#include "build_failures.hpp"
-#include "build_plan.hpp"
 #include "heightpack/build/build_state.hpp"
 #include "heightpack/build/cache_key.hpp"
 #include "heightpack/build/material_describe.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/files.hpp"
+
+#include "build_common.hpp"
+#include "build_failures.hpp"
+#include "build_plan.hpp"
 #include "work_queue.hpp"
 
 namespace heightpack {

@@ -7,10 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "build_common.hpp"
 #include "heightpack/build/build_report.hpp"
 #include "heightpack/build/check_job.hpp"
 #include "heightpack/build/manifest.hpp"
+
+#include "build_common.hpp"
 
 namespace heightpack::detail {
 

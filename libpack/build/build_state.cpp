@@ -1,15 +1,16 @@
 #include "heightpack/build/build_state.hpp"
 
+#include <nlohmann/json.hpp>
 #include <xxhash.h>
 
 #include <cstdio>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <utility>
 #include <vector>
 
-#include "build_common.hpp"
 #include "heightpack/io/read.hpp"
+
+#include "build_common.hpp"
 
 namespace heightpack {
 

@@ -3,8 +3,9 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "build_common.hpp"
 #include "heightpack/build/build_state.hpp"
+
+#include "build_common.hpp"
 
 namespace heightpack {
 

@@ -2,10 +2,11 @@
 
 #include <algorithm>
 
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/read.hpp"
-#include "heightpack/io/image_write.hpp"
-#include "heightpack/io/files.hpp"
+
 #include "job_steps.hpp"
 
 namespace heightpack {

@@ -1,7 +1,8 @@
 #include "job_steps.hpp"
-#include "heightpack/io/read.hpp"
 
 #include <filesystem>
+
+#include "heightpack/io/read.hpp"
 
 namespace heightpack::detail {
 

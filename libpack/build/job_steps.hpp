@@ -6,9 +6,9 @@
 #include <string_view>
 #include <vector>
 
-#include "heightpack/io/read.hpp"
-#include "heightpack/io/attributes.hpp"
 #include "heightpack/core/mip.hpp"
+#include "heightpack/io/attributes.hpp"
+#include "heightpack/io/read.hpp"
 
 namespace heightpack::detail {
 

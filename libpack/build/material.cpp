@@ -1,8 +1,9 @@
 #include "heightpack/build/material.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 namespace heightpack {

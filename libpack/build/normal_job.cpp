@@ -5,10 +5,11 @@
 #include <filesystem>
 
 #include "heightpack/core/parallel.hpp"
-#include "heightpack/io/read.hpp"
 #include "heightpack/io/exr_write.hpp"
-#include "heightpack/io/image_write.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
+#include "heightpack/io/read.hpp"
+
 #include "job_steps.hpp"
 
 namespace heightpack {

@@ -5,9 +5,10 @@
 
 #include "heightpack/core/pack.hpp"
 #include "heightpack/core/parallel.hpp"
-#include "heightpack/io/read.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/read.hpp"
+
 #include "job_steps.hpp"
 
 namespace heightpack {

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "heightpack/io/image_write.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
 
 namespace heightpack {
 

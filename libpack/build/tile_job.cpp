@@ -8,9 +8,10 @@
 
 #include "heightpack/build/check_job.hpp"
 #include "heightpack/core/mip.hpp"
-#include "job_steps.hpp"
-#include "heightpack/io/image_write.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
+
+#include "job_steps.hpp"
 
 namespace heightpack {
 

@@ -1,7 +1,5 @@
 // The fixes for a map that does not tile: the periodic component (Moisan), crossfades, the mirror.
 // The seam measure that judges them is in tileable.cpp.
-#include "heightpack/core/tileable.hpp"
-
 #include <opencv2/core.hpp>
 
 #include <algorithm>
@@ -9,6 +7,8 @@
 #include <cmath>
 #include <numeric>
 #include <vector>
+
+#include "heightpack/core/tileable.hpp"
 
 namespace heightpack {
 

@@ -21,9 +21,10 @@
 #include <memory>
 #include <numeric>
 
+#include "heightpack/core/parallel.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
-#include "heightpack/core/parallel.hpp"
+
 #include "text.hpp"
 
 namespace heightpack {

@@ -6,8 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "heightpack/io/image_write.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
+
 #include "text.hpp"
 
 namespace heightpack {

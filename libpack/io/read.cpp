@@ -1,7 +1,5 @@
 #include "heightpack/io/read.hpp"
 
-#include "heightpack/io/attributes.hpp"
-
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -16,6 +14,8 @@
 #include <cstring>
 #include <filesystem>
 #include <optional>
+
+#include "heightpack/io/attributes.hpp"
 
 #include "image_input.hpp"
 #include "png_fast.hpp"

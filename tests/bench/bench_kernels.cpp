@@ -3,9 +3,9 @@
 
 #include <random>
 
-#include "heightpack/io/read.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/pack.hpp"
+#include "heightpack/io/read.hpp"
 
 using namespace heightpack;
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "heightpack/build/build_state.hpp"
+
 #include "support/test_support.hpp"
 
 namespace heightpack {

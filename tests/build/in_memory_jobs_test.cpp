@@ -9,6 +9,7 @@
 #include "heightpack/build/normal_job.hpp"
 #include "heightpack/build/pack_job.hpp"
 #include "heightpack/io/read.hpp"
+
 #include "support/test_support.hpp"
 
 using namespace heightpack;

@@ -12,6 +12,7 @@
 #include "heightpack/build/normal_job.hpp"
 #include "heightpack/build/pack_job.hpp"
 #include "heightpack/io/info.hpp"
+
 #include "support/test_support.hpp"
 
 namespace heightpack {

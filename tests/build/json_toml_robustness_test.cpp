@@ -2,15 +2,16 @@
 // value of another type, a number out of range, odd TOML. Each must be a BadInput naming the file,
 // never an exception, an assert or undefined behaviour (the sanitizer build checks the last).
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "heightpack/build/manifest.hpp"
 #include "heightpack/build/material.hpp"
+
 #include "support/test_support.hpp"
 
 using namespace heightpack;

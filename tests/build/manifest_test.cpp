@@ -6,6 +6,7 @@
 #include <string>
 
 #include "heightpack/build/manifest.hpp"
+
 #include "support/test_support.hpp"
 
 namespace heightpack {

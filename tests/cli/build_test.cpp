@@ -2,20 +2,20 @@
 // a killed build leaving no partial file, bad manifests named by file:line, material.json and the
 // depfile checked by independent readers (OpenImageIO, nlohmann::json).
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 

@@ -2,20 +2,21 @@
 // byte-identical outputs whatever --threads.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 
-#include "heightpack/io/read.hpp"
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
+#include "heightpack/io/read.hpp"
+
 #include "support/test_support.hpp"
 
 using namespace heightpack;

@@ -2,6 +2,7 @@
 // names and what was used, heightpack's own textures as input, what --resize pow2 did, ignored options.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <poll.h>
 #include <pty.h>
 #include <sys/wait.h>
@@ -10,7 +11,6 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 
 #include "support/test_support.hpp"
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "heightpack/core/mip.hpp"
+
 #include "support/test_support.hpp"
 
 using namespace heightpack;

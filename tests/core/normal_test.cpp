@@ -5,6 +5,7 @@
 
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
+
 #include "support/test_support.hpp"
 
 using namespace heightpack;

@@ -4,6 +4,7 @@
 
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/pack.hpp"
+
 #include "support/test_support.hpp"
 
 using namespace heightpack;

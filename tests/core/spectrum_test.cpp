@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/core.hpp>
 
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/spectrum.hpp"

@@ -7,6 +7,7 @@
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/pack.hpp"
 #include "heightpack/core/tileable.hpp"
+
 #include "support/test_support.hpp"
 
 using namespace heightpack;

@@ -8,8 +8,9 @@
 #include <cstdint>
 #include <iterator>
 
-#include "fuzz_support.hpp"
 #include "heightpack/io/read.hpp"
+
+#include "fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     OIIO::attribute("threads", 1);  // no thread pools: one input, one thread, reproducible

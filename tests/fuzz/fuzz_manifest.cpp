@@ -5,9 +5,10 @@
 #include <cstdint>
 #include <set>
 
-#include "fuzz_support.hpp"
 #include "heightpack/build/manifest.hpp"
 #include "heightpack/io/files.hpp"
+
+#include "fuzz_support.hpp"
 
 namespace {
 

@@ -2,9 +2,10 @@
 
 #include <algorithm>
 
-#include "heightpack/io/info.hpp"
-#include "heightpack/core/mip.hpp"
 #include "heightpack/build/pack_job.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/io/info.hpp"
+
 #include "support/test_support.hpp"
 
 using namespace heightpack;

@@ -10,13 +10,14 @@
 #include <filesystem>
 #include <limits>
 
-#include "heightpack/io/read.hpp"
-#include "heightpack/io/exr_write.hpp"
-#include "heightpack/io/image_write.hpp"
-#include "heightpack/io/files.hpp"
+#include "heightpack/build/pack_job.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/pack.hpp"
-#include "heightpack/build/pack_job.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
+#include "heightpack/io/read.hpp"
+
 #include "support/test_support.hpp"
 
 using namespace heightpack;

@@ -1,6 +1,7 @@
 #include "support/seam_families.hpp"
 
 #include <OpenImageIO/imageio.h>
+#include <opencv2/core.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -8,7 +9,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <opencv2/core.hpp>
 #include <random>
 #include <thread>
 

@@ -1,8 +1,8 @@
 #include "support/test_support.hpp"
 
 #include <OpenImageIO/imageio.h>
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>

@@ -2,11 +2,11 @@
 // lookup, pass or camera shows up as wrong pixels.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "support/test_support.hpp"

@@ -7,10 +7,10 @@
 #include <string_view>
 #include <vector>
 
-#include "heightpack/io/read.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/core/tileable.hpp"
+#include "heightpack/io/read.hpp"
 
 namespace heightpack {
 

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/core/fresnel.hpp"
-#include "heightpack/io/read.hpp"
-#include "heightpack/io/exr_write.hpp"
 #include "heightpack/build/material.hpp"
+#include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/read.hpp"
 
 namespace heightpack {
 

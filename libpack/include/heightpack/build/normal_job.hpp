@@ -7,11 +7,11 @@
 #include <utility>
 #include <vector>
 
-#include "heightpack/io/read.hpp"
-#include "heightpack/io/exr_write.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/read.hpp"
 
 namespace heightpack {
 

@@ -7,10 +7,10 @@
 #include <string_view>
 #include <vector>
 
-#include "heightpack/io/read.hpp"
-#include "heightpack/io/exr_write.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/read.hpp"
 
 namespace heightpack {
 

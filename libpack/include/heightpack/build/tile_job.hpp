@@ -5,10 +5,10 @@
 #include <string>
 #include <string_view>
 
-#include "heightpack/io/read.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/core/tileable.hpp"
+#include "heightpack/io/read.hpp"
 
 namespace heightpack {
 

@@ -1,0 +1,189 @@
+// Internal: one table of a manifest as the parser reads it (manifest.cpp): typed getters that remember
+// every key asked for, range checks, and errors that name file:line and the key's full path.
+#pragma once
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "heightpack/core/names.hpp"
+#include "heightpack/core/result.hpp"
+
+namespace heightpack::detail {
+
+inline constexpr const char* kHint = "see docs/manifest.md for every key";
+
+// A key or value as quoted in a message: long ones are cut, so an error stays one readable line.
+inline std::string shorten(const std::string& text) {
+    constexpr size_t kMax = 64;
+    return text.size() <= kMax ? text : text.substr(0, kMax) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
+// Edit distance, to suggest the key a typo meant.
+inline size_t distance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+inline int lineOf(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
+
+// One table of the manifest. Every key read is remembered, so finish() can reject the ones nobody
+// asked for; every error names file:line and the key's full path.
+class Section {
+public:
+    Section(const toml::table& table, std::string prefix, const std::string& file)
+        : table_(table), prefix_(std::move(prefix)), file_(file) {}
+
+    int line() const { return std::max(1, lineOf(table_)); }
+    const std::string& prefix() const { return prefix_; }
+    std::string key(const std::string& k) const { return shorten(prefix_.empty() ? k : prefix_ + "." + k); }
+
+    Error error(int line, const std::string& what, const std::string& hint = kHint) const {
+        return badInput(file_ + ":" + std::to_string(line), what, hint);
+    }
+    Error error(const std::string& k, const std::string& what, const std::string& hint = kHint) const {
+        const toml::node* n = table_.get(k);
+        return error(n ? lineOf(*n) : line(), "key '" + key(k) + "' " + what, hint);
+    }
+
+    const toml::node* find(const std::string& k) {
+        known_.insert(k);
+        return table_.get(k);
+    }
+    const toml::node& require(const std::string& k) {
+        const toml::node* n = find(k);
+        if (n) return *n;
+        // A misspelt key is the likelier mistake: name it rather than the key it was meant to be.
+        for (auto&& [other, node] : table_) {
+            const std::string name(other.str());
+            if (!known_.count(name) && distance(name, k) <= 2)
+                throw error(lineOf(node), "unknown key '" + key(name) + "'", "did you mean '" + k + "'? " + kHint);
+        }
+        throw error(line(), "missing key '" + key(k) + "'");
+    }
+
+    double number(const std::string& k, std::optional<double> fallback, double lo, double hi, bool openLow = false) {
+        const toml::node* n = fallback ? find(k) : &require(k);
+        if (!n) return *fallback;
+        if (!n->is_number()) throw error(k, "must be a number, not " + typeName(*n));
+        const double v = n->value<double>().value_or(NAN);
+        if (!std::isfinite(v) || v < lo || v > hi || (openLow && v == lo))
+            throw error(k, "is " + formatNumber(v) + ", but must be " + rangeText(lo, hi, openLow));
+        return v;
+    }
+    int integer(const std::string& k, int fallback, int lo, int hi) {
+        const toml::node* n = find(k);
+        if (!n) return fallback;
+        if (!n->is_integer()) throw error(k, "must be a whole number, not " + typeName(*n));
+        const long long v = n->value<long long>().value_or(0);
+        if (v < lo || v > hi)
+            throw error(k, "is " + std::to_string(v) + ", but must be " + std::to_string(lo) + " to " + std::to_string(hi));
+        return static_cast<int>(v);
+    }
+    std::optional<std::string> text(const std::string& k) {
+        const toml::node* n = find(k);
+        if (!n) return std::nullopt;
+        if (!n->is_string()) throw error(k, "must be a string, not " + typeName(*n));
+        return n->value<std::string>().value_or("");
+    }
+    std::string requiredText(const std::string& k) {
+        require(k);
+        return *text(k);
+    }
+    std::optional<bool> boolean(const std::string& k) {
+        const toml::node* n = find(k);
+        if (!n) return std::nullopt;
+        if (!n->is_boolean()) throw error(k, "must be true or false, not " + typeName(*n));
+        return n->value<bool>().value_or(false);
+    }
+    // One of the names in E's table.
+    template <class E>
+    E choice(const std::string& k, E fallback) {
+        const std::optional<std::string> v = text(k);
+        if (!v) return fallback;
+        if (const std::optional<E> e = parseName<E>(*v)) return *e;
+        throw error(k, "is '" + shorten(*v) + "', but must be one of: " + joinedNames<E>());
+    }
+    std::vector<double> numbers(const std::string& k, std::vector<double> fallback, size_t count, double lo, double hi) {
+        const toml::node* n = find(k);
+        if (!n) return fallback;
+        const toml::array* a = n->as_array();
+        if (!a || a->size() != count) throw error(k, "must be an array of " + std::to_string(count) + " numbers");
+        std::vector<double> out;
+        for (const toml::node& e : *a) {
+            const double v = e.is_number() ? e.value<double>().value_or(NAN) : NAN;
+            if (!std::isfinite(v) || v < lo || v > hi)
+                throw error(k, "must hold " + std::to_string(count) + " numbers, each " + rangeText(lo, hi, false));
+            out.push_back(v);
+        }
+        return out;
+    }
+    const toml::table* table(const std::string& k) {
+        const toml::node* n = find(k);
+        if (!n) return nullptr;
+        if (!n->is_table()) throw error(k, "must be a table [" + key(k) + "], not " + typeName(*n));
+        return n->as_table();
+    }
+    // Rejects any key that was never asked for, suggesting the nearest one that was.
+    void finish() const {
+        for (auto&& [k, node] : table_) {
+            const std::string name(k.str());
+            if (known_.count(name)) continue;
+            std::string best;
+            size_t bestDistance = 3;
+            for (const std::string& candidate : known_) {
+                const size_t d = distance(name, candidate);
+                if (d < bestDistance) bestDistance = d, best = candidate;
+            }
+            const std::string where = prefix_.empty() ? "at the top level" : "in [" + prefix_ + "]";
+            throw error(lineOf(node), "unknown key '" + key(name) + "' " + where,
+                        best.empty() ? kHint : "did you mean '" + best + "'? " + kHint);
+        }
+    }
+
+    static std::string typeName(const toml::node& n) {
+        switch (n.type()) {
+            case toml::node_type::string: return "a string";
+            case toml::node_type::integer:
+            case toml::node_type::floating_point: return "a number";
+            case toml::node_type::boolean: return "true/false";
+            case toml::node_type::array: return "an array";
+            case toml::node_type::table: return "a table";
+            default: return "a date or time";
+        }
+    }
+    static std::string formatNumber(double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", v);
+        return text;
+    }
+    static std::string rangeText(double lo, double hi, bool openLow) {
+        if (std::isinf(hi)) return std::string(openLow ? "greater than " : "at least ") + formatNumber(lo);
+        return std::string(openLow ? "greater than " : "from ") + formatNumber(lo) + (openLow ? " and at most " : " to ") +
+               formatNumber(hi);
+    }
+
+private:
+    const toml::table& table_;
+    std::string prefix_;
+    const std::string& file_;
+    std::set<std::string> known_;
+};
+
+}  // namespace heightpack::detail
