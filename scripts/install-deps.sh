@@ -10,6 +10,8 @@ packages=(
   libcli11-dev nlohmann-json3-dev               # command line, --json
   libtomlplusplus-dev                           # material manifests (heightpack build)
   libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
+  libzstd-dev                                   # Zstandard supercompression of KTX2 levels
+  nodejs npm                                    # tests: the independent KTX2 and DDS readers (npm packages)
   libopencv-core-dev                            # the DFT behind `tile` (periodic + smooth)
   libglfw3-dev libglm-dev libepoxy-dev          # heightpack-view: window and GL context, maths, GL loader
   libimgui-dev libstb-dev                       # heightpack-view: the panel (imgui.pc requires stb)

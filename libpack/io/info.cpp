@@ -7,6 +7,8 @@
 #include <limits>
 #include <memory>
 
+#include "heightpack/io/gpu_texture.hpp"
+#include "heightpack/io/files.hpp"
 #include "image_input.hpp"
 #include "stderr_silencer.hpp"
 
@@ -34,6 +36,8 @@ Result<std::unique_ptr<OIIO::ImageInput>> openTexture(const std::string& path, T
 }  // namespace
 
 Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoderMessages) {
+    // KTX2 and DDS: heightpack's own reader (OpenImageIO 2.4 reads neither's float formats).
+    if (const auto c = containerForPath(path); c && *c != Container::Exr) return readGpuTextureFile(path);
     detail::StderrSilencer quiet(silenceDecoderMessages);
     TextureFile file;
     auto in = openTexture(path, file);
@@ -61,6 +65,13 @@ Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoder
 Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDecoderMessages) {
     detail::StderrSilencer quiet(silenceDecoderMessages);
     TextureLayout layout;
+    if (const auto c = containerForPath(path); c && *c != Container::Exr) {
+        auto file = readGpuTextureFile(path);
+        if (!file) return file.error();
+        static_cast<TextureHeader&>(layout) = *file;
+        for (const Image& level : file->levels) layout.levelSizes.emplace_back(level.width, level.height);
+        return layout;
+    }
     auto in = openTexture(path, layout);
     if (!in) return in.error();
     for (int mip = 0; (*in)->seek_subimage(0, mip); ++mip)

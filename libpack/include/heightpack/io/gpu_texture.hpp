@@ -1,0 +1,73 @@
+// GPU containers an engine loads as they are: KTX2 (Khronos KTX 2.0) and DDS (DX10 extended header).
+// Both take the same description as the EXR writer (TiledExrContent: level-0 size, channels, rows on
+// demand, the heightpack:* attributes), write every mip level in the chosen pixel type, and appear
+// atomically. KTX2 carries the attributes as key/values; DDS has no key/value store, so it records only
+// a few of them in its header's reserved words (see dds.cpp).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heightpack/core/image.hpp"
+#include "heightpack/core/result.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/info.hpp"
+#include "heightpack/io/pixel_type.hpp"
+
+namespace heightpack {
+
+// How 16-bit normalised texels map back to values: value = offset + scale * u / 65535.
+struct Normalisation {
+    float offset = 0.0f;
+    float scale = 1.0f;
+};
+
+enum class Supercompression { None, Zstd };
+
+struct GpuTextureOptions {
+    PixelType pixelType = PixelType::Float;
+    Supercompression supercompression = Supercompression::None;  // KTX2 only; DDS must have None
+    int zstdLevel = 9;
+    // uint16 only: heights on the grid gridOrigin + gridSpan * k / 65535 (k integer: a painted 8- or
+    // 16-bit map) keep that grid when the chain's range spans at most 65535 steps of it, so level 0 reads
+    // back exactly. gridSpan 0: normalise to the chain's range alone.
+    float gridOrigin = 0.0f;
+    float gridSpan = 0.0f;
+    int threads = 0;        // for filling and encoding rows; the bytes do not depend on it
+    std::string writer;     // recorded as KTXwriter, e.g. "heightpack 0.14.0"
+    std::function<void(double fraction)> progress;  // may be empty
+};
+
+// Writes content into a KTX2 (path must end in .ktx2) or DDS (.dds) file, every level of the chain
+// that content's size implies (down to 1x1). Fails with BadInput, writing nothing, when a value cannot be
+// stored in the pixel type (a half beyond +-65504); with CannotWrite when the file cannot be written.
+Status writeKtx2(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options);
+Status writeDds(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options);
+
+// Either of the two by path's extension.
+Status writeGpuTexture(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options);
+
+// A KTX2 or DDS file as heightpack reads it.
+struct GpuTexture {
+    Container container = Container::Ktx2;
+    TexelFormat format = TexelFormat::Rgba32F;
+    Supercompression supercompression = Supercompression::None;
+    int width = 0;
+    int height = 0;
+    std::vector<std::vector<std::uint8_t>> levelBytes;  // level 0 first, as stored (after inflating)
+    std::vector<Image> levels;  // level 0 first; half widened, 16-bit normalised mapped back to values
+    std::optional<Normalisation> normalisation;  // how uint16 texels were mapped, when recorded
+    Attributes keyValues;  // KTX2: every key/value, in file order; DDS: what its header records
+};
+
+// Reads a KTX2 or DDS file (by extension) that holds one of the formats above. Fails with BadInput
+// naming what is wrong when the file is truncated, corrupt or of another format.
+Result<GpuTexture> readGpuTexture(const std::string& path);
+
+// The same, as the TextureFile that `info` and the tests read from any texture.
+Result<TextureFile> readGpuTextureFile(const std::string& path);
+
+}  // namespace heightpack

@@ -1,0 +1,59 @@
+// What a texture's texels are stored as, and the containers that hold them: the choices a GPU texture
+// makes between memory and precision.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace heightpack {
+
+// The file a texture goes into, chosen by the output's extension.
+enum class Container { Exr, Ktx2, Dds };
+const char* containerName(Container container);  // "exr", "ktx2", "dds"
+// The container a path names by its (lower-case) extension: .exr, .ktx2, .dds; nullopt for anything else.
+std::optional<Container> containerForPath(const std::string& path);
+
+// Pixel types offered for every output kind.
+//   Float:  32-bit float, exact.
+//   Half:   16-bit float, each value rounded to nearest; values a half cannot hold are refused.
+//   Uint16: 16-bit normalised; value = offset + scale * u / 65535, with offset and scale recorded.
+enum class PixelType { Float, Half, Uint16 };
+const char* pixelTypeName(PixelType type);  // "float", "half", "uint16"
+std::optional<PixelType> parsePixelType(std::string_view name);
+
+// The texel formats heightpack writes into KTX2 and DDS, with their Vulkan and DXGI codes.
+enum class TexelFormat { Rgba32F, Rgba16F, Rgba16Unorm, Rg32F, Rg16F, Rg16Snorm, R32F, R16F, R16Unorm };
+
+enum class ComponentKind { Float32, Float16, Unorm16, Snorm16 };
+
+struct TexelFormatInfo {
+    TexelFormat format;
+    int channels;
+    ComponentKind kind;
+    std::uint32_t vkFormat;
+    std::uint32_t dxgiFormat;
+    const char* vkName;    // "VK_FORMAT_R16G16B16A16_SFLOAT"
+    const char* dxgiName;  // "DXGI_FORMAT_R16G16B16A16_FLOAT"
+    int bytesPerComponent() const { return kind == ComponentKind::Float32 ? 4 : 2; }
+    int bytesPerTexel() const { return channels * bytesPerComponent(); }
+};
+
+const TexelFormatInfo& texelFormatInfo(TexelFormat format);
+std::optional<TexelFormat> texelFormatFromVk(std::uint32_t vkFormat);
+std::optional<TexelFormat> texelFormatFromDxgi(std::uint32_t dxgiFormat);
+
+// The format that stores `channels` channels (1, 2, 3 or 4) as `type`. Three channels (RGB normals) go
+// into a four-channel format with alpha 1, since no GPU format listed here has three 16-bit channels.
+// Two channels as uint16 are signed normalised (xy of a normal map, in [-1,1]).
+TexelFormat texelFormatFor(int channels, PixelType type);
+PixelType pixelTypeOf(TexelFormat format);
+
+// IEEE 754 binary16, round to nearest even; subnormals kept. floatToHalf is only defined for values
+// halfCanHold accepts (finite, |v| < 65520, the first magnitude that rounds to infinity).
+std::uint16_t floatToHalf(float value);
+float halfToFloat(std::uint16_t half);
+inline bool halfCanHold(float value) { return value > -65520.0f && value < 65520.0f; }
+
+}  // namespace heightpack

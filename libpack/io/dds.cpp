@@ -1,0 +1,204 @@
+// DDS files with the DX10 extended header (Microsoft's "DDS file layout" and DDS_HEADER_DXT10), written
+// and read by heightpack itself: magic "DDS ", the 124-byte DDS_HEADER (pixel format FourCC "DX10"), the
+// 20-byte DDS_HEADER_DXT10 (DXGI format, TEXTURE2D, array size 1), then every level, level 0 first,
+// rows tightly packed.
+//
+// DDS has no key/value store. What heightpack records goes into nine of the header's eleven reserved
+// words (dwReserved1; NVIDIA's tools use words 9 and 10, which stay zero):
+//   [0] 'HPCK'  [1] record version 1  [2] layout (1 neighbour4, 2 plain, 3 normal, 4 fresnel, 0 other)
+//   [3] wrap (1 periodic, 2 clamp)  [4] heightScale  [5] heightOffset (floats, when [6] bit 0)
+//   [6] flags: bit 0 height scale/offset present, bit 1 normalisation present
+//   [7] normalised offset  [8] normalised scale (uint16: value = offset + scale * u / 65535)
+// Everything else the EXR header and KTX2 key/values carry (filter, source, hash, version, ...) is lost.
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/gpu_texture.hpp"
+#include "texel_encode.hpp"
+
+namespace heightpack {
+
+namespace {
+
+constexpr std::uint32_t fourCC(char a, char b, char c, char d) {
+    return std::uint32_t(std::uint8_t(a)) | std::uint32_t(std::uint8_t(b)) << 8 | std::uint32_t(std::uint8_t(c)) << 16 |
+           std::uint32_t(std::uint8_t(d)) << 24;
+}
+constexpr std::uint32_t kMagic = fourCC('D', 'D', 'S', ' ');
+constexpr std::uint32_t kDx10 = fourCC('D', 'X', '1', '0');
+constexpr std::uint32_t kRecord = fourCC('H', 'P', 'C', 'K');
+constexpr size_t kDataStart = 4 + 124 + 20;
+constexpr int kBandRows = 64;
+
+// dwFlags, ddspf.dwFlags, dwCaps and the DX10 resource dimension.
+constexpr std::uint32_t kCaps = 0x1, kHeight = 0x2, kWidth = 0x4, kPitch = 0x8, kPixelFormat = 0x1000,
+                        kMipMapCount = 0x20000;
+constexpr std::uint32_t kFourCCFlag = 0x4;
+constexpr std::uint32_t kCapsComplex = 0x8, kCapsTexture = 0x1000, kCapsMipMap = 0x400000;
+constexpr std::uint32_t kTexture2D = 3;
+
+constexpr std::array<const char*, 4> kLayouts = {"neighbour4", "plain", "normal", "fresnel"};
+constexpr std::array<const char*, 2> kWraps = {"periodic", "clamp"};
+
+std::uint32_t floatBits(float v) {
+    std::uint32_t u;
+    std::memcpy(&u, &v, 4);
+    return u;
+}
+float bitsFloat(std::uint32_t u) {
+    float v;
+    std::memcpy(&v, &u, 4);
+    return v;
+}
+template <size_t N>
+std::uint32_t codeOf(const std::array<const char*, N>& names, const std::string& name) {
+    for (size_t i = 0; i < N; ++i)
+        if (name == names[i]) return std::uint32_t(i + 1);
+    return 0;
+}
+std::uint32_t get32(const std::uint8_t* p) {
+    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+}
+
+struct FileCloser {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+}  // namespace
+
+Status writeDds(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options) {
+    if (Status s = checkWritable(path); !s) return s;
+    if (lowerExtension(path) != ".dds")
+        return cannotWrite(path, "is not a .dds name, but the file would be a DDS", "name the output .dds");
+    if (options.supercompression != Supercompression::None)
+        return cannotWrite(path, "DDS has no supercompression", "write it uncompressed, or as KTX2");
+    auto planned = detail::planEncoding(path, content, options);
+    if (!planned) return planned.error();
+    const detail::EncodePlan& plan = *planned;
+    const TexelFormatInfo& f = plan.format;
+
+    std::array<std::uint32_t, 1 + 31 + 5> h{};  // magic, DDS_HEADER, DDS_HEADER_DXT10
+    std::uint32_t* header = h.data() + 1;
+    h[0] = kMagic;
+    header[0] = 124;
+    header[1] = kCaps | kHeight | kWidth | kPitch | kPixelFormat | kMipMapCount;
+    header[2] = static_cast<std::uint32_t>(content.height);
+    header[3] = static_cast<std::uint32_t>(content.width);
+    header[4] = static_cast<std::uint32_t>(content.width * f.bytesPerTexel());  // pitch of level 0
+    header[6] = static_cast<std::uint32_t>(plan.levels);
+    std::uint32_t* reserved = header + 7;
+    Attributes text = detail::attributesAsText(content.attributes);
+    reserved[0] = kRecord;
+    reserved[1] = 1;
+    reserved[2] = codeOf(kLayouts, findAttribute(text, "heightpack:layout"));
+    reserved[3] = codeOf(kWraps, findAttribute(text, "heightpack:wrap"));
+    for (const ExrAttribute& a : content.attributes) {
+        if (!std::holds_alternative<float>(a.value)) continue;
+        if (a.name == "heightpack:heightScale") reserved[4] = floatBits(std::get<float>(a.value)), reserved[6] |= 1;
+        if (a.name == "heightpack:heightOffset") reserved[5] = floatBits(std::get<float>(a.value)), reserved[6] |= 1;
+    }
+    if (plan.normalisation) {
+        reserved[6] |= 2;
+        reserved[7] = floatBits(plan.normalisation->offset);
+        reserved[8] = floatBits(plan.normalisation->scale);
+    }
+    std::uint32_t* pf = header + 18;
+    pf[0] = 32;
+    pf[1] = kFourCCFlag;
+    pf[2] = kDx10;
+    header[26] = kCapsTexture | (plan.levels > 1 ? kCapsComplex | kCapsMipMap : 0);
+    std::uint32_t* dx10 = header + 31;
+    dx10[0] = f.dxgiFormat;
+    dx10[1] = kTexture2D;
+    dx10[2] = 0;  // not a cube map
+    dx10[3] = 1;  // array size
+    dx10[4] = 0;  // alpha mode unknown: alpha holds heights or a normal's w, not coverage
+
+    TemporaryFile temp(path);
+    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(temp.path().c_str(), "wb"));
+    auto failed = [&](const char* step) {
+        return cannotWrite(path, std::string(step) + " failed", "check free disk space and permissions");
+    };
+    if (!file) return failed("creating the file");
+    if (std::fwrite(h.data(), 4, h.size(), file.get()) != h.size()) return failed("writing the header");
+    long long rowsTotal = 0, rowsDone = 0;
+    for (int level = 0; level < plan.levels; ++level) rowsTotal += detail::levelSide(content.height, level);
+    std::vector<std::uint8_t> bytes;
+    for (int level = 0; level < plan.levels; ++level) {
+        const int lh = detail::levelSide(content.height, level);
+        for (int y0 = 0; y0 < lh; y0 += kBandRows) {
+            const int rows = std::min(kBandRows, lh - y0);
+            if (Status s = detail::encodeRows(path, content, plan, level, y0, rows, options.threads, bytes); !s)
+                return s;
+            if (std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) return failed("writing a level");
+            rowsDone += rows;
+            if (options.progress) options.progress(double(rowsDone) / double(rowsTotal));
+        }
+    }
+    if (std::fflush(file.get()) != 0 || std::ferror(file.get())) return failed("writing the file");
+    if (std::fclose(file.release()) != 0) return failed("closing the file");
+    return temp.commit();
+}
+
+namespace detail {
+
+Result<GpuTexture> readDds(const std::string& path) {
+    auto read = readWholeFile(path);
+    if (!read) return read.error();
+    const std::vector<std::uint8_t>& b = *read;
+    auto corrupt = [&](const std::string& what) {
+        return badInput(path, "is not a DDS file heightpack can read: " + what,
+                        "write it again with heightpack, or check that it was copied whole");
+    };
+    if (b.size() < kDataStart || get32(b.data()) != kMagic) return corrupt("no DDS magic");
+    const std::uint8_t* header = b.data() + 4;
+    auto word = [&](int i) { return get32(header + 4 * i); };
+    if (word(0) != 124 || word(18) != 32) return corrupt("its header sizes are wrong");
+    if (!(word(19) & kFourCCFlag) || word(20) != kDx10) return corrupt("it has no DX10 extended header");
+    GpuTexture t;
+    t.container = Container::Dds;
+    const auto format = texelFormatFromDxgi(word(31));
+    if (!format) return corrupt("DXGI format " + std::to_string(word(31)) + " is not one heightpack writes");
+    t.format = *format;
+    const TexelFormatInfo& f = texelFormatInfo(t.format);
+    if (word(32) != kTexture2D || word(34) > 1 || (word(33) & 0x4)) return corrupt("it is not a single 2D texture");
+    const std::uint32_t height = word(2), width = word(3);
+    if (width == 0 || height == 0 || width > 65536 || height > 65536) return corrupt("its size is out of range");
+    t.width = int(width);
+    t.height = int(height);
+    const int levels = (word(1) & kMipMapCount) && word(6) > 0 ? int(std::min<std::uint32_t>(word(6), 64)) : 1;
+    if (levels > fullChainLevels(t.width, t.height)) return corrupt("it lists more levels than its size allows");
+
+    if (word(7) == kRecord && word(8) == 1) {
+        const std::uint32_t layout = word(9), wrap = word(10), flags = word(13);
+        if (layout >= 1 && layout <= kLayouts.size()) t.keyValues.emplace_back("heightpack:layout", kLayouts[layout - 1]);
+        if (wrap >= 1 && wrap <= kWraps.size()) t.keyValues.emplace_back("heightpack:wrap", kWraps[wrap - 1]);
+        if (flags & 1) {
+            t.keyValues.emplace_back("heightpack:heightScale", floatText(bitsFloat(word(11))));
+            t.keyValues.emplace_back("heightpack:heightOffset", floatText(bitsFloat(word(12))));
+        }
+        if ((flags & 2) && f.kind == ComponentKind::Unorm16) {
+            t.normalisation = Normalisation{bitsFloat(word(14)), bitsFloat(word(15))};
+            t.keyValues.emplace_back("heightpack:normalisedOffset", floatText(t.normalisation->offset));
+            t.keyValues.emplace_back("heightpack:normalisedScale", floatText(t.normalisation->scale));
+        }
+    }
+    size_t at = kDataStart;
+    for (int level = 0; level < levels; ++level) {
+        const int w = levelSide(t.width, level), h = levelSide(t.height, level);
+        const size_t n = size_t(w) * h * f.bytesPerTexel();
+        if (n > b.size() - at) return corrupt("level " + std::to_string(level) + " is truncated");
+        t.levelBytes.emplace_back(b.begin() + std::ptrdiff_t(at), b.begin() + std::ptrdiff_t(at + n));
+        t.levels.push_back(decodeLevel(f, b.data() + at, w, h, t.normalisation));
+        at += n;
+    }
+    return t;
+}
+
+}  // namespace detail
+
+}  // namespace heightpack

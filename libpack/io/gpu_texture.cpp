@@ -1,0 +1,45 @@
+// The KTX2 and DDS writers and readers behind one call each, and their files as TextureFiles.
+#include "heightpack/io/gpu_texture.hpp"
+
+#include "heightpack/io/files.hpp"
+#include "texel_encode.hpp"
+
+namespace heightpack {
+
+namespace detail {
+Result<GpuTexture> readKtx2(const std::string& path);
+Result<GpuTexture> readDds(const std::string& path);
+}  // namespace detail
+
+Status writeGpuTexture(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options) {
+    const auto container = containerForPath(path);
+    if (container == Container::Ktx2) return writeKtx2(path, content, options);
+    if (container == Container::Dds) return writeDds(path, content, options);
+    return cannotWrite(path, "is neither a .ktx2 nor a .dds name", "name the output .ktx2 or .dds");
+}
+
+Result<GpuTexture> readGpuTexture(const std::string& path) {
+    const auto container = containerForPath(path);
+    if (container == Container::Ktx2) return detail::readKtx2(path);
+    if (container == Container::Dds) return detail::readDds(path);
+    return badInput(path, "is neither a .ktx2 nor a .dds file", "name a .ktx2 or .dds file");
+}
+
+Result<TextureFile> readGpuTextureFile(const std::string& path) {
+    auto texture = readGpuTexture(path);
+    if (!texture) return texture.error();
+    const TexelFormatInfo& f = texelFormatInfo(texture->format);
+    TextureFile file;
+    file.path = path;
+    const bool ktx2 = texture->container == Container::Ktx2;
+    file.format = std::string(containerName(texture->container)) + " " + (ktx2 ? f.vkName : f.dxgiName);
+    if (texture->supercompression == Supercompression::Zstd) file.format += " zstd";
+    file.pixelType = pixelTypeName(pixelTypeOf(texture->format));
+    static const char* names[] = {"R", "G", "B", "A"};
+    for (int c = 0; c < f.channels; ++c) file.channelNames.push_back(names[c]);
+    file.attributes = texture->keyValues;
+    file.levels = std::move(texture->levels);
+    return file;
+}
+
+}  // namespace heightpack

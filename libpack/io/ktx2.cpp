@@ -1,0 +1,323 @@
+// KTX 2.0 files (Khronos KTX File Format Specification 2.0), written and read by heightpack itself:
+// Debian 12 has no libktx. The layout, in file order:
+//   identifier, header (vkFormat, typeSize, size, levelCount, supercompressionScheme), index (DFD, key/
+//   value data, no supercompression global data), level index (level 0 first), the Data Format Descriptor
+//   (one basic descriptor block, a sample per channel), key/value data (sorted by key, each entry padded
+//   to 4 bytes), then the levels' data, smallest level first, each aligned to lcm(texel size, 4) (1 when
+//   supercompressed). With Zstandard each level is one zstd frame; uncompressedByteLength is its size
+//   once inflated.
+#include <zstd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <numeric>
+
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/gpu_texture.hpp"
+#include "texel_encode.hpp"
+
+namespace heightpack {
+
+namespace {
+
+constexpr std::uint8_t kIdentifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+constexpr std::uint32_t kSupercompressionZstd = 2;
+constexpr size_t kHeaderBytes = 80;  // identifier + header + index
+constexpr int kBandRows = 64;
+constexpr const char* kOffsetKey = "heightpack:normalisedOffset";
+constexpr const char* kScaleKey = "heightpack:normalisedScale";
+
+void put32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+}
+void put64(std::vector<std::uint8_t>& out, std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+}
+std::uint32_t get32(const std::uint8_t* p) {
+    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+}
+std::uint64_t get64(const std::uint8_t* p) { return std::uint64_t(get32(p)) | std::uint64_t(get32(p + 4)) << 32; }
+size_t alignUp(size_t v, size_t a) { return (v + a - 1) / a * a; }
+
+// The Data Format Descriptor: dfdTotalSize, then one Khronos basic descriptor block (model RGBSDA, BT.709
+// primaries, linear transfer, straight alpha, 1x1 texel blocks) with one sample per channel.
+std::vector<std::uint8_t> dataFormatDescriptor(const TexelFormatInfo& f) {
+    const std::uint32_t blockSize = 24 + 16 * f.channels;
+    std::vector<std::uint8_t> out;
+    put32(out, 4 + blockSize);
+    put32(out, 0);                                // vendorId 0 (Khronos), descriptorType 0 (basic)
+    put32(out, 2 | blockSize << 16);              // versionNumber 2 (KDF 1.3), descriptorBlockSize
+    put32(out, 1 | 1 << 8 | 1 << 16 | 0 << 24);   // colorModel RGBSDA, primaries BT709, transfer LINEAR, flags
+    put32(out, 0);                                // texelBlockDimension0..3: 1x1x1x1, stored minus one
+    put32(out, static_cast<std::uint32_t>(f.bytesPerTexel()));  // bytesPlane0
+    put32(out, 0);                                // bytesPlane4..7
+    const int bits = 8 * f.bytesPerComponent();
+    for (int c = 0; c < f.channels; ++c) {
+        const std::uint32_t channelId = c == 3 ? 15 : static_cast<std::uint32_t>(c);  // R G B ... A
+        std::uint32_t qualifiers = 0, lower = 0, upper = 0;
+        switch (f.kind) {
+            case ComponentKind::Float32:
+            case ComponentKind::Float16:
+                qualifiers = 0x80 | 0x40;  // FLOAT | SIGNED
+                lower = 0xBF800000u;       // -1.0f
+                upper = 0x3F800000u;       // 1.0f
+                break;
+            case ComponentKind::Unorm16: upper = 65535; break;
+            case ComponentKind::Snorm16:
+                qualifiers = 0x40;
+                lower = static_cast<std::uint32_t>(-32767);
+                upper = 32767;
+                break;
+        }
+        put32(out, static_cast<std::uint32_t>(c * bits) | static_cast<std::uint32_t>(bits - 1) << 16 |
+                       (channelId | qualifiers) << 24);
+        put32(out, 0);  // samplePosition0..3
+        put32(out, lower);
+        put32(out, upper);
+    }
+    return out;
+}
+
+// Key/value data: entries sorted by key, each keyAndValueByteLength, key NUL, value NUL, padded to 4.
+std::vector<std::uint8_t> keyValueData(Attributes keyValues) {
+    std::stable_sort(keyValues.begin(), keyValues.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<std::uint8_t> out;
+    for (const auto& [key, value] : keyValues) {
+        put32(out, static_cast<std::uint32_t>(key.size() + 1 + value.size() + 1));
+        out.insert(out.end(), key.begin(), key.end());
+        out.push_back(0);
+        out.insert(out.end(), value.begin(), value.end());
+        out.push_back(0);
+        while (out.size() % 4) out.push_back(0);
+    }
+    return out;
+}
+
+struct FileCloser {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+struct ZstdFree {
+    void operator()(ZSTD_CCtx* c) const { ZSTD_freeCCtx(c); }
+};
+
+}  // namespace
+
+Status writeKtx2(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options) {
+    if (Status s = checkWritable(path); !s) return s;
+    if (lowerExtension(path) != ".ktx2")
+        return cannotWrite(path, "is not a .ktx2 name, but the file would be a KTX2", "name the output .ktx2");
+    auto planned = detail::planEncoding(path, content, options);
+    if (!planned) return planned.error();
+    const detail::EncodePlan& plan = *planned;
+    const TexelFormatInfo& f = plan.format;
+    const bool zstd = options.supercompression == Supercompression::Zstd;
+
+    Attributes keyValues = detail::attributesAsText(content.attributes);
+    if (plan.normalisation) {
+        keyValues.emplace_back(kOffsetKey, detail::floatText(plan.normalisation->offset));
+        keyValues.emplace_back(kScaleKey, detail::floatText(plan.normalisation->scale));
+    }
+    keyValues.emplace_back("KTXwriter", options.writer.empty() ? std::string("heightpack") : options.writer);
+    if (zstd) keyValues.emplace_back("KTXwriterScParams", "--zstd " + std::to_string(options.zstdLevel));
+
+    const int levels = plan.levels;
+    const std::vector<std::uint8_t> dfd = dataFormatDescriptor(f);
+    const std::vector<std::uint8_t> kvd = keyValueData(keyValues);
+    const size_t dfdOffset = kHeaderBytes + 24 * size_t(levels);
+    const size_t kvdOffset = dfdOffset + dfd.size();
+    const size_t dataStart = kvdOffset + kvd.size();
+    const size_t alignment = zstd ? 1 : std::lcm(size_t(f.bytesPerTexel()), size_t(4));
+
+    // Level offsets and lengths: known in advance without supercompression, found while writing with it.
+    std::vector<std::uint64_t> offset(levels), length(levels), rawLength(levels);
+    size_t at = dataStart;
+    for (int level = levels - 1; level >= 0; --level) {
+        rawLength[level] = std::uint64_t(detail::levelSide(content.width, level)) *
+                           detail::levelSide(content.height, level) * f.bytesPerTexel();
+        at = alignUp(at, alignment);
+        offset[level] = at;
+        length[level] = rawLength[level];
+        at += rawLength[level];
+    }
+
+    auto header = [&] {
+        std::vector<std::uint8_t> h(kIdentifier, kIdentifier + 12);
+        put32(h, f.vkFormat);
+        put32(h, static_cast<std::uint32_t>(f.bytesPerComponent()));  // typeSize
+        put32(h, static_cast<std::uint32_t>(content.width));
+        put32(h, static_cast<std::uint32_t>(content.height));
+        put32(h, 0);  // pixelDepth: a 2D texture
+        put32(h, 0);  // layerCount: not an array
+        put32(h, 1);  // faceCount
+        put32(h, static_cast<std::uint32_t>(levels));
+        put32(h, zstd ? kSupercompressionZstd : 0);
+        put32(h, static_cast<std::uint32_t>(dfdOffset));
+        put32(h, static_cast<std::uint32_t>(dfd.size()));
+        put32(h, kvd.empty() ? 0 : static_cast<std::uint32_t>(kvdOffset));
+        put32(h, static_cast<std::uint32_t>(kvd.size()));
+        put64(h, 0);  // no supercompression global data
+        put64(h, 0);
+        for (int level = 0; level < levels; ++level) {
+            put64(h, offset[level]);
+            put64(h, length[level]);
+            put64(h, rawLength[level]);
+        }
+        h.insert(h.end(), dfd.begin(), dfd.end());
+        h.insert(h.end(), kvd.begin(), kvd.end());
+        return h;
+    };
+
+    TemporaryFile temp(path);
+    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(temp.path().c_str(), "wb"));
+    auto failed = [&](const char* step) {
+        return cannotWrite(path, std::string(step) + " failed", "check free disk space and permissions");
+    };
+    if (!file) return failed("creating the file");
+    auto write = [&](const void* data, size_t n) { return n == 0 || std::fwrite(data, 1, n, file.get()) == n; };
+    std::vector<std::uint8_t> bytes = header();
+    if (!write(bytes.data(), bytes.size())) return failed("writing the header");
+
+    std::unique_ptr<ZSTD_CCtx, ZstdFree> cctx(zstd ? ZSTD_createCCtx() : nullptr);
+    if (zstd && (!cctx || ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_compressionLevel, options.zstdLevel))))
+        return Error{ErrorKind::Internal, path, "internal error: Zstandard could not be set up", "please report this"};
+    std::vector<std::uint8_t> packed(zstd ? ZSTD_CStreamOutSize() : 0);
+    long long rowsTotal = 0, rowsDone = 0;
+    for (int level = 0; level < levels; ++level) rowsTotal += detail::levelSide(content.height, level);
+    size_t position = bytes.size();
+    const std::uint8_t zeros[16] = {};
+    for (int level = levels - 1; level >= 0; --level) {
+        const size_t start = zstd ? position : size_t(offset[level]);
+        if (!write(zeros, start - position)) return failed("writing padding");
+        position = start;
+        const int h = detail::levelSide(content.height, level);
+        for (int y0 = 0; y0 < h; y0 += kBandRows) {
+            const int rows = std::min(kBandRows, h - y0);
+            if (Status s = detail::encodeRows(path, content, plan, level, y0, rows, options.threads, bytes); !s)
+                return s;
+            if (!zstd) {
+                if (!write(bytes.data(), bytes.size())) return failed("writing a level");
+                position += bytes.size();
+            } else {
+                ZSTD_inBuffer in{bytes.data(), bytes.size(), 0};
+                const bool last = y0 + rows == h;
+                for (bool done = false; !done;) {
+                    ZSTD_outBuffer out{packed.data(), packed.size(), 0};
+                    const size_t left = ZSTD_compressStream2(cctx.get(), &out, &in, last ? ZSTD_e_end : ZSTD_e_continue);
+                    if (ZSTD_isError(left))
+                        return Error{ErrorKind::Internal, path, std::string("internal error: Zstandard: ") +
+                                     ZSTD_getErrorName(left), "please report this"};
+                    if (!write(packed.data(), out.pos)) return failed("writing a level");
+                    position += out.pos;
+                    done = last ? left == 0 : in.pos == in.size;
+                }
+            }
+            rowsDone += rows;
+            if (options.progress) options.progress(double(rowsDone) / double(rowsTotal));
+        }
+        if (zstd) {
+            offset[level] = start;
+            length[level] = position - start;
+        }
+    }
+    if (zstd) {  // the level index, now that the compressed sizes are known
+        bytes = header();
+        if (std::fseek(file.get(), 0, SEEK_SET) != 0 || !write(bytes.data(), dfdOffset)) return failed("writing the level index");
+    }
+    if (std::fflush(file.get()) != 0 || std::ferror(file.get())) return failed("writing the file");
+    if (std::fclose(file.release()) != 0) return failed("closing the file");
+    return temp.commit();
+}
+
+namespace detail {
+
+// Reads a KTX2 file holding one of heightpack's formats. Every offset and length is checked against the
+// file's size before it is used.
+Result<GpuTexture> readKtx2(const std::string& path) {
+    auto read = readWholeFile(path);
+    if (!read) return read.error();
+    const std::vector<std::uint8_t>& b = *read;
+    auto corrupt = [&](const std::string& what) {
+        return badInput(path, "is not a KTX2 file heightpack can read: " + what,
+                        "write it again with heightpack, or check that it was copied whole");
+    };
+    if (b.size() < kHeaderBytes || std::memcmp(b.data(), kIdentifier, 12) != 0)
+        return corrupt("no KTX 2.0 identifier");
+    const std::uint8_t* p = b.data() + 12;
+    const std::uint32_t vkFormat = get32(p), width = get32(p + 8), height = get32(p + 12), depth = get32(p + 16),
+                        layers = get32(p + 20), faces = get32(p + 24), levelCount = get32(p + 28),
+                        scheme = get32(p + 32), dfdOffset = get32(p + 36), dfdLength = get32(p + 40),
+                        kvdOffset = get32(p + 44), kvdLength = get32(p + 48);
+    GpuTexture t;
+    t.container = Container::Ktx2;
+    const auto format = texelFormatFromVk(vkFormat);
+    if (!format) return corrupt("vkFormat " + std::to_string(vkFormat) + " is not one heightpack writes");
+    t.format = *format;
+    const TexelFormatInfo& f = texelFormatInfo(t.format);
+    if (width == 0 || height == 0 || width > 65536 || height > 65536) return corrupt("its size is out of range");
+    if (depth != 0 || layers != 0 || faces != 1) return corrupt("it is not a single 2D texture");
+    if (scheme != 0 && scheme != kSupercompressionZstd)
+        return corrupt("supercompression scheme " + std::to_string(scheme) + " is not supported");
+    t.supercompression = scheme == kSupercompressionZstd ? Supercompression::Zstd : Supercompression::None;
+    t.width = int(width);
+    t.height = int(height);
+    const int full = fullChainLevels(t.width, t.height);
+    const int levels = levelCount == 0 ? 1 : int(std::min<std::uint32_t>(levelCount, 64));
+    if (levels > full) return corrupt("it lists more levels than its size allows");
+    if (kHeaderBytes + 24 * size_t(levels) > b.size()) return corrupt("its level index is truncated");
+    if (size_t(dfdOffset) + dfdLength > b.size() || size_t(kvdOffset) + kvdLength > b.size())
+        return corrupt("its descriptor or key/value data lies past its end");
+
+    // Key/value data.
+    for (size_t at = kvdOffset, end = size_t(kvdOffset) + kvdLength; at + 4 <= end;) {
+        const std::uint32_t n = get32(b.data() + at);
+        if (n > end - at - 4) return corrupt("a key/value entry runs past the key/value data");
+        const char* entry = reinterpret_cast<const char*>(b.data() + at + 4);
+        const std::string_view kv(entry, n);
+        const size_t nul = kv.find('\0');
+        if (nul == std::string_view::npos) return corrupt("a key has no terminating NUL");
+        std::string value(kv.substr(nul + 1));
+        if (!value.empty() && value.back() == '\0') value.pop_back();
+        t.keyValues.emplace_back(std::string(kv.substr(0, nul)), std::move(value));
+        at = alignUp(at + 4 + n, 4);
+    }
+    const std::string off = findAttribute(t.keyValues, kOffsetKey), scale = findAttribute(t.keyValues, kScaleKey);
+    if (f.kind == ComponentKind::Unorm16 && !off.empty() && !scale.empty()) {
+        try {
+            t.normalisation = Normalisation{std::stof(off), std::stof(scale)};
+        } catch (const std::exception&) {
+            return corrupt("its normalisation key/values are not numbers");
+        }
+    }
+
+    for (int level = 0; level < levels; ++level) {
+        const std::uint8_t* e = b.data() + kHeaderBytes + 24 * size_t(level);
+        const std::uint64_t offset = get64(e), length = get64(e + 8), raw = get64(e + 16);
+        const int w = levelSide(t.width, level), h = levelSide(t.height, level);
+        const std::uint64_t expected = std::uint64_t(w) * h * f.bytesPerTexel();
+        if (offset > b.size() || length > b.size() - offset)
+            return corrupt("level " + std::to_string(level) + " lies past the end of the file");
+        if (raw != expected) return corrupt("level " + std::to_string(level) + " has the wrong size");
+        std::vector<std::uint8_t> bytes;
+        if (t.supercompression == Supercompression::Zstd) {
+            const unsigned long long size = ZSTD_getFrameContentSize(b.data() + offset, length);
+            if (size != expected) return corrupt("level " + std::to_string(level) + " is not a whole Zstandard frame");
+            bytes.resize(expected);
+            const size_t got = ZSTD_decompress(bytes.data(), bytes.size(), b.data() + offset, length);
+            if (ZSTD_isError(got) || got != expected)
+                return corrupt("level " + std::to_string(level) + " does not inflate");
+        } else {
+            if (length != expected) return corrupt("level " + std::to_string(level) + " has the wrong size");
+            bytes.assign(b.begin() + std::ptrdiff_t(offset), b.begin() + std::ptrdiff_t(offset + length));
+        }
+        t.levels.push_back(decodeLevel(f, bytes.data(), w, h, t.normalisation));
+        t.levelBytes.push_back(std::move(bytes));
+    }
+    return t;
+}
+
+}  // namespace detail
+
+}  // namespace heightpack

@@ -1,0 +1,118 @@
+// Pixel types, texel formats and their codes. Half conversion is Imath's (OpenEXR's own half type),
+// which rounds to nearest even.
+#include "heightpack/io/pixel_type.hpp"
+
+#include <Imath/half.h>
+
+#include <array>
+
+#include "heightpack/io/files.hpp"
+
+namespace heightpack {
+
+namespace {
+
+// Vulkan and DXGI codes from the Vulkan registry and Microsoft's DXGI_FORMAT enumeration.
+constexpr std::array<TexelFormatInfo, 9> kFormats = {{
+    {TexelFormat::Rgba32F, 4, ComponentKind::Float32, 109, 2, "VK_FORMAT_R32G32B32A32_SFLOAT",
+     "DXGI_FORMAT_R32G32B32A32_FLOAT"},
+    {TexelFormat::Rgba16F, 4, ComponentKind::Float16, 97, 10, "VK_FORMAT_R16G16B16A16_SFLOAT",
+     "DXGI_FORMAT_R16G16B16A16_FLOAT"},
+    {TexelFormat::Rgba16Unorm, 4, ComponentKind::Unorm16, 91, 11, "VK_FORMAT_R16G16B16A16_UNORM",
+     "DXGI_FORMAT_R16G16B16A16_UNORM"},
+    {TexelFormat::Rg32F, 2, ComponentKind::Float32, 103, 16, "VK_FORMAT_R32G32_SFLOAT", "DXGI_FORMAT_R32G32_FLOAT"},
+    {TexelFormat::Rg16F, 2, ComponentKind::Float16, 83, 34, "VK_FORMAT_R16G16_SFLOAT", "DXGI_FORMAT_R16G16_FLOAT"},
+    {TexelFormat::Rg16Snorm, 2, ComponentKind::Snorm16, 78, 37, "VK_FORMAT_R16G16_SNORM", "DXGI_FORMAT_R16G16_SNORM"},
+    {TexelFormat::R32F, 1, ComponentKind::Float32, 100, 41, "VK_FORMAT_R32_SFLOAT", "DXGI_FORMAT_R32_FLOAT"},
+    {TexelFormat::R16F, 1, ComponentKind::Float16, 76, 54, "VK_FORMAT_R16_SFLOAT", "DXGI_FORMAT_R16_FLOAT"},
+    {TexelFormat::R16Unorm, 1, ComponentKind::Unorm16, 70, 56, "VK_FORMAT_R16_UNORM", "DXGI_FORMAT_R16_UNORM"},
+}};
+
+}  // namespace
+
+const char* containerName(Container container) {
+    switch (container) {
+        case Container::Exr: return "exr";
+        case Container::Ktx2: return "ktx2";
+        case Container::Dds: return "dds";
+    }
+    return "?";
+}
+
+std::optional<Container> containerForPath(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext == ".exr") return Container::Exr;
+    if (ext == ".ktx2") return Container::Ktx2;
+    if (ext == ".dds") return Container::Dds;
+    return std::nullopt;
+}
+
+const char* pixelTypeName(PixelType type) {
+    switch (type) {
+        case PixelType::Float: return "float";
+        case PixelType::Half: return "half";
+        case PixelType::Uint16: return "uint16";
+    }
+    return "?";
+}
+
+std::optional<PixelType> parsePixelType(std::string_view name) {
+    for (PixelType t : {PixelType::Float, PixelType::Half, PixelType::Uint16})
+        if (name == pixelTypeName(t)) return t;
+    return std::nullopt;
+}
+
+const TexelFormatInfo& texelFormatInfo(TexelFormat format) {
+    for (const TexelFormatInfo& info : kFormats)
+        if (info.format == format) return info;
+    return kFormats[0];
+}
+
+std::optional<TexelFormat> texelFormatFromVk(std::uint32_t vkFormat) {
+    for (const TexelFormatInfo& info : kFormats)
+        if (info.vkFormat == vkFormat) return info.format;
+    return std::nullopt;
+}
+
+std::optional<TexelFormat> texelFormatFromDxgi(std::uint32_t dxgiFormat) {
+    for (const TexelFormatInfo& info : kFormats)
+        if (info.dxgiFormat == dxgiFormat) return info.format;
+    return std::nullopt;
+}
+
+TexelFormat texelFormatFor(int channels, PixelType type) {
+    switch (channels) {
+        case 1:
+            return type == PixelType::Float  ? TexelFormat::R32F
+                   : type == PixelType::Half ? TexelFormat::R16F
+                                             : TexelFormat::R16Unorm;
+        case 2:
+            return type == PixelType::Float  ? TexelFormat::Rg32F
+                   : type == PixelType::Half ? TexelFormat::Rg16F
+                                             : TexelFormat::Rg16Snorm;
+        default:
+            return type == PixelType::Float  ? TexelFormat::Rgba32F
+                   : type == PixelType::Half ? TexelFormat::Rgba16F
+                                             : TexelFormat::Rgba16Unorm;
+    }
+}
+
+PixelType pixelTypeOf(TexelFormat format) {
+    switch (texelFormatInfo(format).kind) {
+        case ComponentKind::Float32: return PixelType::Float;
+        case ComponentKind::Float16: return PixelType::Half;
+        case ComponentKind::Unorm16:
+        case ComponentKind::Snorm16: return PixelType::Uint16;
+    }
+    return PixelType::Float;
+}
+
+std::uint16_t floatToHalf(float value) { return Imath::half(value).bits(); }
+
+float halfToFloat(std::uint16_t bits) {
+    Imath::half h;
+    h.setBits(bits);
+    return float(h);
+}
+
+}  // namespace heightpack

@@ -1,0 +1,188 @@
+#include "texel_encode.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+#include "heightpack/core/parallel.hpp"
+
+namespace heightpack::detail {
+
+namespace {
+
+constexpr int kBandRows = 64;
+
+template <class T>
+void putLe(std::uint8_t* dst, T value) {
+    std::memcpy(dst, &value, sizeof value);  // every target heightpack builds for is little-endian
+}
+
+// Fills rows of level into band (sourceChannels floats a texel), in parallel.
+void fillBand(const TiledExrContent& content, int level, int y0, int rows, int width, int channels, int threads,
+              std::vector<float>& band) {
+    band.resize(size_t(rows) * width * channels);
+    parallelFor(rows, threads, [&](int a, int b) {
+        content.fillRows(level, y0 + a, b - a, band.data() + size_t(a) * width * channels);
+    });
+}
+
+Error notFinite(const std::string& path, int level) {
+    return Error{ErrorKind::Internal, path,
+                 "internal error: level " + std::to_string(level) + " holds a non-finite value; nothing was written",
+                 "please report this with the command line"};
+}
+
+}  // namespace
+
+int fullChainLevels(int width, int height) {
+    int levels = 1;
+    while ((width >> levels) > 0 || (height >> levels) > 0) ++levels;
+    return levels;
+}
+
+Result<EncodePlan> planEncoding(const std::string& path, const TiledExrContent& content,
+                                const GpuTextureOptions& options) {
+    EncodePlan plan;
+    plan.sourceChannels = static_cast<int>(content.channelNames.size());
+    plan.format = texelFormatInfo(texelFormatFor(plan.sourceChannels, options.pixelType));
+    plan.levels = fullChainLevels(content.width, content.height);
+    if (options.pixelType == PixelType::Float) return plan;
+
+    // One pass over the chain: the range (uint16) and what a half cannot hold.
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    std::vector<float> band;
+    for (int level = 0; level < plan.levels; ++level) {
+        const int w = levelSide(content.width, level), h = levelSide(content.height, level);
+        for (int y0 = 0; y0 < h; y0 += kBandRows) {
+            const int rows = std::min(kBandRows, h - y0);
+            fillBand(content, level, y0, rows, w, plan.sourceChannels, options.threads, band);
+            for (float v : band) {
+                if (!std::isfinite(v)) return notFinite(path, level);
+                if (options.pixelType == PixelType::Half && !halfCanHold(v))
+                    return badInput(path,
+                                    "level " + std::to_string(level) + " holds " + floatText(v) +
+                                        ", beyond the largest half float (65504); nothing was written",
+                                    "store float or uint16 pixels, or scale the heights down");
+                lo = std::min<double>(lo, v);
+                hi = std::max<double>(hi, v);
+            }
+        }
+    }
+    if (plan.format.kind == ComponentKind::Unorm16) {
+        if (plan.sourceChannels == 3) hi = std::max(hi, 1.0), lo = std::min(lo, 1.0);  // the alpha of 1 we add
+        Normalisation n{static_cast<float>(lo), static_cast<float>(hi - lo)};
+        if (options.gridSpan > 0.0f) {
+            // Keep the painted map's own grid when the chain's range fits in 65535 steps of it.
+            const double step = double(options.gridSpan) / 65535.0;
+            const double kLo = std::floor((lo - options.gridOrigin) / step + 1e-3);
+            const double kHi = std::ceil((hi - options.gridOrigin) / step - 1e-3);
+            if (kHi - kLo <= 65535.0)
+                n = {static_cast<float>(options.gridOrigin + kLo * step), options.gridSpan};
+        }
+        if (!(n.scale > 0.0f)) n.scale = 1.0f;  // a flat chain: every texel 0 decodes to offset
+        plan.normalisation = n;
+    }
+    return plan;
+}
+
+Status encodeRows(const std::string& path, const TiledExrContent& content, const EncodePlan& plan, int level, int y0,
+                  int rows, int threads, std::vector<std::uint8_t>& dst) {
+    const int w = levelSide(content.width, level);
+    const int src = plan.sourceChannels, dstChannels = plan.format.channels;
+    const int componentBytes = plan.format.bytesPerComponent();
+    std::vector<float> band;
+    fillBand(content, level, y0, rows, w, src, threads, band);
+    dst.resize(size_t(rows) * w * plan.format.bytesPerTexel());
+    const double offset = plan.normalisation ? plan.normalisation->offset : 0.0;
+    const double toUnits = plan.normalisation ? 65535.0 / plan.normalisation->scale : 1.0;
+    bool finite = true;
+    const size_t texels = size_t(rows) * w;
+    std::uint8_t* out = dst.data();
+    for (size_t t = 0; t < texels; ++t) {
+        for (int c = 0; c < dstChannels; ++c, out += componentBytes) {
+            const float v = c < src ? band[t * src + c] : 1.0f;  // RGB gets alpha 1
+            finite = finite && std::isfinite(v);
+            switch (plan.format.kind) {
+                case ComponentKind::Float32: putLe(out, v); break;
+                case ComponentKind::Float16: putLe(out, floatToHalf(v)); break;
+                case ComponentKind::Unorm16: {
+                    const double u = std::nearbyint((double(v) - offset) * toUnits);
+                    putLe(out, static_cast<std::uint16_t>(std::clamp(u, 0.0, 65535.0)));
+                    break;
+                }
+                case ComponentKind::Snorm16: {
+                    const double s = std::nearbyint(std::clamp(double(v), -1.0, 1.0) * 32767.0);
+                    putLe(out, static_cast<std::int16_t>(s));
+                    break;
+                }
+            }
+        }
+    }
+    if (!finite) return notFinite(path, level);
+    return Done{};
+}
+
+Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int width, int height,
+                  const std::optional<Normalisation>& normalisation) {
+    Image image(width, height, format.channels);
+    const Normalisation n = normalisation.value_or(Normalisation{});
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+        float& v = image.pixels[i];
+        switch (format.kind) {
+            case ComponentKind::Float32: std::memcpy(&v, bytes + 4 * i, 4); break;
+            case ComponentKind::Float16: {
+                std::uint16_t h;
+                std::memcpy(&h, bytes + 2 * i, 2);
+                v = halfToFloat(h);
+                break;
+            }
+            case ComponentKind::Unorm16: {
+                std::uint16_t u;
+                std::memcpy(&u, bytes + 2 * i, 2);
+                v = n.offset + n.scale * (float(u) / 65535.0f);
+                break;
+            }
+            case ComponentKind::Snorm16: {
+                std::int16_t s;
+                std::memcpy(&s, bytes + 2 * i, 2);
+                v = std::max(float(s) / 32767.0f, -1.0f);
+                break;
+            }
+        }
+    }
+    return image;
+}
+
+std::string floatText(float value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", double(value));
+    return text;
+}
+
+Attributes attributesAsText(const std::vector<ExrAttribute>& attributes) {
+    Attributes out;
+    for (const ExrAttribute& a : attributes) {
+        if (const auto* s = std::get_if<std::string>(&a.value))
+            out.emplace_back(a.name, *s);
+        else
+            out.emplace_back(a.name, floatText(std::get<float>(a.value)));
+    }
+    return out;
+}
+
+Result<std::vector<std::uint8_t>> readWholeFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) return badInput(path, "cannot be opened", "check that the file exists and is readable");
+    const std::streamoff size = in.tellg();
+    if (size < 0) return badInput(path, "cannot be read", "check that it is a regular file");
+    std::vector<std::uint8_t> bytes(static_cast<size_t>(size));
+    in.seekg(0);
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), size))
+        return badInput(path, "cannot be read", "check that it is a regular file");
+    return bytes;
+}
+
+}  // namespace heightpack::detail
