@@ -11,7 +11,8 @@ packages=(
   libtomlplusplus-dev                           # material manifests (heightpack build)
   libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
   libzstd-dev                                   # Zstandard supercompression of KTX2 levels
-  nodejs npm                                    # tests: the independent KTX2 and DDS readers (npm packages)
+  nodejs npm zstd libnvtt-bin                   # tests' independent readers: ktx-parse (npm) under Node, the
+                                                # zstd tool for supercompressed levels, nvddsinfo for DDS
   libopencv-core-dev                            # the DFT behind `tile` (periodic + smooth)
   libglfw3-dev libglm-dev libepoxy-dev          # heightpack-view: window and GL context, maths, GL loader
   libimgui-dev libstb-dev                       # heightpack-view: the panel (imgui.pc requires stb)

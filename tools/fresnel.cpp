@@ -6,6 +6,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "texture_options.hpp"
 
 namespace heightpack::cli {
 
@@ -15,7 +16,8 @@ class FresnelCommand final : public Command {
 public:
     CLI::App* attach(CLI::App& app) override {
         CLI::App* cmd = app.add_subcommand("fresnel", "make a 1D Fresnel reflectance and water-colour ramp indexed by N.V");
-        cmd->add_option("-o,--output", output_, "ramp to write: .exr (float) or .png (8-bit, sRGB colours)")->required();
+        cmd->add_option("-o,--output", output_, "ramp to write: .exr, .ktx2, .dds (linear) or .png (8-bit, sRGB colours)")
+            ->required();
         cmd->add_option("--ior", options_.ior, "index of refraction of the water (air is 1)")
             ->capture_default_str()
             ->check(finiteRange(1.0, 4.0));  // the manifest's range too (docs/manifest.md)
@@ -34,26 +36,36 @@ public:
         cmd->add_option("--size", options_.size, "texels in the ramp")->capture_default_str()->check(CLI::Range(2, 65536));
         cmd->add_option("--format", format_, "exr or png8 (default: from the output's extension)")
             ->check(CLI::IsMember({"exr", "png8"}));
+        addPixelTypeOption(*cmd, pixelType_);
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
             "  heightpack fresnel --ior 1.333 --deep " + deep_ + " --shallow " + shallow_ + " --size 256 -o out/fresnel.exr\n"
             "  heightpack fresnel --ior 1.333 --model schlick --format png8 -o fresnel.png\n"
+            "  heightpack fresnel --pixel-type half -o fresnel.dds\n"
             "Texel i stands for N.V = (i + 0.5) / size (half that with --index 2nv); rgb = mix(shallow, deep, N.V),\n"
             "alpha = the reflectance F, so a shader does mix(rgb, reflection, F) with one fetch.\n");
         return cmd;
     }
 
     ExitCode run() override {
-        if (const ExitCode code = checkOutputs({}, {{output_, "-o", {".exr", ".png"}}}); code != ExitCode::Ok) return code;
-        const std::string format = outputFormat(format_, output_);
+        if (const ExitCode code = checkOutputs({}, {{output_, "-o", {".exr", ".ktx2", ".dds", ".png"}}});
+            code != ExitCode::Ok)
+            return code;
+        const std::string format = isGpuContainer(output_) && format_.empty() ? "exr" : outputFormat(format_, output_);
         if (format.empty()) return usage("the output must end in .exr or .png, matching --format if given");
+        const PixelType pixelType = *parsePixelType(pixelType_);
+        if (format == "png8" && pixelType != PixelType::Float)
+            return usage("--pixel-type is for .exr, .ktx2 and .dds outputs; a PNG ramp is 8-bit");
+        Supercompression none;
+        if (const std::string problem = checkContainerChoice({output_}, pixelType, "", false, none); !problem.empty())
+            return usage(problem);
         options_.model = *parseName<FresnelModel>(model_);
         options_.index = *parseName<FresnelIndex>(index_);
         options_.deep = *parseColour(deep_);
         options_.shallow = *parseColour(shallow_);
         const Status written = writeFresnelRamp(output_, options_, format == "png8" ? RampFormat::Png8 : RampFormat::Exr,
-                                                kVersion);
+                                                kVersion, pixelType);
         if (!written) return fail(written.error());
         const double f0 = fresnelReflectance(1.0, options_.ior, options_.model);
         if (common_.json) {
@@ -70,7 +82,7 @@ public:
     }
 
 private:
-    std::string output_, format_;
+    std::string output_, format_, pixelType_ = "float";
     FresnelOptions options_;
     std::string model_ = nameOf(options_.model), index_ = nameOf(options_.index);
     std::string deep_ = colourText(options_.deep), shallow_ = colourText(options_.shallow);

@@ -18,7 +18,7 @@ public:
     CLI::App* attach(CLI::App& app) override {
         CLI::App* cmd = app.add_subcommand("info", "describe a texture: size, levels, layout, wrap, filter, "
                                                    "scale/offset, min/max/mean per level");
-        cmd->add_option("input", input_, "an EXR heightpack wrote, or any image; NAME.EXT for a sequence "
+        cmd->add_option("input", input_, "an EXR, KTX2 or DDS heightpack wrote, or any image; NAME.EXT for a sequence "
                                          "NAME.0000.EXT, NAME.0001.EXT, ...")
             ->required();
         addCommonOptions(*cmd);
@@ -122,6 +122,8 @@ private:
         const std::string prefix = attr::kPrefix;
         for (const auto& [key, value] : info.attributes)
             if (key.rfind(prefix, 0) == 0) std::printf("  %-13s %s\n", key.substr(prefix.size()).c_str(), value.c_str());
+        for (const auto& [key, value] : info.attributes)  // KTX2's own keys: KTXwriter, KTXwriterScParams
+            if (key.rfind("KTX", 0) == 0) std::printf("  %-13s %s\n", key.c_str(), value.c_str());
         // Heights are channel 0 in every layout heightpack writes (R of a packed texel is H(i,j)).
         std::printf("  %-5s %-11s %12s %12s %12s   (channel %s)\n", "level", "size", "min", "max", "mean",
                     top.channels.front().name.c_str());

@@ -11,6 +11,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "texture_options.hpp"
 
 namespace heightpack::cli {
 
@@ -21,7 +22,7 @@ public:
     CLI::App* attach(CLI::App& app) override {
         CLI::App* cmd = app.add_subcommand("normal", "derive a tangent-space normal map from a height map, in world units");
         cmd->add_option("input", input_, "height map (any format pack reads)")->required();
-        cmd->add_option("-o,--output", output_, "normal map to write: .exr (float, mip-mapped) or .png (8-bit)")
+        cmd->add_option("-o,--output", output_, "normal map to write: .exr, .ktx2 or .dds (mip-mapped) or .png (8-bit)")
             ->required();
         cmd->add_option("--tile-size", tileSize_, "the tile's width in metres, or width,height (square texels if "
                                                   "only the width is given)")
@@ -50,9 +51,10 @@ public:
             ->excludes(heightAlpha);
         cmd->add_option("--format", format_, "exr or png8 (default: from the output's extension)")
             ->check(CLI::IsMember({"exr", "png8"}));
-        cmd->add_option("--compression", compression_, "EXR compression")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<Compression>()));
+        compressionOption_ = cmd->add_option("--compression", compression_, "EXR compression; for .ktx2 none or zstd")
+                                 ->capture_default_str()
+                                 ->check(CLI::IsMember(compressionNames()));
+        addPixelTypeOption(*cmd, pixelType_);
         addChannelOption(*cmd, channel_);
         cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two (EXR)")
             ->check(CLI::IsMember({"none", "pow2"}));
@@ -68,8 +70,11 @@ public:
     }
 
     ExitCode run() override {
-        if (const ExitCode code = checkOutputs({}, {{output_, "-o", {".exr", ".png"}}}); code != ExitCode::Ok) return code;
-        const std::string format = outputFormat(format_, output_);
+        if (const ExitCode code = checkOutputs({}, {{output_, "-o", {".exr", ".ktx2", ".dds", ".png"}}});
+            code != ExitCode::Ok)
+            return code;
+        // KTX2 and DDS take the mip-mapped path the EXR takes.
+        const std::string format = isGpuContainer(output_) && format_.empty() ? "exr" : outputFormat(format_, output_);
         if (format.empty()) return usage("the output must end in .exr or .png, matching --format if given");
         NormalJobOptions o;
         NormalOptions& n = o.normal;
@@ -86,7 +91,14 @@ public:
             return usage("--variance-in-alpha describes mip levels, which a PNG does not have; write .exr");
         o.filter = *parseName<Filter>(filter_);
         o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
-        o.compression = *parseName<Compression>(compression_);
+        o.compression = parseName<Compression>(compression_).value_or(Compression::Zip);
+        o.pixelType = *parsePixelType(pixelType_);
+        if (format == "png8" && o.pixelType != PixelType::Float)
+            return usage("--pixel-type is for .exr, .ktx2 and .dds outputs; a PNG normal map is 8-bit");
+        if (const std::string problem = checkContainerChoice({output_}, o.pixelType, compression_,
+                                                             compressionOption_->count() > 0, o.supercompression);
+            !problem.empty())
+            return usage(problem);
         o.resizeToPowerOfTwo = resize_ == "pow2";
         applyChannel(channel_, o.load);
         o.load.silenceDecoderMessages = true;
@@ -97,7 +109,8 @@ public:
         const std::vector<std::string> inputs = expandSequence(input_);
         std::vector<OutputRule> outputs;
         for (size_t f = 0; f < inputs.size(); ++f)
-            outputs.push_back({frameFileName(output_, int(f), int(inputs.size())), "-o", {".exr", ".png"}});
+            outputs.push_back(
+                {frameFileName(output_, int(f), int(inputs.size())), "-o", {".exr", ".ktx2", ".dds", ".png"}});
         if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         nlohmann::json sequence = nlohmann::json::array();
         for (size_t f = 0; f < inputs.size(); ++f) {
@@ -167,7 +180,8 @@ private:
     std::string input_, output_, tileSize_, height_, channel_, format_;
     std::string kernel_ = nameOf(NormalOptions{}.kernel), wrap_ = nameOf(NormalOptions{}.wrap);
     std::string filter_ = nameOf(NormalJobOptions{}.filter), convention_ = nameOf(NormalOptions{}.convention);
-    std::string compression_ = nameOf(NormalJobOptions{}.compression), resize_ = "none";
+    std::string compression_ = nameOf(NormalJobOptions{}.compression), resize_ = "none", pixelType_ = "float";
+    CLI::Option* compressionOption_ = nullptr;
     bool heightInAlpha_ = false, varianceInAlpha_ = false;
 };
 

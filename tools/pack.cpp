@@ -12,6 +12,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "texture_options.hpp"
 
 namespace heightpack::cli {
 
@@ -23,7 +24,8 @@ public:
         CLI::App* cmd = app.add_subcommand("pack", "pack a height map into a mip-mapped, 4-neighbour packed RGBA32F EXR");
         cmd->add_option("input", input_, "height map: PNG, TIFF, EXR, JPEG, TGA, PSD (8/16-bit, half, float)")
             ->required();
-        cmd->add_option("-o,--output", output_, "packed EXR to write (replaced atomically)")->required();
+        cmd->add_option("-o,--output", output_, "packed texture to write: .exr, .ktx2 or .dds (replaced atomically)")
+            ->required();
         addChannelOption(*cmd, channel_);
         cmd->add_option("--scale", options_.scale, "stored height = offset + scale * painted value")
             ->capture_default_str()
@@ -33,8 +35,11 @@ public:
             ->check(CLI::IsMember(allNames<Wrap>()));
         cmd->add_option("--filter", filter_, "mip filter")->capture_default_str()
             ->check(CLI::IsMember(allNames<Filter>()));
-        cmd->add_option("--compression", compression_, "EXR compression (lossless only)")->capture_default_str()
-            ->check(CLI::IsMember(allNames<Compression>()));
+        compressionOption_ = cmd->add_option("--compression", compression_,
+                                             "EXR compression (lossless only); for .ktx2 none or zstd")
+                                 ->capture_default_str()
+                                 ->check(CLI::IsMember(compressionNames()));
+        addPixelTypeOption(*cmd, pixelType_);
         cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two up to the "
                                               "next ones, with the mip filter")
             ->check(CLI::IsMember({"none", "pow2"}));
@@ -46,6 +51,7 @@ public:
             "  heightpack pack swell.tif --channel r --scale 2.5 --offset -1.25 --filter lanczos3 "
             "--compression none -o swell.exr\n"
             "  heightpack pack big.png --resize pow2 -o big.exr\n"
+            "  heightpack pack swell.png --pixel-type half -o swell.dds\n"
             "Texel (i,j) of every level holds R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1), wrapped or clamped.\n");
         return cmd;
     }
@@ -58,7 +64,12 @@ public:
         options_.mip.wrap = *parseName<Wrap>(wrap_);
         options_.mip.filter = *parseName<Filter>(filter_);
         options_.mip.threads = common_.threads;
-        options_.compression = *parseName<Compression>(compression_);
+        options_.compression = parseName<Compression>(compression_).value_or(Compression::Zip);
+        options_.pixelType = *parsePixelType(pixelType_);
+        const std::string containerProblem =
+            checkContainerChoice({output_, options_.plainOutput}, options_.pixelType, compression_,
+                                 compressionOption_->count() > 0, options_.supercompression);
+        if (!containerProblem.empty()) return usage(containerProblem);
         options_.resizeToPowerOfTwo = resize_ == "pow2";
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
@@ -69,8 +80,9 @@ public:
         const std::string plain = options_.plainOutput;
         std::vector<OutputRule> outputs;
         for (int f = 0; f < frames; ++f) {
-            outputs.push_back({frameFileName(output_, f, frames), "-o", {".exr"}});
-            if (!plain.empty()) outputs.push_back({frameFileName(plain, f, frames), "--emit-plain", {".exr"}});
+            outputs.push_back({frameFileName(output_, f, frames), "-o", {".exr", ".ktx2", ".dds"}});
+            if (!plain.empty())
+                outputs.push_back({frameFileName(plain, f, frames), "--emit-plain", {".exr", ".ktx2", ".dds"}});
         }
         if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         nlohmann::json sequence = nlohmann::json::array();
@@ -120,6 +132,7 @@ private:
                 {"wrap", wrap_},
                 {"filter", filter_},
                 {"compression", compression_},
+                {"pixelType", pixelType_},
                 {"heightScale", options_.scale},
                 {"heightOffset", options_.offset},
                 {"levels", levels},
@@ -147,7 +160,8 @@ private:
 
     std::string input_, output_, channel_;
     std::string wrap_ = nameOf(MipOptions{}.wrap), filter_ = nameOf(MipOptions{}.filter);
-    std::string compression_ = nameOf(PackOptions{}.compression), resize_ = "none";
+    std::string compression_ = nameOf(PackOptions{}.compression), resize_ = "none", pixelType_ = "float";
+    CLI::Option* compressionOption_ = nullptr;
     PackOptions options_;
 };
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "heightpack/io/image_write.hpp"
+#include "heightpack/io/texture_write.hpp"
 
 namespace heightpack {
 
@@ -17,7 +18,7 @@ std::string rgbText(const Rgb& c) {
 }  // namespace
 
 Status writeFresnelRamp(const std::string& output, const FresnelOptions& options, RampFormat format,
-                        const std::string& version) {
+                        const std::string& version, PixelType pixelType) {
     FlatImageOptions flat;
     flat.bits = format == RampFormat::Png8 ? 8 : 32;
     flat.srgbChannels = 3;  // the water colours; the reflectance in alpha stays linear
@@ -31,7 +32,27 @@ Status writeFresnelRamp(const std::string& output, const FresnelOptions& options
         attribute(attr::texelCentre, 0.5f),
         attribute(attr::version, version),
     };
-    return writeFlatImage(output, makeFresnelRamp(options), flat);
+    const Image ramp = makeFresnelRamp(options);
+    const auto container = containerForPath(output);
+    if (container == Container::Ktx2 || container == Container::Dds) {
+        TiledExrContent content;
+        content.width = ramp.width;
+        content.height = ramp.height;
+        content.channelNames = {"R", "G", "B", "A"};
+        content.fillRows = [&](int, int y0, int rows, float* dst) {
+            std::copy(ramp.row(y0), ramp.row(y0) + size_t(rows) * ramp.width * ramp.channels, dst);
+        };
+        content.attributes = flat.attributes;
+        TextureWriteOptions write;
+        write.pixelType = pixelType;
+        write.levels = 1;  // a ramp is looked up, never minified
+        write.writer = "heightpack " + version;
+        return writeTexture(output, content, write);
+    }
+    if (pixelType == PixelType::Uint16)
+        return cannotWrite(output, "an EXR has no 16-bit normalised channels", "store float or half, or write .ktx2 or .dds");
+    flat.half = format == RampFormat::Exr && pixelType == PixelType::Half;
+    return writeFlatImage(output, ramp, flat);
 }
 
 }  // namespace heightpack

@@ -9,6 +9,7 @@
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
 #include "heightpack/io/read.hpp"
+#include "heightpack/io/texture_write.hpp"
 
 #include "job_steps.hpp"
 
@@ -118,11 +119,14 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
             std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width * l.channels, dst);
         };
         content.attributes = normalAttributes(options, report.source, report.sourceHash, content.width, content.height);
-        ExrWriteOptions write;
-        write.compression = options.compression;
+        TextureWriteOptions write;
+        write.pixelType = options.pixelType;
+        write.exrCompression = options.compression;
+        write.supercompression = options.supercompression;
         write.threads = options.normal.threads;
+        write.writer = "heightpack " + options.version;
         write.progress = [&](double f) { progress("write", f); };
-        if (Status s = writeTiledExr(output, content, write); !s) return s.error();
+        if (Status s = writeTexture(output, content, write); !s) return s.error();
     }
     progress("write", 1.0);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -8,6 +8,7 @@
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/read.hpp"
+#include "heightpack/io/texture_write.hpp"
 
 #include "job_steps.hpp"
 
@@ -93,9 +94,17 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     report.mipSeconds = secondsSince(start);
 
     start = std::chrono::steady_clock::now();
-    ExrWriteOptions writeOptions;
-    writeOptions.compression = options.compression;
+    TextureWriteOptions writeOptions;
+    writeOptions.pixelType = options.pixelType;
+    writeOptions.exrCompression = options.compression;
+    writeOptions.supercompression = options.supercompression;
     writeOptions.threads = options.mip.threads;
+    writeOptions.writer = "heightpack " + options.version;
+    // A painted 8- or 16-bit map lies on a 16-bit grid (8-bit k/255 = 257k/65535): uint16 keeps it.
+    if (!report.resized && (report.source.pixelType == "uint8" || report.source.pixelType == "uint16")) {
+        writeOptions.gridOrigin = options.offset;
+        writeOptions.gridSpan = options.scale;
+    }
     // The plain chain goes to plainOutput beside the packed one, or alone to output.
     const std::string plainPath = options.packed ? options.plainOutput : output;
     const bool both = options.packed && !plainPath.empty();
@@ -111,7 +120,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
             packNeighbour4Rows(chain[level], wrap, y0, rows, dst);
         };
         content.attributes = heightAttributes("neighbour4", options, report.source, report.sourceHash);
-        if (Status s = writeTiledExr(output, content, writeOptions); !s) return s.error();
+        if (Status s = writeTexture(output, content, writeOptions); !s) return s.error();
     }
     if (!plainPath.empty()) {
         content.channelNames = {"Y"};
@@ -121,7 +130,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         };
         content.attributes = heightAttributes("plain", options, report.source, report.sourceHash);
         if (both) writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
-        if (Status s = writeTiledExr(plainPath, content, writeOptions); !s) return s.error();
+        if (Status s = writeTexture(plainPath, content, writeOptions); !s) return s.error();
     }
     progress("write", 1.0);
     report.writeSeconds = secondsSince(start);

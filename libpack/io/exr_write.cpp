@@ -10,6 +10,7 @@
 #include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfTiledOutputFile.h>
+#include <Imath/half.h>
 #include <OpenEXR/openexr.h>
 #include <libdeflate.h>
 
@@ -62,9 +63,19 @@ extern "C" void rememberCoreError(exr_const_context_t ctxt, exr_result_t code, c
 }
 
 // Packs one tile's texels in EXR's uncompressed tile layout: line by line, and within a line each
-// channel's run of floats, channels in name order.
+// channel's run of floats (or halves), channels in name order.
 void packTile(const float* band, int levelWidth, int channels, const std::vector<int>& nameOrder, int x0,
-              int tileWidth, int rows, std::vector<unsigned char>& raw) {
+              int tileWidth, int rows, bool half, std::vector<unsigned char>& raw) {
+    if (half) {
+        raw.resize(size_t(rows) * channels * tileWidth * sizeof(std::uint16_t));
+        std::uint16_t* out = reinterpret_cast<std::uint16_t*>(raw.data());
+        for (int r = 0; r < rows; ++r) {
+            const float* line = band + (size_t(r) * levelWidth + x0) * channels;
+            for (int c : nameOrder)
+                for (int x = 0; x < tileWidth; ++x) *out++ = Imath::half(line[size_t(x) * channels + c]).bits();
+        }
+        return;
+    }
     raw.resize(size_t(rows) * channels * tileWidth * sizeof(float));
     float* out = reinterpret_cast<float*>(raw.data());
     for (int r = 0; r < rows; ++r) {
@@ -124,7 +135,7 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
                                       EXR_TILE_ROUND_DOWN)))
         return fail("describing the file", rv);
     for (const std::string& name : content.channelNames)
-        if ((rv = exr_add_channel(ctxt, part, name.c_str(), EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1)))
+        if ((rv = exr_add_channel(ctxt, part, name.c_str(), options.half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1)))
             return fail("adding a channel", rv);
     for (const ExrAttribute& a : content.attributes) {
         if (const auto* s = std::get_if<std::string>(&a.value))
@@ -165,7 +176,7 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
                 libdeflate_compressor* compressor = zip ? libdeflate_alloc_compressor(kDeflateLevel) : nullptr;
                 for (int tx = a; tx < b; ++tx) {
                     const int x0 = tx * ts;
-                    packTile(band.data(), w, channels, nameOrder, x0, std::min(ts, w - x0), rows,
+                    packTile(band.data(), w, channels, nameOrder, x0, std::min(ts, w - x0), rows, options.half,
                              zip ? raw : tiles[tx]);
                     if (zip) zipTile(raw, scratch, tiles[tx], compressor);
                 }
@@ -202,7 +213,8 @@ Status writeWithImf(const std::string& finalPath, const std::string& path, const
     header.compression() = toImf(options.compression);
     header.setTileDescription(
         Imf::TileDescription(options.tileSize, options.tileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
-    for (const std::string& name : content.channelNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    const Imf::PixelType type = options.half ? Imf::HALF : Imf::FLOAT;
+    for (const std::string& name : content.channelNames) header.channels().insert(name, Imf::Channel(type));
     for (const ExrAttribute& a : content.attributes) {
         if (const auto* s = std::get_if<std::string>(&a.value))
             header.insert(a.name, Imf::StringAttribute(*s));
@@ -216,16 +228,26 @@ Status writeWithImf(const std::string& finalPath, const std::string& path, const
         long long rowsTotal = 0, rowsDone = 0;
         for (int level = 0; level < file.numLevels(); ++level) rowsTotal += file.levelHeight(level);
         std::vector<float> band;
+        std::vector<Imath::half> halves;
         for (int level = 0; level < file.numLevels(); ++level) {
             const int w = file.levelWidth(level), h = file.levelHeight(level);
             band.resize(static_cast<size_t>(w) * options.tileSize * channels);
+            if (options.half) halves.resize(band.size());
             for (int ty = 0; ty < file.numYTiles(level); ++ty) {
                 const int y0 = ty * options.tileSize;
                 const int rows = std::min(options.tileSize, h - y0);
                 content.fillRows(level, y0, rows, band.data());
                 if (Status s = requireFinite(finalPath, band.data(), size_t(w) * rows * channels, level); !s) return s;
                 Imf::FrameBuffer frame;
-                for (int c = 0; c < channels; ++c) {
+                if (options.half) {
+                    for (size_t i = 0; i < size_t(w) * rows * channels; ++i) halves[i] = Imath::half(band[i]);
+                    const size_t halfTexel = sizeof(Imath::half) * channels;
+                    for (int c = 0; c < channels; ++c)
+                        frame.insert(content.channelNames[c],
+                                     Imf::Slice::Make(Imf::HALF, halves.data() + c, IMATH_NAMESPACE::V2i(0, y0), w,
+                                                      rows, halfTexel, halfTexel * w));
+                }
+                for (int c = 0; c < channels && !options.half; ++c) {
                     frame.insert(content.channelNames[c],
                                  Imf::Slice::Make(Imf::FLOAT, band.data() + c, IMATH_NAMESPACE::V2i(0, y0), w, rows,
                                                   texelBytes, texelBytes * w));

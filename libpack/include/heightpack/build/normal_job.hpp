@@ -11,12 +11,13 @@
 #include "heightpack/core/normal.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/read.hpp"
 
 namespace heightpack {
 
 enum class NormalFormat {
-    Exr,   // RGB(A) 32-bit float, xyz in [-1,1], tiled and mip-mapped like the packed heights
+    Exr,   // mip-mapped RGB(A), xyz in [-1,1], like the packed heights: EXR, KTX2 or DDS by the extension
     Png8,  // level 0 only, 8-bit, rgb = 0.5 + 0.5 n
 };
 
@@ -27,6 +28,8 @@ struct NormalJobOptions {
     bool resizeToPowerOfTwo = false;  // EXR only: a mip chain needs power-of-two sides
     NormalFormat format = NormalFormat::Exr;
     Compression compression = Compression::Zip;
+    PixelType pixelType = PixelType::Float;                      // mip-mapped outputs
+    Supercompression supercompression = Supercompression::None;  // KTX2 outputs
     std::string version;
     std::function<void(std::string_view stage, double fraction)> progress;
 };

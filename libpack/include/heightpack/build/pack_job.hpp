@@ -10,6 +10,7 @@
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/read.hpp"
 
 namespace heightpack {
@@ -20,7 +21,10 @@ struct PackOptions {
     float scale = 1.0f;                // stored height = offset + scale * painted value
     float offset = 0.0f;
     bool resizeToPowerOfTwo = false;   // else a size that is not a power of two is refused
-    Compression compression = Compression::Zip;
+    Compression compression = Compression::Zip;  // EXR outputs
+    // The container is the output's extension (.exr, .ktx2, .dds); these choose what goes into it.
+    PixelType pixelType = PixelType::Float;
+    Supercompression supercompression = Supercompression::None;  // KTX2 outputs
     std::string plainOutput;           // also write the unpacked one-channel chain here, if not empty
     bool packed = true;                // false: write only the unpacked chain, at output (foam, masks)
     std::string version;               // recorded as heightpack:version
@@ -54,7 +58,8 @@ struct PackedMaps {
 // paths, compression and version in options are not used.
 Result<PackedMaps> packHeights(Image heights, const SourceInfo& source, const PackOptions& options);
 
-// Packs the height map at input into a 4-neighbour packed, mip-mapped RGBA32F EXR at output.
+// Packs the height map at input into a 4-neighbour packed, mip-mapped texture at output: EXR, KTX2 or DDS
+// by its extension, in options.pixelType.
 Result<PackReport> packHeightMap(const std::string& input, const std::string& output, const PackOptions& options);
 
 // The header attributes heightpack records for a chain written with these options and layout

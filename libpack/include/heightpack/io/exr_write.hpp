@@ -43,11 +43,12 @@ struct ExrWriteOptions {
     Compression compression = Compression::Zip;
     int tileSize = 64;
     int threads = 0;  // for packing and compressing tiles; 0 = all cores; the bytes do not depend on it
+    bool half = false;  // 16-bit half channels, each value rounded to nearest; the caller checks the range
     // Called after each row of tiles with the fraction written so far; may be empty.
     std::function<void(double fraction)> progress;
 };
 
-// Writes content as a tiled (tileSize^2), MIPMAP_LEVELS, ROUND_DOWN EXR of 32-bit float channels. The
+// Writes content as a tiled (tileSize^2), MIPMAP_LEVELS, ROUND_DOWN EXR of 32-bit float (or half) channels. The
 // file appears at path only once complete: it is written to a temporary file in the same folder and
 // renamed, so a failure or interruption leaves no partial file and any existing file untouched.
 Status writeTiledExr(const std::string& path, const TiledExrContent& content, const ExrWriteOptions& options);

@@ -31,11 +31,13 @@ struct GpuTextureOptions {
     PixelType pixelType = PixelType::Float;
     Supercompression supercompression = Supercompression::None;  // KTX2 only; DDS must have None
     int zstdLevel = 9;
-    // uint16 only: heights on the grid gridOrigin + gridSpan * k / 65535 (k integer: a painted 8- or
-    // 16-bit map) keep that grid when the chain's range spans at most 65535 steps of it, so level 0 reads
-    // back exactly. gridSpan 0: normalise to the chain's range alone.
+    // uint16 only. The chain is normalised to its range: value = offset + scale * u / 65535. When its
+    // values start on a grid gridOrigin + gridSpan * k / 65535 (k integer: a painted 8- or 16-bit map),
+    // the range is widened to the grid (offset on it, each grid step a whole number of codes), so level
+    // 0 reads back exactly. gridSpan 0: the chain's range alone.
     float gridOrigin = 0.0f;
     float gridSpan = 0.0f;
+    int levels = 0;         // how many levels to write: 0 for the full chain down to 1x1
     int threads = 0;        // for filling and encoding rows; the bytes do not depend on it
     std::string writer;     // recorded as KTXwriter, e.g. "heightpack 0.14.0"
     std::function<void(double fraction)> progress;  // may be empty

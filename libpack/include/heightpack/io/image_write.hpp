@@ -13,6 +13,7 @@ namespace heightpack {
 // A flat (single-level, scanline) image file: a PNG, a TIFF, a scanline EXR, chosen by the extension.
 struct FlatImageOptions {
     int bits = 32;          // 8 or 16 (unsigned integer) or 32 (float)
+    bool half = false;      // with bits 32, in an EXR: 16-bit half channels instead of 32-bit float
     int srgbChannels = 0;   // the first this many channels are linear colours to encode as sRGB (8/16-bit)
     std::vector<ExrAttribute> attributes;  // metadata; a PNG holds numbers as text
     std::vector<std::string> channelNames; // empty: Y, RGB or RGBA by count

@@ -1,0 +1,33 @@
+// One call for every mip-mapped output: EXR, KTX2 or DDS by the output's extension, in a pixel type.
+#pragma once
+
+#include <string>
+
+#include "heightpack/core/result.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/gpu_texture.hpp"
+
+namespace heightpack {
+
+struct TextureWriteOptions {
+    PixelType pixelType = PixelType::Float;
+    Compression exrCompression = Compression::Zip;                // EXR
+    Supercompression supercompression = Supercompression::None;  // KTX2
+    float gridOrigin = 0.0f, gridSpan = 0.0f;                     // uint16: see GpuTextureOptions
+    int levels = 0;                                               // KTX2/DDS: 0 = the full chain
+    int threads = 0;
+    std::string writer;                                           // KTX2's KTXwriter
+    std::function<void(double fraction)> progress;
+};
+
+// Writes content to path in the container its extension names (.exr, .ktx2, .dds). A float EXR is
+// written exactly as writeTiledExr writes it. Fails, writing nothing, with BadInput when a value cannot
+// be stored in the pixel type, and with CannotWrite for an unknown extension or a pixel type or
+// compression the container lacks (an EXR has no 16-bit normalised channels; a DDS no supercompression).
+Status writeTexture(const std::string& path, const TiledExrContent& content, const TextureWriteOptions& options);
+
+// The bytes a level of width x height texels with `channels` channels takes on the GPU in the format
+// writeTexture would choose (three channels are stored as four).
+size_t gpuBytes(int width, int height, int channels, PixelType type);
+
+}  // namespace heightpack

@@ -1,0 +1,46 @@
+#include "heightpack/io/texture_write.hpp"
+
+#include "heightpack/io/files.hpp"
+#include "texel_encode.hpp"
+
+namespace heightpack {
+
+
+Status writeTexture(const std::string& path, const TiledExrContent& content, const TextureWriteOptions& options) {
+    const auto container = containerForPath(path);
+    if (!container)
+        return cannotWrite(path, "names no texture container heightpack writes", "name the output .exr, .ktx2 or .dds");
+    GpuTextureOptions gpu;
+    gpu.pixelType = options.pixelType;
+    gpu.supercompression = options.supercompression;
+    gpu.gridOrigin = options.gridOrigin;
+    gpu.gridSpan = options.gridSpan;
+    gpu.levels = options.levels;
+    gpu.threads = options.threads;
+    gpu.writer = options.writer;
+    gpu.progress = options.progress;
+    if (*container != Container::Exr) return writeGpuTexture(path, content, gpu);
+
+    if (options.pixelType == PixelType::Uint16)
+        return cannotWrite(path, "an EXR has no 16-bit normalised channels", "store float or half, or write .ktx2 or .dds");
+    if (options.supercompression != Supercompression::None)
+        return cannotWrite(path, "an EXR has no Zstandard compression", "use one of EXR's own, or write .ktx2");
+    ExrWriteOptions exr;
+    exr.compression = options.exrCompression;
+    exr.threads = options.threads;
+    exr.progress = options.progress;
+    if (options.pixelType == PixelType::Half) {
+        // Refuse what a half cannot hold before anything is written.
+        if (Status s = checkWritable(path); !s) return s;
+        auto plan = detail::planEncoding(path, content, gpu);
+        if (!plan) return plan.error();
+        exr.half = true;
+    }
+    return writeTiledExr(path, content, exr);
+}
+
+size_t gpuBytes(int width, int height, int channels, PixelType type) {
+    return size_t(width) * height * texelFormatInfo(texelFormatFor(channels, type)).bytesPerTexel();
+}
+
+}  // namespace heightpack

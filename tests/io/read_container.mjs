@@ -1,0 +1,108 @@
+// The tests' independent reader of the KTX2 and DDS files heightpack writes. Prints one JSON document:
+// the format, level 0's size, the key/values, and per level its size, the SHA-256 of its bytes (as
+// stored, after inflating) and its values decoded to numbers.
+//   node read_container.mjs FILE.ktx2 NPM_DIR   KTX2 through ktx-parse (npm); zstd levels through the
+//                                               zstd command-line tool (Debian's zstd package)
+//   node read_container.mjs FILE.dds NPM_DIR    DDS: the header through nvddsinfo (NVIDIA Texture Tools,
+//                                               Debian's libnvtt-bin), the levels by Microsoft's DX10
+//                                               layout, decoded here
+// Decoding here is written from the formats' definitions, not from heightpack's code.
+import { readFileSync } from 'node:fs';
+import { createHash } from 'node:crypto';
+import { execFileSync } from 'node:child_process';
+import { pathToFileURL } from 'node:url';
+import { join } from 'node:path';
+
+const [file, npmDir] = process.argv.slice(2);
+const bytes = readFileSync(file);
+
+// binary16 to number, from IEEE 754's definition.
+function half(h) {
+  const sign = h & 0x8000 ? -1 : 1;
+  const exponent = (h >> 10) & 0x1f;
+  const fraction = h & 0x3ff;
+  if (exponent === 0) return sign * fraction * 2 ** -24;
+  if (exponent === 31) return fraction ? NaN : sign * Infinity;
+  return sign * (1 + fraction / 1024) * 2 ** (exponent - 15);
+}
+
+// kind: f32, f16, unorm16, snorm16. unorm16 values are the raw integers u; the test maps them.
+function decode(data, kind) {
+  const view = new DataView(data.buffer, data.byteOffset, data.byteLength);
+  const out = [];
+  const step = kind === 'f32' ? 4 : 2;
+  for (let at = 0; at + step <= data.byteLength; at += step) {
+    if (kind === 'f32') out.push(view.getFloat32(at, true));
+    else if (kind === 'f16') out.push(half(view.getUint16(at, true)));
+    else if (kind === 'unorm16') out.push(view.getUint16(at, true));
+    else out.push(Math.max(view.getInt16(at, true) / 32767, -1));
+  }
+  return out;
+}
+
+const sha256 = (data) => createHash('sha256').update(data).digest('hex');
+
+// Vulkan and DXGI codes of the formats, from the Vulkan registry and Microsoft's DXGI_FORMAT list.
+const vk = {
+  109: ['VK_FORMAT_R32G32B32A32_SFLOAT', 'f32', 4], 97: ['VK_FORMAT_R16G16B16A16_SFLOAT', 'f16', 4],
+  91: ['VK_FORMAT_R16G16B16A16_UNORM', 'unorm16', 4], 103: ['VK_FORMAT_R32G32_SFLOAT', 'f32', 2],
+  83: ['VK_FORMAT_R16G16_SFLOAT', 'f16', 2], 78: ['VK_FORMAT_R16G16_SNORM', 'snorm16', 2],
+  100: ['VK_FORMAT_R32_SFLOAT', 'f32', 1], 76: ['VK_FORMAT_R16_SFLOAT', 'f16', 1], 70: ['VK_FORMAT_R16_UNORM', 'unorm16', 1],
+};
+const dxgi = {
+  R32G32B32A32_FLOAT: ['f32', 4], R16G16B16A16_FLOAT: ['f16', 4], R16G16B16A16_UNORM: ['unorm16', 4],
+  R32G32_FLOAT: ['f32', 2], R16G16_FLOAT: ['f16', 2], R16G16_SNORM: ['snorm16', 2],
+  R32_FLOAT: ['f32', 1], R16_FLOAT: ['f16', 1], R16_UNORM: ['unorm16', 1],
+};
+
+if (file.toLowerCase().endsWith('.ktx2')) {
+  const { read } = await import(pathToFileURL(join(npmDir, 'node_modules', 'ktx-parse', 'dist', 'index.mjs')).href);
+  const ktx = read(new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength));
+  const [name, kind, channels] = vk[ktx.vkFormat] ?? [`vkFormat ${ktx.vkFormat}`, 'f32', 1];
+  const keyValues = {};
+  for (const [key, value] of Object.entries(ktx.keyValue)) {
+    const text = typeof value === 'string' ? value : new TextDecoder().decode(value);
+    keyValues[key] = text.replace(/\0$/, '');
+  }
+  const dfd = ktx.dataFormatDescriptor[0];
+  const levels = ktx.levels.map((level, i) => {
+    let data = level.levelData;
+    if (ktx.supercompressionScheme === 2) data = execFileSync('zstd', ['-d', '-c', '-q'], { input: data });
+    return {
+      width: Math.max(1, ktx.pixelWidth >> i), height: Math.max(1, ktx.pixelHeight >> i),
+      byteLength: data.byteLength, uncompressedByteLength: level.uncompressedByteLength,
+      sha256: sha256(data), values: decode(new Uint8Array(data), kind),
+    };
+  });
+  console.log(JSON.stringify({
+    reader: 'ktx-parse', format: name, channels, typeSize: ktx.typeSize, width: ktx.pixelWidth,
+    height: ktx.pixelHeight, levelCount: ktx.levelCount, supercompressionScheme: ktx.supercompressionScheme,
+    dfd: {
+      colorModel: dfd.colorModel, colorPrimaries: dfd.colorPrimaries, transferFunction: dfd.transferFunction,
+      bytesPlane0: dfd.bytesPlane[0],
+      samples: dfd.samples.map((s) => ({ bitOffset: s.bitOffset, bitLength: s.bitLength, channelType: s.channelType,
+                                          lower: s.sampleLower, upper: s.sampleUpper })),
+    },
+    keyValues, levels,
+  }));
+} else {
+  const info = execFileSync('nvddsinfo', [file], { encoding: 'utf8' });
+  const field = (re) => { const m = info.match(re); if (!m) throw new Error(`nvddsinfo printed no ${re}`); return m[1]; };
+  const width = Number(field(/^Width: (\d+)/m)), height = Number(field(/^Height: (\d+)/m));
+  const levelCount = Number(field(/^Mipmap count: (\d+)/m));
+  const format = field(/DXGI Format: \d+ \((\w+)\)/);
+  const [kind, channels] = dxgi[format] ?? ['f32', 1];
+  const texelBytes = (kind === 'f32' ? 4 : 2) * channels;
+  let at = 4 + 124 + 20;  // magic, DDS_HEADER, DDS_HEADER_DXT10; then level 0 first, rows packed
+  const levels = [];
+  for (let i = 0; i < levelCount; ++i) {
+    const w = Math.max(1, width >> i), h = Math.max(1, height >> i);
+    const data = bytes.subarray(at, at + w * h * texelBytes);
+    if (data.byteLength !== w * h * texelBytes) throw new Error(`level ${i} is truncated`);
+    levels.push({ width: w, height: h, byteLength: data.byteLength, sha256: sha256(data), values: decode(data, kind) });
+    at += data.byteLength;
+  }
+  if (at !== bytes.byteLength) throw new Error(`${bytes.byteLength - at} bytes after the last level`);
+  console.log(JSON.stringify({ reader: 'nvddsinfo', format: `DXGI_FORMAT_${format}`, channels, width, height,
+                               levelCount, keyValues: {}, levels }));
+}
