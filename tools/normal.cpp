@@ -74,8 +74,9 @@ public:
             code != ExitCode::Ok)
             return code;
         // KTX2 and DDS take the mip-mapped path the EXR takes.
-        const std::string format = isGpuContainer(output_) && format_.empty() ? "exr" : outputFormat(format_, output_);
-        if (format.empty()) return usage("the output must end in .exr or .png, matching --format if given");
+        const std::string format = isGpuContainer(output_) && format_.empty() ? std::string(containerName(*containerForPath(output_)))
+                                                                      : outputFormat(format_, output_);
+        if (format.empty()) return usage("the output must end in .exr, .ktx2, .dds or .png, matching --format if given");
         NormalJobOptions o;
         NormalOptions& n = o.normal;
         const auto comma = tileSize_.find(',');

@@ -131,7 +131,8 @@ private:
                 {"layout", "neighbour4"},
                 {"wrap", wrap_},
                 {"filter", filter_},
-                {"compression", compression_},
+                {"compression", !isGpuContainer(r.output) ? compression_
+                                : options_.supercompression == Supercompression::Zstd ? "zstd" : "none"},
                 {"pixelType", pixelType_},
                 {"heightScale", options_.scale},
                 {"heightOffset", options_.offset},

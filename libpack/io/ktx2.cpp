@@ -195,6 +195,9 @@ Status writeKtx2(const std::string& path, const TiledExrContent& content, const 
         if (!write(zeros, start - position)) return failed("writing padding");
         position = start;
         const int h = detail::levelSide(content.height, level);
+        // Each level one frame that records its size, as readers expect to allocate from it.
+        if (zstd && ZSTD_isError(ZSTD_CCtx_setPledgedSrcSize(cctx.get(), rawLength[level])))
+            return Error{ErrorKind::Internal, path, "internal error: Zstandard refused a level's size", "please report this"};
         for (int y0 = 0; y0 < h; y0 += kBandRows) {
             const int rows = std::min(kBandRows, h - y0);
             if (Status s = detail::encodeRows(path, content, plan, level, y0, rows, options.threads, bytes); !s)
@@ -305,7 +308,8 @@ Result<GpuTexture> readKtx2(const std::string& path) {
         std::vector<std::uint8_t> bytes;
         if (t.supercompression == Supercompression::Zstd) {
             const unsigned long long size = ZSTD_getFrameContentSize(b.data() + offset, length);
-            if (size != expected) return corrupt("level " + std::to_string(level) + " is not a whole Zstandard frame");
+            if (size != expected && size != ZSTD_CONTENTSIZE_UNKNOWN)
+                return corrupt("level " + std::to_string(level) + " is not a Zstandard frame of the level's size");
             bytes.resize(expected);
             const size_t got = ZSTD_decompress(bytes.data(), bytes.size(), b.data() + offset, length);
             if (ZSTD_isError(got) || got != expected)
