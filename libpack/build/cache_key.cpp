@@ -41,6 +41,13 @@ private:
     std::string_view prefix_;
 };
 
+// The pixel type and supercompression (issue 14) put a line only when not the default, so every key made
+// before they existed still matches and no build redoes its outputs for them.
+void putContainerChoice(Key& k, PixelType pixelType, Supercompression supercompression) {
+    if (pixelType != PixelType::Float) k.put("pixelType", pixelType);
+    if (supercompression != Supercompression::None) k.put("supercompression", supercompression);
+}
+
 }  // namespace
 
 void appendKeyText(std::string& text, std::string_view prefix, const LoadOptions& o) {
@@ -87,7 +94,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const FresnelOpti
 }
 
 void appendKeyText(std::string& text, std::string_view prefix, const PackOptions& o) {
-    static_assert(fieldCount<PackOptions>() == 10, "PackOptions changed: put the new field in its key text");
+    static_assert(fieldCount<PackOptions>() == 12, "PackOptions changed: put the new field in its key text");
     Key k(text, prefix);
     k.nested("load", o.load);
     k.nested("mip", o.mip);
@@ -95,6 +102,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const PackOptions
     k.put("offset", o.offset);
     k.put("resizeToPowerOfTwo", o.resizeToPowerOfTwo);
     k.put("compression", o.compression);
+    putContainerChoice(k, o.pixelType, o.supercompression);
     k.put("plainOutput", o.plainOutput);
     k.put("packed", o.packed);
     k.put("version", o.version);
@@ -102,7 +110,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const PackOptions
 }
 
 void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOptions& o) {
-    static_assert(fieldCount<NormalJobOptions>() == 8, "NormalJobOptions changed: put the new field in its key text");
+    static_assert(fieldCount<NormalJobOptions>() == 10, "NormalJobOptions changed: put the new field in its key text");
     Key k(text, prefix);
     k.nested("load", o.load);
     k.nested("normal", o.normal);
@@ -110,6 +118,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOp
     k.put("resizeToPowerOfTwo", o.resizeToPowerOfTwo);
     k.put("format", o.format);
     k.put("compression", o.compression);
+    putContainerChoice(k, o.pixelType, o.supercompression);
     k.put("version", o.version);
     // progress: reports, makes nothing
 }
