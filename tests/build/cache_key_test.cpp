@@ -100,13 +100,15 @@ TEST(CacheKey, FresnelOptions) {
 }
 
 TEST(CacheKey, PackOptions) {
-    expectEveryFieldJudged(std::array<FieldChange<PackOptions>, 10>{{
+    expectEveryFieldJudged(std::array<FieldChange<PackOptions>, 12>{{
         {"load", [](PackOptions& o) { o.load.channel = ChannelSelect::Luma; }, true},
         {"mip", [](PackOptions& o) { o.mip.filter = Filter::Lanczos3; }, true},
         {"scale", [](PackOptions& o) { o.scale = 2.0f; }, true},
         {"offset", [](PackOptions& o) { o.offset = 0.5f; }, true},
         {"resizeToPowerOfTwo", [](PackOptions& o) { o.resizeToPowerOfTwo = true; }, true},
         {"compression", [](PackOptions& o) { o.compression = Compression::Piz; }, true},
+        {"pixelType", [](PackOptions& o) { o.pixelType = PixelType::Half; }, true},
+        {"supercompression", [](PackOptions& o) { o.supercompression = Supercompression::Zstd; }, true},
         {"plainOutput", [](PackOptions& o) { o.plainOutput = std::string("plain.exr"); }, true},
         {"packed", [](PackOptions& o) { o.packed = false; }, true},
         {"version", [](PackOptions& o) { o.version = std::string("9.9"); }, true},
@@ -122,13 +124,15 @@ TEST(CacheKey, PackOptions) {
 }
 
 TEST(CacheKey, NormalJobOptions) {
-    expectEveryFieldJudged(std::array<FieldChange<NormalJobOptions>, 8>{{
+    expectEveryFieldJudged(std::array<FieldChange<NormalJobOptions>, 10>{{
         {"load", [](NormalJobOptions& o) { o.load.maxSide = 16; }, true},
         {"normal", [](NormalJobOptions& o) { o.normal.alpha = NormalAlpha::Height; }, true},
         {"filter", [](NormalJobOptions& o) { o.filter = Filter::Triangle; }, true},
         {"resizeToPowerOfTwo", [](NormalJobOptions& o) { o.resizeToPowerOfTwo = true; }, true},
         {"format", [](NormalJobOptions& o) { o.format = NormalFormat::Png8; }, true},
         {"compression", [](NormalJobOptions& o) { o.compression = Compression::None; }, true},
+        {"pixelType", [](NormalJobOptions& o) { o.pixelType = PixelType::Uint16; }, true},
+        {"supercompression", [](NormalJobOptions& o) { o.supercompression = Supercompression::Zstd; }, true},
         {"version", [](NormalJobOptions& o) { o.version = std::string("2"); }, true},
         {"progress", [](NormalJobOptions& o) { o.progress = [](std::string_view, double) {}; }, false},
     }});
