@@ -7,7 +7,7 @@ void addPixelTypeOption(CLI::App& cmd, std::string& pixelType) {
                    "float (32-bit), half (16-bit float, rounded to nearest) or uint16 (16-bit normalised to the "
                    "chain's range, scale and offset recorded; .ktx2 and .dds only)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"float", "half", "uint16"}));
+        ->check(CLI::IsMember(allNames<PixelType>()));
 }
 
 std::vector<std::string> compressionNames() {

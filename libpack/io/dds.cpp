@@ -16,6 +16,7 @@
 #include <cstring>
 #include <memory>
 
+#include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "texel_encode.hpp"
@@ -42,7 +43,8 @@ constexpr std::uint32_t kCapsComplex = 0x8, kCapsTexture = 0x1000, kCapsMipMap =
 constexpr std::uint32_t kTexture2D = 3;
 
 constexpr std::array<const char*, 4> kLayouts = {"neighbour4", "plain", "normal", "fresnel"};
-constexpr std::array<const char*, 2> kWraps = {"periodic", "clamp"};
+// The record's wrap codes, 1 and up, in this order (the names come from Wrap's table).
+constexpr std::array<const char*, 2> kWraps = {nameOf(Wrap::Periodic), nameOf(Wrap::Clamp)};
 
 std::uint32_t floatBits(float v) {
     std::uint32_t u;
@@ -94,12 +96,12 @@ Status writeDds(const std::string& path, const TiledExrContent& content, const G
     Attributes text = detail::attributesAsText(content.attributes);
     reserved[0] = kRecord;
     reserved[1] = 1;
-    reserved[2] = codeOf(kLayouts, findAttribute(text, "heightpack:layout"));
-    reserved[3] = codeOf(kWraps, findAttribute(text, "heightpack:wrap"));
+    reserved[2] = codeOf(kLayouts, findAttribute(text, attr::layout.name));
+    reserved[3] = codeOf(kWraps, findAttribute(text, attr::wrap.name));
     for (const ExrAttribute& a : content.attributes) {
         if (!std::holds_alternative<float>(a.value)) continue;
-        if (a.name == "heightpack:heightScale") reserved[4] = floatBits(std::get<float>(a.value)), reserved[6] |= 1;
-        if (a.name == "heightpack:heightOffset") reserved[5] = floatBits(std::get<float>(a.value)), reserved[6] |= 1;
+        if (a.name == attr::heightScale.name) reserved[4] = floatBits(std::get<float>(a.value)), reserved[6] |= 1;
+        if (a.name == attr::heightOffset.name) reserved[5] = floatBits(std::get<float>(a.value)), reserved[6] |= 1;
     }
     if (plan.normalisation) {
         reserved[6] |= 2;
@@ -175,16 +177,16 @@ Result<GpuTexture> readDds(const std::string& path) {
 
     if (word(7) == kRecord && word(8) == 1) {
         const std::uint32_t layout = word(9), wrap = word(10), flags = word(13);
-        if (layout >= 1 && layout <= kLayouts.size()) t.keyValues.emplace_back("heightpack:layout", kLayouts[layout - 1]);
-        if (wrap >= 1 && wrap <= kWraps.size()) t.keyValues.emplace_back("heightpack:wrap", kWraps[wrap - 1]);
+        if (layout >= 1 && layout <= kLayouts.size()) t.keyValues.emplace_back(attr::layout.name, kLayouts[layout - 1]);
+        if (wrap >= 1 && wrap <= kWraps.size()) t.keyValues.emplace_back(attr::wrap.name, kWraps[wrap - 1]);
         if (flags & 1) {
-            t.keyValues.emplace_back("heightpack:heightScale", floatText(bitsFloat(word(11))));
-            t.keyValues.emplace_back("heightpack:heightOffset", floatText(bitsFloat(word(12))));
+            t.keyValues.emplace_back(attr::heightScale.name, floatText(bitsFloat(word(11))));
+            t.keyValues.emplace_back(attr::heightOffset.name, floatText(bitsFloat(word(12))));
         }
         if ((flags & 2) && f.kind == ComponentKind::Unorm16) {
             t.normalisation = Normalisation{bitsFloat(word(14)), bitsFloat(word(15))};
-            t.keyValues.emplace_back("heightpack:normalisedOffset", floatText(t.normalisation->offset));
-            t.keyValues.emplace_back("heightpack:normalisedScale", floatText(t.normalisation->scale));
+            t.keyValues.emplace_back(attr::normalisedOffset.name, floatText(t.normalisation->offset));
+            t.keyValues.emplace_back(attr::normalisedScale.name, floatText(t.normalisation->scale));
         }
     }
     size_t at = kDataStart;

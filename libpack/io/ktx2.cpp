@@ -14,6 +14,7 @@
 #include <memory>
 #include <numeric>
 
+#include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "texel_encode.hpp"
@@ -26,8 +27,8 @@ constexpr std::uint8_t kIdentifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0x
 constexpr std::uint32_t kSupercompressionZstd = 2;
 constexpr size_t kHeaderBytes = 80;  // identifier + header + index
 constexpr int kBandRows = 64;
-constexpr const char* kOffsetKey = "heightpack:normalisedOffset";
-constexpr const char* kScaleKey = "heightpack:normalisedScale";
+constexpr const char* kOffsetKey = attr::normalisedOffset.name;
+constexpr const char* kScaleKey = attr::normalisedScale.name;
 
 void put32(std::vector<std::uint8_t>& out, std::uint32_t v) {
     for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
@@ -121,9 +122,9 @@ Status writeKtx2(const std::string& path, const TiledExrContent& content, const 
         keyValues.emplace_back(kScaleKey, detail::floatText(plan.normalisation->scale));
     }
     keyValues.emplace_back("KTXwriter", options.writer.empty() ? std::string("heightpack") : options.writer);
-    // By convention the option of Khronos' `ktx` tool that gives the same supercompression (not a flag of
-    // heightpack's own: floor_rules.sh keeps those out of the library, hence the split literal).
-    if (zstd) keyValues.emplace_back("KTXwriterScParams", "-" "-zstd " + std::to_string(options.zstdLevel));
+    // By convention the option of Khronos' `ktx` tool that gives the same supercompression: data in the
+    // file, not a hint naming a flag of heightpack's (the marker tells floor_rules.sh so).
+    if (zstd) keyValues.emplace_back("KTXwriterScParams", "--zstd " + std::to_string(options.zstdLevel));  // floor_rules: data
 
     const int levels = plan.levels;
     const std::vector<std::uint8_t> dfd = dataFormatDescriptor(f);

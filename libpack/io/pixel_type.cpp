@@ -30,35 +30,11 @@ constexpr std::array<TexelFormatInfo, 9> kFormats = {{
 
 }  // namespace
 
-const char* containerName(Container container) {
-    switch (container) {
-        case Container::Exr: return "exr";
-        case Container::Ktx2: return "ktx2";
-        case Container::Dds: return "dds";
-    }
-    return "?";
-}
-
 std::optional<Container> containerForPath(const std::string& path) {
     const std::string ext = lowerExtension(path);
     if (ext == ".exr") return Container::Exr;
     if (ext == ".ktx2") return Container::Ktx2;
     if (ext == ".dds") return Container::Dds;
-    return std::nullopt;
-}
-
-const char* pixelTypeName(PixelType type) {
-    switch (type) {
-        case PixelType::Float: return "float";
-        case PixelType::Half: return "half";
-        case PixelType::Uint16: return "uint16";
-    }
-    return "?";
-}
-
-std::optional<PixelType> parsePixelType(std::string_view name) {
-    for (PixelType t : {PixelType::Float, PixelType::Half, PixelType::Uint16})
-        if (name == pixelTypeName(t)) return t;
     return std::nullopt;
 }
 

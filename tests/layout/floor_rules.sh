@@ -26,9 +26,11 @@ for f in $(files_of io); do
   grep -qE "$forbidden_io" "$f" && breaches=$((breaches + 1))
 done
 
-# A flag inside a string literal: "... --word" (comments are not what the library says).
+# A flag inside a string literal: "... --word" (comments are not what the library says). A line marked
+# "// floor_rules: data" writes such text into a file as data (KTX2's KTXwriterScParams), not as a hint.
 for f in $(find libpack -name '*.cpp' -o -name '*.hpp' | sort); do
-  hits=$(sed 's://.*$::' "$f" | grep -nE '"([^"]*[ (])?--[a-z][a-z-]*' || true)
+  said=$(sed -e 's|.*// floor_rules: data$||' -e 's|//.*$||' "$f") || { breach "cannot read $f"; continue; }
+  hits=$(grep -nE '"([^"]*[ (])?--[a-z][a-z-]*' <<<"$said" || true)
   if [ -n "$hits" ]; then
     while IFS= read -r line; do echo "floor_rules: $f:$line: the library names a command-line flag"; done <<<"$hits"
     breaches=$((breaches + 1))

@@ -41,6 +41,9 @@ inline constexpr AttributeKey<Wrap> wrap{"heightpack:wrap"};
 inline constexpr AttributeKey<Filter> filter{"heightpack:filter"};
 inline constexpr AttributeKey<float> heightScale{"heightpack:heightScale"};
 inline constexpr AttributeKey<float> heightOffset{"heightpack:heightOffset"};
+// 16-bit normalised textures (KTX2, DDS): value = normalisedOffset + normalisedScale * u / 65535.
+inline constexpr AttributeKey<float> normalisedOffset{"heightpack:normalisedOffset"};
+inline constexpr AttributeKey<float> normalisedScale{"heightpack:normalisedScale"};
 // Sequences: a float in an EXR, text in a PNG.
 inline constexpr AttributeKey<float> loopPeriod{"heightpack:loopPeriod"};
 inline constexpr AttributeKey<float> time{"heightpack:time"};

@@ -7,11 +7,21 @@
 #include <string>
 #include <string_view>
 
+#include "heightpack/core/names.hpp"
+
 namespace heightpack {
 
 // The file a texture goes into, chosen by the output's extension.
 enum class Container { Exr, Ktx2, Dds };
-const char* containerName(Container container);  // "exr", "ktx2", "dds"
+template <>
+struct NameTable<Container> {
+    static constexpr EnumName<Container> entries[] = {
+        {Container::Exr, "exr", "OpenEXR, tiled and mip-mapped: offline renderers, OpenImageIO"},
+        {Container::Ktx2, "ktx2", "Khronos KTX 2.0: Vulkan, OpenGL, WebGPU engines"},
+        {Container::Dds, "dds", "DirectDraw Surface with the DX10 header: Direct3D engines"},
+    };
+};
+inline const char* containerName(Container container) { return nameOf(container); }
 // The container a path names by its (lower-case) extension: .exr, .ktx2, .dds; nullopt for anything else.
 std::optional<Container> containerForPath(const std::string& path);
 
@@ -20,8 +30,16 @@ std::optional<Container> containerForPath(const std::string& path);
 //   Half:   16-bit float, each value rounded to nearest; values a half cannot hold are refused.
 //   Uint16: 16-bit normalised; value = offset + scale * u / 65535, with offset and scale recorded.
 enum class PixelType { Float, Half, Uint16 };
-const char* pixelTypeName(PixelType type);  // "float", "half", "uint16"
-std::optional<PixelType> parsePixelType(std::string_view name);
+template <>
+struct NameTable<PixelType> {
+    static constexpr EnumName<PixelType> entries[] = {
+        {PixelType::Float, "float", "32-bit float"},
+        {PixelType::Half, "half", "16-bit float, rounded to nearest"},
+        {PixelType::Uint16, "uint16", "16-bit normalised to the chain's range, scale and offset recorded"},
+    };
+};
+inline const char* pixelTypeName(PixelType type) { return nameOf(type); }
+inline std::optional<PixelType> parsePixelType(std::string_view name) { return parseName<PixelType>(name); }
 
 // The texel formats heightpack writes into KTX2 and DDS, with their Vulkan and DXGI codes.
 enum class TexelFormat { Rgba32F, Rgba16F, Rgba16Unorm, Rg32F, Rg16F, Rg16Snorm, R32F, R16F, R16Unorm };
