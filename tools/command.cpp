@@ -71,8 +71,7 @@ ExitCode Command::checkOutputs(const std::vector<std::string>& inputs, const std
                                           ": writing it would destroy the input",
                               "give " + o.option + " another file name");
         if (Status s = checkWritable(o.path); !s) return fail(s.error());
-        std::string ext = fs::path(o.path).extension().string();
-        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        const std::string ext = lowerExtension(o.path);
         if (std::find(o.extensions.begin(), o.extensions.end(), ext) == o.extensions.end()) {
             std::string list;
             for (const std::string& e : o.extensions) list += (list.empty() ? "" : ", ") + e;
@@ -335,8 +334,7 @@ CLI::Validator colourValidator() {
 }
 
 std::string outputFormat(const std::string& requested, const std::string& output) {
-    std::string ext = std::filesystem::path(output).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = lowerExtension(output);
     const std::string byName = ext == ".png" ? "png8" : ext == ".exr" ? "exr" : "";
     return requested.empty() || requested == byName ? byName : "";
 }

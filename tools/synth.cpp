@@ -88,8 +88,7 @@ public:
         for (int f = 0; f < options_.frames; ++f)
             outputs.push_back({frameFileName(output_, f, options_.frames), "-o", {".exr", ".png", ".tif", ".tiff"}});
         if (const ExitCode code = checkOutputs({}, outputs); code != ExitCode::Ok) return code;
-        std::string ext = std::filesystem::path(output_).extension().string();
-        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        const std::string ext = lowerExtension(output_);
         if (options_.displacement && ext != ".exr") return usage("--displacement needs an .exr output (channels Y, Dx, Dy)");
         s.model = *parseName<SpectrumModel>(spectrum_);
         if (s.model == SpectrumModel::Phillips && !common_.quiet)
