@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-30}
 shift || true
 fuzzers=("$@")
-if ((${#fuzzers[@]} == 0)); then fuzzers=(fuzz_png_fast fuzz_load_image fuzz_manifest fuzz_material); fi
+if ((${#fuzzers[@]} == 0)); then fuzzers=(fuzz_png_fast fuzz_load_image fuzz_manifest fuzz_material fuzz_gpu_texture); fi
 
 # clang and libFuzzer's runtime are Debian packages; the rest comes with the main build's dependencies.
 bash scripts/install-deps.sh

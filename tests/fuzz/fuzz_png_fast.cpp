@@ -1,4 +1,4 @@
-// heightpack's own PNG decoder (libpack/src/png_fast.cpp) on arbitrary bytes. loadHeightMap calls it
+// heightpack's own PNG decoder (libpack/io/png_fast.cpp) on arbitrary bytes. loadHeightMap calls it
 // with the size OpenImageIO read from the IHDR chunk, after judging that size; the harness does the same
 // with the first IHDR's size, capped so one input cannot ask for gigabytes. Any result is fine (an image
 // or "not mine"); a crash, a sanitizer report or a hang is a finding.

@@ -147,3 +147,13 @@ cat >"$out/fuzz_material/small.json" <<'JSON'
 {"schema":"heightpack-material","version":1,"name":"s","displacement":[{"name":"a","texture":{"file":"a.exr","width":1,"height":1,"levels":1},"wrap":"periodic","filter":"kaiser","heightScale":1,"heightOffset":0,"tileSize":1,"scroll":[0,0],"amplitude":1}]}
 JSON
 ls -l "$out"/*
+
+# fuzz_gpu_texture: KTX2 (float; uint16 with zstd) and DDS (half; uint16 normals) of an 8x8 16-bit map, as
+# heightpack writes them (HEIGHTPACK: the binary, ../../build/heightpack by default).
+hp=${HEIGHTPACK:-../../build/heightpack}
+mkdir -p "$out/fuzz_gpu_texture"
+oiiotool --pattern noise:type=uniform 8x8 1 -d uint16 -o "$tmp/m.png"
+"$hp" pack "$tmp/m.png" -q -o "$out/fuzz_gpu_texture/packed_float.ktx2"
+"$hp" pack "$tmp/m.png" -q --pixel-type uint16 --compression zstd -o "$out/fuzz_gpu_texture/packed_uint16_zstd.ktx2"
+"$hp" pack "$tmp/m.png" -q --pixel-type half -o "$out/fuzz_gpu_texture/packed_half.dds"
+"$hp" normal "$tmp/m.png" -q --tile-size 8m --height 1m --pixel-type uint16 -o "$out/fuzz_gpu_texture/normal_uint16.dds"
