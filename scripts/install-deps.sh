@@ -11,8 +11,8 @@ packages=(
   libtomlplusplus-dev                           # material manifests (heightpack build)
   libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
   libzstd-dev                                   # Zstandard supercompression of KTX2 levels
-  nodejs npm zstd libnvtt-bin                   # tests' independent readers: ktx-parse (npm) under Node, the
-                                                # zstd tool for supercompressed levels, nvddsinfo for DDS
+  zstd libnvtt-bin                              # tests' independent readers: the zstd tool for supercompressed
+                                                # KTX2 levels, nvddsinfo for DDS (ktx-parse under Node: below)
   libopencv-core-dev                            # the DFT behind `tile` (periodic + smooth)
   libglfw3-dev libglm-dev libepoxy-dev          # heightpack-view: window and GL context, maths, GL loader
   libimgui-dev libstb-dev                       # heightpack-view: the panel (imgui.pc requires stb)
@@ -25,8 +25,12 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# Node and npm run the tests' KTX2 reader (ktx-parse). Debian's nodejs and npm, unless a Node with its own
+# npm is there already (NodeSource's nodejs package bundles npm and conflicts with Debian's).
+if ! command -v node >/dev/null 2>&1; then missing+=(nodejs); fi
+if ! command -v npm >/dev/null 2>&1; then missing+=(npm); fi
 if ((${#missing[@]} == 0)); then
-  echo "install-deps: all ${#packages[@]} packages present"
+  echo "install-deps: all ${#packages[@]} packages present, and Node with npm"
   exit 0
 fi
 as_root=()
