@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/pixel_type.hpp"
 #include "heightpack/io/read.hpp"
 
 #include "hints.hpp"
@@ -335,6 +336,10 @@ CLI::Validator colourValidator() {
 
 std::string outputFormat(const std::string& requested, const std::string& output) {
     const std::string ext = lowerExtension(output);
+    // KTX2 and DDS take the mip-mapped path the EXR takes; --format names neither, so it must be absent.
+    const std::optional<Container> container = containerForPath(output);
+    if (container == Container::Ktx2 || container == Container::Dds)
+        return requested.empty() ? containerName(*container) : "";
     const std::string byName = ext == ".png" ? "png8" : ext == ".exr" ? "exr" : "";
     return requested.empty() || requested == byName ? byName : "";
 }

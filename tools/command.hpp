@@ -157,8 +157,9 @@ CLI::Validator colourValidator();
 // "0.02,0.10,0.16": a colour as parseColour reads it, two decimals.
 std::string colourText(const std::array<double, 3>& colour);
 
-// The output format the output's extension says ("exr" for .exr, "png8" for .png), checked against an
-// explicit --format value. Empty when the extension is neither or the two disagree.
+// The output format the output's extension says ("exr" for .exr, "png8" for .png, "ktx2", "dds"), checked
+// against an explicit --format value (exr or png8; none with a .ktx2 or .dds). Empty when the extension is
+// none of these or the two disagree.
 std::string outputFormat(const std::string& requested, const std::string& output);
 
 }  // namespace heightpack::cli

@@ -73,9 +73,7 @@ public:
         if (const ExitCode code = checkOutputs({}, {{output_, "-o", {".exr", ".ktx2", ".dds", ".png"}}});
             code != ExitCode::Ok)
             return code;
-        // KTX2 and DDS take the mip-mapped path the EXR takes.
-        const std::string format = isGpuContainer(output_) && format_.empty() ? std::string(containerName(*containerForPath(output_)))
-                                                                      : outputFormat(format_, output_);
+        const std::string format = outputFormat(format_, output_);
         if (format.empty()) return usage("the output must end in .exr, .ktx2, .dds or .png, matching --format if given");
         NormalJobOptions o;
         NormalOptions& n = o.normal;
