@@ -109,6 +109,10 @@ private:
         const double seconds = r.loadSeconds + r.mipSeconds + r.writeSeconds;
         std::error_code ec;
         const auto bytes = std::filesystem::file_size(r.output, ec);
+        // What the output holds: the EXR codec, or KTX2's supercompression (none for DDS).
+        const std::string compression = !isGpuContainer(r.output) ? compression_
+                                         : options_.supercompression == Supercompression::Zstd ? "zstd"
+                                                                                                : "none";
 
         if (common_.json) {
             nlohmann::json levels = nlohmann::json::array();
@@ -131,8 +135,7 @@ private:
                 {"layout", "neighbour4"},
                 {"wrap", wrap_},
                 {"filter", filter_},
-                {"compression", !isGpuContainer(r.output) ? compression_
-                                : options_.supercompression == Supercompression::Zstd ? "zstd" : "none"},
+                {"compression", compression},
                 {"pixelType", pixelType_},
                 {"heightScale", options_.scale},
                 {"heightOffset", options_.offset},
@@ -149,7 +152,7 @@ private:
             line << "wrote " << r.output << ": " << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " ("
                  << r.levelSizes.size() << " levels) from " << r.source.width << "x" << r.source.height << " "
                  << r.source.pixelType << " '" << r.source.channelUsed << "'"
-                 << ", " << wrap_ << ", " << filter_ << ", " << compression_ << ", " << humanBytes(bytes) << ", "
+                 << ", " << wrap_ << ", " << filter_ << ", " << compression << ", " << humanBytes(bytes) << ", "
                  << std::fixed << std::setprecision(2) << seconds << " s";
             std::cout << line.str() << "\n";
             if (r.resized) std::cout << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";
