@@ -72,6 +72,28 @@ bool pickWater(const Camera& camera, double x, double y, int width, int height, 
     return true;
 }
 
+// One two-pass frame, and the combine pass's heights with what places them: the camera, the grid's radii
+// and the pixel angle, so a reader can put each vertex at its (x, y) and compare heights computed
+// elsewhere (tests compare heightpack's CPU sampler with these).
+int writeGridHeights(const ViewerOptions& o, Renderer& renderer, float time, GLuint framebuffer) {
+    renderer.render(o.camera, o.settings, time, o.width, o.height, framebuffer, false);
+    Image image(o.settings.segments, o.settings.rings, 1);
+    image.pixels = renderer.gridHeights();  // row r is ring r
+    const glm::vec2 radius = gridRadius(o.settings);
+    auto number = [](const char* name, float value) { return attribute(AttributeKey<float>{name}, value); };
+    FlatImageOptions flat;
+    flat.bits = 32;
+    flat.attributes = {attribute(attr::layout, "grid heights"), attribute(attr::time, time),
+                       number("heightpack:cameraX", o.camera.position.x), number("heightpack:cameraY", o.camera.position.y),
+                       number("heightpack:cameraZ", o.camera.position.z),
+                       number("heightpack:pixelAngle", pixelAngle(o.camera, o.height)),
+                       number("heightpack:gridInnerRadius", radius.x), number("heightpack:gridRingScale", radius.y),
+                       number("heightpack:waterLevel", o.settings.waterLevel)};
+    if (Status written = writeFlatImage(o.gridHeights, image, flat); !written) return fail(written.error());
+    if (!o.json) std::printf("wrote %s: %d segments x %d rings at t = %.2f s\n", o.gridHeights.c_str(), image.width, image.height, time);
+    return 0;
+}
+
 int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer) {
     RenderTarget target;
     if (!target.create(o.width, o.height, GL_RGBA8)) return fail("cannot create a " + std::to_string(o.width) + "x" +
@@ -101,6 +123,12 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer) {
                         "  water pass   %8.3f / %8.3f\n  combine pass %8.3f / %8.3f\n  tiled view   %8.3f / %8.3f\n",
                         o.bench, o.width, o.height, gl, vertices, total.water / n, total.waterWall / n,
                         total.combine / n, total.combineWall / n, total.tiled / n, total.tiledWall / n);
+    }
+    if (!o.gridHeights.empty()) {
+        if (int code = writeGridHeights(o, renderer, time, target.framebuffer); code != 0) {
+            target.destroy();
+            return code;
+        }
     }
     if (!o.screenshot.empty()) {
         renderer.render(o.camera, o.settings, time, o.width, o.height, target.framebuffer, false);
@@ -234,7 +262,7 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
 int runViewer(ViewerOptions& o, Scene& scene) {
     glfwSetErrorCallback(onGlfwError);
     if (!glfwInit()) return fail("cannot start GLFW", "is there a display? run headless under xvfb-run", ExitCode::NoOpenGL);
-    const bool offscreen = !o.screenshot.empty() || o.bench > 0;
+    const bool offscreen = !o.screenshot.empty() || !o.gridHeights.empty() || o.bench > 0;
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

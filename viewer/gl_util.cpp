@@ -135,4 +135,13 @@ std::vector<unsigned char> RenderTarget::readRgb() const {
     return flipped;
 }
 
+std::vector<float> RenderTarget::readRed() const {
+    std::vector<float> values(static_cast<size_t>(width) * height);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RED, GL_FLOAT, values.data());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return values;
+}
+
 }  // namespace heightpack::view

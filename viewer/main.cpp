@@ -50,6 +50,9 @@ int main(int argc, char** argv) {
     app.add_option("--tiled", tiled, "flat view of the first map tiled NxM, to look for seams (e.g. 3x3)");
     app.add_flag("--seams", o.settings.seamLines, "draw the tile lines in the tiled view");
     app.add_option("--screenshot", o.screenshot, "render one frame offscreen to this PNG and exit (works under xvfb-run)");
+    app.add_option("--grid-heights", o.gridHeights,
+                   "render one frame two-pass, every grid vertex sampled, and write the vertices' heights to this EXR "
+                   "(x = segment, y = ring; camera and grid in its header) and exit");
     app.add_option("--size", size, "window or screenshot size WxH")->capture_default_str();
     app.add_option("--time", time, "fix the animation clock at this many seconds");
     app.add_option("--camera", camera, "x,y,z,yaw,pitch (metres, degrees; z up)");
@@ -82,7 +85,7 @@ int main(int argc, char** argv) {
         "  0   done\n"
         "  2   usage error\n"
         "  3   bad input: a map, sequence frame, normal map, Fresnel ramp, foam texture or material.json\n"
-        "  4   cannot write the screenshot\n"
+        "  4   cannot write the screenshot or the grid heights\n"
         "  5   no usable OpenGL: no display, no OpenGL 3.3 core context, no render target of that --size\n"
         "      (run it under xvfb-run with Mesa)\n"
         "  70  internal: a shader that does not build, or a bug\n");
@@ -145,6 +148,11 @@ int main(int argc, char** argv) {
                                                          : Lookup::ReferenceTrilinear;
     o.settings.view = view == "height" ? ViewMode::Height : view == "lod" ? ViewMode::Lod : ViewMode::Shaded;
     o.settings.frustumBranch = !frustumOff;
+    if (!o.gridHeights.empty()) {
+        if (std::filesystem::path(o.gridHeights).extension() != ".exr") return usage("--grid-heights must name an .exr file");
+        o.settings.twoPass = true;          // the heights come from the combine pass
+        o.settings.frustumBranch = false;   // and every vertex gets one, seen or not
+    }
 
     auto scene = loadScene(o.files);
     if (!scene) return fail(scene.error());

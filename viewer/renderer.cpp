@@ -227,10 +227,10 @@ void Renderer::setCommonUniforms(GLuint p, const Camera& camera, const RenderSet
     }
     set(p, "uLookup", static_cast<int>(s.lookup));
     set(p, "uBands", s.bands);
-    set(p, "uPixelAngle", glm::radians(camera.fovY) / float(height));
+    set(p, "uPixelAngle", pixelAngle(camera, height));
     set(p, "uTime", time);
     set(p, "uWaterLevel", s.waterLevel);
-    set(p, "uGridRadius", glm::vec2(s.innerRadius, (s.outerRadius - s.innerRadius) / std::pow(float(s.rings - 1), 4.0f)));
+    set(p, "uGridRadius", gridRadius(s));
     set(p, "uCameraPos", camera.position);
     const int explosions = std::min<int>(8, static_cast<int>(s.explosions.size()));
     set(p, "uExplosionCount", explosions);

@@ -5,6 +5,7 @@
 #include <epoxy/gl.h>
 
 #include <array>
+#include <cmath>
 #include <glm/glm.hpp>
 #include <string>
 #include <vector>
@@ -83,6 +84,13 @@ struct PassTimes {
     long long vertices = 0;
 };
 
+// The angle one pixel row subtends (radians): the level of detail grows with distance times this.
+inline float pixelAngle(const Camera& camera, int height) { return glm::radians(camera.fovY) / float(height); }
+// Listing 18-1's ring radii r(i) = a0 + a1 i^4, as (a0, a1), from the inner and outer radius.
+inline glm::vec2 gridRadius(const RenderSettings& s) {
+    return {s.innerRadius, (s.outerRadius - s.innerRadius) / std::pow(float(s.rings - 1), 4.0f)};
+}
+
 class Renderer {
 public:
     // Compiles the programs. Returns false with a message (the shader log) on failure.
@@ -93,6 +101,9 @@ public:
     void render(const Camera& camera, const RenderSettings& settings, float time, int width, int height,
                 GLuint framebuffer, bool measure, bool wallClock = false);
     const PassTimes& times() const { return times_; }
+    // The combine pass's last output: the height of every grid vertex, segment along x, ring along y
+    // (ring 0 first). Empty unless the last render was two-pass.
+    std::vector<float> gridHeights() const { return combined_.readRed(); }
     const Scene* scene() const { return scene_; }
     ~Renderer();
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "heightpack/build/material.hpp"
+#include "heightpack/build/material_sampler.hpp"
 
 #include "support/test_support.hpp"
 
@@ -138,6 +139,21 @@ TEST(Material, BadFilesAreBadInputNamingTheFile) {
     auto missing = readMaterial(dir.file("none.json"));
     ASSERT_FALSE(missing);
     EXPECT_EQ(missing.error().kind, ErrorKind::BadInput);
+}
+
+TEST(Material, SamplerLoadNamesTheTextureThatIsMissingOrNotAHeightChain) {
+    test::ScratchDir dir;
+    std::ofstream(dir.file("material.json")) << materialJson(sampleMaterial());
+    auto missing = loadMaterialSampler(dir.file("material.json"));
+    ASSERT_FALSE(missing);
+    EXPECT_EQ(missing.error().kind, ErrorKind::BadInput);
+    EXPECT_NE(missing.error().path.find("swell.exr"), std::string::npos) << missing.error().path;
+    // A picture where a height chain should be: refused by its layout, not sampled.
+    test::writeImage(dir.file("swell.exr"), test::randomImage(8, 8, 1), OIIO::TypeDesc::FLOAT);
+    auto notPacked = loadMaterialSampler(dir.file("material.json"));
+    ASSERT_FALSE(notPacked);
+    EXPECT_EQ(notPacked.error().kind, ErrorKind::BadInput);
+    EXPECT_NE(notPacked.error().what.find("layout"), std::string::npos) << notPacked.error().what;
 }
 
 }  // namespace

@@ -2,8 +2,8 @@
 // (viewer/shaders/common.glsl): a sum of scrolling layers, each read from its 4-neighbour packed chain
 // with one texel per level, trilinear between levels in chapter 18's band (Listing 18-3), a sequence's
 // frames blended in time. For an engine's buoyancy and collision queries: a floating object then rides
-// the same waves the player sees. The arithmetic is single precision in the shader's order, so the two
-// agree to float rounding (a few micrometres on metre-high seas), not merely to the method.
+// the same waves the player sees. Coordinates and levels are computed in single precision in the
+// shader's order, so the two agree to float rounding (micrometres near the camera), not merely in method.
 #pragma once
 
 #include <array>
@@ -11,6 +11,7 @@
 
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/names.hpp"
+#include "heightpack/core/pack.hpp"
 
 namespace heightpack {
 
@@ -39,7 +40,7 @@ struct NameTable<LevelFilter> {
 struct WaterSampler {
     std::vector<SampledLayer> layers;
     LevelFilter filter = LevelFilter::Trilinear;
-    std::array<float, 2> bands{0.3f, 0.7f};  // Listing 18-3's blend band within a level's fraction
+    TrilinearBands bands;                    // Listing 18-3's blend band within a level's fraction
 };
 
 // The value a sampler subtracts from a layer whose frames are given: the first frame's coarsest texel
@@ -56,9 +57,5 @@ float sampleLayerHeight(const WaterSampler& sampler, const SampledLayer& layer, 
 
 // The level of detail a footprint asks of a layer: log2(max(footprint * texels per metre, 1)).
 float layerLevelOfDetail(const SampledLayer& layer, float footprint);
-
-// Listing 18-2's packed bilinear lookup at texture coordinate (u, v) on one packed level: one texel,
-// weights from the fraction. Periodic layers repeat; clamped ones hold their edge.
-float packedBilinear(const Image& packedLevel, float u, float v, Wrap wrap);
 
 }  // namespace heightpack
