@@ -211,4 +211,16 @@ Status writeTextFile(const std::string& path, const std::string& text) {
     return temp.commit();
 }
 
+const std::string& StagedOutputs::stage(const std::string& finalPath) {
+    files_.push_back(std::make_unique<TemporaryFile>(finalPath));
+    return files_.back()->path();
+}
+
+Status StagedOutputs::commit() {
+    for (const std::unique_ptr<TemporaryFile>& file : files_)
+        if (Status s = file->commit(); !s) return s;
+    files_.clear();
+    return Done{};
+}
+
 }  // namespace heightpack

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,21 @@ private:
     std::string path_;
     int slot_ = -1;
     bool committed_ = false;
+};
+
+// The outputs of a sequence, written under temporary names and moved into place together once every
+// frame has succeeded. A bad frame k then leaves the folder as it was (frames 0..k-1 of an earlier run
+// stay, none of this run's appear), instead of half a new sequence beside half an old one.
+class StagedOutputs {
+public:
+    // The path to write in place of finalPath: a TemporaryFile beside it.
+    const std::string& stage(const std::string& finalPath);
+    // Moves every staged file into place, in the order staged. Staged paths nothing was written to are
+    // an internal error: a job that succeeded always writes its output.
+    Status commit();
+
+private:
+    std::vector<std::unique_ptr<TemporaryFile>> files_;
 };
 
 }  // namespace heightpack
