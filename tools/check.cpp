@@ -66,8 +66,12 @@ public:
             if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         }
         nlohmann::json frames = nlohmann::json::array();
+        // A sequence's previews land together once every frame was read: a bad frame leaves none.
+        StagedOutputs staged;
+        const bool stage = inputs.size() > 1 && !preview.empty();
         for (size_t f = 0; f < inputs.size(); ++f) {
-            options_.previewPath = preview.empty() ? preview : frameFileName(preview, int(f), int(inputs.size()));
+            shownPreview_ = preview.empty() ? preview : frameFileName(preview, int(f), int(inputs.size()));
+            options_.previewPath = stage ? staged.stage(shownPreview_) : shownPreview_;
             Progress progress(!common_.quiet, "check " + std::filesystem::path(inputs[f]).filename().string(),
                               {{"load", 0.3}, {"mip", 0.3}, {"check", 0.4}});
             options_.progress = [&](std::string_view stage, double fraction) { progress.update(stage, fraction); };
@@ -80,6 +84,7 @@ public:
             else
                 print(*report);
         }
+        if (Status committed = staged.commit(); !committed) return fail(committed.error());
         if (common_.json && inputs.size() > 1)
             printJson({{"command", "check"}, {"input", input_}, {"tiles", all}, {"frames", frames}});
         return all ? ExitCode::Ok : ExitCode::CheckFailed;
@@ -97,7 +102,7 @@ private:
         if (r.packing)
             doc["packing"] = {{"consistent", r.packing->consistent}, {"maxError", r.packing->maxError},
                               {"firstBadLevel", r.packing->firstBadLevel}};
-        if (!options_.previewPath.empty()) doc["preview"] = options_.previewPath;
+        if (!shownPreview_.empty()) doc["preview"] = shownPreview_;
         if (!r.source.channelUsed.empty()) doc["channel"] = channelJson(r.source);
         return doc;
     }
@@ -141,12 +146,13 @@ private:
         if (r.packing)
             std::printf("  packing: %s (largest difference %.3g)\n", r.packing->consistent ? "consistent" : "INCONSISTENT",
                         r.packing->maxError);
-        if (!options_.previewPath.empty()) std::printf("  preview: %s\n", options_.previewPath.c_str());
+        if (!shownPreview_.empty()) std::printf("  preview: %s\n", shownPreview_.c_str());
     }
 
     std::string input_, channel_, wrap_ = nameOf(MipOptions{}.wrap), filter_ = nameOf(MipOptions{}.filter);
     CheckOptions options_;
     CLI::Option* previewOption_ = nullptr;
+    std::string shownPreview_;  // the preview's name as the user gave it (a sequence writes a staged one first)
 };
 
 }  // namespace
