@@ -1,168 +1,189 @@
 #include "heightpack/core/spectrum.hpp"
 
-#include <opencv2/core.hpp>
-
-#include <cassert>
+#include <algorithm>
 #include <cmath>
-#include <random>
-
-#include "heightpack/core/mip.hpp"
 
 namespace heightpack {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kPmBeta = 0.74;        // Pierson-Moskowitz: exp(-beta (g / (U19.5 w))^4)
+constexpr double kU195PerU10 = 1.026;   // the wind at 19.5 m over the wind at 10 m (Stewart's ocean text)
 
-// Standard normal deviates from a generator the C++ standard pins down bit for bit (mt19937_64), by
-// Box-Muller, so a seed gives the same map with any standard library.
-class Gaussian {
-public:
-    explicit Gaussian(uint64_t seed) : engine_(seed) {}
-    double next() {
-        if (hasSpare_) {
-            hasSpare_ = false;
-            return spare_;
-        }
-        double u1 = 0.0;
-        while (u1 <= 0.0) u1 = uniform();
-        const double u2 = uniform();
-        const double r = std::sqrt(-2.0 * std::log(u1));
-        spare_ = r * std::sin(2 * kPi * u2);
-        hasSpare_ = true;
-        return r * std::cos(2 * kPi * u2);
-    }
+// JONSWAP's peak enhancement exponent r(w): a Gaussian bump of width sigma around the peak.
+double enhancementExponent(double omega, double peak) {
+    const double sigma = omega <= peak ? 0.07 : 0.09;
+    return std::exp(-(omega - peak) * (omega - peak) / (2 * sigma * sigma * peak * peak));
+}
 
-private:
-    double uniform() { return double(engine_() >> 11) * (1.0 / 9007199254740992.0); }
-    std::mt19937_64 engine_;
-    double spare_ = 0.0;
-    bool hasSpare_ = false;
-};
+// The Pierson-Moskowitz shape in x = w / wp: x^-5 exp(-5/4 x^-4); its integral over x > 0 is 1/5.
+double pmShape(double x) { return std::pow(x, -5.0) * std::exp(-1.25 * std::pow(x, -4.0)); }
+
+double radians(double degrees) { return degrees * kPi / 180.0; }
 
 }  // namespace
 
+double jonswapEnhancementIntegral(double gamma) {
+    // The enhancement only matters within a few sigma of the peak: outside [0.3, 3] gamma^r - 1 is below
+    // 1e-20, so the rest of the integral is the shape's own 1/5, exactly. Simpson's rule on the bump.
+    const int steps = 6000;
+    const double lo = 0.3, hi = 3.0, h = (hi - lo) / steps;
+    double sum = 0.0;
+    for (int i = 0; i <= steps; ++i) {
+        const double x = lo + i * h;
+        const double f = pmShape(x) * (std::pow(gamma, enhancementExponent(x, 1.0)) - 1.0);
+        sum += f * (i == 0 || i == steps ? 1.0 : (i % 2 ? 4.0 : 2.0));
+    }
+    return (0.2 + sum * h / 3.0) / 0.2;
+}
 
-double omnidirectionalSpectrum(const SpectrumOptions& o, double k) {
-    if (k <= 0.0) return 0.0;
+SeaSpectrum::SeaSpectrum(const SpectrumOptions& o) : options_(o) {
+    const double g = kGravity, u = o.windSpeed;
+    switch (o.model) {
+        case SpectrumModel::Phillips: {
+            // The peak of (alpha/2) k^-3 exp(-1/(k Lw)^2) is at k = sqrt(2/3) / Lw.
+            const double lw = u * u / g;
+            windPeak_ = dispersionFrequency(std::sqrt(2.0 / 3.0) / lw, o.depth);
+            break;
+        }
+        case SpectrumModel::Jonswap:
+            jonswapAlpha_ = 0.076 * std::pow(u * u / (o.fetch * g), 0.22);
+            windPeak_ = 22.0 * std::pow(g * g / (u * o.fetch), 1.0 / 3.0);
+            break;
+        case SpectrumModel::PiersonMoskowitz:
+            // dS/dw = 0 at w^4 = (4 beta / 5) (g / U19.5)^4.
+            windPeak_ = std::pow(0.8 * kPmBeta, 0.25) * g / (kU195PerU10 * u);
+            break;
+    }
+    if (o.swell.significantHeight > 0.0) {
+        swellPeak_ = 2 * kPi / o.swell.peakPeriod;
+        // E(w) = Hs^2/16 * 5 wp^4 w^-5 exp(-5/4 (wp/w)^4) gamma^r / I(gamma): the unenhanced part alone
+        // integrates to Hs^2 / 16, and I(gamma) takes the enhancement's share back out.
+        const double h = o.swell.significantHeight;
+        swellScale_ = h * h / 16.0 * 5.0 * std::pow(swellPeak_, 4.0) / jonswapEnhancementIntegral(o.swell.gamma);
+    }
+}
+
+double SeaSpectrum::windDeepWater(double omega) const {
+    if (omega <= 0.0) return 0.0;
+    const SpectrumOptions& o = options_;
     const double g = kGravity;
+    if (o.model == SpectrumModel::Jonswap) {
+        const double wp = windPeak_;
+        return jonswapAlpha_ * g * g * std::pow(omega, -5.0) * std::exp(-1.25 * std::pow(wp / omega, 4.0)) *
+               std::pow(o.gamma, enhancementExponent(omega, wp));
+    }
+    if (o.model == SpectrumModel::PiersonMoskowitz) {
+        const double w0 = g / (kU195PerU10 * o.windSpeed);
+        return 0.0081 * g * g * std::pow(omega, -5.0) * std::exp(-kPmBeta * std::pow(w0 / omega, 4.0));
+    }
+    return 0.0;
+}
+
+double SeaSpectrum::windFrequencySpectrum(double omega) const {
+    return windDeepWater(omega) * kitaigorodskiiFactor(omega, options_.depth);
+}
+
+double SeaSpectrum::swellFrequencySpectrum(double omega) const {
+    if (swellScale_ <= 0.0 || omega <= 0.0) return 0.0;
+    const double wp = swellPeak_;
+    return swellScale_ * std::pow(omega, -5.0) * std::exp(-1.25 * std::pow(wp / omega, 4.0)) *
+           std::pow(options_.swell.gamma, enhancementExponent(omega, wp));
+}
+
+double SeaSpectrum::windWavenumberSpectrum(double k) const {
+    if (k <= 0.0) return 0.0;
+    const SpectrumOptions& o = options_;
     if (o.model == SpectrumModel::Phillips) {
-        const double lw = o.windSpeed * o.windSpeed / g;  // the largest wave the wind raises
+        // Defined over wavenumber: depth only changes how fast its waves run, not their heights.
+        const double lw = o.windSpeed * o.windSpeed / kGravity;  // the largest wave the wind raises
         const double l = o.smallWaveLength > 0 ? o.smallWaveLength : lw / 1000.0;
         return 0.5 * o.phillipsAlpha * std::pow(k, -3.0) * std::exp(-1.0 / (k * lw * k * lw)) * std::exp(-k * k * l * l);
     }
-    // JONSWAP in frequency, moved to wavenumber with w = sqrt(g k): S(k) = S(w) dw/dk.
-    const double u = o.windSpeed, f = o.fetch;
-    const double alpha = 0.076 * std::pow(u * u / (f * g), 0.22);
-    const double wp = 22.0 * std::pow(g * g / (u * f), 1.0 / 3.0);
-    const double w = std::sqrt(g * k);
-    const double sigma = w <= wp ? 0.07 : 0.09;
-    const double r = std::exp(-(w - wp) * (w - wp) / (2 * sigma * sigma * wp * wp));
-    const double sw = alpha * g * g * std::pow(w, -5.0) * std::exp(-1.25 * std::pow(wp / w, 4.0)) * std::pow(o.gamma, r);
-    return sw * 0.5 * std::sqrt(g / k);
+    // S(k) = E(w(k)) dw/dk, the TMA factor taken at this k (no root to find). In deep water this is
+    // E(sqrt(g k)) * 0.5 sqrt(g / k), as before depth came in.
+    const double w = dispersionFrequency(k, o.depth);
+    return windDeepWater(w) * kitaigorodskiiFactorAtWavenumber(k, o.depth) * dispersionSlope(k, o.depth);
 }
 
-double directionalSpectrum(const SpectrumOptions& o, double kx, double ky) {
+double SeaSpectrum::swellWavenumberSpectrum(double k) const {
+    if (swellScale_ <= 0.0 || k <= 0.0) return 0.0;
+    return swellFrequencySpectrum(dispersionFrequency(k, options_.depth)) * dispersionSlope(k, options_.depth);
+}
+
+double SeaSpectrum::omnidirectional(double k) const { return windWavenumberSpectrum(k) + swellWavenumberSpectrum(k); }
+
+double SeaSpectrum::directional(double kx, double ky) const {
     const double k = std::hypot(kx, ky);
     if (k <= 0.0) return 0.0;
-    const double wind = o.windDirection * kPi / 180.0;
-    const double c = (kx * std::cos(wind) + ky * std::sin(wind)) / k;  // cos(theta - wind)
-    if (c <= 0.0) return 0.0;
-    return omnidirectionalSpectrum(o, k) / k * (2.0 / kPi) * c * c;
+    const SpectrumOptions& o = options_;
+    const double w = dispersionFrequency(k, o.depth);
+    double sum = 0.0;
+    if (const double s = windWavenumberSpectrum(k); s > 0.0) {
+        const double wind = radians(o.windDirection);
+        double spread;
+        if (o.spreading == Spreading::Cos2) {
+            // The common case without an arc tangent: cos(theta - wind) from the dot product.
+            const double c = (kx * std::cos(wind) + ky * std::sin(wind)) / k;
+            spread = c > 0.0 ? (2.0 / kPi) * c * c : 0.0;
+        } else {
+            spread = spreadingFunction({o.spreading, o.spreadingExponent, windPeak_, o.windSpeed},
+                                       std::atan2(ky, kx) - wind, w);
+        }
+        sum += s / k * spread;
+    }
+    if (const double s = swellWavenumberSpectrum(k); s > 0.0) {
+        const SpreadingOptions narrow{Spreading::Cos2s, o.swell.spreadingExponent, swellPeak_, o.windSpeed};
+        sum += s / k * spreadingFunction(narrow, std::atan2(ky, kx) - radians(o.swell.direction), w);
+    }
+    return sum;
 }
 
-double spectrumVariance(const SpectrumOptions& o) {
-    // Trapezoids in log k from far below to far above any peak the models have.
-    double sum = 0.0;
-    const int steps = 20000;
-    const double lo = std::log(1e-5), hi = std::log(1e4);
-    double previous = 0.0;
+double omnidirectionalSpectrum(const SpectrumOptions& options, double k) { return SeaSpectrum(options).omnidirectional(k); }
+
+double directionalSpectrum(const SpectrumOptions& options, double kx, double ky) {
+    return SeaSpectrum(options).directional(kx, ky);
+}
+
+double spectrumVariance(const SpectrumOptions& o, double lo, double hi) {
+    // Trapezoids in log k, 2000 per decade: fine enough for the narrowest peak (a swell's, gamma 5).
+    const SeaSpectrum spectrum(o);
+    const double a = std::log(std::fmax(lo, 1e-5)), b = std::log(std::fmin(hi, 1e4));
+    if (b <= a) return 0.0;
+    const int steps = std::max(16, static_cast<int>((b - a) / std::log(10.0) * 2000));
+    double sum = 0.0, previous = 0.0;
     for (int i = 0; i <= steps; ++i) {
-        const double lk = lo + (hi - lo) * i / steps, k = std::exp(lk);
-        const double f = omnidirectionalSpectrum(o, k) * k;  // dk = k d(log k)
-        if (i > 0) sum += 0.5 * (f + previous) * (hi - lo) / steps;
+        const double k = std::exp(a + (b - a) * i / steps);
+        const double f = spectrum.omnidirectional(k) * k;  // dk = k d(log k)
+        if (i > 0) sum += 0.5 * (f + previous) * (b - a) / steps;
         previous = f;
     }
     return sum;
 }
 
+double spectrumVariance(const SpectrumOptions& o) { return spectrumVariance(o, 0.0, 1e4); }
+
+double spectrumPeakOmega(const SpectrumOptions& o) {
+    // E(w) = S(k) dk/dw on a log grid of w, 1e-4 apart: the peak to 0.01 %.
+    const SeaSpectrum spectrum(o);
+    double best = 0.0, bestOmega = 0.0;
+    const double lo = std::log(0.01), hi = std::log(100.0);
+    const int steps = 92104;
+    for (int i = 0; i <= steps; ++i) {
+        const double w = std::exp(lo + (hi - lo) * i / steps);
+        const double k = dispersionWavenumber(w, o.depth);
+        const double e = spectrum.omnidirectional(k) / dispersionSlope(k, o.depth);
+        if (e > best) best = e, bestOmega = w;
+    }
+    return bestOmega;
+}
+
 double angularFrequency(const SpectrumOptions& o, double k) {
-    const double w = std::sqrt(kGravity * k);
+    const double w = dispersionFrequency(k, o.depth);
     if (o.loopPeriod <= 0.0) return w;
     const double w0 = 2 * kPi / o.loopPeriod;
     return std::floor(w / w0) * w0;
-}
-
-Ocean::Ocean(const SpectrumOptions& options) : options_(options) {
-    assert(isPowerOfTwo(options.size) && options.tileSize > 0);
-    const int n = options.size;
-    const double dk = 2 * kPi / options.tileSize;
-    amplitudeRe_.assign(size_t(n) * n, 0.0);
-    amplitudeIm_.assign(size_t(n) * n, 0.0);
-    omega_.assign(size_t(n) * n, 0.0);
-    Gaussian gaussian(options.seed);
-    for (int r = 0; r < n; ++r) {
-        for (int q = 0; q < n; ++q) {
-            // Drawn for every cell in the same order, used or not, so a seed means the same sea at any setting.
-            const double xr = gaussian.next(), xi = gaussian.next();
-            const int m = q < n / 2 ? q : q - n, p = r < n / 2 ? r : r - n;
-            // The Nyquist row and column have no partner -k on the grid: left empty so the field is real.
-            if (m == -n / 2 || p == -n / 2) continue;
-            const double kx = m * dk, ky = p * dk;
-            const double s = directionalSpectrum(options, kx, ky) * dk * dk;
-            // Half the variance here, half through the conjugate partner's term in heights().
-            const double a = std::sqrt(s / 2.0) / std::sqrt(2.0);
-            const size_t i = size_t(r) * n + q;
-            amplitudeRe_[i] = a * xr;
-            amplitudeIm_[i] = a * xi;
-            omega_[i] = angularFrequency(options, std::hypot(kx, ky));
-            resolvedVariance_ += s;
-        }
-    }
-}
-
-Image Ocean::transform(double t, int component) const {
-    const int n = options_.size;
-    const double dk = 2 * kPi / options_.tileSize;
-    // h(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t}: Hermitian in k, so the sea is real. Component 1
-    // and 2 multiply it by -i kx / |k| and -i ky / |k|, odd and imaginary: still Hermitian.
-    cv::Mat spectrum(n, n, CV_64FC2, cv::Scalar(0, 0));
-    for (int r = 0; r < n; ++r) {
-        for (int q = 0; q < n; ++q) {
-            const size_t i = size_t(r) * n + q;
-            const size_t j = size_t((n - r) % n) * n + (n - q) % n;  // -k
-            const double c = std::cos(omega_[i] * t), s = std::sin(omega_[i] * t);
-            double re = amplitudeRe_[i] * c - amplitudeIm_[i] * s + amplitudeRe_[j] * c - amplitudeIm_[j] * s;
-            double im = amplitudeRe_[i] * s + amplitudeIm_[i] * c - (amplitudeRe_[j] * s + amplitudeIm_[j] * c);
-            if (component > 0) {
-                const int m = q < n / 2 ? q : q - n, p = r < n / 2 ? r : r - n;
-                const double kx = m * dk, ky = p * dk, k = std::hypot(kx, ky);
-                const double f = k > 0 ? (component == 1 ? kx : ky) / k : 0.0;
-                const double newRe = im * f, newIm = -re * f;  // (re + i im) * (-i f)
-                re = newRe;
-                im = newIm;
-            }
-            spectrum.at<cv::Vec2d>(r, q) = cv::Vec2d(re, im);
-        }
-    }
-    cv::Mat field;
-    cv::dft(spectrum, field, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT);  // no 1/N: h(x) = sum over k
-    Image out(n, n, 1);
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) out.at(x, y) = static_cast<float>(field.at<double>(y, x));
-    return out;
-}
-
-Image Ocean::heights(double t) const { return transform(t, 0); }
-
-Image Ocean::displacement(double t) const {
-    const Image dx = transform(t, 1), dy = transform(t, 2);
-    Image out(dx.width, dx.height, 2);
-    for (size_t i = 0; i < dx.pixels.size(); ++i) {
-        out.pixels[2 * i] = dx.pixels[i];
-        out.pixels[2 * i + 1] = dy.pixels[i];
-    }
-    return out;
 }
 
 }  // namespace heightpack

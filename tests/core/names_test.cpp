@@ -34,6 +34,7 @@ TEST(Names, EveryTableRoundTrips) {
     expectRoundTrip<FresnelModel>();
     expectRoundTrip<FresnelIndex>();
     expectRoundTrip<SpectrumModel>();
+    expectRoundTrip<Spreading>();
 }
 
 // The names users type and see, in the order help texts and errors list them: these are a contract.
@@ -46,7 +47,8 @@ TEST(Names, NamesAndOrderAreTheDocumentedOnes) {
     EXPECT_EQ(allNames<NormalAlpha>(), (V{"none", "height", "variance"}));
     EXPECT_EQ(allNames<FresnelModel>(), (V{"exact", "schlick"}));
     EXPECT_EQ(allNames<FresnelIndex>(), (V{"nv", "2nv"}));
-    EXPECT_EQ(allNames<SpectrumModel>(), (V{"phillips", "jonswap"}));
+    EXPECT_EQ(allNames<SpectrumModel>(), (V{"phillips", "jonswap", "pierson-moskowitz"}));
+    EXPECT_EQ(allNames<Spreading>(), (V{"cos2", "cos2s", "donelan-banner"}));
     EXPECT_EQ(joinedNames<Wrap>(), "periodic, clamp");
     EXPECT_EQ(parseName<Wrap>("Clamp"), std::nullopt);  // names are case-sensitive
 }

@@ -152,8 +152,8 @@ TEST(Spectrum, SameSeedSameSeaOtherSeedsUncorrelated) {
 }
 
 TEST(Spectrum, DisplacementIsTheHeightTurnedAlongEachWave) {
-    // D(k) = -i k/|k| h(k): by Parseval, var(Dx) + var(Dy) = var(h) exactly (k = 0 carries nothing), and
-    // the DFT of Dx is the height's DFT times -i kx/|k|, checked on an independent transform.
+    // D(k) = i k/|k| h(k): by Parseval, var(Dx) + var(Dy) = var(h) exactly (k = 0 carries nothing), and
+    // the DFT of Dx is the height's DFT times i kx/|k|, checked on an independent transform.
     SpectrumOptions o = windSea(SpectrumModel::Jonswap, 5);
     o.size = 64;
     o.tileSize = 256;
@@ -182,7 +182,7 @@ TEST(Spectrum, DisplacementIsTheHeightTurnedAlongEachWave) {
             if (cv::norm(z) < 0.01 * peak) continue;
             const int mx = q < n / 2 ? q : q - n, my = r < n / 2 ? r : r - n;
             const double f = mx / std::hypot(double(mx), double(my));
-            const cv::Vec2d expected(z[1] * f, -z[0] * f);  // (re + i im)(-i f)
+            const cv::Vec2d expected(-z[1] * f, z[0] * f);  // (re + i im)(i f)
             EXPECT_LT(cv::norm(DX.at<cv::Vec2d>(r, q) - expected), 1e-3 * peak) << mx << "," << my;
         }
     }
