@@ -1,0 +1,32 @@
+// The numbers an engineer checks a synthesised sea by: wave height from the heights and from the
+// spectrum, peak period and wavelength, steepness, folds, and how far the displacement can move a vertex.
+#pragma once
+
+#include "heightpack/core/image.hpp"
+#include "heightpack/core/spectrum.hpp"
+
+namespace heightpack {
+
+// What the spectrum says, whatever the seed.
+struct SeaStateSummary {
+    double significantWaveHeight = 0.0;  // m: 4 sqrt(m0), m0 the variance the grid resolves
+    double peakPeriod = 0.0;             // s: 2 pi / the peak of the whole sea's frequency spectrum
+    double peakWavelength = 0.0;         // m: 2 pi / k at that peak, through the dispersion at the depth
+    // Hs / peak wavelength: DNV-RP-C205's significant steepness S_p = 2 pi Hs / (g Tp^2) in deep water,
+    // with the finite-depth wavelength when there is a depth. A breaking sea is near 1/7.
+    double steepness = 0.0;
+};
+
+// The summary for a sea whose grid resolves `resolvedVariance` (Ocean::resolvedVariance) of the spectrum.
+SeaStateSummary summariseSeaState(const SpectrumOptions& options, double resolvedVariance);
+
+// 4 x the standard deviation of the map's texels (one channel): the realised significant wave height.
+double significantWaveHeight(const Image& heights);
+
+// The fraction of texels whose Jacobian is negative: where the choppy surface folds over itself.
+double foldFraction(const Image& jacobian);
+
+// The longest horizontal move any texel makes: the largest |choppiness * (Dx, Dy)| over a two-channel map.
+double largestDisplacement(const Image& displacement, double choppiness);
+
+}  // namespace heightpack
