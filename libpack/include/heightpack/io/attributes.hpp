@@ -66,6 +66,25 @@ inline constexpr AttributeKey<SpectrumModel> spectrum{"heightpack:spectrum"};
 inline constexpr AttributeKey<std::string> wind{"heightpack:wind"};
 inline constexpr AttributeKey<std::string> seed{"heightpack:seed"};
 inline constexpr AttributeKey<float> fetch{"heightpack:fetch"};
+inline constexpr AttributeKey<float> depth{"heightpack:depth"};  // m; absent in deep water
+inline constexpr AttributeKey<Spreading> spreading{"heightpack:spreading"};
+inline constexpr AttributeKey<std::string> swell{"heightpack:swell"};  // "Hs m, Tp s, direction deg"
+inline constexpr AttributeKey<float> choppiness{"heightpack:choppiness"};  // the lambda foam and folds assume
+inline constexpr AttributeKey<std::string> cascade{"heightpack:cascade"};  // "C/COUNT"
+inline constexpr AttributeKey<float> bandLow{"heightpack:bandLow"};        // rad/m, a cascade's band
+inline constexpr AttributeKey<float> bandHigh{"heightpack:bandHigh"};
+inline constexpr AttributeKey<float> foamThreshold{"heightpack:foamThreshold"};
+inline constexpr AttributeKey<float> foamDecay{"heightpack:foamDecay"};    // s
+inline constexpr AttributeKey<float> foamBuildUp{"heightpack:foamBuildUp"};  // 1/s
+// The sea-state report (the whole sequence's numbers, in every frame).
+inline constexpr AttributeKey<float> significantWaveHeight{"heightpack:significantWaveHeight"};  // m, 4 std
+inline constexpr AttributeKey<float> spectrumWaveHeight{"heightpack:spectrumWaveHeight"};        // m, 4 sqrt(m0)
+inline constexpr AttributeKey<float> peakPeriod{"heightpack:peakPeriod"};                        // s
+inline constexpr AttributeKey<float> peakWavelength{"heightpack:peakWavelength"};                // m
+inline constexpr AttributeKey<float> steepness{"heightpack:steepness"};                          // Hs / Lp
+inline constexpr AttributeKey<float> foldFraction{"heightpack:foldFraction"};                    // J < 0
+inline constexpr AttributeKey<float> maxDisplacement{"heightpack:maxDisplacement"};              // m
+inline constexpr AttributeKey<float> displacementBound{"heightpack:displacementBound"};          // m
 // Tiled maps.
 inline constexpr AttributeKey<std::string> tileMethod{"heightpack:tileMethod"};
 inline constexpr AttributeKey<std::string> seamsBefore{"heightpack:seamsBefore"};
