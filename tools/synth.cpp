@@ -7,6 +7,7 @@
 #include "heightpack/build/synth_job.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/threads.hpp"
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
@@ -164,6 +165,9 @@ public:
         options_.foamOptions.decay = *parseWithUnit(foamDecay_, kTimeUnits);
         options_.displacement = options_.displacement || options_.foam;
         options_.threads = common_.threads;
+        // OpenEXR deflates the frames' blocks on its pool: with four float channels of noise-like data
+        // that is most of a 4096 frame's time on one thread.
+        setLibraryThreads(common_.threads);
         options_.version = kVersion;
         Progress progress(!common_.quiet, "synth " + std::filesystem::path(output_).filename().string(),
                           {{"synth", 0.8}, {"write", 0.2}});

@@ -17,30 +17,31 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // Standard normal deviates from a generator the C++ standard pins down bit for bit (mt19937_64), by
-// Box-Muller, so a seed gives the same map with any standard library.
-class Gaussian {
-public:
-    explicit Gaussian(uint64_t seed) : engine_(seed) {}
-    double next() {
-        if (hasSpare_) {
-            hasSpare_ = false;
-            return spare_;
-        }
+// Box-Muller, so a seed gives the same map with any standard library: deviate 2i is r cos(2 pi u2) and
+// 2i + 1 is r sin(2 pi u2), r = sqrt(-2 ln u1), for the i-th pair of uniforms (u1 > 0: a zero is drawn
+// again). The uniforms are drawn in order on one thread (cheap), the transcendental part is shared
+// among threads: each pair's deviates depend on that pair alone, so any thread count gives the same.
+std::vector<double> gaussianDeviates(uint64_t seed, size_t count, int threads) {
+    std::mt19937_64 engine(seed);
+    auto uniform = [&] { return double(engine() >> 11) * (1.0 / 9007199254740992.0); };
+    std::vector<double> out(count + count % 2);
+    for (size_t i = 0; i < out.size(); i += 2) {
         double u1 = 0.0;
         while (u1 <= 0.0) u1 = uniform();
-        const double u2 = uniform();
-        const double r = std::sqrt(-2.0 * std::log(u1));
-        spare_ = r * std::sin(2 * kPi * u2);
-        hasSpare_ = true;
-        return r * std::cos(2 * kPi * u2);
+        out[i] = u1;
+        out[i + 1] = uniform();
     }
-
-private:
-    double uniform() { return double(engine_() >> 11) * (1.0 / 9007199254740992.0); }
-    std::mt19937_64 engine_;
-    double spare_ = 0.0;
-    bool hasSpare_ = false;
-};
+    const int pairs = static_cast<int>(out.size() / 2);
+    parallelFor(pairs, threads, [&](int begin, int end) {
+        for (size_t i = size_t(begin) * 2; i < size_t(end) * 2; i += 2) {
+            const double r = std::sqrt(-2.0 * std::log(out[i])), a = 2 * kPi * out[i + 1];
+            out[i] = r * std::cos(a);
+            out[i + 1] = r * std::sin(a);
+        }
+    });
+    out.resize(count);
+    return out;
+}
 
 // The real fields a frame can need, each the evolved spectrum times a multiplier that keeps it Hermitian.
 enum Field { Height, DispX, DispY, DispXX, DispYY, DispXY, FieldCount };
@@ -57,9 +58,7 @@ Ocean::Ocean(const SpectrumOptions& options, int threads) : options_(options) {
     const double dk = 2 * kPi / options.tileSize;
     // Drawn for every cell in the same order, used or not, so a seed means the same sea at any setting
     // (and whatever the band a cascade keeps).
-    std::vector<double> draws(2 * cells);
-    Gaussian gaussian(options.seed);
-    for (double& d : draws) d = gaussian.next();
+    const std::vector<double> draws = gaussianDeviates(options.seed, 2 * cells, threads);
     amplitudeRe_.assign(cells, 0.0);
     amplitudeIm_.assign(cells, 0.0);
     omega_.assign(cells, 0.0);
@@ -133,7 +132,8 @@ SeaFields Ocean::fields(double t, const SeaFieldSet& which, double choppiness, i
                         row[q] = cv::Vec2d(re, im);
                         continue;
                     }
-                    const double kx = signedBin(q, n) * dk, k = std::hypot(kx, ky);
+                    // sqrt, not hypot: no overflow is possible here, and this runs 16 million times a field.
+                    const double kx = signedBin(q, n) * dk, k = std::sqrt(kx * kx + ky * ky);
                     if (k <= 0.0) {
                         row[q] = cv::Vec2d(0, 0);
                         continue;

@@ -22,6 +22,23 @@ double pmShape(double x) { return std::pow(x, -5.0) * std::exp(-1.25 * std::pow(
 
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
+// w^-5 exp(-c (p / w)^4) gamma^r(w), the shape JONSWAP, Pierson-Moskowitz (gamma 1) and the swell share.
+// Evaluated for every wave vector of a grid (16 million at 4096), so the powers are products, the
+// exponential's underflow is returned as the 0 it would give, and the enhancement is skipped where r is
+// below e^-50: there gamma^r rounds to exactly 1.
+double peakedShape(double omega, double p, double c, double peak, double lnGamma) {
+    const double x = p / omega, x2 = x * x, cut = c * x2 * x2;
+    if (cut > 746.0) return 0.0;
+    const double w2 = omega * omega;
+    double shape = std::exp(-cut) / (w2 * w2 * omega);
+    if (lnGamma != 0.0) {
+        const double sigma = omega <= peak ? 0.07 : 0.09;
+        const double d = (omega - peak) / (sigma * peak);
+        if (d * d < 100.0) shape *= std::exp(lnGamma * std::exp(-0.5 * d * d));
+    }
+    return shape;
+}
+
 }  // namespace
 
 double jonswapEnhancementIntegral(double gamma) {
@@ -38,7 +55,12 @@ double jonswapEnhancementIntegral(double gamma) {
     return (0.2 + sum * h / 3.0) / 0.2;
 }
 
-SeaSpectrum::SeaSpectrum(const SpectrumOptions& o) : options_(o) {
+SeaSpectrum::SeaSpectrum(const SpectrumOptions& o)
+    : options_(o),
+      windX_(std::cos(radians(o.windDirection))),
+      windY_(std::sin(radians(o.windDirection))),
+      lnGamma_(std::log(o.gamma)),
+      lnSwellGamma_(std::log(o.swell.gamma)) {
     const double g = kGravity, u = o.windSpeed;
     switch (o.model) {
         case SpectrumModel::Phillips: {
@@ -71,12 +93,11 @@ double SeaSpectrum::windDeepWater(double omega) const {
     const double g = kGravity;
     if (o.model == SpectrumModel::Jonswap) {
         const double wp = windPeak_;
-        return jonswapAlpha_ * g * g * std::pow(omega, -5.0) * std::exp(-1.25 * std::pow(wp / omega, 4.0)) *
-               std::pow(o.gamma, enhancementExponent(omega, wp));
+        return jonswapAlpha_ * g * g * peakedShape(omega, wp, 1.25, wp, lnGamma_);
     }
     if (o.model == SpectrumModel::PiersonMoskowitz) {
         const double w0 = g / (kU195PerU10 * o.windSpeed);
-        return 0.0081 * g * g * std::pow(omega, -5.0) * std::exp(-kPmBeta * std::pow(w0 / omega, 4.0));
+        return 0.0081 * g * g * peakedShape(omega, w0, kPmBeta, w0, 0.0);
     }
     return 0.0;
 }
@@ -88,8 +109,7 @@ double SeaSpectrum::windFrequencySpectrum(double omega) const {
 double SeaSpectrum::swellFrequencySpectrum(double omega) const {
     if (swellScale_ <= 0.0 || omega <= 0.0) return 0.0;
     const double wp = swellPeak_;
-    return swellScale_ * std::pow(omega, -5.0) * std::exp(-1.25 * std::pow(wp / omega, 4.0)) *
-           std::pow(options_.swell.gamma, enhancementExponent(omega, wp));
+    return swellScale_ * peakedShape(omega, wp, 1.25, wp, lnSwellGamma_);
 }
 
 double SeaSpectrum::windWavenumberSpectrum(double k) const {
@@ -99,7 +119,7 @@ double SeaSpectrum::windWavenumberSpectrum(double k) const {
         // Defined over wavenumber: depth only changes how fast its waves run, not their heights.
         const double lw = o.windSpeed * o.windSpeed / kGravity;  // the largest wave the wind raises
         const double l = o.smallWaveLength > 0 ? o.smallWaveLength : lw / 1000.0;
-        return 0.5 * o.phillipsAlpha * std::pow(k, -3.0) * std::exp(-1.0 / (k * lw * k * lw)) * std::exp(-k * k * l * l);
+        return 0.5 * o.phillipsAlpha * std::exp(-1.0 / (k * lw * k * lw)) / (k * k * k) * std::exp(-k * k * l * l);
     }
     // S(k) = E(w(k)) dw/dk, the TMA factor taken at this k (no root to find). In deep water this is
     // E(sqrt(g k)) * 0.5 sqrt(g / k), as before depth came in.
@@ -125,7 +145,7 @@ double SeaSpectrum::directional(double kx, double ky) const {
         double spread;
         if (o.spreading == Spreading::Cos2) {
             // The common case without an arc tangent: cos(theta - wind) from the dot product.
-            const double c = (kx * std::cos(wind) + ky * std::sin(wind)) / k;
+            const double c = (kx * windX_ + ky * windY_) / k;
             spread = c > 0.0 ? (2.0 / kPi) * c * c : 0.0;
         } else {
             spread = spreadingFunction({o.spreading, o.spreadingExponent, windPeak_, o.windSpeed},

@@ -86,6 +86,8 @@ private:
     double windWavenumberSpectrum(double k) const;   // m^3
     double swellWavenumberSpectrum(double k) const;  // m^3
     SpectrumOptions options_;
+    double windX_ = 1.0, windY_ = 0.0;  // the wind's unit vector
+    double lnGamma_ = 0.0, lnSwellGamma_ = 0.0;
     double windPeak_ = 0.0, jonswapAlpha_ = 0.0;
     double swellPeak_ = 0.0, swellScale_ = 0.0;
 };
