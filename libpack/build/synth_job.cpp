@@ -63,7 +63,7 @@ using ProgressFn = std::function<void(std::string_view, double)>;
 
 // One tile: every frame computed, then foam over the loop, then the numbers, then the files.
 Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptions& s, const SynthOptions& options,
-                                  int cascade, int count, const ProgressFn& progress) {
+                                  int cascade, int count, const ProgressFn& progress, StagedOutputs* staged) {
     const bool metres = lowerExtension(output) == ".exr";
     const bool wantJacobian = options.foam || options.report;
     const bool wantDisplacement = options.displacement || wantJacobian;
@@ -140,7 +140,7 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
             flat.attributes.push_back(attribute(attr::time, static_cast<float>(timeOf(f))));
         }
         const std::string path = frameFileName(output, f, frames);
-        if (Status w = writeFlatImage(path, image, flat); !w) return w.error();
+        if (Status w = writeFlatImage(staged ? staged->stage(path) : path, image, flat); !w) return w.error();
         report.outputs.push_back(path);
     }
     return report;
@@ -170,10 +170,13 @@ Result<SynthReport> synthesise(const std::string& output, const SynthOptions& op
         const SpectrumOptions& s = options.spectrum;
         for (const CascadeBand& band : cascadeBands(s.tileSize, s.size, count, s.seed)) tiles.push_back(cascadeOptions(s, band));
     }
+    // Several files (frames, cascades) land together once all are written: a failure leaves none of them.
+    StagedOutputs staged;
+    const bool stage = count > 1 || options.frames > 1;
     SynthReport report;
     double variance = 0.0, expected = 0.0;
     for (int c = 0; c < count; ++c) {
-        auto tile = synthTile(cascadeFileName(output, c, count), tiles[c], options, c, count, progress);
+        auto tile = synthTile(cascadeFileName(output, c, count), tiles[c], options, c, count, progress, stage ? &staged : nullptr);
         if (!tile) return tile.error();
         report.outputs.insert(report.outputs.end(), tile->outputs.begin(), tile->outputs.end());
         variance += tile->significantWaveHeight * tile->significantWaveHeight / 16.0;
@@ -183,6 +186,7 @@ Result<SynthReport> synthesise(const std::string& output, const SynthOptions& op
         report.maxHeight += tile->maxHeight;
         report.tiles.push_back(std::move(*tile));
     }
+    if (Status committed = staged.commit(); !committed) return committed.error();
     report.significantWaveHeight = 4.0 * std::sqrt(variance);
     report.expectedSignificantWaveHeight = 4.0 * std::sqrt(expected);
     progress("write", 1.0);

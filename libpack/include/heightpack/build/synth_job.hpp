@@ -58,7 +58,7 @@ struct SynthReport {
 // (the same mapping for every frame of a sequence). With displacement, an .exr holds channels Y (height),
 // Dx and Dy (metres per unit of choppiness), and with foam a fourth, Foam. The sea-state numbers go into
 // every file's header. With cascades, tile c goes to NAME_cC.EXT (and its frames). Every file is written
-// atomically.
+// atomically, and the files of a sequence or of cascades land together once all of them are written.
 Result<SynthReport> synthesise(const std::string& output, const SynthOptions& options);
 
 // The file cascade c of `count` goes to: NAME_cC.EXT; the output itself when count is 1.
