@@ -171,19 +171,16 @@ TEST(SynthSea, CascadesAreNamedAndCarryTheirBands) {
 }
 
 TEST(SynthSea, RefusesBadSeaStatesBeforeWritingAnything) {
+    // The rules this command adds (CLI11's own range and choice checks are the sweep's business).
     ScratchDir dir;
     const std::string out = dir.file("s.exr");
     const std::vector<std::string> base = {"synth", "--wind", "10m/s", "--tile-size", "64m", "--size", "32"};
     const std::vector<std::vector<std::string>> bad = {
         with(base, {"--foam", "-o", dir.file("s.png")}),
         with(base, {"--swell", "2.5m,12s", "-o", out}),
-        with(base, {"--swell", "-1m,12s,250deg", "-o", out}),
-        with(base, {"--spreading", "cos4", "-o", out}),
         with(base, {"--spreading-s", "20", "-o", out}),
         with(base, {"--depth", "0m", "-o", out}),
         with(base, {"--cascades", "5", "-o", out}),
-        with(base, {"--choppiness", "-1", "-o", out}),
-        with(base, {"--foam-decay", "0s", "-o", out}),
         {"synth", "--wind", "10m/s", "--tile-size", "64m", "--size", "16", "--cascades", "2", "-o", out},
     };
     for (const auto& args : bad) {

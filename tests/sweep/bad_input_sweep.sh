@@ -244,6 +244,11 @@ expect synth 2 "" --wind 10 "${S[@]}" --frames 2 --loop nan -o s.exr
 expect synth 2 "" --wind 10 "${S[@]}" --spectrum pierson -o s.exr
 expect synth 2 "" --wind 10 "${S[@]}" --displacement -o s.png
 expect synth 2 "" --wind 10 "${S[@]}" --seed abc -o s.exr
+expect synth 2 "" --wind 10 "${S[@]}" --swell -1m,12s,250deg -o s.exr
+expect synth 2 "" --wind 10 "${S[@]}" --spreading cos4 -o s.exr
+expect synth 2 "" --wind 10 "${S[@]}" --choppiness -1 -o s.exr
+expect synth 2 "" --wind 10 "${S[@]}" --foam-decay 0s -o s.exr
+expect synth 2 "" --wind 10 "${S[@]}" --depth nan -o s.exr
 expect synth 2 "" --wind 10 "${S[@]}" --frames 10001 --loop 1s -o s.exr
 expect synth 2 "" --wind 10 "${S[@]}" --frames 2 --loop 1e300 -o s.exr
 expect synth 2 "" --wind 10 --tile-size 64m,32m --size 16 -o s.exr
