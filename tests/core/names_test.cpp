@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "heightpack/core/fresnel.hpp"
+#include "heightpack/core/layout.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/names.hpp"
 #include "heightpack/core/normal.hpp"
@@ -35,6 +36,7 @@ TEST(Names, EveryTableRoundTrips) {
     expectRoundTrip<FresnelIndex>();
     expectRoundTrip<SpectrumModel>();
     expectRoundTrip<Spreading>();
+    expectRoundTrip<Layout>();
 }
 
 // The names users type and see, in the order help texts and errors list them: these are a contract.
@@ -49,6 +51,7 @@ TEST(Names, NamesAndOrderAreTheDocumentedOnes) {
     EXPECT_EQ(allNames<FresnelIndex>(), (V{"nv", "2nv"}));
     EXPECT_EQ(allNames<SpectrumModel>(), (V{"phillips", "jonswap", "pierson-moskowitz"}));
     EXPECT_EQ(allNames<Spreading>(), (V{"cos2", "cos2s", "donelan-banner"}));
+    EXPECT_EQ(allNames<Layout>(), (V{"neighbour4", "plain", "rgb", "xy"}));
     EXPECT_EQ(joinedNames<Wrap>(), "periodic, clamp");
     EXPECT_EQ(parseName<Wrap>("Clamp"), std::nullopt);  // names are case-sensitive
 }
