@@ -5,7 +5,8 @@
 //
 // DDS has no key/value store. What heightpack records goes into nine of the header's eleven reserved
 // words (dwReserved1; NVIDIA's tools use words 9 and 10, which stay zero):
-//   [0] 'HPCK'  [1] record version 1  [2] layout (1 neighbour4, 2 plain, 3 normal, 4 fresnel, 0 other)
+//   [0] 'HPCK'  [1] record version 1  [2] layout (1 neighbour4, 2 plain, 3 normal, 4 fresnel, 5 normalXY,
+//       0 other)
 //   [3] wrap (1 periodic, 2 clamp)  [4] heightScale  [5] heightOffset (floats, when [6] bit 0)
 //   [6] flags: bit 0 height scale/offset present, bit 1 normalisation present
 //   [7] normalised offset  [8] normalised scale (uint16: value = offset + scale * u / 65535)
@@ -42,7 +43,8 @@ constexpr std::uint32_t kFourCCFlag = 0x4;
 constexpr std::uint32_t kCapsComplex = 0x8, kCapsTexture = 0x1000, kCapsMipMap = 0x400000;
 constexpr std::uint32_t kTexture2D = 3;
 
-constexpr std::array<const char*, 4> kLayouts = {"neighbour4", "plain", "normal", "fresnel"};
+// The record's layout codes, 1 and up, in this order; new layouts only ever join at the end.
+constexpr std::array<const char*, 5> kLayouts = {"neighbour4", "plain", "normal", "fresnel", "normalXY"};
 // The record's wrap codes, 1 and up, in this order (the names come from Wrap's table).
 constexpr std::array<const char*, 2> kWraps = {nameOf(Wrap::Periodic), nameOf(Wrap::Clamp)};
 

@@ -3,6 +3,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -31,6 +33,30 @@ Result<std::unique_ptr<OIIO::ImageInput>> openTexture(const std::string& path, T
     header.tileHeight = top.tile_height;
     for (const OIIO::ParamValue& p : top.extra_attribs) header.attributes.emplace_back(p.name().string(), p.get_string());
     return in;
+}
+
+// Bytes per component of a pixel type as OpenImageIO or heightpack's reader names it.
+size_t componentBytes(const std::string& pixelType) {
+    if (pixelType == "half" || pixelType == "uint16" || pixelType == "int16") return 2;
+    if (pixelType == "uint8" || pixelType == "int8") return 1;
+    if (pixelType == "double") return 8;
+    return 4;
+}
+
+// The per-level lookup errors a file records (attr::lookupError), or none.
+std::vector<double> recordedLookupErrors(const Attributes& attributes) {
+    std::vector<double> errors;
+    const std::string text = findAttribute(attributes, attr::lookupError);
+    const char* p = text.c_str();
+    while (*p) {
+        char* end = nullptr;
+        const double v = std::strtod(p, &end);
+        if (end == p || !std::isfinite(v) || v < 0) return {};  // not ours, or damaged: report nothing
+        errors.push_back(v);
+        p = *end == ',' ? end + 1 : end;
+        if (*end != ',' && *end != '\0') return {};
+    }
+    return errors;
 }
 
 }  // namespace
@@ -84,10 +110,17 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
     if (!file) return file.error();
     FileInfo info;
     static_cast<TextureHeader&>(info) = *file;
+    const std::vector<double> errors = recordedLookupErrors(file->attributes);
+    const bool floatTexels = file->pixelType == "float";
     for (const Image& image : file->levels) {
         LevelInfo level;
         level.width = image.width;
         level.height = image.height;
+        level.gpuBytes = image.texelCount() * size_t(image.channels == 3 ? 4 : image.channels) *
+                         componentBytes(file->pixelType);
+        const size_t index = info.levels.size();
+        if (floatTexels) level.lookupError = 0.0;  // the float chain itself
+        else if (errors.size() == file->levels.size()) level.lookupError = errors[index];
         for (int c = 0; c < image.channels; ++c) {
             ChannelStats stats;
             stats.name = c < int(file->channelNames.size()) ? file->channelNames[c] : std::to_string(c);

@@ -136,7 +136,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     bool luma = false;
     switch (options.channel) {
         case ChannelSelect::Auto:
-            if (layout == "normal")
+            if (const auto known = layoutFromAttribute(layout); known && !isHeightLayout(*known))
                 return badInput(path, "is a normal map heightpack wrote, not a height map",
                                 "give the height map it was made from");
             if (heightTexture) {

@@ -99,8 +99,7 @@ Status encodeRows(const std::string& path, const TiledExrContent& content, const
     std::vector<float> band;
     fillBand(content, level, y0, rows, w, src, threads, band);
     dst.resize(size_t(rows) * w * plan.format.bytesPerTexel());
-    const double offset = plan.normalisation ? plan.normalisation->offset : 0.0;
-    const double toUnits = plan.normalisation ? 65535.0 / plan.normalisation->scale : 1.0;
+    const Normalisation n = plan.normalisation.value_or(Normalisation{});
     bool finite = true;
     const size_t texels = size_t(rows) * w;
     std::uint8_t* out = dst.data();
@@ -111,21 +110,39 @@ Status encodeRows(const std::string& path, const TiledExrContent& content, const
             switch (plan.format.kind) {
                 case ComponentKind::Float32: putLe(out, v); break;
                 case ComponentKind::Float16: putLe(out, floatToHalf(v)); break;
-                case ComponentKind::Unorm16: {
-                    const double u = std::nearbyint((double(v) - offset) * toUnits);
-                    putLe(out, static_cast<std::uint16_t>(std::clamp(u, 0.0, 65535.0)));
-                    break;
-                }
-                case ComponentKind::Snorm16: {
-                    const double s = std::nearbyint(std::clamp(double(v), -1.0, 1.0) * 32767.0);
-                    putLe(out, static_cast<std::int16_t>(s));
-                    break;
-                }
+                case ComponentKind::Unorm16: putLe(out, unormCode(v, n)); break;
+                case ComponentKind::Snorm16: putLe(out, snormCode(v)); break;
             }
         }
     }
     if (!finite) return notFinite(path, level);
     return Done{};
+}
+
+std::uint16_t unormCode(double value, const Normalisation& n) {
+    const double u = std::nearbyint((value - n.offset) * (65535.0 / n.scale));
+    return static_cast<std::uint16_t>(std::clamp(u, 0.0, 65535.0));
+}
+
+float unormValue(std::uint16_t code, const Normalisation& n) { return n.offset + n.scale * (float(code) / 65535.0f); }
+
+std::int16_t snormCode(float value) {
+    return static_cast<std::int16_t>(std::nearbyint(std::clamp(double(value), -1.0, 1.0) * 32767.0));
+}
+
+float snormValue(std::int16_t code) { return std::max(float(code) / 32767.0f, -1.0f); }
+
+float storeAndRead(const EncodePlan& plan, float value) {
+    switch (plan.format.kind) {
+        case ComponentKind::Float32: return value;
+        case ComponentKind::Float16: return halfToFloat(floatToHalf(value));
+        case ComponentKind::Unorm16: {
+            const Normalisation n = plan.normalisation.value_or(Normalisation{});
+            return unormValue(unormCode(value, n), n);
+        }
+        case ComponentKind::Snorm16: return snormValue(snormCode(value));
+    }
+    return value;
 }
 
 Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int width, int height,
@@ -145,13 +162,13 @@ Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int 
             case ComponentKind::Unorm16: {
                 std::uint16_t u;
                 std::memcpy(&u, bytes + 2 * i, 2);
-                v = n.offset + n.scale * (float(u) / 65535.0f);
+                v = unormValue(u, n);
                 break;
             }
             case ComponentKind::Snorm16: {
                 std::int16_t s;
                 std::memcpy(&s, bytes + 2 * i, 2);
-                v = std::max(float(s) / 32767.0f, -1.0f);
+                v = snormValue(s);
                 break;
             }
         }

@@ -31,6 +31,15 @@ Result<EncodePlan> planEncoding(const std::string& path, const TiledExrContent& 
 Status encodeRows(const std::string& path, const TiledExrContent& content, const EncodePlan& plan, int level, int y0,
                   int rows, int threads, std::vector<std::uint8_t>& dst);
 
+// One value as stored and as read back: the 16-bit codes (nearest code, clamped to the format's range)
+// and their values. encodeRows and decodeLevel use these, so what storeAndRead says is what a file holds.
+std::uint16_t unormCode(double value, const Normalisation& n);
+float unormValue(std::uint16_t code, const Normalisation& n);
+std::int16_t snormCode(float value);
+float snormValue(std::int16_t code);
+// What reading back value gives once stored in plan's format.
+float storeAndRead(const EncodePlan& plan, float value);
+
 // Decodes a level's bytes (little-endian) into a float image of the format's channels.
 Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int width, int height,
                   const std::optional<Normalisation>& normalisation);

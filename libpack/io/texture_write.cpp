@@ -5,11 +5,9 @@
 
 namespace heightpack {
 
+namespace {
 
-Status writeTexture(const std::string& path, const TiledExrContent& content, const TextureWriteOptions& options) {
-    const auto container = containerForPath(path);
-    if (!container)
-        return cannotWrite(path, "names no texture container heightpack writes", "name the output .exr, .ktx2 or .dds");
+GpuTextureOptions gpuOptions(const TextureWriteOptions& options) {
     GpuTextureOptions gpu;
     gpu.pixelType = options.pixelType;
     gpu.supercompression = options.supercompression;
@@ -19,12 +17,27 @@ Status writeTexture(const std::string& path, const TiledExrContent& content, con
     gpu.threads = options.threads;
     gpu.writer = options.writer;
     gpu.progress = options.progress;
-    if (*container != Container::Exr) return writeGpuTexture(path, content, gpu);
+    return gpu;
+}
 
+// What an EXR cannot hold of options: 16-bit normalised channels, Zstandard.
+Status exrTakes(const std::string& path, const TextureWriteOptions& options) {
     if (options.pixelType == PixelType::Uint16)
         return cannotWrite(path, "an EXR has no 16-bit normalised channels", "store float or half, or write .ktx2 or .dds");
     if (options.supercompression != Supercompression::None)
         return cannotWrite(path, "an EXR has no Zstandard compression", "use one of EXR's own, or write .ktx2");
+    return Done{};
+}
+
+}  // namespace
+
+Status writeTexture(const std::string& path, const TiledExrContent& content, const TextureWriteOptions& options) {
+    const auto container = containerForPath(path);
+    if (!container)
+        return cannotWrite(path, "names no texture container heightpack writes", "name the output .exr, .ktx2 or .dds");
+    const GpuTextureOptions gpu = gpuOptions(options);
+    if (*container != Container::Exr) return writeGpuTexture(path, content, gpu);
+    if (Status s = exrTakes(path, options); !s) return s;
     ExrWriteOptions exr;
     exr.compression = options.exrCompression;
     exr.threads = options.threads;
@@ -37,6 +50,23 @@ Status writeTexture(const std::string& path, const TiledExrContent& content, con
         exr.half = true;
     }
     return writeTiledExr(path, content, exr);
+}
+
+Result<TexelStorage> planTexelStorage(const std::string& path, const TiledExrContent& content,
+                                      const TextureWriteOptions& options) {
+    const auto container = containerForPath(path);
+    if (!container)
+        return cannotWrite(path, "names no texture container heightpack writes", "name the output .exr, .ktx2 or .dds");
+    if (*container == Container::Exr)
+        if (Status s = exrTakes(path, options); !s) return s.error();
+    auto plan = detail::planEncoding(path, content, gpuOptions(options));
+    if (!plan) return plan.error();
+    TexelStorage storage;
+    storage.pixelType = options.pixelType;
+    storage.format = plan->format.format;
+    storage.normalisation = plan->normalisation;
+    storage.storeAndRead = [plan = *plan](float v) { return detail::storeAndRead(plan, v); };
+    return storage;
 }
 
 size_t gpuBytes(int width, int height, int channels, PixelType type) {

@@ -30,3 +30,16 @@ TEST(Attributes, SchemaWritesEnumsByName) {
     EXPECT_EQ(std::get<std::string>(attribute(attr::alpha, NormalAlpha::Height).value), "height");
     EXPECT_EQ(std::get<float>(attribute(attr::heightScale, 2.5f).value), 2.5f);
 }
+
+// A layout's word in a header: heights by their names, normal maps as they have always said ("normal")
+// and "normalXY" for two channels; each word reads back to its layout.
+TEST(Attributes, LayoutsHaveOneWordEachInHeaders) {
+    EXPECT_STREQ(attributeText(Layout::Neighbour4), "neighbour4");
+    EXPECT_STREQ(attributeText(Layout::Plain), "plain");
+    EXPECT_STREQ(attributeText(Layout::Rgb), "normal");
+    EXPECT_STREQ(attributeText(Layout::Xy), "normalXY");
+    for (const Layout l : {Layout::Neighbour4, Layout::Plain, Layout::Rgb, Layout::Xy})
+        EXPECT_EQ(layoutFromAttribute(attributeText(l)), l);
+    EXPECT_EQ(layoutFromAttribute("fresnel"), std::nullopt);
+    EXPECT_EQ(layoutFromAttribute("rgb"), std::nullopt);  // the CLI's word, not the header's
+}

@@ -223,9 +223,14 @@ TEST_P(Containers, EveryOutputKindReadsBackTheSameThroughBothReaders) {
                 EXPECT_EQ((s["channelType"].get<int>() & 0x80) != 0, p.pixelType != "uint16");
             }
         } else {
-            // DDS records layout, wrap and the normalisation in its reserved header words.
+            // DDS records layout, wrap and the normalisation in its reserved header words; the
+            // independent reader decodes the record from the header's bytes and agrees.
+            const std::string layout = o.kind == "packed" ? "neighbour4" : o.kind;
+            EXPECT_EQ(findAttribute(own->keyValues, "heightpack:layout"), layout);
+            EXPECT_EQ(other["keyValues"].value("heightpack:layout", ""), layout);
             if (o.kind != "fresnel") {
                 EXPECT_EQ(findAttribute(own->keyValues, "heightpack:wrap"), "periodic");
+                EXPECT_EQ(other["keyValues"].value("heightpack:wrap", ""), "periodic");
             }
         }
 

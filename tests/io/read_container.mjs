@@ -103,6 +103,17 @@ if (file.toLowerCase().endsWith('.ktx2')) {
     at += data.byteLength;
   }
   if (at !== bytes.byteLength) throw new Error(`${bytes.byteLength - at} bytes after the last level`);
+  // heightpack's record in dwReserved1 (README, "GPU containers"): 'HPCK', version 1, then the layout
+  // code and the wrap code. Read from the header's bytes as documented, not through heightpack.
+  const keyValues = {};
+  const header = new DataView(bytes.buffer, bytes.byteOffset + 4, 124);
+  const reserved = (i) => header.getUint32(4 * (7 + i), true);
+  if (reserved(0) === 0x4b435048 && reserved(1) === 1) {
+    const layouts = [undefined, 'neighbour4', 'plain', 'normal', 'fresnel', 'normalXY'];
+    const wraps = [undefined, 'periodic', 'clamp'];
+    if (layouts[reserved(2)]) keyValues['heightpack:layout'] = layouts[reserved(2)];
+    if (wraps[reserved(3)]) keyValues['heightpack:wrap'] = wraps[reserved(3)];
+  }
   console.log(JSON.stringify({ reader: 'nvddsinfo', format: `DXGI_FORMAT_${format}`, channels, width, height,
-                               levelCount, keyValues: {}, levels }));
+                               levelCount, keyValues, levels }));
 }

@@ -2,12 +2,15 @@
 // key, carrying the type of its value, used by every writer and reader instead of string literals.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/image.hpp"
+#include "heightpack/core/layout.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/names.hpp"
 #include "heightpack/core/normal.hpp"
@@ -31,7 +34,8 @@ struct AttributeKey {
 namespace attr {
 inline constexpr const char* kPrefix = "heightpack:";  // every key below starts with it
 // Every file heightpack writes.
-inline constexpr AttributeKey<std::string> layout{"heightpack:layout"};  // neighbour4, plain, normal, fresnel, ...
+// neighbour4, plain, normal, normalXY (see attributeText(Layout)), fresnel, synthesised, ...
+inline constexpr AttributeKey<std::string> layout{"heightpack:layout"};
 inline constexpr AttributeKey<std::string> version{"heightpack:version"};
 inline constexpr AttributeKey<float> texelCentre{"heightpack:texelCentre"};
 inline constexpr AttributeKey<std::string> source{"heightpack:source"};  // the input's file name
@@ -44,6 +48,12 @@ inline constexpr AttributeKey<float> heightOffset{"heightpack:heightOffset"};
 // 16-bit normalised textures (KTX2, DDS): value = normalisedOffset + normalisedScale * u / 65535.
 inline constexpr AttributeKey<float> normalisedOffset{"heightpack:normalisedOffset"};
 inline constexpr AttributeKey<float> normalisedScale{"heightpack:normalisedScale"};
+// Half and uint16 textures: the worst difference between a bilinear lookup from the stored texels and
+// from the float chain they were made from (core/lookup_error.hpp), in the chain's units (stored heights,
+// normal components), measured when written since the float chain is not in the file. lookupError lists
+// it per level, level 0 first, comma-separated; maxLookupError is the worst of them.
+inline constexpr AttributeKey<std::string> lookupError{"heightpack:lookupError"};
+inline constexpr AttributeKey<float> maxLookupError{"heightpack:maxLookupError"};
 // Sequences: a float in an EXR, text in a PNG.
 inline constexpr AttributeKey<float> loopPeriod{"heightpack:loopPeriod"};
 inline constexpr AttributeKey<float> time{"heightpack:time"};
@@ -54,6 +64,7 @@ inline constexpr AttributeKey<NormalConvention> convention{"heightpack:conventio
 inline constexpr AttributeKey<NormalAlpha> alpha{"heightpack:alpha"};
 inline constexpr AttributeKey<float> tileWidth{"heightpack:tileWidth"};  // metres; synth: the tile's size
 inline constexpr AttributeKey<float> tileHeight{"heightpack:tileHeight"};
+// Metres between a stored 0.0 and 1.0: normal maps always, packed and plain heights when it was given.
 inline constexpr AttributeKey<float> heightRange{"heightpack:heightRange"};
 // Fresnel ramps.
 inline constexpr AttributeKey<float> ior{"heightpack:ior"};
@@ -102,6 +113,23 @@ const char* attributeText(E value) {
 }
 inline const char* attributeText(NormalAlpha alpha) {
     return alpha == NormalAlpha::SlopeVariance ? "slopeVariance" : nameOf(alpha);
+}
+
+// A layout's word in a header: its table name for heights; a normal map's header has always said
+// "normal" (rgb), and says "normalXY" for two channels, so a reader tells normals from heights by the
+// word alone.
+inline const char* attributeText(Layout layout) {
+    switch (layout) {
+        case Layout::Rgb: return "normal";
+        case Layout::Xy: return "normalXY";
+        default: return nameOf(layout);
+    }
+}
+// The layout a header's word names; nullopt for other words (fresnel, synthesised, ...).
+inline std::optional<Layout> layoutFromAttribute(std::string_view text) {
+    for (const EnumName<Layout>& e : NameTable<Layout>::entries)
+        if (text == attributeText(e.value)) return e.value;
+    return std::nullopt;
 }
 
 // One attribute of the schema with its value.

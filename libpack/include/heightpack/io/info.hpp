@@ -1,6 +1,7 @@
 // What is in an image file: size, channels, mip levels with per-level statistics, and header attributes.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <utility>
@@ -23,6 +24,13 @@ struct LevelInfo {
     int width = 0;
     int height = 0;
     std::vector<ChannelStats> channels;
+    // Bytes the level takes on the GPU, uploaded as stored: width * height * texel bytes (three channels
+    // count as four, since GPUs have no 16- or 32-bit RGB formats to sample).
+    size_t gpuBytes = 0;
+    // The worst difference between a bilinear lookup of the level as stored and of the float chain it
+    // was made from, in the file's units: 0 for float texels, the recorded figure for half and uint16
+    // (heightpack:lookupError), nullopt where the file records none (a DDS, a file from elsewhere).
+    std::optional<double> lookupError;
 };
 
 using Attributes = std::vector<std::pair<std::string, std::string>>;

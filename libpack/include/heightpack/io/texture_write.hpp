@@ -1,6 +1,8 @@
 // One call for every mip-mapped output: EXR, KTX2 or DDS by the output's extension, in a pixel type.
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <string>
 
 #include "heightpack/core/result.hpp"
@@ -25,6 +27,18 @@ struct TextureWriteOptions {
 // be stored in the pixel type, and with CannotWrite for an unknown extension or a pixel type or
 // compression the container lacks (an EXR has no 16-bit normalised channels; a DDS no supercompression).
 Status writeTexture(const std::string& path, const TiledExrContent& content, const TextureWriteOptions& options);
+
+// What storing content with options does to its values: the format writeTexture would choose and, for
+// uint16, the normalisation it would record (the whole chain's range). Fails as writeTexture would,
+// writing nothing, when a value cannot be stored in the pixel type or the container lacks it.
+struct TexelStorage {
+    PixelType pixelType = PixelType::Float;
+    TexelFormat format = TexelFormat::Rgba32F;
+    std::optional<Normalisation> normalisation;
+    std::function<float(float)> storeAndRead;  // what reading back a stored value gives
+};
+Result<TexelStorage> planTexelStorage(const std::string& path, const TiledExrContent& content,
+                                      const TextureWriteOptions& options);
 
 // The bytes a level of width x height texels with `channels` channels takes on the GPU in the format
 // writeTexture would choose (three channels are stored as four).
