@@ -124,7 +124,7 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
     }
     if (m.foam && m.foam->texture) {
         PackOptions pack = packOptions(m.foam->texture->settings, version);
-        pack.packed = false;
+        pack.layout = Layout::Plain;
         addSourcedSteps(steps, *m.foam->texture, m.foam->layer.name, "foam", m.threshold, pack, makePacked);
     }
     return steps;

@@ -43,8 +43,10 @@ private:
 
 // The pixel type and supercompression (issue 14) put a line only when not the default, so every key made
 // before they existed still matches and no build redoes its outputs for them.
-void putContainerChoice(Key& k, PixelType pixelType, Supercompression supercompression) {
-    if (pixelType != PixelType::Float) k.put("pixelType", pixelType);
+// A tolerance ("auto") chooses the type itself, so it stands in for the pixel type.
+void putContainerChoice(Key& k, PixelType pixelType, double tolerance, Supercompression supercompression) {
+    if (tolerance > 0.0) k.put("tolerance", tolerance);
+    else if (pixelType != PixelType::Float) k.put("pixelType", pixelType);
     if (supercompression != Supercompression::None) k.put("supercompression", supercompression);
 }
 
@@ -94,7 +96,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const FresnelOpti
 }
 
 void appendKeyText(std::string& text, std::string_view prefix, const PackOptions& o) {
-    static_assert(fieldCount<PackOptions>() == 12, "PackOptions changed: put the new field in its key text");
+    static_assert(fieldCount<PackOptions>() == 14, "PackOptions changed: put the new field in its key text");
     Key k(text, prefix);
     k.nested("load", o.load);
     k.nested("mip", o.mip);
@@ -102,15 +104,18 @@ void appendKeyText(std::string& text, std::string_view prefix, const PackOptions
     k.put("offset", o.offset);
     k.put("resizeToPowerOfTwo", o.resizeToPowerOfTwo);
     k.put("compression", o.compression);
-    putContainerChoice(k, o.pixelType, o.supercompression);
+    putContainerChoice(k, o.pixelType, o.tolerance, o.supercompression);
     k.put("plainOutput", o.plainOutput);
-    k.put("packed", o.packed);
+    // The layout's line is the one it replaced (packed or not), so every existing key still matches.
+    k.put("packed", o.layout == Layout::Neighbour4);
+    if (o.layout != Layout::Neighbour4 && o.layout != Layout::Plain) k.put("layout", o.layout);
+    if (o.heightRange > 0.0) k.put("heightRange", o.heightRange);  // recorded in the file when known
     k.put("version", o.version);
     // progress: reports, makes nothing
 }
 
 void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOptions& o) {
-    static_assert(fieldCount<NormalJobOptions>() == 10, "NormalJobOptions changed: put the new field in its key text");
+    static_assert(fieldCount<NormalJobOptions>() == 12, "NormalJobOptions changed: put the new field in its key text");
     Key k(text, prefix);
     k.nested("load", o.load);
     k.nested("normal", o.normal);
@@ -118,7 +123,8 @@ void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOp
     k.put("resizeToPowerOfTwo", o.resizeToPowerOfTwo);
     k.put("format", o.format);
     k.put("compression", o.compression);
-    putContainerChoice(k, o.pixelType, o.supercompression);
+    putContainerChoice(k, o.pixelType, o.tolerance, o.supercompression);
+    if (o.layout != Layout::Rgb) k.put("layout", o.layout);  // a line only when not the default, as above
     k.put("version", o.version);
     // progress: reports, makes nothing
 }

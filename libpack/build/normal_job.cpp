@@ -12,6 +12,7 @@
 #include "heightpack/io/texture_write.hpp"
 
 #include "job_steps.hpp"
+#include "stored_chain.hpp"
 
 namespace heightpack {
 
@@ -21,7 +22,8 @@ std::vector<ExrAttribute> normalAttributes(const NormalJobOptions& options, cons
                                            const std::string& hash, int width, int height) {
     const NormalOptions& n = options.normal;
     const double tileHeight = texelHeight(n, width, height, height) * height;
-    auto attributes = detail::commonAttributes("normal", n.wrap, options.filter, source, hash, options.version);
+    auto attributes =
+        detail::commonAttributes(attributeText(options.layout), n.wrap, options.filter, source, hash, options.version);
     const std::vector<ExrAttribute> own = {
         attribute(attr::kernel, n.kernel),
         attribute(attr::convention, n.convention),
@@ -32,6 +34,18 @@ std::vector<ExrAttribute> normalAttributes(const NormalJobOptions& options, cons
     };
     attributes.insert(attributes.end(), own.begin(), own.end());
     return attributes;
+}
+
+// The first `channels` channels of every level.
+std::vector<Image> firstChannels(const std::vector<Image>& chain, int channels) {
+    std::vector<Image> out;
+    for (const Image& level : chain) {
+        Image cut(level.width, level.height, channels);
+        for (size_t t = 0; t < level.texelCount(); ++t)
+            for (int c = 0; c < channels; ++c) cut.pixels[t * channels + c] = level.pixels[t * level.channels + c];
+        out.push_back(std::move(cut));
+    }
+    return out;
 }
 
 }  // namespace
@@ -81,8 +95,15 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         if (options.progress) options.progress(stage, f);
     };
     if (Status s = checkWritable(output); !s) return s.error();
+    if (options.layout == Layout::Xy && (options.format == NormalFormat::Png8 || options.normal.alpha != NormalAlpha::None))
+        return cannotWrite(output, "an xy normal map is two channels of a mip-mapped texture: no alpha, no PNG",
+                           "store rgb normals for an alpha channel or an 8-bit PNG");
+    if (options.layout != Layout::Rgb && options.layout != Layout::Xy)
+        return Error{ErrorKind::Internal, output, std::string("a normal map has no '") + nameOf(options.layout) + "' layout",
+                     "please report this"};
 
     NormalReport report;
+    report.layout = options.layout;
     report.input = input;
     report.output = output;
     progress("load", 0.0);
@@ -109,13 +130,15 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         flat.attributes = normalAttributes(options, report.source, report.sourceHash, normals.width, normals.height);
         if (Status s = writeFlatImage(output, normals, flat); !s) return s.error();
     } else {
+        // xy: the first two channels alone, what the shader reads before rebuilding z.
+        const std::vector<Image> stored = options.layout == Layout::Xy ? firstChannels(chain, 2) : chain;
         TiledExrContent content;
-        content.width = chain[0].width;
-        content.height = chain[0].height;
-        content.channelNames = {"R", "G", "B"};
-        if (chain[0].channels == 4) content.channelNames.push_back("A");
+        content.width = stored[0].width;
+        content.height = stored[0].height;
+        content.channelNames = {"R", "G", "B", "A"};
+        content.channelNames.resize(size_t(stored[0].channels));
         content.fillRows = [&](int level, int y0, int rows, float* dst) {
-            const Image& l = chain[level];
+            const Image& l = stored[level];
             std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width * l.channels, dst);
         };
         content.attributes = normalAttributes(options, report.source, report.sourceHash, content.width, content.height);
@@ -126,6 +149,13 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         write.threads = options.normal.threads;
         write.writer = "heightpack " + options.version;
         write.progress = [&](double f) { progress("write", f); };
+        auto storage = detail::chooseStorage({output}, content, stored, options.normal.wrap, write, options.tolerance);
+        if (!storage) return storage.error();
+        write.pixelType = storage->pixelType;
+        report.pixelType = storage->pixelType;
+        report.lookupError = storage->lookupError;
+        const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*storage);
+        content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
         if (Status s = writeTexture(output, content, write); !s) return s.error();
     }
     progress("write", 1.0);

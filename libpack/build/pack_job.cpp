@@ -11,6 +11,7 @@
 #include "heightpack/io/texture_write.hpp"
 
 #include "job_steps.hpp"
+#include "stored_chain.hpp"
 
 namespace heightpack {
 
@@ -38,16 +39,17 @@ Result<PackedMaps> plainChain(Image heights, const SourceInfo& source, const Pac
 
 Result<PackedMaps> packHeights(Image heights, const SourceInfo& source, const PackOptions& options) {
     auto maps = plainChain(std::move(heights), source, options);
-    if (maps && options.packed) maps->packed = packMipChain(maps->plain, options.mip.wrap);
+    if (maps && options.layout == Layout::Neighbour4) maps->packed = packMipChain(maps->plain, options.mip.wrap);
     return maps;
 }
 
-std::vector<ExrAttribute> heightAttributes(std::string_view layout, const PackOptions& options,
-                                           const SourceInfo& source, const std::string& sourceHash) {
-    auto attributes =
-        detail::commonAttributes(layout, options.mip.wrap, options.mip.filter, source, sourceHash, options.version);
+std::vector<ExrAttribute> heightAttributes(Layout layout, const PackOptions& options, const SourceInfo& source,
+                                           const std::string& sourceHash) {
+    auto attributes = detail::commonAttributes(attributeText(layout), options.mip.wrap, options.mip.filter, source,
+                                               sourceHash, options.version);
     attributes.push_back(attribute(attr::heightScale, options.scale));
     attributes.push_back(attribute(attr::heightOffset, options.offset));
+    if (options.heightRange > 0.0) attributes.push_back(attribute(attr::heightRange, float(options.heightRange)));
     if (!source.loopPeriod.empty()) {
         attributes.push_back(attribute(attr::loopPeriod, std::stof(source.loopPeriod)));
         attributes.push_back(attribute(attr::time, source.time.empty() ? 0.0f : std::stof(source.time)));
@@ -59,9 +61,16 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     auto progress = [&](std::string_view stage, double fraction) {
         if (options.progress) options.progress(stage, fraction);
     };
+    if (!isHeightLayout(options.layout))
+        return Error{ErrorKind::Internal, output, std::string("pack writes heights, not the '") + nameOf(options.layout) +
+                                                      "' layout of normal maps", "please report this"};
+    const bool packed = options.layout == Layout::Neighbour4;
     // Fail on an unwritable output before spending any time on the input.
     if (Status s = checkWritable(output); !s) return s.error();
-    if (options.packed && !options.plainOutput.empty()) {
+    if (!packed && !options.plainOutput.empty())
+        return cannotWrite(options.plainOutput, "would be a second plain chain beside the plain output",
+                           "write the plain chain once");
+    if (packed && !options.plainOutput.empty()) {
         if (std::filesystem::path(options.plainOutput).lexically_normal() ==
             std::filesystem::path(output).lexically_normal())
             return withFix(cannotWrite(options.plainOutput, "is also the packed output", "give the plain output another name"),
@@ -72,7 +81,8 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     PackReport report;
     report.input = input;
     report.output = output;
-    report.plainOutput = options.packed ? options.plainOutput : output;
+    report.plainOutput = packed ? options.plainOutput : output;
+    report.layout = options.layout;
 
     auto start = std::chrono::steady_clock::now();
     progress("load", 0.0);
@@ -106,30 +116,43 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         writeOptions.gridSpan = options.scale;
     }
     // The plain chain goes to plainOutput beside the packed one, or alone to output.
-    const std::string plainPath = options.packed ? options.plainOutput : output;
-    const bool both = options.packed && !plainPath.empty();
+    const std::string plainPath = packed ? options.plainOutput : output;
+    const bool both = packed && !plainPath.empty();
     writeOptions.progress = [&](double f) { progress("write", both ? f * 0.8 : f); };
 
     const Wrap wrap = options.mip.wrap;
     TiledExrContent content;
     content.width = chain[0].width;
     content.height = chain[0].height;
-    if (options.packed) {
-        content.channelNames = {"R", "G", "B", "A"};
-        content.fillRows = [&](int level, int y0, int rows, float* dst) {
-            packNeighbour4Rows(chain[level], wrap, y0, rows, dst);
-        };
-        content.attributes = heightAttributes("neighbour4", options, report.source, report.sourceHash);
-        if (Status s = writeTexture(output, content, writeOptions); !s) return s.error();
-    }
-    if (!plainPath.empty()) {
+    const auto fillPacked = [&](int level, int y0, int rows, float* dst) {
+        packNeighbour4Rows(chain[level], wrap, y0, rows, dst);
+    };
+    const auto fillPlain = [&](int level, int y0, int rows, float* dst) {
+        const Image& l = chain[level];
+        std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width, dst);
+    };
+    content.channelNames = packed ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"Y"};
+    content.fillRows = packed ? decltype(content.fillRows)(fillPacked) : decltype(content.fillRows)(fillPlain);
+    content.attributes = heightAttributes(options.layout, options, report.source, report.sourceHash);
+
+    // The pixel type, given or chosen, and its lookup error: the same for both outputs, since a packed
+    // texel holds copies of the plain chain's values.
+    std::vector<std::string> paths = {output};
+    if (both) paths.push_back(plainPath);
+    auto stored = detail::chooseStorage(paths, content, chain, wrap, writeOptions, options.tolerance);
+    if (!stored) return stored.error();
+    writeOptions.pixelType = stored->pixelType;
+    report.pixelType = stored->pixelType;
+    report.lookupError = stored->lookupError;
+    const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*stored);
+    content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
+    if (Status s = writeTexture(output, content, writeOptions); !s) return s.error();
+    if (both) {
         content.channelNames = {"Y"};
-        content.fillRows = [&](int level, int y0, int rows, float* dst) {
-            const Image& l = chain[level];
-            std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width, dst);
-        };
-        content.attributes = heightAttributes("plain", options, report.source, report.sourceHash);
-        if (both) writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
+        content.fillRows = fillPlain;
+        content.attributes = heightAttributes(Layout::Plain, options, report.source, report.sourceHash);
+        content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
+        writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
         if (Status s = writeTexture(plainPath, content, writeOptions); !s) return s.error();
     }
     progress("write", 1.0);

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include "heightpack/build/cache_key.hpp"
 
@@ -100,7 +101,7 @@ TEST(CacheKey, FresnelOptions) {
 }
 
 TEST(CacheKey, PackOptions) {
-    expectEveryFieldJudged(std::array<FieldChange<PackOptions>, 12>{{
+    expectEveryFieldJudged(std::array<FieldChange<PackOptions>, 14>{{
         {"load", [](PackOptions& o) { o.load.channel = ChannelSelect::Luma; }, true},
         {"mip", [](PackOptions& o) { o.mip.filter = Filter::Lanczos3; }, true},
         {"scale", [](PackOptions& o) { o.scale = 2.0f; }, true},
@@ -108,9 +109,11 @@ TEST(CacheKey, PackOptions) {
         {"resizeToPowerOfTwo", [](PackOptions& o) { o.resizeToPowerOfTwo = true; }, true},
         {"compression", [](PackOptions& o) { o.compression = Compression::Piz; }, true},
         {"pixelType", [](PackOptions& o) { o.pixelType = PixelType::Half; }, true},
+        {"tolerance", [](PackOptions& o) { o.tolerance = 1e-4; }, true},
         {"supercompression", [](PackOptions& o) { o.supercompression = Supercompression::Zstd; }, true},
         {"plainOutput", [](PackOptions& o) { o.plainOutput = std::string("plain.exr"); }, true},
-        {"packed", [](PackOptions& o) { o.packed = false; }, true},
+        {"layout", [](PackOptions& o) { o.layout = Layout::Plain; }, true},
+        {"heightRange", [](PackOptions& o) { o.heightRange = 6.0; }, true},
         {"version", [](PackOptions& o) { o.version = std::string("9.9"); }, true},
         {"progress", [](PackOptions& o) { o.progress = [](std::string_view, double) {}; }, false},
     }});
@@ -124,7 +127,7 @@ TEST(CacheKey, PackOptions) {
 }
 
 TEST(CacheKey, NormalJobOptions) {
-    expectEveryFieldJudged(std::array<FieldChange<NormalJobOptions>, 10>{{
+    expectEveryFieldJudged(std::array<FieldChange<NormalJobOptions>, 12>{{
         {"load", [](NormalJobOptions& o) { o.load.maxSide = 16; }, true},
         {"normal", [](NormalJobOptions& o) { o.normal.alpha = NormalAlpha::Height; }, true},
         {"filter", [](NormalJobOptions& o) { o.filter = Filter::Triangle; }, true},
@@ -132,7 +135,9 @@ TEST(CacheKey, NormalJobOptions) {
         {"format", [](NormalJobOptions& o) { o.format = NormalFormat::Png8; }, true},
         {"compression", [](NormalJobOptions& o) { o.compression = Compression::None; }, true},
         {"pixelType", [](NormalJobOptions& o) { o.pixelType = PixelType::Uint16; }, true},
+        {"tolerance", [](NormalJobOptions& o) { o.tolerance = 1e-3; }, true},
         {"supercompression", [](NormalJobOptions& o) { o.supercompression = Supercompression::Zstd; }, true},
+        {"layout", [](NormalJobOptions& o) { o.layout = Layout::Xy; }, true},
         {"version", [](NormalJobOptions& o) { o.version = std::string("2"); }, true},
         {"progress", [](NormalJobOptions& o) { o.progress = [](std::string_view, double) {}; }, false},
     }});
@@ -154,8 +159,29 @@ TEST(CacheKey, StringsCannotForgeAnotherField) {
     forged.plainOutput = "x\np.packed=0";
     PackOptions plain;
     plain.plainOutput = "x";
-    plain.packed = false;
+    plain.layout = Layout::Plain;
     EXPECT_NE(keyText(forged, "p."), keyText(plain, "p."));
+}
+
+TEST(CacheKey, EveryPixelTypeAndEveryToleranceIsItsOwnKey) {
+    // A manifest's pixel_type changed from half to uint16, or auto's tolerance changed, must rebuild.
+    std::vector<std::string> texts;
+    for (const PixelType t : {PixelType::Float, PixelType::Half, PixelType::Uint16}) {
+        PackOptions o;
+        o.pixelType = t;
+        texts.push_back(keyText(o));
+    }
+    for (const double tolerance : {1e-4, 2e-4}) {
+        PackOptions o;
+        o.tolerance = tolerance;
+        texts.push_back(keyText(o));
+    }
+    for (size_t i = 0; i < texts.size(); ++i)
+        for (size_t j = i + 1; j < texts.size(); ++j) EXPECT_NE(texts[i], texts[j]) << i << " " << j;
+    // Float neighbour4 with no height range is the key text from before these fields existed.
+    EXPECT_EQ(texts[0].find("tolerance"), std::string::npos);
+    EXPECT_EQ(texts[0].find("heightRange"), std::string::npos);
+    EXPECT_NE(texts[0].find("packed=1"), std::string::npos);
 }
 
 TEST(CacheKey, IsThirtyTwoHexDigits) {

@@ -117,7 +117,7 @@ TEST(PackHeights, SidesThatAreNotPowersOfTwoAreRefusedUnlessResized) {
     EXPECT_NE(refused.error().what.find("24x10"), std::string::npos) << refused.error().what;
 
     options.resizeToPowerOfTwo = true;
-    options.packed = false;
+    options.layout = Layout::Plain;
     const auto resized = packHeights(map, memorySource("odd.png"), options);
     ASSERT_TRUE(resized) << resized.error().what;
     EXPECT_TRUE(resized->resized);

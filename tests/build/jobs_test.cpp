@@ -74,7 +74,7 @@ TEST(PackJob, APlainChainHoldsTheHeightsAlone) {
     const Image painted = test::randomImage(8, 8, 3);
     test::writeImage(dir.file("in.exr"), painted, OIIO::TypeDesc::FLOAT);
     PackOptions o;
-    o.packed = false;
+    o.layout = Layout::Plain;
     ASSERT_TRUE(packHeightMap(dir.file("in.exr"), dir.file("plain.exr"), o));
     auto t = readTextureFile(dir.file("plain.exr"));
     ASSERT_TRUE(t);

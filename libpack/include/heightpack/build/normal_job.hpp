@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "heightpack/core/layout.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
 #include "heightpack/core/result.hpp"
@@ -29,7 +30,13 @@ struct NormalJobOptions {
     NormalFormat format = NormalFormat::Exr;
     Compression compression = Compression::Zip;
     PixelType pixelType = PixelType::Float;                      // mip-mapped outputs
+    // > 0: "auto": pixelType is chosen, the fewest bytes whose worst lookup error over the chain is within
+    // this many normal units (as PackOptions::tolerance); 0: pixelType as given.
+    double tolerance = 0.0;
     Supercompression supercompression = Supercompression::None;  // KTX2 outputs
+    // Rgb: x, y, z (and alpha). Xy: x and y alone, for a shader that rebuilds z; mip-mapped outputs
+    // without alpha only.
+    Layout layout = Layout::Rgb;
     std::string version;
     std::function<void(std::string_view stage, double fraction)> progress;
 };
@@ -43,6 +50,9 @@ struct NormalReport {
     std::vector<std::pair<int, int>> levelSizes;
     double maxSlopeDegrees = 0.0;  // steepest normal at level 0, for a sanity check of the units
     double seconds = 0.0;
+    Layout layout = Layout::Rgb;
+    PixelType pixelType = PixelType::Float;  // as written (the choice, with a tolerance); float for a PNG
+    std::vector<double> lookupError;         // per level, normal units; empty for a PNG
 };
 
 // The normals `normal` writes, made in memory.

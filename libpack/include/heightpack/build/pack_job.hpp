@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "heightpack/core/layout.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/exr_write.hpp"
@@ -24,9 +25,15 @@ struct PackOptions {
     Compression compression = Compression::Zip;  // EXR outputs
     // The container is the output's extension (.exr, .ktx2, .dds); these choose what goes into it.
     PixelType pixelType = PixelType::Float;
+    // > 0: "auto": pixelType is chosen, the fewest bytes whose worst lookup error over the chain is within
+    // this many stored units (see chooseStorage in stored_chain.hpp); 0: pixelType as given.
+    double tolerance = 0.0;
     Supercompression supercompression = Supercompression::None;  // KTX2 outputs
     std::string plainOutput;           // also write the unpacked one-channel chain here, if not empty
-    bool packed = true;                // false: write only the unpacked chain, at output (foam, masks)
+    // Neighbour4: the packed chain at output. Plain: only the unpacked one-channel chain, at output
+    // (textureGather or hardware filtering; foam, masks); plainOutput must then be empty.
+    Layout layout = Layout::Neighbour4;
+    double heightRange = 0.0;          // metres between a stored 0.0 and 1.0, when known: recorded, errors in metres
     std::string version;               // recorded as heightpack:version
     // Reports progress: the stage ("load", "mip", "write") and the fraction of it done.
     std::function<void(std::string_view stage, double fraction)> progress;
@@ -40,6 +47,9 @@ struct PackReport {
     std::string sourceHash;
     bool resized = false;
     std::vector<std::pair<int, int>> levelSizes;  // level 0 first
+    Layout layout = Layout::Neighbour4;           // of output
+    PixelType pixelType = PixelType::Float;       // as written (the choice, with a tolerance)
+    std::vector<double> lookupError;              // per level, stored units (see worstLookupError)
     double loadSeconds = 0.0;
     double mipSeconds = 0.0;
     double writeSeconds = 0.0;
@@ -48,7 +58,7 @@ struct PackReport {
 // The chains `pack` writes, made in memory.
 struct PackedMaps {
     std::vector<Image> plain;   // one channel per level, level 0 first: the stored heights (offset + scale * value)
-    std::vector<Image> packed;  // the same levels 4-neighbour packed (RGBA); empty when options.packed is false
+    std::vector<Image> packed;  // the same levels 4-neighbour packed (RGBA); empty for Layout::Plain
     bool resized = false;       // level 0 was resampled to power-of-two sides
 };
 
@@ -63,8 +73,8 @@ Result<PackedMaps> packHeights(Image heights, const SourceInfo& source, const Pa
 Result<PackReport> packHeightMap(const std::string& input, const std::string& output, const PackOptions& options);
 
 // The header attributes heightpack records for a chain written with these options and layout
-// ("neighbour4" or "plain").
-std::vector<ExrAttribute> heightAttributes(std::string_view layout, const PackOptions& options,
+// (Neighbour4 or Plain).
+std::vector<ExrAttribute> heightAttributes(Layout layout, const PackOptions& options,
                                            const SourceInfo& source, const std::string& sourceHash);
 
 }  // namespace heightpack

@@ -1,0 +1,62 @@
+#include "stored_chain.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <optional>
+
+#include "heightpack/core/lookup_error.hpp"
+
+namespace heightpack::detail {
+
+double StoredChain::worst() const {
+    return lookupError.empty() ? 0.0 : *std::max_element(lookupError.begin(), lookupError.end());
+}
+
+namespace {
+
+Result<StoredChain> measure(const std::vector<std::string>& paths, const TiledExrContent& content,
+                            const std::vector<Image>& chain, Wrap wrap, TextureWriteOptions options, PixelType type) {
+    options.pixelType = type;
+    StoredChain stored;
+    stored.pixelType = type;
+    if (type == PixelType::Float) {  // the float chain itself; the writer still judges the container
+        stored.lookupError.assign(chain.size(), 0.0);
+        return stored;
+    }
+    auto storage = planTexelStorage(paths.front(), content, options);
+    if (!storage) return storage.error();
+    for (size_t i = 1; i < paths.size(); ++i)  // the same values, so only the container can object
+        if (auto other = planTexelStorage(paths[i], content, options); !other) return other.error();
+    stored.lookupError = worstLookupError(chain, wrap, storage->storeAndRead, options.threads);
+    return stored;
+}
+
+}  // namespace
+
+Result<StoredChain> chooseStorage(const std::vector<std::string>& paths, const TiledExrContent& content,
+                                  const std::vector<Image>& chain, Wrap wrap, const TextureWriteOptions& options,
+                                  double tolerance) {
+    if (!(tolerance > 0.0)) return measure(paths, content, chain, wrap, options, options.pixelType);
+    std::optional<StoredChain> best;
+    for (const PixelType type : {PixelType::Half, PixelType::Uint16}) {  // two bytes a component
+        auto candidate = measure(paths, content, chain, wrap, options, type);
+        if (!candidate || candidate->worst() > tolerance) continue;
+        if (!best || candidate->worst() < best->worst()) best = std::move(*candidate);
+    }
+    if (best) return *best;
+    return measure(paths, content, chain, wrap, options, PixelType::Float);
+}
+
+std::vector<ExrAttribute> lookupErrorAttributes(const StoredChain& stored) {
+    if (stored.pixelType == PixelType::Float) return {};
+    std::string levels;
+    for (const double e : stored.lookupError) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.9g", e);
+        if (!levels.empty()) levels += ',';
+        levels += text;
+    }
+    return {attribute(attr::lookupError, levels), attribute(attr::maxLookupError, static_cast<float>(stored.worst()))};
+}
+
+}  // namespace heightpack::detail

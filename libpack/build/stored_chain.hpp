@@ -1,0 +1,38 @@
+// Internal: the pixel type a job stores its chain in and what that costs at the shader's lookups,
+// measured for a type given, or chosen ("auto") as the fewest bytes within a tolerance. pack and normal
+// share it, so both choose and record alike.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "heightpack/core/image.hpp"
+#include "heightpack/core/result.hpp"
+#include "heightpack/io/attributes.hpp"
+#include "heightpack/io/texture_write.hpp"
+
+namespace heightpack::detail {
+
+struct StoredChain {
+    PixelType pixelType = PixelType::Float;
+    std::vector<double> lookupError;  // per level, level 0 first, in the chain's units
+    double worst() const;
+};
+
+// chain is what content writes, level by level (the plain heights of a packed output: a packed texel
+// holds copies of them, see worstLookupError). With tolerance 0, measures options.pixelType and fails as
+// writeTexture would when it cannot be stored. With tolerance > 0, chooses the type: the fewest bytes
+// whose worst error over the whole chain is within tolerance; half and uint16 take the same bytes, so of
+// the two that qualify the smaller error wins (half on a tie); float when neither does. A type the
+// container lacks (uint16 in an EXR) or the values do not fit (a half beyond 65504) is passed over.
+// paths are every file the chain goes to (a packed output and its plain twin): a type must suit each
+// one's container; content is what the first one holds.
+Result<StoredChain> chooseStorage(const std::vector<std::string>& paths, const TiledExrContent& content,
+                                  const std::vector<Image>& chain, Wrap wrap, const TextureWriteOptions& options,
+                                  double tolerance);
+
+// The attributes that record stored's lookup errors (lookupError, maxLookupError); none for float,
+// whose file is the float chain itself.
+std::vector<ExrAttribute> lookupErrorAttributes(const StoredChain& stored);
+
+}  // namespace heightpack::detail
