@@ -1,5 +1,8 @@
 // heightpack info: what a texture file holds, level by level.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <optional>
 #include <iostream>
 
 #include "heightpack/core/parallel.hpp"
@@ -72,16 +75,35 @@ private:
         return ExitCode::Ok;
     }
 
+    // Metres per unit of a height file's lookup errors, when it records its height range; 0 otherwise
+    // (stored units, or normal units for a normal map).
+    static double metresPerUnit(const FileInfo& info) {
+        const auto layout = layoutFromAttribute(findAttribute(info, attr::layout.name));
+        const std::string range = findAttribute(info, attr::heightRange.name);
+        if (!layout || !isHeightLayout(*layout) || range.empty()) return 0.0;
+        const double metres = std::strtod(range.c_str(), nullptr);
+        return std::isfinite(metres) && metres > 0.0 ? metres : 0.0;
+    }
+
     static nlohmann::json toJson(const FileInfo& info) {
         nlohmann::json attributes = nlohmann::json::object();
         for (const auto& [k, v] : info.attributes) attributes[k] = v;
+        const double metres = metresPerUnit(info);
         nlohmann::json levels = nlohmann::json::array();
+        size_t gpuTotal = 0;
+        nlohmann::json worst = 0.0;  // null once a level's error is unknown
         for (size_t i = 0; i < info.levels.size(); ++i) {
+            const LevelInfo& l = info.levels[i];
             nlohmann::json channels = nlohmann::json::array();
-            for (const ChannelStats& c : info.levels[i].channels)
+            for (const ChannelStats& c : l.channels)
                 channels.push_back({{"name", c.name}, {"min", c.min}, {"max", c.max}, {"mean", c.mean}});
-            levels.push_back({{"level", i}, {"width", info.levels[i].width}, {"height", info.levels[i].height},
-                              {"channels", channels}});
+            nlohmann::json error = nullptr;
+            if (l.lookupError) error = *l.lookupError * (metres > 0.0 ? metres : 1.0);
+            gpuTotal += l.gpuBytes;
+            if (error.is_null()) worst = nullptr;
+            else if (!worst.is_null()) worst = std::max(worst.get<double>(), error.get<double>());
+            levels.push_back({{"level", i}, {"width", l.width}, {"height", l.height}, {"gpuBytes", l.gpuBytes},
+                              {"lookupError", error}, {"channels", channels}});
         }
         auto text = [&](const char* name) {
             const std::string v = findAttribute(info, name);
@@ -104,6 +126,11 @@ private:
             {"filter", text(attr::filter.name)},
             {"heightScale", text(attr::heightScale.name)},
             {"heightOffset", text(attr::heightOffset.name)},
+            {"gpuBytes", gpuTotal},
+            // The worst lookup error against the float chain: 0 for float texels, as recorded for half and
+            // uint16, null where the file records none (DDS).
+            {"lookupError", {{"units", metres > 0.0 ? "m" : "stored"},
+                             {"worst", worst}}},
             {"levels", levels},
             {"attributes", attributes},
         };
@@ -125,13 +152,18 @@ private:
         for (const auto& [key, value] : info.attributes)  // KTX2's own keys: KTXwriter, KTXwriterScParams
             if (key.rfind("KTX", 0) == 0) std::printf("  %-13s %s\n", key.c_str(), value.c_str());
         // Heights are channel 0 in every layout heightpack writes (R of a packed texel is H(i,j)).
-        std::printf("  %-5s %-11s %12s %12s %12s   (channel %s)\n", "level", "size", "min", "max", "mean",
-                    top.channels.front().name.c_str());
+        const double metres = metresPerUnit(info);
+        std::printf("  %-5s %-11s %12s %12s %12s %11s %13s   (channel %s; lookup error%s)\n", "level", "size", "min",
+                    "max", "mean", "gpu bytes", "lookup error", top.channels.front().name.c_str(),
+                    metres > 0.0 ? " in metres" : " in stored units, 'n/a' where not recorded");
         for (size_t i = 0; i < info.levels.size(); ++i) {
             const LevelInfo& l = info.levels[i];
             const ChannelStats& c = l.channels.front();
             const std::string size = std::to_string(l.width) + "x" + std::to_string(l.height);
-            std::printf("  %-5zu %-11s %12.6g %12.6g %12.6g\n", i, size.c_str(), c.min, c.max, c.mean);
+            char error[32] = "n/a";
+            if (l.lookupError) std::snprintf(error, sizeof error, "%.3g", *l.lookupError * (metres > 0.0 ? metres : 1.0));
+            std::printf("  %-5zu %-11s %12.6g %12.6g %12.6g %11zu %13s\n", i, size.c_str(), c.min, c.max, c.mean,
+                        l.gpuBytes, error);
         }
     }
 

@@ -54,7 +54,11 @@ public:
         compressionOption_ = cmd->add_option("--compression", compression_, "EXR compression; for .ktx2 none or zstd")
                                  ->capture_default_str()
                                  ->check(CLI::IsMember(compressionNames()));
-        addPixelTypeOption(*cmd, pixelType_);
+        addPixelTypeOption(*cmd, pixelType_, true, &tolerance_);
+        cmd->add_option("--layout", layout_, "rgb: x, y, z; xy: two channels, z rebuilt in the shader as "
+                                             "sqrt(1 - x^2 - y^2) (mip-mapped outputs, no alpha)")
+            ->capture_default_str()
+            ->check(CLI::IsMember(std::vector<std::string>{nameOf(Layout::Rgb), nameOf(Layout::Xy)}));
         addChannelOption(*cmd, channel_);
         cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two (EXR)")
             ->check(CLI::IsMember({"none", "pow2"}));
@@ -65,6 +69,9 @@ public:
             "  heightpack normal ripple.png --tile-size 8m --height 0.15m --format png8 --convention directx "
             "-o ripple_n.png\n"
             "  heightpack normal ripple.png --tile-size 8m --height 0.15m --height-in-alpha -o ripple_nh.exr\n"
+            "  heightpack normal ripple.png --tile-size 8m --height 0.15m --layout xy -o ripple_n.ktx2\n"
+            "  heightpack normal ripple.png --tile-size 8m --height 0.15m --pixel-type auto --tolerance 0.001 "
+            "-o ripple_n.dds\n"
             "Normals are unit xyz in tangent space, z up; the PNG stores 0.5 + 0.5 n.\n");
         return cmd;
     }
@@ -91,9 +98,17 @@ public:
         o.filter = *parseName<Filter>(filter_);
         o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
         o.compression = parseName<Compression>(compression_).value_or(Compression::Zip);
-        o.pixelType = *parsePixelType(pixelType_);
-        if (format == "png8" && o.pixelType != PixelType::Float)
+        o.pixelType = requestedPixelType(pixelType_);
+        if (format == "png8" && pixelType_ != "float")
             return usage("--pixel-type is for .exr, .ktx2 and .dds outputs; a PNG normal map is 8-bit");
+        // Normal maps' errors are in normal units: --tolerance is a plain number (no --height conversion).
+        if (const std::string problem = toleranceInStoredUnits(pixelType_, tolerance_, 0.0, o.tolerance); !problem.empty())
+            return usage(problem);
+        o.layout = *parseName<Layout>(layout_);
+        if (o.layout == Layout::Xy && format == "png8")
+            return usage("--layout xy is for mip-mapped .exr, .ktx2 and .dds outputs; a PNG normal map is rgb");
+        if (o.layout == Layout::Xy && n.alpha != NormalAlpha::None)
+            return usage("--layout xy stores two channels, leaving no alpha for --height-in-alpha or --variance-in-alpha");
         if (const std::string problem = checkContainerChoice({output_}, o.pixelType, compression_,
                                                              compressionOption_->count() > 0, o.supercompression);
             !problem.empty())
@@ -135,10 +150,10 @@ private:
         progress.clear();
         const NormalReport& r = *report;
         const int width = r.levelSizes[0].first, height = r.levelSizes[0].second;
+        // The channels as stored: x, y for xy; x, y, z and alpha (three count as four on a GPU).
+        const int channels = r.layout == Layout::Xy ? 2 : n.alpha == NormalAlpha::None ? 3 : 4;
         if (common_.json) {
-            nlohmann::json levels = nlohmann::json::array();
-            for (size_t i = 0; i < r.levelSizes.size(); ++i)
-                levels.push_back({{"level", i}, {"width", r.levelSizes[i].first}, {"height", r.levelSizes[i].second}});
+            const nlohmann::json stored = storedChainJson(r.levelSizes, channels, r.pixelType, r.lookupError, 0.0);
             const nlohmann::json doc = {{"command", "normal"},
                        {"input", r.input},
                        {"output", r.output},
@@ -156,7 +171,12 @@ private:
                                             : nlohmann::json(nullptr)},
                        {"channel", channelJson(r.source)},
                        {"maxSlopeDegrees", r.maxSlopeDegrees},
-                       {"levels", levels},
+                       {"layout", nameOf(r.layout)},
+                       {"pixelType", format == "png8" ? nlohmann::json("uint8") : stored["pixelType"]},
+                       {"pixelTypeRequested", pixelType_},
+                       {"gpuBytes", format == "png8" ? nlohmann::json(nullptr) : stored["gpuBytes"]},
+                       {"lookupError", format == "png8" ? nlohmann::json(nullptr) : stored["lookupError"]},
+                       {"levels", stored["levels"]},
                        {"seconds", r.seconds}};
             if (sequence)
                 sequence->push_back(doc);
@@ -168,7 +188,10 @@ private:
                  << r.levelSizes.size() << (r.levelSizes.size() == 1 ? " level" : " levels") << "), "
                  << format << ", tile " << n.tileWidth << " m, height " << n.heightRange << " m, " << kernel_ << ", "
                  << convention_ << ", steepest " << std::fixed << std::setprecision(1) << r.maxSlopeDegrees
-                 << " deg, " << std::setprecision(2) << r.seconds << " s";
+                 << " deg, ";
+            if (format != "png8")
+                line << nameOf(r.layout) << " " << storedChainText(r.pixelType, r.lookupError, 0.0) << ", ";
+            line << std::setprecision(2) << r.seconds << " s";
             std::cout << line.str() << "\n";
             if (r.resized) std::cout << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";
             printChannelNote(r.source);
@@ -180,6 +203,7 @@ private:
     std::string kernel_ = nameOf(NormalOptions{}.kernel), wrap_ = nameOf(NormalOptions{}.wrap);
     std::string filter_ = nameOf(NormalJobOptions{}.filter), convention_ = nameOf(NormalOptions{}.convention);
     std::string compression_ = nameOf(NormalJobOptions{}.compression), resize_ = "none", pixelType_ = "float";
+    std::string tolerance_, layout_ = nameOf(Layout::Rgb);
     CLI::Option* compressionOption_ = nullptr;
     bool heightInAlpha_ = false, varianceInAlpha_ = false;
 };

@@ -1,4 +1,4 @@
-// heightpack pack: one height map in, one packed, mip-mapped RGBA32F EXR out.
+// heightpack pack: one height map in, one packed (or plain) mip-mapped texture out: EXR, KTX2 or DDS.
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -21,7 +21,7 @@ namespace {
 class PackCommand final : public Command {
 public:
     CLI::App* attach(CLI::App& app) override {
-        CLI::App* cmd = app.add_subcommand("pack", "pack a height map into a mip-mapped, 4-neighbour packed RGBA32F EXR");
+        CLI::App* cmd = app.add_subcommand("pack", "pack a height map into a mip-mapped, 4-neighbour packed (or plain) EXR, KTX2 or DDS");
         cmd->add_option("input", input_, "height map: PNG, TIFF, EXR, JPEG, TGA, PSD (8/16-bit, half, float)")
             ->required();
         cmd->add_option("-o,--output", output_, "packed texture to write: .exr, .ktx2 or .dds (replaced atomically)")
@@ -39,7 +39,14 @@ public:
                                              "EXR compression (lossless only); for .ktx2 none or zstd")
                                  ->capture_default_str()
                                  ->check(CLI::IsMember(compressionNames()));
-        addPixelTypeOption(*cmd, pixelType_);
+        addPixelTypeOption(*cmd, pixelType_, true, &tolerance_);
+        cmd->add_option("--height", height_, "how far a stored 1.0 stands above a stored 0.0, in metres: recorded, and "
+                                             "lookup errors and --tolerance are then in metres")
+            ->check(lengthValidator(1e3));
+        cmd->add_option("--layout", layout_, "neighbour4: each texel holds its four neighbours (one fetch per lookup); "
+                                             "plain: one channel, the height (textureGather, hardware filtering)")
+            ->capture_default_str()
+            ->check(CLI::IsMember(std::vector<std::string>{nameOf(Layout::Neighbour4), nameOf(Layout::Plain)}));
         cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two up to the "
                                               "next ones, with the mip filter")
             ->check(CLI::IsMember({"none", "pow2"}));
@@ -52,6 +59,8 @@ public:
             "--compression none -o swell.exr\n"
             "  heightpack pack big.png --resize pow2 -o big.exr\n"
             "  heightpack pack swell.png --pixel-type half -o swell.dds\n"
+            "  heightpack pack swell.png --pixel-type auto --tolerance 1mm --height 6m -o swell.ktx2\n"
+            "  heightpack pack swell.png --layout plain --pixel-type uint16 -o swell_r16.ktx2\n"
             "Texel (i,j) of every level holds R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1), wrapped or clamped.\n");
         return cmd;
     }
@@ -65,7 +74,16 @@ public:
         options_.mip.filter = *parseName<Filter>(filter_);
         options_.mip.threads = common_.threads;
         options_.compression = parseName<Compression>(compression_).value_or(Compression::Zip);
-        options_.pixelType = *parsePixelType(pixelType_);
+        options_.pixelType = requestedPixelType(pixelType_);
+        options_.heightRange = height_.empty() ? 0.0 : *parseLength(height_);
+        if (const std::string problem =
+                toleranceInStoredUnits(pixelType_, tolerance_, options_.heightRange, options_.tolerance);
+            !problem.empty())
+            return usage(problem);
+        options_.layout = *parseName<Layout>(layout_);
+        if (options_.layout == Layout::Plain && !options_.plainOutput.empty())
+            return usage("--emit-plain writes the plain chain beside a packed output; with --layout plain the output "
+                         "is that chain already");
         const std::string containerProblem =
             checkContainerChoice({output_, options_.plainOutput}, options_.pixelType, compression_,
                                  compressionOption_->count() > 0, options_.supercompression);
@@ -114,10 +132,10 @@ private:
                                          : options_.supercompression == Supercompression::Zstd ? "zstd"
                                                                                                 : "none";
 
+        const int channels = layoutChannels(r.layout);
         if (common_.json) {
-            nlohmann::json levels = nlohmann::json::array();
-            for (size_t i = 0; i < r.levelSizes.size(); ++i)
-                levels.push_back({{"level", i}, {"width", r.levelSizes[i].first}, {"height", r.levelSizes[i].second}});
+            const nlohmann::json stored =
+                storedChainJson(r.levelSizes, channels, r.pixelType, r.lookupError, options_.heightRange);
             const nlohmann::json doc = {
                 {"command", "pack"},
                 {"input", r.input},
@@ -132,14 +150,19 @@ private:
                             {"hash", r.sourceHash}}},
                 {"resized", r.resized},
                 {"resize", r.resized ? resizeJson(r.source.width, r.source.height, width, height) : nlohmann::json(nullptr)},
-                {"layout", "neighbour4"},
+                {"layout", nameOf(r.layout)},
                 {"wrap", wrap_},
                 {"filter", filter_},
                 {"compression", compression},
-                {"pixelType", pixelType_},
+                {"pixelType", stored["pixelType"]},
+                {"pixelTypeRequested", pixelType_},
+                {"tolerance", options_.tolerance > 0.0 ? nlohmann::json(tolerance_) : nlohmann::json(nullptr)},
                 {"heightScale", options_.scale},
                 {"heightOffset", options_.offset},
-                {"levels", levels},
+                {"heightRange", options_.heightRange > 0.0 ? nlohmann::json(options_.heightRange) : nlohmann::json(nullptr)},
+                {"gpuBytes", stored["gpuBytes"]},
+                {"lookupError", stored["lookupError"]},
+                {"levels", stored["levels"]},
                 {"timings", {{"load", r.loadSeconds}, {"mip", r.mipSeconds}, {"write", r.writeSeconds},
                              {"total", seconds}}},
             };
@@ -152,12 +175,14 @@ private:
             line << "wrote " << r.output << ": " << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " ("
                  << r.levelSizes.size() << " levels) from " << r.source.width << "x" << r.source.height << " "
                  << r.source.pixelType << " '" << r.source.channelUsed << "'"
-                 << ", " << wrap_ << ", " << filter_ << ", " << compression << ", " << humanBytes(bytes) << ", "
+                 << ", " << wrap_ << ", " << filter_ << ", " << nameOf(r.layout) << " "
+                 << storedChainText(r.pixelType, r.lookupError, options_.heightRange) << ", " << compression << ", "
+                 << humanBytes(bytes) << ", "
                  << std::fixed << std::setprecision(2) << seconds << " s";
             std::cout << line.str() << "\n";
             if (r.resized) std::cout << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";
             printChannelNote(r.source);
-            if (!r.plainOutput.empty()) std::cout << "wrote " << r.plainOutput << ": unpacked chain\n";
+            if (r.layout == Layout::Neighbour4 && !r.plainOutput.empty()) std::cout << "wrote " << r.plainOutput << ": unpacked chain\n";
         }
         return ExitCode::Ok;
     }
@@ -165,6 +190,7 @@ private:
     std::string input_, output_, channel_;
     std::string wrap_ = nameOf(MipOptions{}.wrap), filter_ = nameOf(MipOptions{}.filter);
     std::string compression_ = nameOf(PackOptions{}.compression), resize_ = "none", pixelType_ = "float";
+    std::string tolerance_, height_, layout_ = nameOf(Layout::Neighbour4);
     CLI::Option* compressionOption_ = nullptr;
     PackOptions options_;
 };

@@ -1,13 +1,100 @@
 #include "texture_options.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "heightpack/io/texture_write.hpp"
+
+#include "command.hpp"
+
 namespace heightpack::cli {
 
-void addPixelTypeOption(CLI::App& cmd, std::string& pixelType) {
+void addPixelTypeOption(CLI::App& cmd, std::string& pixelType, bool withAuto, std::string* tolerance) {
+    std::vector<std::string> names = allNames<PixelType>();
+    if (withAuto) names.emplace_back("auto");
     cmd.add_option("--pixel-type", pixelType,
-                   "float (32-bit), half (16-bit float, rounded to nearest) or uint16 (16-bit normalised to the "
-                   "chain's range, scale and offset recorded; .ktx2 and .dds only)")
+                   std::string("float (32-bit), half (16-bit float, rounded to nearest) or uint16 (16-bit normalised to "
+                               "the chain's range, scale and offset recorded; .ktx2 and .dds only)") +
+                       (withAuto ? "; auto: the fewest bytes whose worst lookup error is within --tolerance" : ""))
         ->capture_default_str()
-        ->check(CLI::IsMember(allNames<PixelType>()));
+        ->check(CLI::IsMember(names));
+    if (withAuto && tolerance)
+        cmd.add_option("--tolerance", *tolerance,
+                       "with --pixel-type auto: the worst lookup error allowed over the chain; a length (1mm, 0.5cm) "
+                       "when --height is given, else a number in stored units");
+}
+
+namespace {
+
+std::optional<double> plainNumber(const std::string& text) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || end == text.c_str() || *end != '\0' || !std::isfinite(v) || v <= 0) return std::nullopt;
+    return v;
+}
+
+}  // namespace
+
+std::string toleranceInStoredUnits(const std::string& pixelType, const std::string& text, double heightMetres,
+                                   double& tolerance) {
+    tolerance = 0.0;
+    if (pixelType != "auto") {
+        if (text.empty()) return {};
+        return "--tolerance '" + text + "' is for --pixel-type auto (which picks the type); leave it out with --pixel-type " +
+               pixelType;
+    }
+    if (text.empty())
+        return "--pixel-type auto needs --tolerance, the worst lookup error allowed: a length like 1mm with --height, "
+               "or a number in stored units like 0.0005";
+    if (heightMetres > 0.0) {
+        const auto metres = parseLength(text);
+        if (!metres) return "--tolerance '" + text + "' is not a positive length like 1mm, 0.5cm or 2e-3m";
+        tolerance = *metres / heightMetres;
+        return {};
+    }
+    if (const auto v = plainNumber(text)) {
+        tolerance = *v;
+        return {};
+    }
+    if (parseLength(text))
+        return "--tolerance '" + text + "' is a length, but without --height there are no metres to convert it from: "
+               "give --height, or a number in stored units";
+    return "--tolerance '" + text + "' is not a positive number";
+}
+
+PixelType requestedPixelType(const std::string& pixelType) {
+    return parsePixelType(pixelType).value_or(PixelType::Float);
+}
+
+nlohmann::json storedChainJson(const std::vector<std::pair<int, int>>& levelSizes, int channels, PixelType type,
+                               const std::vector<double>& lookupError, double metresPerUnit) {
+    const double toUnits = metresPerUnit > 0.0 ? metresPerUnit : 1.0;
+    nlohmann::json levels = nlohmann::json::array();
+    size_t total = 0;
+    double worst = 0.0;
+    for (size_t i = 0; i < levelSizes.size(); ++i) {
+        const size_t bytes = gpuBytes(levelSizes[i].first, levelSizes[i].second, channels, type);
+        const double error = i < lookupError.size() ? lookupError[i] * toUnits : 0.0;
+        total += bytes;
+        worst = std::max(worst, error);
+        levels.push_back({{"level", i}, {"width", levelSizes[i].first}, {"height", levelSizes[i].second},
+                          {"gpuBytes", bytes}, {"lookupError", error}});
+    }
+    return {{"pixelType", pixelTypeName(type)},
+            {"gpuBytes", total},
+            {"lookupError", {{"units", metresPerUnit > 0.0 ? "m" : "stored"}, {"worst", worst}}},
+            {"levels", levels}};
+}
+
+std::string storedChainText(PixelType type, const std::vector<double>& lookupError, double metresPerUnit) {
+    double worst = 0.0;
+    for (const double e : lookupError) worst = std::max(worst, e);
+    char text[96];
+    std::snprintf(text, sizeof text, "%s, worst lookup error %.3g%s", pixelTypeName(type),
+                  worst * (metresPerUnit > 0.0 ? metresPerUnit : 1.0), metresPerUnit > 0.0 ? " m" : "");
+    return text;
 }
 
 std::vector<std::string> compressionNames() {

@@ -3,16 +3,35 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "heightpack/io/gpu_texture.hpp"
 
 namespace heightpack::cli {
 
-// Adds --pixel-type float|half|uint16 to cmd.
-void addPixelTypeOption(CLI::App& cmd, std::string& pixelType);
+// Adds --pixel-type float|half|uint16 to cmd; with withAuto also auto and --tolerance (into tolerance).
+void addPixelTypeOption(CLI::App& cmd, std::string& pixelType, bool withAuto = false, std::string* tolerance = nullptr);
+
+// The tolerance --pixel-type auto chooses within, in stored units (0 for a pixel type given), from
+// --tolerance's text: a length (1mm, 0.5cm, 2e-3m) divided by heightMetres when that is known (> 0),
+// else a plain number (stored units; normal units for normal maps). Returns what is wrong, for usage(),
+// or empty.
+std::string toleranceInStoredUnits(const std::string& pixelType, const std::string& text, double heightMetres,
+                                   double& tolerance);
+
+// The pixel type to judge the containers by: auto chooses among those each container holds.
+PixelType requestedPixelType(const std::string& pixelType);
+
+// --json's account of a chain as stored: per level its GPU bytes and worst lookup error (in metres when
+// metresPerUnit > 0, else stored units), and the totals. channels as the texture stores them.
+nlohmann::json storedChainJson(const std::vector<std::pair<int, int>>& levelSizes, int channels, PixelType type,
+                               const std::vector<double>& lookupError, double metresPerUnit);
+// "half, worst lookup error 1.2e-05 m" for a summary line.
+std::string storedChainText(PixelType type, const std::vector<double>& lookupError, double metresPerUnit);
 
 // The EXR compressions and the KTX2 one, for --compression's check.
 std::vector<std::string> compressionNames();
