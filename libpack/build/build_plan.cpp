@@ -59,6 +59,8 @@ PackOptions packOptions(const MapSettings& s, const std::string& version) {
     pack.mip.filter = s.filter;
     pack.resizeToPowerOfTwo = s.resize;
     pack.compression = s.compression;
+    pack.pixelType = s.pixelType;
+    pack.tolerance = s.tolerance;
     pack.version = version;
     return pack;
 }
@@ -91,6 +93,8 @@ NormalJobOptions normalOptions(const NormalAsset& n, const std::string& version)
     job.filter = n.settings.filter;
     job.resizeToPowerOfTwo = n.settings.resize;
     job.compression = n.settings.compression;
+    job.pixelType = n.settings.pixelType;
+    job.tolerance = n.settings.tolerance;
     job.version = version;
     return job;
 }
@@ -116,9 +120,12 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
         step.report.line = f.line;
         step.report.output = f.output;
         const FresnelOptions& o = f.options;
-        step.optionsText = "kind=fresnel\n" + keyText(o, "fresnel.");  // always an EXR ramp
-        step.make = [o, version](const std::string& out, int, const ProgressFn&) {
-            return writeFresnelRamp(out, o, RampFormat::Exr, version);
+        step.optionsText = "kind=fresnel\n" + keyText(o, "fresnel.");  // a mip-less ramp, in the output's container
+        // A line only when not the default, so the key of every float ramp stays as it was.
+        if (f.pixelType != PixelType::Float) step.optionsText += "fresnel.pixelType=" + std::to_string(int(f.pixelType)) + "\n";
+        const PixelType type = f.pixelType;
+        step.make = [o, version, type](const std::string& out, int, const ProgressFn&) {
+            return writeFresnelRamp(out, o, RampFormat::Exr, version, type);
         };
         steps.push_back(std::move(step));
     }

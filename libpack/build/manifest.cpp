@@ -94,7 +94,35 @@ private:
             if (!parsed) throw s.error("channel", "is '" + shorten(*c) + "', but must be one of: " + joinedNames<ChannelSelect>());
             out.channel = *parsed;
         }
+        if (s.find("container")) out.container = s.choice("container", Container::Exr);
+        pixelType(s, out, true);
         return out;
+    }
+
+    // pixel_type (float, half, uint16, or auto with tolerance) into out, over what out holds already
+    // (the defaults). A table that names a type of its own drops an inherited tolerance.
+    void pixelType(Section& s, MapSettings& out, bool autoAllowed) {
+        const std::string choices = joinedNames<PixelType>() + (autoAllowed ? ", auto" : "");
+        if (const auto type = s.text("pixel_type")) {
+            if (*type == "auto" && autoAllowed) {
+                if (!s.find("tolerance"))
+                    throw s.error("pixel_type", "is \"auto\", which needs a tolerance",
+                                  "add tolerance = the worst lookup error allowed, in stored units (normal units "
+                                  "for normals), such as 0.0005");
+                out.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
+                return;
+            }
+            const auto parsed = parseName<PixelType>(*type);
+            if (!parsed) throw s.error("pixel_type", "is '" + shorten(*type) + "', but must be one of: " + choices);
+            out.pixelType = *parsed;
+            out.tolerance = 0.0;
+        }
+        if (s.find("tolerance")) {
+            if (!(out.tolerance > 0.0))  // neither here nor in [defaults] is the type "auto"
+                throw s.error("tolerance", "is given, but pixel_type is not \"auto\"",
+                              "set pixel_type = \"auto\" beside it, or remove it");
+            out.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
+        }
     }
 
     // The name, source, output and map settings of an asset made from a file.
@@ -119,19 +147,38 @@ private:
                                         (fs::exists(a.frames[0], ec) ? "is not a file" : "does not exist") + " (looked for " +
                                         a.source + ")",
                           "paths are relative to the manifest's folder; a sequence NAME.EXT is NAME.0000.EXT, ...");
-        a.output = output(s, name);
+        a.output = output(s, name, a.settings);
         return a;
     }
 
-    // The output's path inside the output folder: relative, normalised, an .exr, never escaping it.
-    std::string output(Section& s, const std::string& name) {
-        const std::string given = s.text("output").value_or(name + ".exr");
+    // The output's path inside the output folder: relative, normalised, never escaping it. Its container
+    // is the one its extension names; without an output, NAME. the container settings names (from this
+    // table or [defaults]; exr when none). A container in this table must agree with the output's
+    // extension; [defaults]' gives way to an output named here. settings.container is set either way.
+    std::string output(Section& s, const std::string& name, MapSettings& settings) {
+        const bool own = s.find("container") != nullptr;
+        if (!own && s.find("output")) settings.container.reset();
+        const std::string ext0 = settings.container ? containerName(*settings.container) : "exr";
+        const std::string given = s.text("output").value_or(name + "." + ext0);
         const fs::path p = fs::path(given).lexically_normal();
         if (given.empty() || p.is_absolute() || p.empty() || *p.begin() == ".." || p == "." || p.filename().empty())
             throw s.error("output", "is '" + shorten(given) + "', which is not a file inside the output folder",
                           "give a relative path such as textures/swell.exr, without '..'");
-        const std::string ext = lowerExtension(p);
-        if (ext != ".exr") throw s.error("output", "is '" + shorten(given) + "', but every texture is written as an .exr");
+        const auto named = containerForPath(p.string());
+        if (!named)
+            throw s.error("output", "is '" + shorten(given) + "', but a texture is written as .exr, .ktx2 or .dds");
+        if (settings.container && *named != *settings.container)
+            throw s.error("output", "is '" + shorten(given) + "', but container is \"" +
+                                        containerName(*settings.container) + "\"",
+                          "name the output ." + std::string(containerName(*settings.container)) +
+                              ", or set container to match it");
+        settings.container = *named;
+        if (*named == Container::Exr && settings.pixelType == PixelType::Uint16 && settings.tolerance == 0.0) {
+            const std::string what = "writes '" + p.string() + "' in uint16, but an EXR has no 16-bit normalised channels";
+            const std::string fix = "set container = \"ktx2\" or \"dds\", or pixel_type = \"half\"";
+            if (s.find("pixel_type")) throw s.error("pixel_type", "is \"uint16\": [" + s.prefix() + "] " + what, fix);
+            throw s.error(s.line(), "[" + s.prefix() + "] " + what + " (pixel_type from [defaults])", fix);
+        }
         if (p.filename().string().front() == '.')
             throw s.error("output", "is '" + shorten(given) + "': names starting with '.' are heightpack's own temporary files");
         claim(s, p.string());
@@ -218,7 +265,15 @@ private:
         FresnelAsset f;
         f.line = s.line();
         f.layer.name = assetName(s, "fresnel");
-        f.output = output(s, f.layer.name);
+        // A ramp takes the defaults' container and pixel type, or its own; "auto" is for mip chains, so
+        // a ramp under auto defaults stays float.
+        MapSettings ramp;
+        ramp.container = defaults_.container;
+        ramp.pixelType = defaults_.tolerance > 0.0 ? PixelType::Float : defaults_.pixelType;
+        if (s.find("container")) ramp.container = s.choice("container", Container::Exr);
+        pixelType(s, ramp, false);
+        f.output = output(s, f.layer.name, ramp);
+        f.pixelType = ramp.pixelType;
         const FresnelOptions defaults;
         f.options.ior = s.number("ior", defaults.ior, 1.0, 4.0);
         f.options.model = s.choice("model", defaults.model);

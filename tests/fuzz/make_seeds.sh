@@ -76,10 +76,14 @@ compression = "piz"
 resize = true
 channel = "luma"
 tileable = false
+container = "ktx2"
+pixel_type = "auto"
+tolerance = 0.001
 [[displacement]]
 name = "a"
 source = "map.png"
-output = "sub/a.exr"
+output = "sub/a.dds"
+container = "dds"
 tile_size = 10
 scroll = [1, -1]
 amplitude = 2
@@ -95,6 +99,7 @@ convention = "directx"
 alpha = "variance"
 [fresnel]
 output = "f.exr"
+pixel_type = "half"
 ior = 1.5
 index = "2nv"
 size = 64

@@ -13,6 +13,7 @@
 #include "heightpack/core/normal.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/pixel_type.hpp"
 #include "heightpack/io/read.hpp"
 
 namespace heightpack {
@@ -26,6 +27,10 @@ struct MapSettings {
     Compression compression = Compression::Zip;
     bool resize = false;  // resample sides that are not powers of two up to the next ones
     ChannelSelect channel = ChannelSelect::Auto;
+    // The container the output goes into; unset: the output's extension says (.exr when not given).
+    std::optional<Container> container;
+    PixelType pixelType = PixelType::Float;
+    double tolerance = 0.0;  // > 0: pixel_type = "auto", the fewest bytes within it (stored units)
 };
 
 // What every asset built from a source file shares.
@@ -50,6 +55,7 @@ struct NormalAsset : SourcedAsset {
 struct FresnelAsset {
     FresnelLayer layer;
     FresnelOptions options;
+    PixelType pixelType = PixelType::Float;  // no "auto": a ramp is a few hundred texels
     std::string output;
     int line = 0;
 };
