@@ -85,6 +85,13 @@ private:
         return std::isfinite(metres) && metres > 0.0 ? metres : 0.0;
     }
 
+    // What a file's lookup errors are counted in when not metres: a normal map's components, else the
+    // stored values.
+    static const char* unitsOf(const FileInfo& info) {
+        const auto layout = layoutFromAttribute(findAttribute(info, attr::layout.name));
+        return layout && !isHeightLayout(*layout) ? "normal" : "stored";
+    }
+
     static nlohmann::json toJson(const FileInfo& info) {
         nlohmann::json attributes = nlohmann::json::object();
         for (const auto& [k, v] : info.attributes) attributes[k] = v;
@@ -129,7 +136,7 @@ private:
             {"gpuBytes", gpuTotal},
             // The worst lookup error against the float chain: 0 for float texels, as recorded for half and
             // uint16, null where the file records none (DDS).
-            {"lookupError", {{"units", metres > 0.0 ? "m" : "stored"},
+            {"lookupError", {{"units", metres > 0.0 ? "m" : unitsOf(info)},
                              {"worst", worst}}},
             {"levels", levels},
             {"attributes", attributes},
@@ -155,7 +162,7 @@ private:
         const double metres = metresPerUnit(info);
         std::printf("  %-5s %-11s %12s %12s %12s %11s %13s   (channel %s; lookup error%s)\n", "level", "size", "min",
                     "max", "mean", "gpu bytes", "lookup error", top.channels.front().name.c_str(),
-                    metres > 0.0 ? " in metres" : " in stored units, 'n/a' where not recorded");
+                    metres > 0.0 ? " in metres" : (std::string(" in ") + unitsOf(info) + " units, n/a: not recorded").c_str());
         for (size_t i = 0; i < info.levels.size(); ++i) {
             const LevelInfo& l = info.levels[i];
             const ChannelStats& c = l.channels.front();

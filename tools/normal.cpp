@@ -153,7 +153,7 @@ private:
         // The channels as stored: x, y for xy; x, y, z and alpha (three count as four on a GPU).
         const int channels = r.layout == Layout::Xy ? 2 : n.alpha == NormalAlpha::None ? 3 : 4;
         if (common_.json) {
-            const nlohmann::json stored = storedChainJson(r.levelSizes, channels, r.pixelType, r.lookupError, 0.0);
+            const nlohmann::json stored = storedChainJson(r.levelSizes, channels, r.pixelType, r.lookupError, 0.0, "normal");
             const nlohmann::json doc = {{"command", "normal"},
                        {"input", r.input},
                        {"output", r.output},

@@ -69,7 +69,7 @@ PixelType requestedPixelType(const std::string& pixelType) {
 }
 
 nlohmann::json storedChainJson(const std::vector<std::pair<int, int>>& levelSizes, int channels, PixelType type,
-                               const std::vector<double>& lookupError, double metresPerUnit) {
+                               const std::vector<double>& lookupError, double metresPerUnit, const char* units) {
     const double toUnits = metresPerUnit > 0.0 ? metresPerUnit : 1.0;
     nlohmann::json levels = nlohmann::json::array();
     size_t total = 0;
@@ -84,7 +84,7 @@ nlohmann::json storedChainJson(const std::vector<std::pair<int, int>>& levelSize
     }
     return {{"pixelType", pixelTypeName(type)},
             {"gpuBytes", total},
-            {"lookupError", {{"units", metresPerUnit > 0.0 ? "m" : "stored"}, {"worst", worst}}},
+            {"lookupError", {{"units", metresPerUnit > 0.0 ? "m" : units}, {"worst", worst}}},
             {"levels", levels}};
 }
 

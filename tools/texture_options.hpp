@@ -27,9 +27,11 @@ std::string toleranceInStoredUnits(const std::string& pixelType, const std::stri
 PixelType requestedPixelType(const std::string& pixelType);
 
 // --json's account of a chain as stored: per level its GPU bytes and worst lookup error (in metres when
-// metresPerUnit > 0, else stored units), and the totals. channels as the texture stores them.
+// metresPerUnit > 0, else in `units`: "stored", or "normal" for normal maps), and the totals. channels
+// as the texture stores them.
 nlohmann::json storedChainJson(const std::vector<std::pair<int, int>>& levelSizes, int channels, PixelType type,
-                               const std::vector<double>& lookupError, double metresPerUnit);
+                               const std::vector<double>& lookupError, double metresPerUnit,
+                               const char* units = "stored");
 // "half, worst lookup error 1.2e-05 m" for a summary line.
 std::string storedChainText(PixelType type, const std::vector<double>& lookupError, double metresPerUnit);
 

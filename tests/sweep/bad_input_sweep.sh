@@ -164,11 +164,20 @@ expect pack 4 node.exr good.png -o node.exr
 expect pack 4 outdir.exr good.png -o outdir.exr
 expect pack 4 missing/out.exr good.png -o missing/out.exr
 expect pack 4 /dev/full good.png -o /dev/full
+# Pixel types and layouts (issue 14): auto and --tolerance need each other; a length needs --height.
+expect pack 2 "" good.png -o out.ktx2 --pixel-type auto
+expect pack 2 "" good.png -o out.ktx2 --pixel-type half --tolerance 0.001
+expect pack 2 "" good.png -o out.ktx2 --pixel-type auto --tolerance 1mm
+expect pack 2 "" good.png -o out.ktx2 --pixel-type auto --tolerance 0 --height 2m
+expect pack 2 "" good.png -o out.ktx2 --layout plain --emit-plain plain.ktx2
+expect pack 2 "" good.png -o out.ktx2 --layout rgb
 
 # ---- normal ----
 N=(--tile-size 8m --height 1m)
 for f in "${BAD_MAPS[@]}" "${HEIGHT_ONLY[@]}" odd.pfm; do expect normal 3 "$f" "$f" "${N[@]}" -o out.exr; done
 expect normal 2 "" good.png --tile-size 8m --height 1e300 -o out.exr
+expect normal 2 "" good.png "${N[@]}" --layout xy --height-in-alpha -o out.ktx2
+expect normal 2 "" good.png "${N[@]}" --pixel-type auto --tolerance 1mm -o out.ktx2
 expect normal 2 "" good.png --tile-size nan --height 1m -o out.exr
 expect normal 2 "" good.png --tile-size 8m,inf --height 1m -o out.exr
 expect normal 2 "" good.png --tile-size 8m --height -1m -o out.exr
