@@ -41,13 +41,13 @@ for ext in exr ktx2 dds; do
     start=$(now)
     cp "$work/out.$ext" "$work/copy.$ext"
     end=$(now)
-    echo "$end - $start" | bc -l >>"$work/cp"
+    awk -v a="$start" -v b="$end" 'BEGIN { print b - a }' >>"$work/cp"
   done
   w=$(median <"$work/write")
   c=$(median <"$work/cp")
   [ "$ext" = exr ] && exr_seconds=$w
   printf '%-5s %-6s %12d %10.3f %10.3f %10.2f\n' "$ext" "$codec" "$(stat -c %s "$work/out.$ext")" "$w" "$c" \
-    "$(echo "$w / $c" | bc -l)"
+    "$(awk -v w="$w" -v c="$c" 'BEGIN { print w / c }')"
 done
 echo "(write/cp: 1 would be writing as fast as cp copies the finished file; exr zip write: $exr_seconds s)"
 
