@@ -25,7 +25,7 @@ trap 'rm -rf "$work"' EXIT
 median() { sort -g | awk '{a[NR] = $1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
 now() { date +%s.%N; }
 
-echo "1. writing a ${size}x${size} packed float chain (10+ levels, RGBA32F), $(nproc) cores, median of $runs runs"
+echo "1. writing a ${size}x${size} packed float chain (every level, RGBA32F), $(nproc) cores, median of $runs runs"
 printf '%-5s %-6s %12s %10s %10s %10s\n' container codec bytes "write s" "cp s" "write/cp"
 exr_seconds=""
 for ext in exr ktx2 dds; do
