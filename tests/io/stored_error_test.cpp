@@ -2,7 +2,8 @@
 //  - the worst packed-lookup error each file records (heightpack:lookupError) and pack --json reports
 //    equals a brute force written here: a plain double-precision bilinear of the float chain against one
 //    from the stored texels as decoded from the file, at 4 x 4 points per texel;
-//  - --pixel-type auto picks the fewest bytes within --tolerance (lengths with --height);
+//  - --pixel-type auto picks the fewest bytes within --tolerance (lengths with --height); the refusals
+//    of bad choices are in tests/sweep/bad_input_sweep.sh;
 //  - --layout plain for heights and xy for normals, read back by heightpack and by the independent
 //    readers (ktx-parse; the DDS header record), which agree.
 #include <OpenImageIO/imageio.h>
@@ -13,6 +14,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "heightpack/build/normal_job.hpp"
+#include "heightpack/build/pack_job.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
 #include "heightpack/io/gpu_texture.hpp"
@@ -104,17 +107,16 @@ TEST(StoredError, RecordedAndReportedErrorEqualsABruteForceOfTheDecodedTexels) {
     };
     const std::vector<Map> maps = {{"wave", makeImage(32, 16, wave)}, {"seed4", randomImage(16, 16, 4)},
                                    {"seed9", randomImage(32, 32, 9, 0.2f, 0.7f)}};
-    // Each map in two of the containers, each wrap and each 16-bit type at least once (a process start
-    // costs a fifth of a second, so not every combination).
+    // Each map, container, wrap and 16-bit type at least once (a process start costs a fifth of a second,
+    // so not every combination).
     struct Case {
         size_t map;
         const char* wrap;
         std::string out;
         const char* type;
     };
-    const std::vector<Case> cases = {{0, "periodic", "p.ktx2", "half"}, {0, "clamp", "p.ktx2", "uint16"},
-                                     {1, "clamp", "p.exr", "half"},     {1, "periodic", "p.dds", "uint16"},
-                                     {2, "periodic", "p.ktx2", "uint16"}, {2, "clamp", "p.dds", "half"}};
+    const std::vector<Case> cases = {{0, "periodic", "p.ktx2", "half"}, {0, "clamp", "p.dds", "uint16"},
+                                     {1, "clamp", "p.exr", "half"}, {2, "periodic", "p.ktx2", "uint16"}};
     for (const Map& m : maps) writeImage(dir.file(m.name + ".png"), m.heights, OIIO::TypeDesc::UINT16);
     for (const Case& c : cases) {
         const Map& m = maps[c.map];
@@ -189,64 +191,45 @@ TEST(StoredError, Uint16OfA16BitPaintedMapIsExactAtLevel0) {
 TEST(StoredError, AutoPicksTheFewestBytesWithinTheTolerance) {
     ScratchDir dir;
     writeImage(dir.file("map.png"), makeImage(32, 32, wave), OIIO::TypeDesc::UINT16);
-    auto worstOf = [&](const std::vector<std::string>& extra) {
-        std::vector<std::string> args = {"pack", dir.file("map.png"), "--json", "--height", "6m", "-o", dir.file("a.ktx2")};
-        args.insert(args.end(), extra.begin(), extra.end());
-        const ProcessResult r = heightpackRun(args);
-        EXPECT_EQ(r.code, 0) << r.err;
-        return r.code == 0 ? json::parse(r.out) : json();
+    // The rule through the library (no process start per case), the CLI's length once at the end.
+    auto pack = [&](PixelType type, double tolerance, const std::string& out) {
+        PackOptions o;
+        o.pixelType = type;
+        o.tolerance = tolerance;
+        auto r = packHeightMap(dir.file("map.png"), dir.file(out), o);
+        EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().what);
+        return r.ok() ? *r : PackReport{};
     };
-    const double half = worstOf({"--pixel-type", "half"})["lookupError"]["worst"].get<double>();  // metres
-    const double uint16 = worstOf({"--pixel-type", "uint16"})["lookupError"]["worst"].get<double>();
-    ASSERT_GT(half, uint16);  // a 16-bit code is finer than a half's step near 1 on this map
-    auto mm = [](double metres) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.6gmm", metres * 1000.0);
-        return std::string(text);
-    };
+    auto worst = [](const PackReport& r) { return *std::max_element(r.lookupError.begin(), r.lookupError.end()); };
+    const double half = worst(pack(PixelType::Half, 0.0, "a.ktx2"));
+    const double uint16 = worst(pack(PixelType::Uint16, 0.0, "a.ktx2"));
+    ASSERT_GT(half, 1.01 * uint16);  // a 16-bit code is finer than a half's step near 1 on this map
     struct Want {
-        std::string tolerance;
-        std::string type;
+        double tolerance;
+        std::string out;
+        PixelType type;
     };
-    for (const Want& w : {Want{mm(half * 1.01), "uint16"}, Want{mm(uint16 * 1.01), "uint16"},
-                          Want{mm(uint16 * 0.5), "float"}, Want{"1km", "uint16"}}) {
-        const json doc = worstOf({"--pixel-type", "auto", "--tolerance", w.tolerance});
-        EXPECT_EQ(doc["pixelType"], w.type) << w.tolerance;
-        EXPECT_EQ(doc["pixelTypeRequested"], "auto");
-        auto t = readGpuTexture(dir.file("a.ktx2"));
-        ASSERT_TRUE(t.ok());
-        EXPECT_EQ(pixelTypeName(pixelTypeOf(t->format)), w.type) << w.tolerance;
+    for (const Want& w : {Want{half * 1.01, "a.ktx2", PixelType::Uint16},  // both within: the smaller error
+                          Want{uint16 * 1.01, "a.dds", PixelType::Uint16}, Want{uint16 * 0.5, "a.ktx2", PixelType::Float},
+                          Want{1.0, "a.exr", PixelType::Half}}) {  // an EXR has no uint16
+        const PackReport r = pack(PixelType::Float, w.tolerance, w.out);
+        EXPECT_EQ(r.pixelType, w.type) << w.tolerance << " " << w.out;
+        EXPECT_LE(worst(r), w.tolerance);
+        auto file = readTextureFile(dir.file(w.out));
+        ASSERT_TRUE(file.ok());
+        EXPECT_EQ(file->pixelType, pixelTypeName(w.type)) << w.out;
     }
-    // An EXR has no uint16: auto takes half where it is within the tolerance, else float. Without
-    // --height the tolerance is a plain number in stored units.
-    const ProcessResult exr = heightpackRun({"pack", dir.file("map.png"), "--json", "--pixel-type", "auto",
-                                             "--tolerance", "0.01", "-o", dir.file("a.exr")});
-    ASSERT_EQ(exr.code, 0) << exr.err;
-    EXPECT_EQ(json::parse(exr.out)["pixelType"], "half");
-}
-
-TEST(StoredError, BadChoicesAreUsageErrorsThatWriteNothing) {
-    ScratchDir dir;
-    writeImage(dir.file("map.png"), makeImage(16, 16, wave), OIIO::TypeDesc::UINT16);
-    const std::string map = dir.file("map.png"), out = dir.file("o.ktx2");
-    const std::vector<std::vector<std::string>> refusals = {
-        {"pack", map, "--pixel-type", "auto", "-o", out},                      // auto needs a tolerance
-        {"pack", map, "--pixel-type", "half", "--tolerance", "0.01", "-o", out},  // a tolerance needs auto
-        {"pack", map, "--pixel-type", "auto", "--tolerance", "1mm", "-o", out},   // a length needs --height
-        {"pack", map, "--pixel-type", "auto", "--tolerance", "-1", "-o", out},
-        {"pack", map, "--layout", "plain", "--emit-plain", dir.file("p.ktx2"), "-o", out},
-        {"pack", map, "--layout", "xy", "-o", out},
-        {"normal", map, "--tile-size", "8m", "--height", "1m", "--layout", "xy", "--height-in-alpha", "-o", out},
-        {"normal", map, "--tile-size", "8m", "--height", "1m", "--layout", "xy", "-o", dir.file("o.png")},
-        {"normal", map, "--tile-size", "8m", "--height", "1m", "--pixel-type", "auto", "--tolerance", "1mm", "-o", out},
-    };
-    for (const auto& args : refusals) {
-        const ProcessResult r = heightpackRun(args);
-        EXPECT_EQ(r.code, 2) << args[3] << " " << args[4] << ": " << r.err;
-        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-        EXPECT_EQ(r.err.rfind("heightpack: error: ", 0), 0u) << r.err;
-        EXPECT_EQ(dir.listing(), std::vector<std::string>{"map.png"});
-    }
+    // The command line: a length with --height is converted to stored units (and reported in metres).
+    char tolerance[32];
+    std::snprintf(tolerance, sizeof tolerance, "%.6gmm", uint16 * 6.0 * 1000.0 * 1.01);
+    const ProcessResult r = heightpackRun({"pack", dir.file("map.png"), "--json", "--height", "6m", "--pixel-type",
+                                           "auto", "--tolerance", tolerance, "-o", dir.file("a.ktx2")});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json doc = json::parse(r.out);
+    EXPECT_EQ(doc["pixelType"], "uint16");
+    EXPECT_EQ(doc["pixelTypeRequested"], "auto");
+    EXPECT_EQ(doc["lookupError"]["units"], "m");
+    EXPECT_NEAR(doc["lookupError"]["worst"].get<double>(), uint16 * 6.0, 1e-9);
 }
 
 TEST(Layouts, PlainHeightsAndXyNormalsInEveryContainerAndType) {
@@ -260,16 +243,34 @@ TEST(Layouts, PlainHeightsAndXyNormalsInEveryContainerAndType) {
     n.tileWidth = 8.0;
     n.heightRange = 0.5;
     const std::vector<Image> normals = generateNormalChain(heights, n);
-    // Each container, each pixel type (an EXR has no uint16), a process start a fifth of a second each.
-    const std::vector<std::pair<std::string, std::string>> cases = {
-        {".ktx2", "float"}, {".ktx2", "uint16"}, {".dds", "half"}, {".dds", "uint16"}, {".exr", "half"}};
-    for (const auto& [ext, type] : cases) {
-        SCOPED_TRACE(ext + " " + type);
-        const std::string plain = dir.file("plain_" + type + ext), xy = dir.file("xy_" + type + ext);
-        ASSERT_EQ(heightpackRun({"pack", dir.file("map.png"), "--layout", "plain", "--pixel-type", type, "--quiet",
-                                 "-o", plain}).code, 0);
-        ASSERT_EQ(heightpackRun({"normal", dir.file("map.png"), "--tile-size", "8m", "--height", "0.5m", "--layout",
-                                 "xy", "--pixel-type", type, "--quiet", "-o", xy}).code, 0);
+    // Each container and pixel type (an EXR has no uint16) through the library; the flags once each
+    // through the command line; the independent readers on one KTX2 and one DDS case.
+    struct Case {
+        std::string ext, type;
+        bool cli, independentReader;
+    };
+    const std::vector<Case> cases = {{".ktx2", "float", false, false}, {".ktx2", "uint16", true, true},
+                                     {".dds", "half", false, true},     {".dds", "uint16", false, false},
+                                     {".exr", "half", false, false}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.ext + " " + c.type);
+        const std::string plain = dir.file("plain_" + c.type + c.ext), xy = dir.file("xy_" + c.type + c.ext);
+        if (c.cli) {
+            ASSERT_EQ(heightpackRun({"pack", dir.file("map.png"), "--layout", "plain", "--pixel-type", c.type, "--quiet",
+                                     "-o", plain}).code, 0);
+            ASSERT_EQ(heightpackRun({"normal", dir.file("map.png"), "--tile-size", "8m", "--height", "0.5m", "--layout",
+                                     "xy", "--pixel-type", c.type, "--quiet", "-o", xy}).code, 0);
+        } else {
+            PackOptions p;
+            p.layout = Layout::Plain;
+            p.pixelType = *parsePixelType(c.type);
+            ASSERT_TRUE(packHeightMap(dir.file("map.png"), plain, p).ok());
+            NormalJobOptions o;
+            o.normal = n;
+            o.layout = Layout::Xy;
+            o.pixelType = p.pixelType;
+            ASSERT_TRUE(makeNormalMap(dir.file("map.png"), xy, o).ok());
+        }
         for (const auto& [path, layout, channels] :
              {std::tuple<std::string, std::string, int>{plain, "plain", 1}, {xy, "normalXY", 2}}) {
             auto file = readTextureFile(path);
@@ -278,41 +279,41 @@ TEST(Layouts, PlainHeightsAndXyNormalsInEveryContainerAndType) {
             ASSERT_EQ(file->levels.size(), heights.size());
             EXPECT_EQ(file->levels[0].channels, channels);
             // Values: the chain's heights, or x and y of its normals, to the type's precision.
-            const double tolerance = type == "float" ? 0.0 : type == "half" ? 4.9e-4 : 1.6e-5;
+            const double tolerance = c.type == "float" ? 0.0 : c.type == "half" ? 4.9e-4 : 1.6e-5;
             for (size_t l = 0; l < heights.size(); ++l)
                 for (size_t t = 0; t < heights[l].texelCount(); ++t)
-                    for (int c = 0; c < channels; ++c) {
-                        const double want = channels == 1 ? heights[l].pixels[t] : normals[l].pixels[t * 3 + c];
-                        ASSERT_NEAR(file->levels[l].pixels[t * channels + c], want, tolerance) << l << " " << t;
+                    for (int k = 0; k < channels; ++k) {
+                        const double want = channels == 1 ? heights[l].pixels[t] : normals[l].pixels[t * 3 + k];
+                        ASSERT_NEAR(file->levels[l].pixels[t * channels + k], want, tolerance) << l << " " << t;
                     }
             // What info reports (the CLI's text is checked once below): GPU bytes and the error.
             auto info = readFileInfo(path);
             ASSERT_TRUE(info.ok());
-            const size_t componentBytes = type == "float" ? 4 : 2;
+            const size_t componentBytes = c.type == "float" ? 4 : 2;
             EXPECT_EQ(info->levels[0].gpuBytes, 16 * 8 * channels * componentBytes);
             EXPECT_EQ(info->levels.back().gpuBytes, channels * componentBytes);
             double worst = 0.0;  // a level may happen to store exactly, not the whole chain
             for (const LevelInfo& l : info->levels) {
-                if (type == "float") {
+                if (c.type == "float") {
                     EXPECT_EQ(l.lookupError, 0.0);
-                } else if (ext == ".dds") {
+                } else if (c.ext == ".dds") {
                     EXPECT_FALSE(l.lookupError.has_value());
                 } else {
                     ASSERT_TRUE(l.lookupError.has_value());
                     worst = std::max(worst, *l.lookupError);
                 }
             }
-            if (type != "float" && ext != ".dds") {
+            if (c.type != "float" && c.ext != ".dds") {
                 EXPECT_GT(worst, 0.0);
             }
-            if (ext == ".exr" || !independent) continue;
+            if (!c.independentReader || !independent) continue;
             // The independent reader: the format, the layout, and the same texels.
             const json other = readIndependently(path);
             auto own = readGpuTexture(path);
             ASSERT_TRUE(own.ok());
             const TexelFormatInfo& f = texelFormatInfo(own->format);
             EXPECT_EQ(f.channels, channels);
-            EXPECT_EQ(other["format"], ext == ".ktx2" ? f.vkName : f.dxgiName);
+            EXPECT_EQ(other["format"], c.ext == ".ktx2" ? f.vkName : f.dxgiName);
             EXPECT_EQ(other["keyValues"].value("heightpack:layout", ""), layout);
             ASSERT_EQ(other["levels"].size(), heights.size());
             for (size_t l = 0; l < heights.size(); ++l) {
@@ -320,7 +321,8 @@ TEST(Layouts, PlainHeightsAndXyNormalsInEveryContainerAndType) {
                 ASSERT_EQ(values.size(), own->levels[l].pixels.size());
                 for (size_t i = 0; i < values.size(); ++i) {
                     double v = values[i].get<double>();
-                    if (f.kind == ComponentKind::Unorm16) v = own->normalisation->offset + own->normalisation->scale * (v / 65535.0);
+                    if (f.kind == ComponentKind::Unorm16)
+                        v = own->normalisation->offset + own->normalisation->scale * (v / 65535.0);
                     ASSERT_NEAR(v, own->levels[l].pixels[i], 1e-6) << l << " " << i;
                 }
             }
@@ -332,6 +334,7 @@ TEST(Layouts, PlainHeightsAndXyNormalsInEveryContainerAndType) {
     EXPECT_EQ(doc["layout"], "normalXY");
     EXPECT_EQ(doc["levels"][0]["gpuBytes"], 16 * 8 * 2 * 2);
     EXPECT_EQ(doc["gpuBytes"], (16 * 8 + 8 * 4 + 4 * 2 + 2 * 1 + 1 * 1) * 2 * 2);
+    EXPECT_EQ(doc["lookupError"]["units"], "normal");
     EXPECT_GT(doc["lookupError"]["worst"].get<double>(), 0.0);
     if (!independent) GTEST_SKIP() << "the independent readers are not installed: run scripts/test.sh";
 }

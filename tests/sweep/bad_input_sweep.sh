@@ -178,6 +178,7 @@ for f in "${BAD_MAPS[@]}" "${HEIGHT_ONLY[@]}" odd.pfm; do expect normal 3 "$f" "
 expect normal 2 "" good.png --tile-size 8m --height 1e300 -o out.exr
 expect normal 2 "" good.png "${N[@]}" --layout xy --height-in-alpha -o out.ktx2
 expect normal 2 "" good.png "${N[@]}" --pixel-type auto --tolerance 1mm -o out.ktx2
+expect normal 2 "" good.png "${N[@]}" --layout xy -o out.png
 expect normal 2 "" good.png --tile-size nan --height 1m -o out.exr
 expect normal 2 "" good.png --tile-size 8m,inf --height 1m -o out.exr
 expect normal 2 "" good.png --tile-size 8m --height -1m -o out.exr
