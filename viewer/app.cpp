@@ -11,8 +11,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "exit_codes.hpp"
-#include "heightpack/io/image_write.hpp"
 #include "material_settings.hpp"
+#include "offscreen.hpp"
 #include "panel.hpp"
 
 namespace heightpack::view {
@@ -37,28 +37,6 @@ void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods
     if (key == GLFW_KEY_ESCAPE) presses->quit = true;
 }
 
-// Draws the panel over what the bound framebuffer holds, for a screenshot: the same panel an artist sees.
-void drawPanelOffscreen(ViewerOptions& o, const Scene& scene, const Renderer& renderer, float time) {
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(float(o.width), float(o.height));
-    io.DeltaTime = 1.0f / 60.0f;
-    ImGui_ImplOpenGL3_Init("#version 330");
-    PanelState panel;
-    for (int pass = 0; pass < 2; ++pass) {  // the first frame sizes the auto-resizing window
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui::NewFrame();
-        drawPanel(o.settings, panel, o.camera, scene, renderer.times(), time);
-        ImGui::Render();
-    }
-    glViewport(0, 0, o.width, o.height);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui::DestroyContext();
-}
-
 // Where the ray through a window pixel meets the water plane, if it does.
 bool pickWater(const Camera& camera, double x, double y, int width, int height, float level, glm::vec2& hit) {
     const glm::mat4 inverse = glm::inverse(camera.projection(float(width) / height) * camera.view());
@@ -72,86 +50,6 @@ bool pickWater(const Camera& camera, double x, double y, int width, int height, 
     return true;
 }
 
-// One two-pass frame, and the combine pass's heights with what places them: the camera, the grid's radii
-// and the pixel angle, so a reader can put each vertex at its (x, y) and compare heights computed
-// elsewhere (tests compare heightpack's CPU sampler with these).
-int writeGridHeights(const ViewerOptions& o, Renderer& renderer, float time, GLuint framebuffer) {
-    renderer.render(o.camera, o.settings, time, o.width, o.height, framebuffer, false);
-    Image image(o.settings.segments, o.settings.rings, 1);
-    image.pixels = renderer.gridHeights();  // row r is ring r
-    const glm::vec2 radius = gridRadius(o.settings);
-    auto number = [](const char* name, float value) { return attribute(AttributeKey<float>{name}, value); };
-    FlatImageOptions flat;
-    flat.bits = 32;
-    flat.attributes = {attribute(attr::layout, "grid heights"), attribute(attr::time, time),
-                       number("heightpack:cameraX", o.camera.position.x), number("heightpack:cameraY", o.camera.position.y),
-                       number("heightpack:cameraZ", o.camera.position.z),
-                       number("heightpack:pixelAngle", pixelAngle(o.camera, o.height)),
-                       number("heightpack:gridInnerRadius", radius.x), number("heightpack:gridRingScale", radius.y),
-                       number("heightpack:waterLevel", o.settings.waterLevel)};
-    if (Status written = writeFlatImage(o.gridHeights, image, flat); !written) return fail(written.error());
-    if (!o.json) std::printf("wrote %s: %d segments x %d rings at t = %.2f s\n", o.gridHeights.c_str(), image.width, image.height, time);
-    return 0;
-}
-
-int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer) {
-    RenderTarget target;
-    if (!target.create(o.width, o.height, GL_RGBA8)) return fail("cannot create a " + std::to_string(o.width) + "x" +
-                                                                     std::to_string(o.height) + " render target", "try a smaller --size",
-                                                                 ExitCode::NoOpenGL);
-    const float time = o.time.value_or(0.0f);
-    if (o.bench > 0) {
-        PassTimes total;
-        renderer.render(o.camera, o.settings, time, o.width, o.height, target.framebuffer, true, true);  // warm up
-        for (int i = 0; i < o.bench; ++i) {
-            renderer.render(o.camera, o.settings, time + i / 60.0f, o.width, o.height, target.framebuffer, true, true);
-            const PassTimes& t = renderer.times();
-            total.water += t.water, total.combine += t.combine, total.tiled += t.tiled;
-            total.waterWall += t.waterWall, total.combineWall += t.combineWall, total.tiledWall += t.tiledWall;
-        }
-        const double n = o.bench;
-        const long long vertices = renderer.times().vertices;
-        const char* gl = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-        if (o.json)
-            std::printf("{\"frames\": %d, \"waterMs\": %.4f, \"combineMs\": %.4f, \"tiledMs\": %.4f, "
-                        "\"waterWallMs\": %.4f, \"combineWallMs\": %.4f, \"tiledWallMs\": %.4f, \"vertices\": %lld, "
-                        "\"renderer\": \"%s\"}\n",
-                        o.bench, total.water / n, total.combine / n, total.tiled / n, total.waterWall / n,
-                        total.combineWall / n, total.tiledWall / n, vertices, gl);
-        else
-            std::printf("%d frames at %dx%d on %s, %lld grid vertices, ms per frame (timer query / wall with glFinish):\n"
-                        "  water pass   %8.3f / %8.3f\n  combine pass %8.3f / %8.3f\n  tiled view   %8.3f / %8.3f\n",
-                        o.bench, o.width, o.height, gl, vertices, total.water / n, total.waterWall / n,
-                        total.combine / n, total.combineWall / n, total.tiled / n, total.tiledWall / n);
-    }
-    if (!o.gridHeights.empty()) {
-        if (int code = writeGridHeights(o, renderer, time, target.framebuffer); code != 0) {
-            target.destroy();
-            return code;
-        }
-    }
-    if (!o.screenshot.empty()) {
-        renderer.render(o.camera, o.settings, time, o.width, o.height, target.framebuffer, false);
-        if (o.panelInScreenshot) {
-            glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
-            drawPanelOffscreen(o, scene, renderer, time);
-        }
-        const std::vector<unsigned char> rgb = target.readRgb();
-        Image image(o.width, o.height, 3);
-        for (size_t i = 0; i < rgb.size(); ++i) image.pixels[i] = rgb[i] / 255.0f;
-        FlatImageOptions flat;
-        flat.bits = 8;
-        flat.attributes = {attribute(attr::layout, "screenshot"), attribute(attr::time, time)};
-        const Status written = writeFlatImage(o.screenshot, image, flat);
-        target.destroy();
-        if (!written)
-            return fail(written.error());
-        if (!o.json && o.bench == 0) std::printf("wrote %s: %dx%d at t = %.2f s\n", o.screenshot.c_str(), o.width, o.height, time);
-    }
-    target.destroy();
-    return 0;
-}
-
 int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& renderer) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -163,6 +61,7 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
     ImGui_ImplGlfw_InitForOpenGL(window, true);
     ImGui_ImplOpenGL3_Init("#version 330");
     PanelState panel;
+    panel.gatherAvailable = renderer.gatherAvailable();
     float time = o.time.value_or(0.0f);
     auto last = std::chrono::steady_clock::now();
     auto lastCheck = last;
@@ -257,18 +156,54 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
     return 0;
 }
 
-}  // namespace
-
-int runViewer(ViewerOptions& o, Scene& scene) {
-    glfwSetErrorCallback(onGlfwError);
-    if (!glfwInit()) return fail("cannot start GLFW", "is there a display? run headless under xvfb-run", ExitCode::NoOpenGL);
+// Builds the renderer in the current context and runs what the options ask; window is null headless.
+// A gather lookup the context cannot draw falls back to the packed lookup of the same kind.
+int draw(ViewerOptions& o, Scene& scene, const ContextInfo& context, GLFWwindow* window) {
+    Renderer renderer;
+    std::string error;
+    if (!renderer.init(error, context.gather()))
+        return fail("shader build failed: " + error, "please report this with the GL_RENDERER string", ExitCode::Internal);
+    renderer.upload(scene);
+    if (isGather(o.settings.lookup) && !renderer.gatherAvailable()) {
+        const std::string why = context.gather() ? renderer.gatherProblem()
+                                                 : "textureGather needs OpenGL 4.0 and this " + context.platform +
+                                                       " context is " + std::to_string(context.major) + "." +
+                                                       std::to_string(context.minor);
+        std::fprintf(stderr, "heightpack-view: note: --lookup %s: %s; drawing with the packed lookup instead\n",
+                     lookupName(o.settings.lookup), why.c_str());
+        o.settings.lookup = o.settings.lookup == Lookup::GatherBilinear ? Lookup::PackedBilinear : Lookup::PackedTrilinear;
+    }
     const bool offscreen = !o.screenshot.empty() || !o.gridHeights.empty() || o.bench > 0;
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    return offscreen || !window ? renderOffscreen(o, scene, renderer, context) : interactive(window, o, scene, renderer);
+}
+
+// The window's context: 4.0 core first (textureGather; GLX then gives its newest), 3.3 core else.
+GLFWwindow* createWindow(const ViewerOptions& o, bool offscreen) {
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_VISIBLE, offscreen ? GLFW_FALSE : GLFW_TRUE);
-    GLFWwindow* window = glfwCreateWindow(offscreen ? 64 : o.width, offscreen ? 64 : o.height, "heightpack-view", nullptr, nullptr);
+    for (const auto& [major, minor] : {std::pair{4, 0}, std::pair{3, 3}}) {
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, major);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, minor);
+        // A refused 4.0 is no error to report: 3.3 is tried next, and its failure is.
+        glfwSetErrorCallback(major == 4 ? nullptr : onGlfwError);
+        GLFWwindow* window = glfwCreateWindow(offscreen ? 64 : o.width, offscreen ? 64 : o.height, "heightpack-view",
+                                              nullptr, nullptr);
+        if (window) {
+            glfwSetErrorCallback(onGlfwError);
+            return window;
+        }
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+int runViewer(ViewerOptions& o, Scene& scene) {
+    const bool offscreen = !o.screenshot.empty() || !o.gridHeights.empty() || o.bench > 0;
+    glfwSetErrorCallback(onGlfwError);
+    if (!glfwInit()) return fail("cannot start GLFW", "is there a display? run headless under xvfb-run", ExitCode::NoOpenGL);
+    GLFWwindow* window = createWindow(o, offscreen);
     if (!window) {
         glfwTerminate();
         return fail("cannot create an OpenGL 3.3 core context", "is there a display? run headless under xvfb-run",
@@ -276,18 +211,7 @@ int runViewer(ViewerOptions& o, Scene& scene) {
     }
     glfwMakeContextCurrent(window);
     glfwSwapInterval(1);
-    int code = 0;
-    {
-        Renderer renderer;
-        std::string error;
-        if (!renderer.init(error)) {
-            code = fail("shader build failed: " + error, "please report this with the GL_RENDERER string",
-                        ExitCode::Internal);
-        } else {
-            renderer.upload(scene);
-            code = offscreen ? renderOffscreen(o, scene, renderer) : interactive(window, o, scene, renderer);
-        }
-    }
+    const int code = draw(o, scene, currentContext("GLX window"), window);
     glfwDestroyWindow(window);
     glfwTerminate();
     return code;

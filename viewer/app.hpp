@@ -1,5 +1,5 @@
-// The viewer application: a window (visible, or hidden for --screenshot and --bench), the frame loop,
-// input, the panel, and reloading inputs when they change on disk.
+// The viewer application: a window (visible, or hidden for --screenshot and --bench) or a headless EGL
+// context, the frame loop, input, the panel, and reloading inputs when they change on disk.
 #pragma once
 
 #include <optional>

@@ -27,9 +27,9 @@ GLuint compile(GLenum stage, const std::string& source, const std::string& name,
 
 }  // namespace
 
-GLuint buildProgram(const std::string& name, const char* common, const char* vertex, const char* fragment,
-                    std::string& log) {
-    const std::string header = std::string("#version 330 core\n") + common + "\n#line 1\n";
+GLuint buildProgram(const std::string& name, const std::string& preamble, const char* common, const char* vertex,
+                    const char* fragment, std::string& log) {
+    const std::string header = preamble + common + "\n#line 1\n";
     const GLuint vs = compile(GL_VERTEX_SHADER, header + vertex, name, log);
     if (!vs) return 0;
     const GLuint fs = compile(GL_FRAGMENT_SHADER, header + fragment, name, log);
@@ -55,29 +55,6 @@ GLuint buildProgram(const std::string& name, const char* common, const char* ver
         return 0;
     }
     return program;
-}
-
-GLuint uploadChain(const std::vector<Image>& levels, bool linear, Wrap wrap) {
-    static const GLenum internal[] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
-    static const GLenum format[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
-    GLuint texture = 0;
-    glGenTextures(1, &texture);
-    glBindTexture(GL_TEXTURE_2D, texture);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    const int c = levels[0].channels - 1;
-    for (size_t level = 0; level < levels.size(); ++level)
-        glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(level), internal[c], levels[level].width, levels[level].height, 0,
-                     format[c], GL_FLOAT, levels[level].pixels.data());
-    const bool mips = levels.size() > 1;
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, static_cast<GLint>(levels.size() - 1));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
-                    linear ? (mips ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR) : (mips ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST));
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, linear ? GL_LINEAR : GL_NEAREST);
-    const GLint mode = wrap == Wrap::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE;
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, mode);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, mode);
-    checkGl("uploadChain");
-    return texture;
 }
 
 void checkGl(const char* where) {

@@ -1,4 +1,4 @@
-// Small OpenGL helpers: programs with their logs, textures from libpack images, an offscreen target.
+// Small OpenGL helpers: programs with their logs, an offscreen target.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -10,13 +10,10 @@
 
 namespace heightpack::view {
 
-// Compiles and links "#version 330 core" + common + each stage. Returns 0 and fills log on failure (the
-// compile or link log, naming the program and stage).
-GLuint buildProgram(const std::string& name, const char* common, const char* vertex, const char* fragment,
-                    std::string& log);
-
-// A mip-mapped float texture of 1 to 4 channels from a chain of levels (one level: no mip-maps).
-GLuint uploadChain(const std::vector<Image>& levels, bool linear, Wrap wrap);
+// Compiles and links preamble (the #version line and defines) + common + each stage. Returns 0 and fills
+// log on failure (the compile or link log, naming the program and stage).
+GLuint buildProgram(const std::string& name, const std::string& preamble, const char* common, const char* vertex,
+                    const char* fragment, std::string& log);
 
 // Prints any pending GL errors with where they were noticed; compiled out of release builds.
 void checkGl(const char* where);

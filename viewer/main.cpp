@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "app.hpp"
@@ -38,7 +39,8 @@ int main(int argc, char** argv) {
     CLI::App app{"heightpack-view: water height maps on the GPU Gems 2 chapter 18 radial-grid renderer"};
     app.set_version_flag("--version", std::string("heightpack-view ") + heightpack::kVersion);
     app.add_option("maps", o.files.heights,
-                   "height maps (packed EXRs from heightpack pack, or painted images), or one material.json from heightpack build")
+                   "height maps (packed or plain .exr, .ktx2 or .dds from heightpack pack, or painted images), or one "
+                   "material.json from heightpack build")
         ->required();
     app.add_option("--normals", o.files.normals, "normal map from heightpack normal (else derived from the heights)");
     app.add_option("--fresnel", o.files.fresnel, "Fresnel ramp from heightpack fresnel (else Schlick and fixed colours)");
@@ -57,9 +59,11 @@ int main(int argc, char** argv) {
     app.add_option("--time", time, "fix the animation clock at this many seconds");
     app.add_option("--camera", camera, "x,y,z,yaw,pitch (metres, degrees; z up)");
     app.add_option("--bench", o.bench, "render N frames offscreen, print GPU time per pass (timer queries), exit");
-    app.add_option("--lookup", lookup, "height lookup in the vertex shader")
+    app.add_option("--lookup", lookup,
+                   "height lookup in the vertex shader; gather (= gather-trilinear) uses textureGather, OpenGL 4.0")
         ->capture_default_str()
-        ->check(CLI::IsMember({"bilinear", "trilinear", "reference-bilinear", "reference-trilinear"}));
+        ->check(CLI::IsMember({"bilinear", "trilinear", "reference-bilinear", "reference-trilinear", "gather",
+                               "gather-bilinear", "gather-trilinear"}));
     app.add_option("--view", view, "shaded, height (grey), lod (colour per level)")
         ->capture_default_str()
         ->check(CLI::IsMember({"shaded", "height", "lod"}));
@@ -70,7 +74,9 @@ int main(int argc, char** argv) {
     app.add_option("--amplitude", amplitudes, "metres per stored unit for each map, e.g. 1.5,0.4");
     app.add_option("--grid", o.settings.rings, "rings N of the radial grid (segments M follow --segments)");
     app.add_option("--segments", o.settings.segments, "segments M of the radial grid");
-    app.add_flag("--json", o.json, "print --bench figures as JSON");
+    app.add_flag("--json", o.json,
+                 "print --bench figures as JSON (each lookup's time, GPU bytes of the textures); with --screenshot "
+                 "alone, what drew it and the GPU bytes");
     app.add_option("--frames", o.frames, "close the interactive window after N frames (smoke tests, recordings)")
         ->check(CLI::Range(1, 1000000000));
     app.footer(
@@ -80,6 +86,7 @@ int main(int argc, char** argv) {
         "  heightpack-view out/swell.exr --tiled 3x3\n"
         "  heightpack-view out/swell.exr --screenshot shot.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10\n"
         "  heightpack-view out/swell.exr --bench 300\n"
+        "  heightpack-view out/swell_half.ktx2 --lookup gather --screenshot shot.png\n"
         "Keys: WASD fly, Space/Ctrl up/down, right mouse look, E or left click drops an explosion, F1 panel, Esc quits.\n"
         "Exit codes:\n"
         "  0   done\n"
@@ -142,10 +149,9 @@ int main(int argc, char** argv) {
         o.settings.explosions.push_back({{v[0], v[1]}, v.size() > 2 ? v[2] : 0.0f, v.size() > 3 ? v[3] : 40.0f});
     }
     if (time >= 0) o.time = time;
-    o.settings.lookup = lookup == "bilinear"             ? Lookup::PackedBilinear
-                        : lookup == "trilinear"          ? Lookup::PackedTrilinear
-                        : lookup == "reference-bilinear" ? Lookup::ReferenceBilinear
-                                                         : Lookup::ReferenceTrilinear;
+    if (lookup == "gather") lookup = "gather-trilinear";  // trilinear, as the packed lookup's default
+    for (int l = 0; l < 6; ++l)
+        if (lookup == lookupName(static_cast<Lookup>(l))) o.settings.lookup = static_cast<Lookup>(l);
     o.settings.view = view == "height" ? ViewMode::Height : view == "lod" ? ViewMode::Lod : ViewMode::Shaded;
     o.settings.frustumBranch = !frustumOff;
     if (!o.gridHeights.empty()) {

@@ -49,10 +49,11 @@ void drawPanel(RenderSettings& s, PanelState& state, Camera& camera, const Scene
         ImGui::SliderFloat("water level (m)", &s.waterLevel, -10.0f, 10.0f);
     }
     if (ImGui::CollapsingHeader("Sampling (18.2.4)", ImGuiTreeNodeFlags_DefaultOpen)) {
-        const char* lookups[] = {"packed bilinear", "packed trilinear", "reference bilinear (GL_LINEAR, R32F)",
-                                 "reference trilinear (GL_LINEAR, R32F)"};
+        const char* lookups[] = {"packed bilinear", "packed trilinear", "reference bilinear (GL_LINEAR)",
+                                 "reference trilinear (GL_LINEAR)", "gather bilinear (textureGather)",
+                                 "gather trilinear (textureGather)"};
         int lookup = static_cast<int>(s.lookup);
-        if (ImGui::Combo("lookup", &lookup, lookups, 4)) s.lookup = static_cast<Lookup>(lookup);
+        if (ImGui::Combo("lookup", &lookup, lookups, state.gatherAvailable ? 6 : 4)) s.lookup = static_cast<Lookup>(lookup);
         ImGui::SliderFloat2("LOD bands", glm::value_ptr(s.bands), 0.0f, 1.0f);
         ImGui::Checkbox("frustum branch", &s.frustumBranch);
         ImGui::SliderFloat2("guard band C0, C1", glm::value_ptr(s.guardBand), 0.5f, 4.0f);

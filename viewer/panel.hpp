@@ -14,6 +14,7 @@ struct PanelState {
     bool paused = false;
     bool showPanel = true;
     std::string reloadError;  // why the last reload failed; empty once one succeeds
+    bool gatherAvailable = false;  // the context and the maps allow the gather lookup (Renderer::gatherAvailable)
 };
 
 void drawPanel(RenderSettings& settings, PanelState& state, Camera& camera, const Scene& scene, const PassTimes& times,

@@ -6,16 +6,20 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "shaders.hpp"
+#include "texture_upload.hpp"
 
 namespace heightpack::view {
 
 namespace {
 
-// Texture units: height layers first, then the shading textures.
+// Texture units: height layers first, then the shading textures. The fragment stage reads the twelve
+// height textures and three shading ones: within the 16 units every GL 3.3 implementation offers a stage.
 enum Unit {
     kPacked0 = 0, kPacked1, kPlain0, kPlain1, kPacked0Next, kPacked1Next, kPlain0Next, kPlain1Next,
-    kNormal, kFresnel, kFoam, kCombined, kTiledMap
+    kGather0, kGather1, kGather0Next, kGather1Next, kNormal, kFresnel, kFoam, kCombined, kTiledMap
 };
+
+constexpr int kMaxGatherLevels = 16;  // common.glsl's kMaxLevels: a 32768-texel side
 
 void set(GLuint p, const char* name, int v) { glUniform1i(glGetUniformLocation(p, name), v); }
 void set(GLuint p, const char* name, float v) { glUniform1f(glGetUniformLocation(p, name), v); }
@@ -30,15 +34,6 @@ std::string indexed(const char* name, int k) {
     char text[64];
     std::snprintf(text, sizeof text, "%s[%d]", name, k);
     return text;
-}
-
-// Trilinear filtering for the bound texture: shading textures seen at a distance must not sparkle.
-// The maximum level is raised first: glGenerateMipmap makes levels only up to it, and a texture whose
-// filter wants levels that were never made is incomplete and samples as zero.
-void enableMipmaps() {
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 1000);
-    glGenerateMipmap(GL_TEXTURE_2D);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
 }
 
 // Wall time of a pass: everything before it finished first, everything in it finished after.
@@ -69,32 +64,26 @@ void bindTexture(int unit, GLuint texture) {
 
 }  // namespace
 
-bool Renderer::init(std::string& error) {
+bool Renderer::init(std::string& error, bool gather) {
     using namespace shaders;
-    waterProgram_ = buildProgram("water", kCommonGlsl, kGridVert, kWaterFrag, error);
+    gather_ = gather;
+    // textureGather is GLSL 4.00; a 3.3 context compiles the same shaders without it.
+    const std::string preamble = gather ? "#version 400 core\n#define HEIGHTPACK_GATHER 1\n"
+                                        : "#version 330 core\n#define HEIGHTPACK_GATHER 0\n";
+    waterProgram_ = buildProgram("water", preamble, kCommonGlsl, kGridVert, kWaterFrag, error);
     if (!waterProgram_) return false;
-    combineProgram_ = buildProgram("combine", kCommonGlsl, kCombineVert, kCombineFrag, error);
+    combineProgram_ = buildProgram("combine", preamble, kCommonGlsl, kCombineVert, kCombineFrag, error);
     if (!combineProgram_) return false;
-    tiledProgram_ = buildProgram("tiled", kCommonGlsl, kCombineVert, kTiledFrag, error);
+    tiledProgram_ = buildProgram("tiled", preamble, kCommonGlsl, kCombineVert, kTiledFrag, error);
     if (!tiledProgram_) return false;
-    skyProgram_ = buildProgram("sky", kCommonGlsl, kCombineVert, kSkyFrag, error);
+    skyProgram_ = buildProgram("sky", preamble, kCommonGlsl, kCombineVert, kSkyFrag, error);
     if (!skyProgram_) return false;
     glGenVertexArrays(1, &emptyVao_);
     glGenQueries(3, queries_);
     // Bound to unused samplers so every sampler has a complete texture.
-    dummyTexture_ = uploadChain({Image(1, 1, 4, 0.0f)}, false, Wrap::Periodic);
+    dummyTexture_ = uploadFloatChain({Image(1, 1, 4, 0.0f)}, false, Wrap::Periodic);
     checkGl("Renderer::init");
     return true;
-}
-
-void Renderer::releaseLayers() {
-    for (const LayerTextures& l : layers_) {
-        for (const FrameTextures& f : l.frames) {
-            glDeleteTextures(1, &f.packed);
-            glDeleteTextures(1, &f.plain);
-        }
-    }
-    layers_.clear();
 }
 
 Renderer::~Renderer() {
@@ -109,35 +98,6 @@ Renderer::~Renderer() {
     glDeleteQueries(3, queries_);
     for (GLuint p : {waterProgram_, combineProgram_, tiledProgram_, skyProgram_})
         if (p) glDeleteProgram(p);
-}
-
-void Renderer::upload(const Scene& scene) {
-    scene_ = &scene;
-    releaseLayers();
-    for (const HeightLayer& layer : scene.layers) {
-        LayerTextures t;
-        for (const HeightFrame& frame : layer.frames) {
-            // Packed: nearest, since the shader does the filtering from one fetch. Plain: GL_LINEAR, the reference.
-            t.frames.push_back({uploadChain(frame.packed, false, layer.wrap), uploadChain(frame.plain, true, layer.wrap)});
-        }
-        t.levels = static_cast<int>(layer.frames[0].packed.size());
-        t.loopPeriod = layer.loopPeriod;
-        layers_.push_back(t);
-    }
-    for (GLuint* t : {&normalTexture_, &fresnelTexture_, &foamTexture_})
-        if (*t) glDeleteTextures(1, t), *t = 0;
-    if (scene.normals) {
-        normalTexture_ = uploadChain(scene.normals->levels, true, Wrap::Periodic);
-        if (scene.normals->levels.size() == 1) enableMipmaps();
-    }
-    if (scene.fresnel) {
-        fresnelTexture_ = uploadChain({scene.fresnel->ramp}, true, Wrap::Clamp);
-    }
-    if (scene.foam) {
-        foamTexture_ = uploadChain({*scene.foam}, true, Wrap::Periodic);
-        enableMipmaps();
-    }
-    checkGl("Renderer::upload");
 }
 
 void Renderer::buildGrid(int rings, int segments) {
@@ -189,6 +149,10 @@ void Renderer::bindLayers(GLuint program, float time) {
     set(program, "uPacked1Next", int(kPacked1Next));
     set(program, "uPlain0Next", int(kPlain0Next));
     set(program, "uPlain1Next", int(kPlain1Next));
+    set(program, "uGather0", int(kGather0));
+    set(program, "uGather1", int(kGather1));
+    set(program, "uGather0Next", int(kGather0Next));
+    set(program, "uGather1Next", int(kGather1Next));
     for (int k = 0; k < 2; ++k) {
         const bool has = k < int(layers_.size());
         // A sequence plays its loop: frame f covers [f, f+1) * period / frames, blended into the next.
@@ -206,7 +170,13 @@ void Renderer::bindLayers(GLuint program, float time) {
         bindTexture(kPlain0 + k, has ? layers_[k].frames[current].plain : dummyTexture_);
         bindTexture(kPacked0Next + k, has ? layers_[k].frames[next].packed : dummyTexture_);
         bindTexture(kPlain0Next + k, has ? layers_[k].frames[next].plain : dummyTexture_);
+        const GLuint gather = has ? layers_[k].frames[current].gather : 0, gatherNext = has ? layers_[k].frames[next].gather : 0;
+        bindTexture(kGather0 + k, gather ? gather : dummyTexture_);
+        bindTexture(kGather0Next + k, gatherNext ? gatherNext : dummyTexture_);
         glUniform1f(glGetUniformLocation(program, indexed("uLayerBlend", k).c_str()), blend);
+        const Normalisation a = has ? layers_[k].frames[current].decode : Normalisation{};
+        const Normalisation b = has ? layers_[k].frames[next].decode : Normalisation{};
+        glUniform4f(glGetUniformLocation(program, indexed("uLayerDecode", k).c_str()), a.offset, a.scale, b.offset, b.scale);
     }
 }
 
@@ -222,8 +192,14 @@ void Renderer::setCommonUniforms(GLuint p, const Camera& camera, const RenderSet
                                has && scene_->layers[k].wrap == Wrap::Clamp ? 1.0f : 0.0f);
         glUniform2fv(glGetUniformLocation(p, indexed("uLayerStored", k).c_str()), 1, glm::value_ptr(stored));
         glUniform1i(glGetUniformLocation(p, indexed("uLayerLevels", k).c_str()), has ? layers_[k].levels : 1);
-        glUniform2i(glGetUniformLocation(p, indexed("uLayerSize", k).c_str()), has ? scene_->layers[k].frames[0].packed[0].width : 1,
-                    has ? scene_->layers[k].frames[0].packed[0].height : 1);
+        glUniform2i(glGetUniformLocation(p, indexed("uLayerSize", k).c_str()), has ? scene_->layers[k].frames[0].packed.width : 1,
+                    has ? scene_->layers[k].frames[0].packed.height : 1);
+        if (!has) continue;
+        set(p, indexed("uGatherSize", k).c_str(), layers_[k].gatherSize);
+        const auto& origins = layers_[k].gatherOrigins;
+        for (int l = 0; l < std::min<int>(kMaxGatherLevels, int(origins.size())); ++l)
+            glUniform2i(glGetUniformLocation(p, indexed("uGatherOrigin", k * kMaxGatherLevels + l).c_str()), origins[l].x,
+                        origins[l].y);
     }
     set(p, "uLookup", static_cast<int>(s.lookup));
     set(p, "uBands", s.bands);
@@ -263,6 +239,8 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
         set(tiledProgram_, "uMap", int(kTiledMap));
         set(tiledProgram_, "uTiles", glm::vec2(s.tiles));
         set(tiledProgram_, "uRange", glm::vec2(scene_->layers[0].minStored, scene_->layers[0].maxStored));
+        const Normalisation d = layers_[0].frames[0].decode;
+        set(tiledProgram_, "uDecode", glm::vec2(d.offset, d.scale));
         set(tiledProgram_, "uSeamLines", int(s.seamLines));
         set(tiledProgram_, "uViewport", glm::vec2(width, height));
         glDisable(GL_DEPTH_TEST);
@@ -326,6 +304,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
     set(waterProgram_, "uNormalMap", int(kNormal));
     bindTexture(kNormal, normalTexture_ ? normalTexture_ : dummyTexture_);
     set(waterProgram_, "uNormalGreen", scene_ && scene_->normals ? scene_->normals->greenSign : 1.0f);
+    set(waterProgram_, "uNormalDecode", glm::vec2(normalDecode_.offset, normalDecode_.scale));
     for (int k = 0; k < 4; ++k)
         glUniform4fv(glGetUniformLocation(waterProgram_, indexed("uNormalOctave", k).c_str()), 1,
                      glm::value_ptr(s.normalOctaves[k]));
@@ -333,6 +312,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
     set(waterProgram_, "uFresnel", int(kFresnel));
     bindTexture(kFresnel, fresnelTexture_ ? fresnelTexture_ : dummyTexture_);
     set(waterProgram_, "uFresnelIndexScale", scene_ && scene_->fresnel ? scene_->fresnel->indexScale : 1.0f);
+    set(waterProgram_, "uFresnelDecode", glm::vec2(fresnelDecode_.offset, fresnelDecode_.scale));
     set(waterProgram_, "uIor", s.ior);
     set(waterProgram_, "uDeep", s.deep);
     set(waterProgram_, "uShallow", s.shallow);

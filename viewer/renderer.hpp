@@ -21,7 +21,20 @@ inline glm::vec3 toVec3(const Rgb& c) {
     return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])};
 }
 
-enum class Lookup { PackedBilinear = 0, PackedTrilinear = 1, ReferenceBilinear = 2, ReferenceTrilinear = 3 };
+// The vertex shader's height lookups (common.glsl): packed (one nearest RGBA fetch), reference (GL_LINEAR
+// on the plain R chain) and gather (textureGather on the plain R chain, GL 4.0), each at level 0
+// (bilinear) or between two levels (trilinear, Listing 18-3's bands).
+enum class Lookup {
+    PackedBilinear = 0, PackedTrilinear = 1, ReferenceBilinear = 2, ReferenceTrilinear = 3, GatherBilinear = 4,
+    GatherTrilinear = 5
+};
+inline bool isGather(Lookup l) { return l == Lookup::GatherBilinear || l == Lookup::GatherTrilinear; }
+// The --lookup names, in the enum's order.
+inline const char* lookupName(Lookup l) {
+    static const char* names[] = {"bilinear", "trilinear", "reference-bilinear", "reference-trilinear", "gather-bilinear",
+                                  "gather-trilinear"};
+    return names[static_cast<int>(l)];
+}
 enum class ViewMode { Shaded = 0, Height = 1, Lod = 2 };
 
 struct LayerSettings {
@@ -91,11 +104,26 @@ inline glm::vec2 gridRadius(const RenderSettings& s) {
     return {s.innerRadius, (s.outerRadius - s.innerRadius) / std::pow(float(s.rings - 1), 4.0f)};
 }
 
+// Bytes on the GPU of the loaded textures, as GL reports them (texture_upload.hpp), by what they hold.
+struct TextureBytes {
+    long long packed = 0;   // 4-neighbour RGBA chains, every frame of every map
+    long long plain = 0;    // one-channel chains (the reference lookup)
+    long long gather = 0;   // one-channel atlases (the gather lookup), with a 4.0 context only
+    long long normals = 0, fresnel = 0, foam = 0;
+    long long total() const { return packed + plain + gather + normals + fresnel + foam; }
+};
+
 class Renderer {
 public:
-    // Compiles the programs. Returns false with a message (the shader log) on failure.
-    bool init(std::string& error);
+    // Compiles the programs, with the gather lookup where the context is OpenGL 4.0 or newer. Returns false
+    // with a message (the shader log) on failure.
+    bool init(std::string& error, bool gather);
     void upload(const Scene& scene);
+    // Whether the gather lookup can draw: a 4.0 context, and atlases no larger than GL_MAX_TEXTURE_SIZE.
+    // When not, gatherProblem() says why in a few words.
+    bool gatherAvailable() const { return gather_ && gatherProblem_.empty(); }
+    const std::string& gatherProblem() const { return gatherProblem_; }
+    const TextureBytes& textureBytes() const { return bytes_; }
     // measure: read timer queries into times(); wallClock: also bracket each pass with glFinish (for
     // --bench; it stalls the pipeline, so the interactive loop does not).
     void render(const Camera& camera, const RenderSettings& settings, float time, int width, int height,
@@ -116,11 +144,25 @@ private:
     GLuint gridVao_ = 0, gridVbo_ = 0, gridIbo_ = 0, emptyVao_ = 0;
     GLsizei gridIndexCount_ = 0;
     int gridRings_ = 0, gridSegments_ = 0;
-    struct FrameTextures { GLuint packed = 0, plain = 0; };
-    struct LayerTextures { std::vector<FrameTextures> frames; int levels = 0; double loopPeriod = 0.0; };
+    struct FrameTextures {
+        GLuint packed = 0, plain = 0, gather = 0;
+        Normalisation decode;  // sampled texels to the file's values, the same for all three
+    };
+    struct LayerTextures {
+        std::vector<FrameTextures> frames;
+        int levels = 0;
+        double loopPeriod = 0.0;
+        std::vector<GatherAtlas::Origin> gatherOrigins;  // the same for every frame: they share a size
+        glm::vec2 gatherSize{1.0f};
+    };
     std::vector<LayerTextures> layers_;
     void releaseLayers();
+    void uploadLayers(const Scene& scene);
     GLuint normalTexture_ = 0, fresnelTexture_ = 0, foamTexture_ = 0, dummyTexture_ = 0;
+    Normalisation normalDecode_, fresnelDecode_;
+    bool gather_ = false;
+    std::string gatherProblem_;
+    TextureBytes bytes_;
     RenderTarget combined_;
     GLuint queries_[3] = {0, 0, 0};
     PassTimes times_;

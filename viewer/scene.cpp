@@ -4,32 +4,32 @@
 #include <cmath>
 
 #include "heightpack/build/pack_job.hpp"
+#include "heightpack/io/files.hpp"
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/read.hpp"
-#include "heightpack/io/files.hpp"
-#include "heightpack/core/pack.hpp"
+#include "texture_reader.hpp"
 
 namespace heightpack::view {
 
 namespace {
 
-Image channel(const Image& image, int c) {
-    Image out(image.width, image.height, 1);
-    for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = image.pixels[i * image.channels + c];
-    return out;
-}
-
-
 double srgbToLinear(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
 
-}  // namespace
-
-namespace {
+// Level 0's range and the 1x1 level's value of channel 0, in the file's values.
+void measure(const std::vector<Image>& levels, HeightFrame& frame) {
+    const Image& top = levels.front();
+    frame.minStored = frame.maxStored = top.pixels[0];
+    for (size_t i = 0; i < top.pixels.size(); i += size_t(top.channels)) {
+        frame.minStored = std::min(frame.minStored, top.pixels[i]);
+        frame.maxStored = std::max(frame.maxStored, top.pixels[i]);
+    }
+    frame.meanStored = levels.back().pixels[0];
+}
 
 // One file's chain into frame; fills the layer's wrap, mid value and timing from the first file.
 Status loadFrame(const std::string& path, const std::string& channelChoice, HeightLayer& layer, HeightFrame& frame,
                  bool first) {
-    auto file = readTextureFile(path, true);
+    auto file = readViewerTexture(path);
     if (!file) return file.error();
     const std::string layout = findAttribute(file->attributes, attr::layout);
     if (first) {
@@ -41,16 +41,16 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
             layer.wrap = findAttribute(file->attributes, attr::wrap).value_or(Wrap::Periodic);
             layer.source = layout == "neighbour4" ? "packed texture" : "plain texture, packed in memory";
         }
-        for (const Image& level : file->levels) {
-            if (layout == "neighbour4") {
-                if (level.channels != 4) return badInput(path, "is marked neighbour4 but has no 4 channels", "pack it again");
-                frame.packed.push_back(level);
-                frame.plain.push_back(channel(level, 0));
-            } else {
-                frame.plain.push_back(channel(level, 0));
-                frame.packed.push_back(packNeighbour4(frame.plain.back(), layer.wrap));
-            }
+        StoredChain stored = file->stored ? std::move(*file->stored) : storeFloats(file->levels);
+        if (layout == "neighbour4") {
+            if (stored.channels != 4) return badInput(path, "is marked neighbour4 but has no 4 channels", "pack it again");
+            frame.plain = firstChannel(stored);
+            frame.packed = std::move(stored);
+        } else {
+            frame.plain = firstChannel(stored);
+            frame.packed = packStoredNeighbour4(frame.plain, layer.wrap);
         }
+        measure(file->levels, frame);
         return Done{};
     }
     // A painted map: the same load, mip and pack as `heightpack pack` (periodic, kaiser).
@@ -69,8 +69,9 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
     pack.mip.wrap = layer.wrap;      // periodic, unless the sequence's first frame said otherwise
     auto maps = packHeights(std::move(loaded->heights), loaded->source, pack);
     if (!maps) return maps.error();
-    frame.plain = std::move(maps->plain);
-    frame.packed = std::move(maps->packed);
+    measure(maps->plain, frame);
+    frame.plain = storeFloats(maps->plain);
+    frame.packed = storeFloats(maps->packed);
     if (first) layer.source = "painted map, packed in memory";
     return Done{};
 }
@@ -84,9 +85,9 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
     for (size_t f = 0; f < files.size(); ++f) {
         HeightFrame frame;
         if (Status s = loadFrame(files[f], channel, layer, frame, f == 0); !s) return s.error();
-        if (f > 0 && (frame.packed.size() != layer.frames[0].packed.size() ||
-                      frame.packed[0].width != layer.frames[0].packed[0].width ||
-                      frame.packed[0].height != layer.frames[0].packed[0].height))
+        if (f > 0 && (frame.packed.levels.size() != layer.frames[0].packed.levels.size() ||
+                      frame.packed.width != layer.frames[0].packed.width ||
+                      frame.packed.height != layer.frames[0].packed.height))
             return badInput(files[f], "differs in size from the sequence's first frame", "make every frame the same size");
         layer.frames.push_back(std::move(frame));
     }
@@ -94,47 +95,55 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
         layer.source += ", " + std::to_string(files.size()) + " frames";
         if (layer.loopPeriod <= 0.0) layer.loopPeriod = files.size() / 4.0;  // untimed: 4 frames a second
     }
-    float lo = layer.frames[0].plain[0].pixels[0], hi = lo;
+    layer.minStored = layer.frames[0].minStored;
+    layer.maxStored = layer.frames[0].maxStored;
     for (const HeightFrame& frame : layer.frames) {
-        const auto [a, b] = std::minmax_element(frame.plain[0].pixels.begin(), frame.plain[0].pixels.end());
-        lo = std::min(lo, *a);
-        hi = std::max(hi, *b);
+        layer.minStored = std::min(layer.minStored, frame.minStored);
+        layer.maxStored = std::max(layer.maxStored, frame.maxStored);
     }
-    layer.minStored = lo;
-    layer.maxStored = hi;
     // Waves move about the map's mean: the 1x1 level of the first frame, whatever the map's units.
-    layer.midStored = layer.frames[0].plain.back().pixels[0];
+    layer.midStored = layer.frames[0].meanStored;
     return layer;
 }
 
 Result<NormalMap> loadNormalMap(const std::string& path) {
-    auto file = readTextureFile(path, true);
+    auto file = readViewerTexture(path);
     if (!file) return file.error();
     NormalMap map;
     map.path = path;
-    // Each level of an EXR from heightpack normal holds the normals of that level's heights, better than
-    // averaged normals: keep them all.
-    map.levels = std::move(file->levels);
-    if (map.levels[0].channels < 3) return badInput(path, "is not a normal map (fewer than 3 channels)", "make one with heightpack normal");
-    // 8/16-bit maps store 0.5 + 0.5 n.
-    if (file->pixelType != "float" && file->pixelType != "half")
-        for (Image& level : map.levels)
+    const int channels = file->levels[0].channels;
+    // Two channels: x and y of a unit normal (heightpack normal --layout xy); the shading needs no more.
+    if (channels < 2) return badInput(path, "is not a normal map (fewer than 2 channels)", "make one with heightpack normal");
+    // 8/16-bit images store 0.5 + 0.5 n.
+    if (file->unitIntegers)
+        for (Image& level : file->levels)
             for (float& v : level.pixels) v = 2.0f * v - 1.0f;
+    // Each level of a file from heightpack normal holds the normals of that level's heights, better than
+    // averaged normals: keep them all. A single level gets its chain from glGenerateMipmap, which needs a
+    // colour-renderable format (16-bit snorm is not required to be): such a level goes up as floats.
+    const bool keepStored = file->stored && !(file->levels.size() == 1 && file->stored->kind == ComponentKind::Snorm16);
+    map.levels = keepStored ? std::move(*file->stored) : storeFloats(file->levels);
     const bool directx = findAttribute(file->attributes, attr::convention) == NormalConvention::DirectX;
     map.greenSign = directx ? 1.0f : -1.0f;
     return map;
 }
 
 Result<FresnelRamp> loadFresnelRamp(const std::string& path) {
-    auto file = readTextureFile(path, true);
+    auto file = readViewerTexture(path);
     if (!file) return file.error();
     FresnelRamp ramp;
     ramp.path = path;
-    ramp.ramp = file->levels[0];
-    if (ramp.ramp.channels != 4) return badInput(path, "is not a Fresnel ramp (needs RGBA)", "make one with heightpack fresnel");
-    if (file->pixelType != "float" && file->pixelType != "half")  // a PNG ramp's colours are sRGB-encoded
-        for (size_t i = 0; i < ramp.ramp.pixels.size(); ++i)
-            if (i % 4 != 3) ramp.ramp.pixels[i] = static_cast<float>(srgbToLinear(ramp.ramp.pixels[i]));
+    if (file->levels[0].channels != 4) return badInput(path, "is not a Fresnel ramp (needs RGBA)", "make one with heightpack fresnel");
+    if (file->stored) {
+        file->stored->levels.resize(1);  // the ramp is read at level 0 only
+        ramp.ramp = std::move(*file->stored);
+    } else {
+        Image& level = file->levels[0];
+        if (file->unitIntegers)  // a PNG ramp's colours are sRGB-encoded
+            for (size_t i = 0; i < level.pixels.size(); ++i)
+                if (i % 4 != 3) level.pixels[i] = static_cast<float>(srgbToLinear(level.pixels[i]));
+        ramp.ramp = storeFloats({level});
+    }
     ramp.indexScale = findAttribute(file->attributes, attr::index) == FresnelIndex::TwoNdotV ? 2.0f : 1.0f;
     return ramp;
 }

@@ -1,6 +1,6 @@
 // What the viewer shows, loaded on the CPU with libpack before any window exists: height layers (packed
-// textures, or painted maps packed in memory by the same code as `heightpack pack`), a normal map, a
-// Fresnel ramp, a foam texture.
+// or plain textures in EXR, KTX2 or DDS, or painted maps packed in memory by the same code as `heightpack
+// pack`), a normal map, a Fresnel ramp, a foam texture. Texels stay in the type their file stored them in.
 #pragma once
 
 #include <filesystem>
@@ -10,13 +10,16 @@
 
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
+#include "stored_chain.hpp"
 
 namespace heightpack::view {
 
-// One map's mip chain, packed and plain.
+// One map's mip chain, packed and plain, in the file's pixel type (both decode the same way).
 struct HeightFrame {
-    std::vector<Image> packed;    // RGBA per level
-    std::vector<Image> plain;     // R per level, for the reference path
+    StoredChain packed;           // RGBA per level: the 4-neighbour packing
+    StoredChain plain;            // R per level: the reference path, and the gather atlas is built from it
+    float minStored = 0.0f, maxStored = 1.0f;  // over level 0, in the file's values
+    float meanStored = 0.5f;      // the 1x1 level
 };
 
 struct HeightLayer {
@@ -31,13 +34,15 @@ struct HeightLayer {
 
 struct NormalMap {
     std::string path;
-    std::vector<Image> levels;    // xyz in [-1, 1] (and alpha, if any); the file's own mip chain, or level 0 only
+    // xyz in [-1, 1] (and alpha, if any), or xy alone (the shading uses x and y only); the file's own
+    // mip chain, or level 0 only
+    StoredChain levels;
     float greenSign = -1.0f;      // world +y runs down the stored image: an OpenGL map's green flips
 };
 
 struct FresnelRamp {
     std::string path;
-    Image ramp;                   // linear rgb, reflectance in alpha
+    StoredChain ramp;             // one level: linear rgb, reflectance in alpha
     float indexScale = 1.0f;      // 2 for a ramp indexed by saturate(2 N.V)
 };
 

@@ -1,12 +1,16 @@
 #include "viewer_support.hpp"
 
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
 #include <algorithm>
+#include <cmath>
 
 extern char** environ;
 
 namespace heightpack::test {
 
-std::vector<std::string> viewerEnvironment(const std::vector<std::string>& without) {
+std::vector<std::string> viewerEnvironment(const std::vector<std::string>& without, const std::vector<std::string>& with) {
     // Mesa's GL driver keeps small allocations until it is unloaded at exit, where LeakSanitizer cannot
     // even name them; leak checking stays on for everything else, address and UB checks stay on here.
     std::vector<std::string> env;
@@ -23,13 +27,52 @@ std::vector<std::string> viewerEnvironment(const std::vector<std::string>& witho
         env.push_back(entry);
     }
     if (!sawAsan) env.push_back("ASAN_OPTIONS=detect_leaks=0");
+    env.insert(env.end(), with.begin(), with.end());
     return env;
 }
 
-ViewRun view(const std::vector<std::string>& args) {
+ViewRun view(const std::vector<std::string>& args, const std::vector<std::string>& extraEnvironment) {
     std::vector<std::string> argv = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", HEIGHTPACK_VIEW_EXE};
     argv.insert(argv.end(), args.begin(), args.end());
-    return runProcess(argv, viewerEnvironment());
+    return runProcess(argv, viewerEnvironment({}, extraEnvironment));
+}
+
+ViewRun viewWithoutDisplay(const std::vector<std::string>& args, const std::vector<std::string>& extraEnvironment) {
+    std::vector<std::string> argv = {HEIGHTPACK_VIEW_EXE};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return runProcess(argv, viewerEnvironment({"DISPLAY", "WAYLAND_DISPLAY"}, extraEnvironment));
+}
+
+Picture readPicture(const std::string& path) {
+    Picture p;
+    auto in = OIIO::ImageInput::open(path);
+    EXPECT_TRUE(in) << path;
+    if (!in) return p;
+    p.width = in->spec().width;
+    p.height = in->spec().height;
+    p.rgb.resize(size_t(p.width) * p.height * 3);
+    EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, p.rgb.data()));
+    return p;
+}
+
+Picture screenshot(const ScratchDir& dir, const std::string& name, std::vector<std::string> args) {
+    args.insert(args.end(), {"--screenshot", dir.file(name)});
+    const ViewRun run = view(args);
+    EXPECT_EQ(run.code, 0) << run.err;
+    return readPicture(dir.file(name));
+}
+
+Difference compare(const Picture& a, const Picture& b, int tolerance) {
+    Difference d;
+    EXPECT_EQ(a.rgb.size(), b.rgb.size());
+    size_t over = 0;
+    for (size_t i = 0; i < std::min(a.rgb.size(), b.rgb.size()); ++i) {
+        const int diff = std::abs(int(a.rgb[i]) - int(b.rgb[i]));
+        d.max = std::max(d.max, diff);
+        over += diff > tolerance;
+    }
+    d.fractionOver = double(over) / std::max<size_t>(1, a.rgb.size());
+    return d;
 }
 
 }  // namespace heightpack::test

@@ -1,5 +1,5 @@
-// Running heightpack-view from the viewer tests: under its own virtual X server, with an environment
-// that Mesa and the sanitizers agree on.
+// What the viewer tests share: running heightpack-view (under its own Xvfb, or with no display at all),
+// reading its screenshots back, and comparing pictures.
 #pragma once
 
 #include <string>
@@ -11,10 +11,34 @@ namespace heightpack::test {
 
 using ViewRun = ProcessResult;
 
-// This process's environment for the viewer, less the variables named in `without`.
-std::vector<std::string> viewerEnvironment(const std::vector<std::string>& without = {});
+// This process's environment for the viewer, less the variables named in `without`, plus `with`.
+std::vector<std::string> viewerEnvironment(const std::vector<std::string>& without = {},
+                                           const std::vector<std::string>& with = {});
 
-// Runs heightpack-view (HEIGHTPACK_VIEW_EXE) with args under xvfb-run.
-ViewRun view(const std::vector<std::string>& args);
+// Runs heightpack-view under its own virtual X server, with `extraEnvironment` ("NAME=value") added.
+ViewRun view(const std::vector<std::string>& args, const std::vector<std::string>& extraEnvironment = {});
+
+// Runs heightpack-view with DISPLAY unset: no X server at all, so it draws through EGL.
+ViewRun viewWithoutDisplay(const std::vector<std::string>& args, const std::vector<std::string>& extraEnvironment = {});
+
+struct Picture {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;
+    int at(int x, int y, int c = 0) const { return rgb[(size_t(y) * width + x) * 3 + c]; }
+};
+
+Picture readPicture(const std::string& path);
+
+// Runs the viewer with args + --screenshot dir/name (under Xvfb) and reads the picture back.
+Picture screenshot(const ScratchDir& dir, const std::string& name, std::vector<std::string> args);
+
+struct Difference {
+    int max = 0;
+    double fractionOver = 0.0;  // of pixels differing by more than `tolerance`
+};
+
+Difference compare(const Picture& a, const Picture& b, int tolerance);
+
+inline const std::string kExamples = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/";
 
 }  // namespace heightpack::test

@@ -1,6 +1,5 @@
 // heightpack-view under Xvfb with Mesa's software GL: screenshots read back and compared, so a wrong
 // lookup, pass or camera shows up as wrong pixels.
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -9,58 +8,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "support/test_support.hpp"
 #include "viewer_support.hpp"
 
 using namespace heightpack;
 using namespace heightpack::test;
 
 namespace {
-
-struct Picture {
-    int width = 0, height = 0;
-    std::vector<unsigned char> rgb;
-    int at(int x, int y, int c = 0) const { return rgb[(size_t(y) * width + x) * 3 + c]; }
-};
-
-Picture readPicture(const std::string& path) {
-    Picture p;
-    auto in = OIIO::ImageInput::open(path);
-    EXPECT_TRUE(in) << path;
-    if (!in) return p;
-    p.width = in->spec().width;
-    p.height = in->spec().height;
-    p.rgb.resize(size_t(p.width) * p.height * 3);
-    EXPECT_TRUE(in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, p.rgb.data()));
-    return p;
-}
-
-Picture screenshot(const ScratchDir& dir, const std::string& name, std::vector<std::string> args) {
-    args.insert(args.end(), {"--screenshot", dir.file(name)});
-    const ViewRun run = view(args);
-    EXPECT_EQ(run.code, 0) << run.err;
-    return readPicture(dir.file(name));
-}
-
-struct Difference {
-    int max = 0;
-    double fractionOver = 0.0;  // of pixels differing by more than `tolerance`
-};
-
-Difference compare(const Picture& a, const Picture& b, int tolerance) {
-    Difference d;
-    EXPECT_EQ(a.rgb.size(), b.rgb.size());
-    size_t over = 0;
-    for (size_t i = 0; i < std::min(a.rgb.size(), b.rgb.size()); ++i) {
-        const int diff = std::abs(int(a.rgb[i]) - int(b.rgb[i]));
-        d.max = std::max(d.max, diff);
-        over += diff > tolerance;
-    }
-    d.fractionOver = double(over) / std::max<size_t>(1, a.rgb.size());
-    return d;
-}
-
-const std::string kExamples = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/";
 
 // The first row from the top that is not the black background, in column x.
 int horizonRow(const Picture& p, int x) {

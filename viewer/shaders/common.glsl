@@ -1,18 +1,24 @@
 // Shared by every pass: the height field H(x, y, t) of chapter 18, a sum of scrolling height maps, read
-// either through 4-neighbour packed textures (one nearest fetch per level) or, for comparison, through
-// plain R32F textures with hardware bilinear filtering.
+// through 4-neighbour packed textures (one nearest fetch per level), or through plain one-channel
+// textures: hardware bilinear filtering (the reference) or textureGather (GL 4.0) and the filter here.
+// The viewer puts "#version 400 core" and HEIGHTPACK_GATHER 1 before this where the context is 4.0 or
+// newer, else "#version 330 core" and HEIGHTPACK_GATHER 0 (and never asks for the gather lookup).
 
 const int kMaxLayers = 2;  // the two largest maps displace the grid (18.2.1)
 
 uniform int uLayerCount;
-uniform sampler2D uPacked0, uPacked1;   // RGBA32F, nearest, mip-mapped: R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1)
-uniform sampler2D uPlain0, uPlain1;     // R32F, GL_LINEAR, mip-mapped: the reference path
+// Every height texture is in its file's type (32-bit float, half, 16-bit normalised); uLayerDecode maps
+// what they sample back to the file's values.
+uniform sampler2D uPacked0, uPacked1;   // RGBA, nearest, mip-mapped: R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1)
+uniform sampler2D uPlain0, uPlain1;     // R, GL_LINEAR, mip-mapped: the reference path
 uniform sampler2D uPacked0Next, uPacked1Next, uPlain0Next, uPlain1Next;  // a sequence's next frame
 uniform float uLayerBlend[kMaxLayers];  // how far between this frame and the next (0 for a single map)
+uniform vec4 uLayerDecode[kMaxLayers];  // stored = x + y * sampled for this frame, z + w * sampled for the next
+uniform sampler2D uGather0, uGather1, uGather0Next, uGather1Next;  // R atlases, one level, nearest (gather only)
 uniform vec4 uLayerXform[kMaxLayers];   // tiles per metre, scroll u and v (tiles per second), amplitude (m)
 uniform vec2 uLayerStored[kMaxLayers];  // the stored value of a mid height (subtracted), and 1 if clamp-wrapped
 uniform int uLayerLevels[kMaxLayers];   // mip levels in each layer's chain
-uniform int uLookup;                    // 0 packed bilinear, 1 packed trilinear, 2 reference bilinear, 3 reference trilinear
+uniform int uLookup;                    // bilinear (even) or trilinear (odd): 0, 1 packed; 2, 3 reference; 4, 5 gather
 uniform vec2 uBands;                    // Listing 18-3's snapped LOD band, (0.3, 0.7)
 uniform float uPixelAngle;              // radians a pixel subtends, for the LOD from distance
 uniform float uTime;
@@ -50,22 +56,50 @@ float referenceBilinear(sampler2D tex, vec2 uv, int level, bool clampMode) {
     return textureLod(tex, clampMode ? uv : fract(uv), float(level)).r;
 }
 
-float levelLookup(sampler2D packedTex, sampler2D plainTex, int layer, vec2 uv, int level, bool clampMode) {
+#if HEIGHTPACK_GATHER
+// textureGather reads only a texture's base level, so the plain chain is one atlas per map: level l's
+// texel (0, 0) at uGatherOrigin[layer * kMaxLevels + l], each level followed by a column and a row of
+// its wrapped neighbours, so the 2x2 footprint below never leaves the level.
+const int kMaxLevels = 16;
+uniform ivec2 uGatherOrigin[kMaxLayers * kMaxLevels];
+uniform vec2 uGatherSize[kMaxLayers];   // the atlas in texels
+
+// The packed lookup's arithmetic on the four texels one gather returns.
+float gatherBilinear(sampler2D atlas, int layer, vec2 uv, int level, bool clampMode) {
+    vec2 size = levelSize(layer, level);
+    vec2 p = (clampMode ? clamp(uv, 0.0, 1.0) : fract(uv)) * size - 0.5;
+    if (clampMode) p = clamp(p, vec2(0.0), size - 1.0);
+    vec2 i = floor(p);
+    vec2 f = p - i;
+    // The corner shared by texels i and i + 1: the bilinear footprint there is exactly those four,
+    // half a texel from any rounding that could pick another.
+    vec2 corner = vec2(uGatherOrigin[layer * kMaxLevels + level]) + mod(i, size) + 1.0;
+    vec4 t = textureGather(atlas, corner / uGatherSize[layer]);  // (i,j+1) (i+1,j+1) (i+1,j) (i,j)
+    return mix(mix(t.w, t.z, f.x), mix(t.x, t.y, f.x), f.y);
+}
+#endif
+
+float levelLookup(sampler2D packedTex, sampler2D plainTex, sampler2D gatherTex, int layer, vec2 uv, int level,
+                  bool clampMode) {
+#if HEIGHTPACK_GATHER
+    if (uLookup >= 4) return gatherBilinear(gatherTex, layer, uv, level, clampMode);
+#endif
     return uLookup >= 2 ? referenceBilinear(plainTex, uv, level, clampMode)
                         : packedBilinear(packedTex, layer, uv, level, clampMode);
 }
 
 // Listing 18-3: one level below the band, the next above it, a blend inside it.
-float layerHeight(sampler2D packedTex, sampler2D plainTex, int layer, vec2 uv, float lod, bool clampMode) {
+float layerHeight(sampler2D packedTex, sampler2D plainTex, sampler2D gatherTex, int layer, vec2 uv, float lod,
+                  bool clampMode) {
     int last = uLayerLevels[layer] - 1;
-    if (uLookup == 0 || uLookup == 2) return levelLookup(packedTex, plainTex, layer, uv, 0, clampMode);
+    if (uLookup % 2 == 0) return levelLookup(packedTex, plainTex, gatherTex, layer, uv, 0, clampMode);
     lod = clamp(lod, 0.0, float(last));
     int level = min(int(floor(lod)), last);
     float fr = lod - float(level);
-    if (level == last || fr < uBands.x) return levelLookup(packedTex, plainTex, layer, uv, level, clampMode);
-    float coarse = levelLookup(packedTex, plainTex, layer, uv, level + 1, clampMode);
+    if (level == last || fr < uBands.x) return levelLookup(packedTex, plainTex, gatherTex, layer, uv, level, clampMode);
+    float coarse = levelLookup(packedTex, plainTex, gatherTex, layer, uv, level + 1, clampMode);
     if (fr > uBands.y) return coarse;
-    float fine = levelLookup(packedTex, plainTex, layer, uv, level, clampMode);
+    float fine = levelLookup(packedTex, plainTex, gatherTex, layer, uv, level, clampMode);
     return mix(fine, coarse, (fr - uBands.x) / (uBands.y - uBands.x));
 }
 
@@ -80,14 +114,19 @@ vec2 layerUv(int k, vec2 world) {
 }
 
 // Layer k's height above its mean at xy, seen from distance d: this frame, blended into the next frame
-// of a sequence; lod receives the layer's level of detail.
-float layerContribution(int k, sampler2D packedTex, sampler2D plainTex, sampler2D packedNext, sampler2D plainNext,
-                        vec2 xy, float d, out float lod) {
+// of a sequence; lod receives the layer's level of detail. Every lookup is a weighted mean of texels,
+// so a normalised map's scale and offset apply once, after it.
+float layerContribution(int k, sampler2D packedTex, sampler2D plainTex, sampler2D gatherTex, sampler2D packedNext,
+                        sampler2D plainNext, sampler2D gatherNext, vec2 xy, float d, out float lod) {
     lod = layerLod(k, d);
     vec2 uv = layerUv(k, xy);
     bool clampMode = uLayerStored[k].y > 0.5;
-    float stored = layerHeight(packedTex, plainTex, k, uv, lod, clampMode);
-    if (uLayerBlend[k] > 0.0) stored = mix(stored, layerHeight(packedNext, plainNext, k, uv, lod, clampMode), uLayerBlend[k]);
+    vec4 decode = uLayerDecode[k];
+    float stored = decode.x + decode.y * layerHeight(packedTex, plainTex, gatherTex, k, uv, lod, clampMode);
+    if (uLayerBlend[k] > 0.0) {
+        float next = decode.z + decode.w * layerHeight(packedNext, plainNext, gatherNext, k, uv, lod, clampMode);
+        stored = mix(stored, next, uLayerBlend[k]);
+    }
     return uLayerXform[k].w * (stored - uLayerStored[k].x);
 }
 
@@ -96,8 +135,10 @@ float waterHeight(vec2 xy, float d, out float lod0) {
     float h = 0.0;
     lod0 = 0.0;
     float lod1;
-    if (uLayerCount > 0) h += layerContribution(0, uPacked0, uPlain0, uPacked0Next, uPlain0Next, xy, d, lod0);
-    if (uLayerCount > 1) h += layerContribution(1, uPacked1, uPlain1, uPacked1Next, uPlain1Next, xy, d, lod1);
+    if (uLayerCount > 0)
+        h += layerContribution(0, uPacked0, uPlain0, uGather0, uPacked0Next, uPlain0Next, uGather0Next, xy, d, lod0);
+    if (uLayerCount > 1)
+        h += layerContribution(1, uPacked1, uPlain1, uGather1, uPacked1Next, uPlain1Next, uGather1Next, xy, d, lod1);
     for (int e = 0; e < kMaxExplosions; ++e) {
         if (e >= uExplosionCount) break;
         float age = uTime - uExplosion[e].z;

@@ -6,11 +6,13 @@ in float vLod;
 uniform int uView;                  // 0 shaded, 1 height as grey, 2 LOD as colour
 uniform vec2 uHeightRange;          // heights mapped to grey in view 1
 uniform bool uHasNormalMap;
-uniform sampler2D uNormalMap;       // RGB(A)32F, xyz in [-1, 1]
+uniform sampler2D uNormalMap;       // xyz in [-1, 1] (RGB or RGBA), or xy alone (RG); float, half or 16-bit
+uniform vec2 uNormalDecode;         // texels to components: x + y * sampled (a 16-bit normalised map's range)
 uniform float uNormalGreen;         // +1: green along +v; -1: an OpenGL map (green toward row 0)
 uniform vec4 uNormalOctave[4];      // tiles per metre, scroll u, scroll v, strength
 uniform bool uHasFresnel;
 uniform sampler2D uFresnel;         // rgb water colour, a reflectance, indexed by N.V
+uniform vec2 uFresnelDecode;        // texels to values: x + y * sampled
 uniform float uFresnelIndexScale;   // 1 for N.V, 2 for saturate(2 N.V)
 uniform float uIor;
 uniform vec3 uDeep, uShallow;
@@ -31,13 +33,15 @@ vec3 normalFromHeights(vec2 xy, float d) {
     return normalize(vec3(-hx, -hy, 2.0 * e));
 }
 
-// The surface's own slope from the displaced heights, plus the detail of four normal-map octaves.
+// The surface's own slope from the displaced heights, plus the detail of four normal-map octaves. The
+// octaves add each map's x and y, as the ATI shader does, so a normal's z never enters: a two-channel
+// (xy) map shades exactly as the three-channel map it came from, with no z to rebuild.
 vec3 normalFromMap(vec2 xy, vec3 base) {
     vec3 sum = vec3(base.xy / base.z, 0.0);
     for (int k = 0; k < 4; ++k) {
         vec2 uv = xy * uNormalOctave[k].x + uNormalOctave[k].yz * uTime;
         if (k % 2 == 1) uv = uv.yx;  // the ATI shader's swap: the two scrolling maps never line up
-        vec3 n = texture(uNormalMap, uv).xyz;
+        vec2 n = uNormalDecode.x + uNormalDecode.y * texture(uNormalMap, uv).xy;
         sum += vec3(n.x, uNormalGreen * n.y, 0.0) * uNormalOctave[k].w;
     }
     return normalize(vec3(sum.xy, 1.0));
@@ -79,7 +83,7 @@ void main() {
     vec3 waterColour;
     float fresnel;
     if (uHasFresnel) {
-        vec4 ramp = texture(uFresnel, vec2(clamp(nv * uFresnelIndexScale, 0.0, 1.0), 0.5));
+        vec4 ramp = uFresnelDecode.x + uFresnelDecode.y * texture(uFresnel, vec2(clamp(nv * uFresnelIndexScale, 0.0, 1.0), 0.5));
         waterColour = ramp.rgb;
         fresnel = ramp.a;
     } else {

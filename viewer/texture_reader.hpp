@@ -1,0 +1,31 @@
+// Reading a texture for the viewer: the values the file holds (for statistics and the loaders' own
+// transforms) and, where the file stores a GPU texel format, those texels as they are, to upload them
+// at the precision the user chose.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heightpack/core/image.hpp"
+#include "heightpack/core/result.hpp"
+#include "heightpack/io/info.hpp"
+#include "stored_chain.hpp"
+
+namespace heightpack::view {
+
+struct ViewerTexture {
+    std::vector<Image> levels;          // level 0 first, every channel, mapped back to the file's values
+    std::optional<StoredChain> stored;  // KTX2, DDS and half EXR: the texels as stored
+    Attributes attributes;              // the EXR header, KTX2 key/values, or what a DDS header records
+    // An 8- or 16-bit integer image read through OpenImageIO (a painted PNG): values in [0, 1] that stand
+    // for something else (a normal's 0.5 + 0.5 n, an sRGB colour). KTX2 and DDS normalised texels are
+    // already mapped back through their recorded scale and offset, so this is false for them.
+    bool unitIntegers = false;
+};
+
+// Any texture heightpack writes (EXR, KTX2, DDS) or that OpenImageIO reads. Fails with BadInput naming
+// the file when it cannot be read.
+Result<ViewerTexture> readViewerTexture(const std::string& path);
+
+}  // namespace heightpack::view

@@ -1,0 +1,78 @@
+#include "texture_upload.hpp"
+
+#include "gl_util.hpp"
+
+namespace heightpack::view {
+
+namespace {
+
+struct GlFormat {
+    GLenum internal, format, type;
+};
+
+GlFormat glFormatOf(int channels, ComponentKind kind) {
+    static const GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+    static const GLenum float32[] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
+    static const GLenum float16[] = {GL_R16F, GL_RG16F, GL_RGB16F, GL_RGBA16F};
+    static const GLenum unorm16[] = {GL_R16, GL_RG16, GL_RGB16, GL_RGBA16};
+    static const GLenum snorm16[] = {GL_R16_SNORM, GL_RG16_SNORM, GL_RGB16_SNORM, GL_RGBA16_SNORM};
+    const int c = channels - 1;
+    switch (kind) {
+        case ComponentKind::Float16: return {float16[c], formats[c], GL_HALF_FLOAT};
+        case ComponentKind::Unorm16: return {unorm16[c], formats[c], GL_UNSIGNED_SHORT};
+        case ComponentKind::Snorm16: return {snorm16[c], formats[c], GL_SHORT};
+        case ComponentKind::Float32: break;
+    }
+    return {float32[c], formats[c], GL_FLOAT};
+}
+
+}  // namespace
+
+GLuint uploadStoredChain(const StoredChain& chain, bool linear, Wrap wrap) {
+    const GlFormat f = glFormatOf(chain.channels, chain.kind);
+    GLuint texture = 0;
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows are tightly packed: a one-channel 16-bit row may be 2 bytes
+    for (size_t level = 0; level < chain.levels.size(); ++level)
+        glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(level), static_cast<GLint>(f.internal), chain.levelWidth(int(level)),
+                     chain.levelHeight(int(level)), 0, f.format, f.type, chain.levels[level].data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    const bool mips = chain.levels.size() > 1;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, static_cast<GLint>(chain.levels.size() - 1));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                    linear ? (mips ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR) : (mips ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST));
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, linear ? GL_LINEAR : GL_NEAREST);
+    const GLint mode = wrap == Wrap::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, mode);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, mode);
+    checkGl("uploadStoredChain");
+    return texture;
+}
+
+GLuint uploadFloatChain(const std::vector<Image>& levels, bool linear, Wrap wrap) {
+    return uploadStoredChain(storeFloats(levels), linear, wrap);
+}
+
+long long textureBytes(GLuint texture) {
+    if (!texture) return 0;
+    glBindTexture(GL_TEXTURE_2D, texture);
+    GLint maxLevel = 0;
+    glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, &maxLevel);
+    long long bytes = 0;
+    for (GLint level = 0; level <= maxLevel && level < 16; ++level) {  // 16: levels of the largest texture GL allows
+        GLint w = 0, h = 0, bits = 0;
+        glGetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_WIDTH, &w);
+        glGetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &h);
+        if (w == 0 || h == 0) break;  // past the levels that exist (a shading texture's GL-made chain ends at 1x1)
+        for (GLenum component : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE, GL_TEXTURE_ALPHA_SIZE}) {
+            GLint b = 0;
+            glGetTexLevelParameteriv(GL_TEXTURE_2D, level, component, &b);
+            bits += b;
+        }
+        bytes += static_cast<long long>(w) * h * bits / 8;
+    }
+    return bytes;
+}
+
+}  // namespace heightpack::view

@@ -1,0 +1,27 @@
+// Textures from stored chains, uploaded in the precision they were stored in (GL_RGBA16F for half,
+// GL_R16 / GL_RGBA16 for 16-bit normalised, GL_RG16_SNORM for two-channel normals), and the bytes each
+// texture holds on the GPU as GL itself reports them.
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <vector>
+
+#include "heightpack/core/image.hpp"
+#include "stored_chain.hpp"
+
+namespace heightpack::view {
+
+// A mip-mapped texture of the chain's levels (one level: no mip-maps). linear: GL_LINEAR filtering (the
+// reference path, shading textures), else nearest (the packed and gather lookups filter in the shader).
+// A normalised chain samples as u / 65535: the shader applies chain.decode.
+GLuint uploadStoredChain(const StoredChain& chain, bool linear, Wrap wrap);
+
+// The same for float levels, as 32-bit floats.
+GLuint uploadFloatChain(const std::vector<Image>& levels, bool linear, Wrap wrap);
+
+// Bytes of every level of the texture, from the sizes and component bits GL reports for it (so a
+// format a driver widened on upload would show here).
+long long textureBytes(GLuint texture);
+
+}  // namespace heightpack::view
