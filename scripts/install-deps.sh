@@ -17,6 +17,8 @@ packages=(
   libglfw3-dev libglm-dev libepoxy-dev          # heightpack-view: window and GL context, maths, GL loader
   libimgui-dev libstb-dev                       # heightpack-view: the panel (imgui.pc requires stb)
   xvfb xauth libgl1-mesa-dri                    # headless screenshots and viewer tests (Mesa llvmpipe)
+  libegl-dev libegl-mesa0                       # heightpack-view --headless: EGL headers for libepoxy, Mesa's
+                                                # EGL (surfaceless platform) loaded at run time
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks
   time                                          # peak memory in tests/bench/bench_pack.sh
 )

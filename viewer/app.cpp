@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "exit_codes.hpp"
+#include "headless_context.hpp"
 #include "material_settings.hpp"
 #include "offscreen.hpp"
 #include "panel.hpp"
@@ -201,6 +202,15 @@ GLFWwindow* createWindow(const ViewerOptions& o, bool offscreen) {
 
 int runViewer(ViewerOptions& o, Scene& scene) {
     const bool offscreen = !o.screenshot.empty() || !o.gridHeights.empty() || o.bench > 0;
+    if (o.headless) {
+        HeadlessContext context;
+        std::string error;
+        if (!context.create(error))
+            return fail("cannot draw without a display: " + error,
+                        "install Mesa's EGL, libegl-mesa0, or a GPU driver; or run under xvfb-run without --headless",
+                        ExitCode::NoOpenGL);
+        return draw(o, scene, currentContext(context.platform()), nullptr);
+    }
     glfwSetErrorCallback(onGlfwError);
     if (!glfwInit()) return fail("cannot start GLFW", "is there a display? run headless under xvfb-run", ExitCode::NoOpenGL);
     GLFWwindow* window = createWindow(o, offscreen);

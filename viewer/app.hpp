@@ -22,6 +22,7 @@ struct ViewerOptions {
     int frames = 0;               // interactive: close the window after this many frames (0: when the user does)
     bool json = false;
     bool panelInScreenshot = false;  // draw the ImGui panel into the screenshot too
+    bool headless = false;        // no window system: EGL (headless_context.hpp), --screenshot, --grid-heights and --bench only
     Camera camera;
     RenderSettings settings;
 };

@@ -55,6 +55,10 @@ int main(int argc, char** argv) {
     app.add_option("--grid-heights", o.gridHeights,
                    "render one frame two-pass, every grid vertex sampled, and write the vertices' heights to this EXR "
                    "(x = segment, y = ring; camera and grid in its header) and exit");
+    bool headless = false;
+    app.add_flag("--headless", headless,
+                 "draw --screenshot, --grid-heights or --bench with no display at all, through EGL (a GPU, or "
+                 "Mesa's surfaceless platform); the default when DISPLAY is unset");
     app.add_option("--size", size, "window or screenshot size WxH")->capture_default_str();
     app.add_option("--time", time, "fix the animation clock at this many seconds");
     app.add_option("--camera", camera, "x,y,z,yaw,pitch (metres, degrees; z up)");
@@ -86,15 +90,15 @@ int main(int argc, char** argv) {
         "  heightpack-view out/swell.exr --tiled 3x3\n"
         "  heightpack-view out/swell.exr --screenshot shot.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10\n"
         "  heightpack-view out/swell.exr --bench 300\n"
-        "  heightpack-view out/swell_half.ktx2 --lookup gather --screenshot shot.png\n"
+        "  heightpack-view out/swell_half.ktx2 --lookup gather --headless --screenshot shot.png\n"
         "Keys: WASD fly, Space/Ctrl up/down, right mouse look, E or left click drops an explosion, F1 panel, Esc quits.\n"
         "Exit codes:\n"
         "  0   done\n"
         "  2   usage error\n"
         "  3   bad input: a map, sequence frame, normal map, Fresnel ramp, foam texture or material.json\n"
         "  4   cannot write the screenshot or the grid heights\n"
-        "  5   no usable OpenGL: no display, no OpenGL 3.3 core context, no render target of that --size\n"
-        "      (run it under xvfb-run with Mesa)\n"
+        "  5   no usable OpenGL: no display, no OpenGL 3.3 core context (window or EGL), no render target of\n"
+        "      that --size (run it under xvfb-run, or --headless with Mesa's EGL)\n"
         "  70  internal: a shader that does not build, or a bug\n");
     try {
         app.parse(argc, argv);
@@ -143,6 +147,12 @@ int main(int argc, char** argv) {
     if (o.settings.rings < 2 || o.settings.segments < 3 || o.settings.rings > 4096 || o.settings.segments > 4096)
         return usage("--grid and --segments must be 2..4096 and 3..4096");
     if (o.bench < 0) return usage("--bench takes a number of frames");
+    const bool offscreen = !o.screenshot.empty() || !o.gridHeights.empty() || o.bench > 0;
+    if (headless && !offscreen)
+        return usage("--headless draws only --screenshot, --grid-heights or --bench: there is no window to show");
+    // No X display: a screenshot or a bench still draws, through EGL.
+    const char* display = std::getenv("DISPLAY");
+    o.headless = headless || (offscreen && (!display || !*display));
     if (!explosion.empty()) {
         if (!parseFloats(explosion, v) || v.size() < 2 || v.size() > 4)
             return usage("--explosion must be x,y or x,y,start or x,y,start,strength");

@@ -164,12 +164,22 @@ TEST(Viewer, ExitCodesAreTheDocumentedOnes) {
     EXPECT_EQ(cannotWrite.code, 4) << cannotWrite.err;
     oneErrorLine(cannotWrite, unwritable);
 
-    // No display at all (not under xvfb-run): GLFW cannot start, so there is no OpenGL to draw with.
-    const ViewRun noDisplay =
-        runProcess({HEIGHTPACK_VIEW_EXE, kExamples + "swell.png", "--screenshot", dir.file("shot.png")}, headless);
+    // No display at all (not under xvfb-run): a window cannot open, so there is no OpenGL to draw with.
+    const ViewRun noDisplay = runProcess({HEIGHTPACK_VIEW_EXE, kExamples + "swell.png", "--frames", "1"}, headless);
     EXPECT_EQ(noDisplay.code, 5) << noDisplay.err;
     EXPECT_NE(noDisplay.err.find("heightpack-view: error: cannot start GLFW (is there a display?"), std::string::npos)
         << noDisplay.err;
+    // A screenshot without a display draws through EGL; with no EGL vendor either (glvnd finds none where
+    // this names no file), nothing can draw.
+    auto noEgl = headless;
+    noEgl.push_back("__EGL_VENDOR_LIBRARY_FILENAMES=" + dir.file("no_vendor.json"));
+    const ViewRun noOpenGl =
+        runProcess({HEIGHTPACK_VIEW_EXE, kExamples + "swell.png", "--screenshot", dir.file("shot.png")}, noEgl);
+    EXPECT_EQ(noOpenGl.code, 5) << noOpenGl.err;
+    oneErrorLine(noOpenGl, "cannot draw without a display: EGL offers neither");
+    const ViewRun windowless = runProcess({HEIGHTPACK_VIEW_EXE, kExamples + "swell.png", "--headless"}, headless);
+    EXPECT_EQ(windowless.code, 2) << windowless.err;
+    oneErrorLine(windowless, "--headless draws only --screenshot, --grid-heights or --bench");
     EXPECT_EQ(dir.listing(), (std::vector<std::string>{"material.json"}));  // no screenshot written
 }
 
