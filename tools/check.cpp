@@ -69,6 +69,7 @@ public:
         // A sequence's previews land together once every frame was read: a bad frame leaves none.
         StagedOutputs staged;
         const bool stage = inputs.size() > 1 && !preview.empty();
+        std::vector<std::pair<CheckReport, std::string>> held;  // staged frames' reports, printed once in place
         for (size_t f = 0; f < inputs.size(); ++f) {
             shownPreview_ = preview.empty() ? preview : frameFileName(preview, int(f), int(inputs.size()));
             options_.previewPath = stage ? staged.stage(shownPreview_) : shownPreview_;
@@ -81,10 +82,16 @@ public:
             all = all && report->tiles;
             if (common_.json && inputs.size() > 1)
                 frames.push_back(toJson(*report));
+            else if (stage)
+                held.emplace_back(std::move(*report), shownPreview_);
             else
                 print(*report);
         }
         if (Status committed = staged.commit(); !committed) return fail(committed.error());
+        for (const auto& [report, shown] : held) {
+            shownPreview_ = shown;
+            print(report);
+        }
         if (common_.json && inputs.size() > 1)
             printJson({{"command", "check"}, {"input", input_}, {"tiles", all}, {"frames", frames}});
         return all ? ExitCode::Ok : ExitCode::CheckFailed;

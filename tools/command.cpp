@@ -350,4 +350,19 @@ std::string colourText(const std::array<double, 3>& colour) {
     return text;
 }
 
+HeldStdout::HeldStdout(bool hold) {
+    if (hold) original_ = std::cout.rdbuf(held_.rdbuf());
+}
+
+HeldStdout::~HeldStdout() {
+    if (original_) std::cout.rdbuf(original_);
+}
+
+void HeldStdout::release() {
+    if (!original_) return;
+    std::cout.rdbuf(original_);
+    original_ = nullptr;
+    std::cout << held_.str() << std::flush;
+}
+
 }  // namespace heightpack::cli

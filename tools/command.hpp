@@ -7,6 +7,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -115,6 +116,22 @@ private:
 
 // Clears the progress line on stderr if one is shown: call before printing anything else.
 void clearProgressLine();
+
+// Holds what goes to stdout until release(): a run whose outputs are staged says "wrote X" only once
+// X is in place. Destroyed unreleased (a later frame failed), it drops what it held.
+class HeldStdout {
+public:
+    explicit HeldStdout(bool hold);
+    ~HeldStdout();
+    HeldStdout(const HeldStdout&) = delete;
+    HeldStdout& operator=(const HeldStdout&) = delete;
+    // Prints what was held and stops holding.
+    void release();
+
+private:
+    std::ostringstream held_;
+    std::streambuf* original_ = nullptr;  // std::cout's own buffer while holding
+};
 
 // --channel, as every command that reads heights takes it: r|g|b|a|luma, or a channel's name as the file
 // lists it (height.Y, Z, depth).

@@ -127,19 +127,26 @@ public:
                 {frameFileName(output_, int(f), int(inputs.size())), "-o", {".exr", ".ktx2", ".dds", ".png"}});
         if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         nlohmann::json sequence = nlohmann::json::array();
+        // A sequence's normal maps land together once every frame has succeeded: a bad frame leaves none.
+        StagedOutputs staged;
+        HeldStdout held(inputs.size() > 1);
         for (size_t f = 0; f < inputs.size(); ++f) {
-            const ExitCode code = normalOne(inputs[f], frameFileName(output_, int(f), int(inputs.size())), o, format,
-                                            inputs.size() > 1 ? &sequence : nullptr);
+            const std::string shown = frameFileName(output_, int(f), int(inputs.size()));
+            const std::string output = inputs.size() > 1 ? staged.stage(shown) : shown;
+            const ExitCode code = normalOne(inputs[f], output, shown, o, format, inputs.size() > 1 ? &sequence : nullptr);
             if (code != ExitCode::Ok) return code;
         }
+        if (Status committed = staged.commit(); !committed) return fail(committed.error());
+        held.release();
         if (inputs.size() > 1 && common_.json) printJson({{"command", "normal"}, {"input", input_}, {"frames", sequence}});
         return ExitCode::Ok;
     }
 
 private:
     // Makes one normal map; its JSON report goes to stdout, or into sequence when making frames.
-    ExitCode normalOne(const std::string& input, const std::string& output, NormalJobOptions& o, const std::string& format,
-                       nlohmann::json* sequence) {
+    // shown: the output's name as given (output may be a staged name for it).
+    ExitCode normalOne(const std::string& input, const std::string& output, const std::string& shown, NormalJobOptions& o,
+                       const std::string& format, nlohmann::json* sequence) {
         const NormalOptions& n = o.normal;
         Progress progress(!common_.quiet, "normal " + std::filesystem::path(input).filename().string(),
                           {{"load", 0.15}, {"mip", 0.1}, {"normal", 0.35}, {"write", 0.4}});
@@ -148,7 +155,8 @@ private:
         auto report = makeNormalMap(input, output, o);
         if (!report) return fail(report.error());
         progress.clear();
-        const NormalReport& r = *report;
+        NormalReport& r = *report;
+        r.output = shown;
         const int width = r.levelSizes[0].first, height = r.levelSizes[0].second;
         // The channels as stored: x, y for xy; x, y, z and alpha (three count as four on a GPU).
         const int channels = r.layout == Layout::Xy ? 2 : n.alpha == NormalAlpha::None ? 3 : 4;

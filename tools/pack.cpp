@@ -104,29 +104,45 @@ public:
         }
         if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         nlohmann::json sequence = nlohmann::json::array();
+        // A sequence's outputs, and a packed file with its plain twin, land together once every job has
+        // succeeded: a bad frame (or a failed twin) leaves none of this run's files behind.
+        StagedOutputs staged;
+        const bool stage = frames > 1 || !plain.empty();
+        HeldStdout held(stage);
         for (int f = 0; f < frames; ++f) {
-            options_.plainOutput = plain.empty() ? plain : frameFileName(plain, f, frames);
-            const ExitCode code = packOne(inputs[f], frameFileName(output_, f, frames), frames > 1 ? &sequence : nullptr);
+            const Shown shown{frameFileName(output_, f, frames), plain.empty() ? plain : frameFileName(plain, f, frames)};
+            options_.plainOutput = stage && !shown.plain.empty() ? staged.stage(shown.plain) : shown.plain;
+            const std::string output = stage ? staged.stage(shown.output) : shown.output;
+            const ExitCode code = packOne(inputs[f], output, shown, frames > 1 ? &sequence : nullptr);
             if (code != ExitCode::Ok) return code;
         }
+        if (Status committed = staged.commit(); !committed) return fail(committed.error());
+        held.release();
         if (frames > 1 && common_.json) printJson({{"command", "pack"}, {"frames", sequence}});
         return ExitCode::Ok;
     }
 
 private:
+    // The names a report shows: the outputs as given, whatever staged name the job wrote to.
+    struct Shown {
+        std::string output, plain;
+    };
+
     // Packs one map; its JSON report goes to stdout, or into sequence when packing frames.
-    ExitCode packOne(const std::string& input, const std::string& output, nlohmann::json* sequence) {
+    ExitCode packOne(const std::string& input, const std::string& output, const Shown& shown, nlohmann::json* sequence) {
         Progress progress(!common_.quiet, "pack " + std::filesystem::path(input).filename().string(),
                           {{"load", 0.15}, {"mip", 0.35}, {"write", 0.5}});
         options_.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
         auto report = packHeightMap(input, output, options_);
         if (!report) return fail(report.error());
         progress.clear();
-        const PackReport& r = *report;
+        std::error_code ec;
+        const auto bytes = std::filesystem::file_size(report->output, ec);
+        PackReport& r = *report;
+        r.output = shown.output;
+        if (!r.plainOutput.empty()) r.plainOutput = shown.plain;
         const int width = r.levelSizes[0].first, height = r.levelSizes[0].second;
         const double seconds = r.loadSeconds + r.mipSeconds + r.writeSeconds;
-        std::error_code ec;
-        const auto bytes = std::filesystem::file_size(r.output, ec);
         // What the output holds: the EXR codec, or KTX2's supercompression (none for DDS).
         const std::string compression = !isGpuContainer(r.output) ? compression_
                                          : options_.supercompression == Supercompression::Zstd ? "zstd"

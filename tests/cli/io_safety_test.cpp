@@ -15,6 +15,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
 
 #include "support/test_support.hpp"
@@ -528,4 +529,41 @@ TEST(IoSafety, LoopPeriodMetadataThatIsNoNumberIsBadInput) {
         }
         fs::remove(out);
     }
+}
+
+TEST(IoSafety, ASequenceWithABadFrameLeavesTheOutputsOfAnEarlierRunAsTheyWere) {
+    // Three frames; a first run writes every output. Then frame 2 is damaged: each command fails on it
+    // (exit 3) and the folder must be byte for byte what the first run left, no frame of the new run in it.
+    ScratchDir dir;
+    for (int f = 0; f < 3; ++f)
+        writeImage(dir.file("seq.000" + std::to_string(f) + ".png"), randomImage(16, 16, 40 + f), OIIO::TypeDesc::UINT16);
+    const std::string seq = dir.file("seq.png");
+    const std::vector<std::vector<std::string>> commands = {
+        {"pack", seq, "-o", dir.file("p.exr"), "--emit-plain", dir.file("plain.exr")},
+        {"normal", seq, "--tile-size", "8m", "--height", "1m", "-o", dir.file("n.exr")},
+        {"check", seq, "--preview", dir.file("c.png")},
+    };
+    for (const auto& args : commands) ASSERT_EQ(hp(args).code, 0) << args[0];
+    // Frame 2 becomes another map, so a second run would write different frames 0 and 1 too... if it wrote.
+    for (int f = 0; f < 2; ++f)
+        writeImage(dir.file("seq.000" + std::to_string(f) + ".png"), randomImage(16, 16, 90 + f), OIIO::TypeDesc::UINT16);
+    auto bytes = readBytes(dir.file("seq.0002.png"));
+    bytes.resize(bytes.size() / 2);
+    writeBytes(dir.file("seq.0002.png"), bytes);
+    std::map<std::string, std::vector<unsigned char>> before;
+    for (const std::string& name : dir.listing()) before[name] = readBytes(dir.file(name));
+    for (const auto& args : commands) {
+        const ProcessResult run = hp(args);
+        EXPECT_EQ(run.code, 3) << args[0] << ": " << run.err;
+        expectOneLineError(run, "seq.0002.png");
+        EXPECT_EQ(run.out.find("wrote"), std::string::npos) << args[0] << " says it wrote what it did not: " << run.out;
+        EXPECT_EQ(run.out.find("preview:"), std::string::npos) << args[0] << ": " << run.out;
+    }
+    std::vector<std::string> names;
+    for (const auto& [name, content] : before) {
+        names.push_back(name);
+        EXPECT_EQ(readBytes(dir.file(name)), content) << name << " changed";
+    }
+    EXPECT_EQ(dir.listing(), names);  // and no temporary left behind
+    EXPECT_EQ(names.size(), 3u + 6u + 3u + 3u);
 }
