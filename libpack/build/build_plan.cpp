@@ -6,7 +6,9 @@
 #include "heightpack/build/fresnel_job.hpp"
 #include "heightpack/build/normal_job.hpp"
 #include "heightpack/build/pack_job.hpp"
+#include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
 
 namespace heightpack::detail {
 
@@ -99,6 +101,55 @@ NormalJobOptions normalOptions(const NormalAsset& n, const std::string& version)
     return job;
 }
 
+// Frame f of a synthesised sea: the heights in metres at f * loop / frames, as `heightpack synth` writes
+// them, into the intermediate file (with the loop's timing, which the packed frame then carries), packed
+// from there like any source, and the intermediate removed. Its name is fixed, not a temporary one,
+// because the packed header records the source's name and the bytes must be the same on every run.
+Status makeSynthesised(const SynthSource& sea, int frame, const std::string& intermediate, const PackOptions& pack,
+                       const std::string& output, int threads, const ProgressFn& progress) {
+    const fs::path path = fs::path(output).parent_path() / intermediate;
+    std::error_code ec;
+    fs::create_directories(path.parent_path(), ec);
+    if (ec) return cannotWrite(path.parent_path().string(), "cannot be created as a folder", "check the permissions");
+    progress("synth", 0.0);
+    const double t = sea.frames > 1 ? frame * sea.spectrum.loopPeriod / sea.frames : 0.0;
+    SeaFields fields = Ocean(sea.spectrum, threads).fields(t, {true, false, false}, 1.0, threads);
+    FlatImageOptions flat;
+    flat.attributes = {attribute(attr::layout, "synthesised"), attribute(attr::version, pack.version)};
+    if (sea.frames > 1) {
+        flat.attributes.push_back(attribute(attr::frame, std::to_string(frame) + "/" + std::to_string(sea.frames)));
+        flat.attributes.push_back(attribute(attr::loopPeriod, static_cast<float>(sea.spectrum.loopPeriod)));
+        flat.attributes.push_back(attribute(attr::time, static_cast<float>(t)));
+    }
+    Status made = writeFlatImage(path.string(), fields.heights, flat);
+    if (made) made = makePacked(pack, path.string(), output, threads, progress);
+    fs::remove(path, ec);  // an intermediate only: the key, not this file, says whether to rebuild
+    return made;
+}
+
+// The steps of a synthesised displacement map: one per frame, each keyed on the spectrum, the frame and
+// the packing, with no input file (so no input hash and no tileability check: it tiles by construction).
+void addSynthSteps(std::vector<Step>& steps, const DisplacementAsset& d, const PackOptions& pack) {
+    const SynthSource sea = *d.synth;
+    const int frames = static_cast<int>(d.frames.size());
+    for (int f = 0; f < frames; ++f) {
+        Step step;
+        step.report.name = d.layer.name;
+        step.report.kind = "displacement";
+        step.report.frame = frames > 1 ? f : -1;
+        step.report.line = d.line;
+        step.report.output = frameFileName(d.output, f, frames);
+        step.mustTile = false;
+        step.optionsText = "kind=displacement\nsynth.frame=" + std::to_string(f) + "/" + std::to_string(frames) +
+                           "\n" + keyText(sea.spectrum, "synth.") + keyText(pack, "displacement.");
+        const std::string intermediate = d.frames[f];
+        step.make = [sea, f, intermediate, pack](const std::string& output, int threads, const ProgressFn& progress) {
+            return makeSynthesised(sea, f, intermediate, pack, output, threads, progress);
+        };
+        steps.push_back(std::move(step));
+    }
+}
+
 }  // namespace
 
 std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
@@ -107,7 +158,8 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
         PackOptions pack = packOptions(d.settings, version);
         pack.scale = static_cast<float>(d.layer.heightScale);
         pack.offset = static_cast<float>(d.layer.heightOffset);
-        addSourcedSteps(steps, d, d.layer.name, "displacement", m.threshold, pack, makePacked);
+        if (d.synth) addSynthSteps(steps, d, pack);
+        else addSourcedSteps(steps, d, d.layer.name, "displacement", m.threshold, pack, makePacked);
     }
     if (m.normals)
         addSourcedSteps(steps, *m.normals, m.normals->layer.name, "normals", m.threshold,

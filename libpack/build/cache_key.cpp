@@ -139,6 +139,38 @@ void appendKeyText(std::string& text, std::string_view prefix, const CheckOption
     // progress: reports, judges nothing
 }
 
+void appendKeyText(std::string& text, std::string_view prefix, const SwellOptions& o) {
+    static_assert(fieldCount<SwellOptions>() == 5, "SwellOptions changed: put the new field in its key text");
+    Key k(text, prefix);
+    k.put("significantHeight", o.significantHeight);
+    k.put("peakPeriod", o.peakPeriod);
+    k.put("direction", o.direction);
+    k.put("gamma", o.gamma);
+    k.put("spreadingExponent", o.spreadingExponent);
+}
+
+void appendKeyText(std::string& text, std::string_view prefix, const SpectrumOptions& o) {
+    static_assert(fieldCount<SpectrumOptions>() == 17, "SpectrumOptions changed: put the new field in its key text");
+    Key k(text, prefix);
+    k.put("model", o.model);
+    k.put("windSpeed", o.windSpeed);
+    k.put("windDirection", o.windDirection);
+    k.put("fetch", o.fetch);
+    k.put("gamma", o.gamma);
+    k.put("phillipsAlpha", o.phillipsAlpha);
+    k.put("smallWaveLength", o.smallWaveLength);
+    k.put("spreading", o.spreading);
+    k.put("spreadingExponent", o.spreadingExponent);
+    k.put("depth", o.depth);
+    k.nested("swell", o.swell);
+    k.put("tileSize", o.tileSize);
+    k.put("size", o.size);
+    k.put("seed", std::to_string(o.seed));  // every bit of a 64-bit seed
+    k.put("loopPeriod", o.loopPeriod);
+    k.put("bandLow", o.bandLow);
+    k.put("bandHigh", o.bandHigh);
+}
+
 std::string cacheKey(std::string_view version, std::string_view text, std::string_view inputHash) {
     std::string all = "heightpack ";
     all.append(version).append("\n").append(text).append("input=").append(inputHash).append("\n");

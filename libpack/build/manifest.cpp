@@ -14,6 +14,7 @@
 #include "heightpack/io/read.hpp"
 
 #include "manifest_section.hpp"
+#include "manifest_synth.hpp"
 
 namespace heightpack {
 
@@ -126,11 +127,16 @@ private:
     }
 
     // The name, source, output and map settings of an asset made from a file.
-    SourcedAsset sourced(Section& s, const std::string& name, bool sourceRequired = true) {
+    // synthesised: the asset has no source file, only an output.
+    SourcedAsset sourced(Section& s, const std::string& name, bool sourceRequired = true, bool synthesised = false) {
         SourcedAsset a;
         a.line = s.line();
         a.settings = settings(s, defaults_);
         a.mustTile = s.boolean("tileable").value_or(defaultsMustTile_.value_or(a.settings.wrap == Wrap::Periodic));
+        if (synthesised) {
+            a.output = output(s, name, a.settings);
+            return a;
+        }
         const std::optional<std::string> source = sourceRequired ? s.requiredText("source") : s.text("source");
         if (!source) {
             if (s.find("output")) throw s.error("output", "is given, but there is no 'source' to make it from");
@@ -211,8 +217,26 @@ private:
     DisplacementAsset displacement(Section& s) {
         DisplacementAsset d;
         d.layer.name = assetName(s, "");
-        static_cast<SourcedAsset&>(d) = sourced(s, d.layer.name);
+        // A map comes from a file or from a spectrum, never both: which one would the output be?
+        const toml::table* synth = s.table("synth");
+        if (synth && s.find("source"))
+            throw s.error("source", "is given beside a [" + s.prefix() + ".synth] table",
+                          "keep one: source = a map's path, or the synth table to synthesise the sea");
+        if (!synth && !s.find("source"))
+            throw s.error(s.line(), "missing key '" + s.key("source") + "'",
+                          "give source = a map's path, or a [displacement.synth] table to synthesise the sea; " +
+                              std::string(detail::kHint));
+        static_cast<SourcedAsset&>(d) = sourced(s, d.layer.name, true, synth != nullptr);
         d.layer.tileSize = s.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
+        if (synth) {
+            Section t(*synth, s.prefix() + ".synth", path_);
+            d.synth = detail::parseSynthSource(t, d.layer.tileSize);
+            // Periodic by construction (a sum of whole waves over the tile): nothing to check.
+            d.mustTile = false;
+            const fs::path stem = fs::path(d.output).filename().replace_extension(".exr");
+            for (int f = 0; f < d.synth->frames; ++f)
+                d.frames.push_back((fs::path(kSynthFolder) / frameFileName(stem.string(), f, d.synth->frames)).string());
+        }
         d.layer.scroll = scroll(s);
         d.layer.amplitude = s.number("amplitude", 1.0, -1e6, 1e6);
         d.layer.heightScale = s.number("height_scale", 1.0, -1e6, 1e6);

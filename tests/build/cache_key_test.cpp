@@ -153,6 +153,36 @@ TEST(CacheKey, CheckOptions) {
     }});
 }
 
+// A synthesised sea's key is its spectrum: every parameter shapes the heights.
+TEST(CacheKey, SpectrumOptions) {
+    expectEveryFieldJudged(std::array<FieldChange<SpectrumOptions>, 17>{{
+        {"model", [](SpectrumOptions& o) { o.model = SpectrumModel::Phillips; }, true},
+        {"windSpeed", [](SpectrumOptions& o) { o.windSpeed = 12.0; }, true},
+        {"windDirection", [](SpectrumOptions& o) { o.windDirection = 30.0; }, true},
+        {"fetch", [](SpectrumOptions& o) { o.fetch = 5e4; }, true},
+        {"gamma", [](SpectrumOptions& o) { o.gamma = 2.0; }, true},
+        {"phillipsAlpha", [](SpectrumOptions& o) { o.phillipsAlpha = 0.01; }, true},
+        {"smallWaveLength", [](SpectrumOptions& o) { o.smallWaveLength = 0.1; }, true},
+        {"spreading", [](SpectrumOptions& o) { o.spreading = Spreading::Cos2s; }, true},
+        {"spreadingExponent", [](SpectrumOptions& o) { o.spreadingExponent = 8.0; }, true},
+        {"depth", [](SpectrumOptions& o) { o.depth = 30.0; }, true},
+        {"swell", [](SpectrumOptions& o) { o.swell.direction = 90.0; }, true},
+        {"tileSize", [](SpectrumOptions& o) { o.tileSize = 128.0; }, true},
+        {"size", [](SpectrumOptions& o) { o.size = 64; }, true},
+        {"seed", [](SpectrumOptions& o) { o.seed = (uint64_t(1) << 40) + 1; }, true},  // bits past 32 count
+        {"loopPeriod", [](SpectrumOptions& o) { o.loopPeriod = 8.0; }, true},
+        {"bandLow", [](SpectrumOptions& o) { o.bandLow = 0.1; }, true},
+        {"bandHigh", [](SpectrumOptions& o) { o.bandHigh = 2.0; }, true},
+    }});
+    expectEveryFieldJudged(std::array<FieldChange<SwellOptions>, 5>{{
+        {"significantHeight", [](SwellOptions& o) { o.significantHeight = 2.0; }, true},
+        {"peakPeriod", [](SwellOptions& o) { o.peakPeriod = 9.0; }, true},
+        {"direction", [](SwellOptions& o) { o.direction = 45.0; }, true},
+        {"gamma", [](SwellOptions& o) { o.gamma = 3.0; }, true},
+        {"spreadingExponent", [](SwellOptions& o) { o.spreadingExponent = 20.0; }, true},
+    }});
+}
+
 TEST(CacheKey, StringsCannotForgeAnotherField) {
     // A string holding a newline and another field's line must not read like that field.
     PackOptions forged;

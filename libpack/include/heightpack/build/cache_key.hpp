@@ -15,6 +15,7 @@
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
+#include "heightpack/core/spectrum.hpp"
 #include "heightpack/io/read.hpp"
 
 namespace heightpack {
@@ -51,6 +52,8 @@ void appendKeyText(std::string& text, std::string_view prefix, const FresnelOpti
 void appendKeyText(std::string& text, std::string_view prefix, const PackOptions& options);
 void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOptions& options);
 void appendKeyText(std::string& text, std::string_view prefix, const CheckOptions& options);
+void appendKeyText(std::string& text, std::string_view prefix, const SwellOptions& options);
+void appendKeyText(std::string& text, std::string_view prefix, const SpectrumOptions& options);
 
 // appendKeyText into an empty string.
 template <class Options>

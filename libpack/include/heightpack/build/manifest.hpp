@@ -11,6 +11,7 @@
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
+#include "heightpack/core/spectrum.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/pixel_type.hpp"
@@ -43,9 +44,23 @@ struct SourcedAsset {
     int line = 0;                     // the line of the asset's table in the manifest
 };
 
+// A sea the build synthesises instead of reading a file ([displacement.synth]): the spectrum (its tile
+// size is the asset's tile_size) and how many frames of its loop to bake.
+struct SynthSource {
+    SpectrumOptions spectrum;
+    int frames = 1;                   // more than one needs spectrum.loopPeriod
+};
+
 struct DisplacementAsset : SourcedAsset {
     DisplacementLayer layer;          // name, tile size, scroll, amplitude, height scale and offset
+    // Set: the map is synthesised, source is empty and frames are the intermediate files' names
+    // (kSynthFolder/NAME.EXR inside the output's folder), one per frame.
+    std::optional<SynthSource> synth;
 };
+
+// Where a synthesised map is written, inside its output's folder, before it is packed: a hidden folder in
+// the output, never beside the manifest (the manifest's folder may be read-only, or under version control).
+inline constexpr const char* kSynthFolder = ".heightpack-synth";
 
 struct NormalAsset : SourcedAsset {
     NormalLayer layer;                // name, octaves, tile size, height range, convention, alpha
