@@ -724,3 +724,28 @@ TEST_F(BuildTest, ARelativeOutputFolderThatDoesNotExistYetIsMade) {
     for (const char* file : {"new/out/long.exr", "new/out/material.json", "new/out/sea.d", "new/out/sea.stamp"})
         EXPECT_TRUE(fs::is_regular_file(dir.file(file))) << file;
 }
+
+// A manifest that synthesises its sea: built once, then nothing to do, then a changed wind remakes the
+// map with other bytes; a bad synth key is the manifest's error (FILE:LINE, exit 3) and writes nothing.
+TEST_F(BuildTest, ASynthesisedSeaRebuildsWhenItsSpectrumChanges) {
+    const std::string sea = "format = 1\nname = \"sea\"\n[[displacement]]\nname = \"swell\"\ntile_size = 64.0\n"
+                            "[displacement.synth]\nwind = 12.0\nsize = 32\nseed = 3\n";
+    writeText(manifest, sea);
+    const auto first = buildJson();
+    EXPECT_EQ(first["rebuilt"], 1) << first.dump(1);
+    const std::string before = readText(out + "/swell.exr");
+    ASSERT_FALSE(before.empty());
+    const ProcessResult again = build();
+    ASSERT_EQ(again.code, 0) << again.err;
+    EXPECT_NE(again.out.find("nothing to do"), std::string::npos) << again.out;
+
+    writeText(manifest, replaced(sea, "wind = 12.0", "wind = 15.0"));
+    EXPECT_EQ(buildJson()["rebuilt"], 1);
+    EXPECT_NE(readText(out + "/swell.exr"), before) << "a stronger wind is another sea";
+
+    writeText(manifest, replaced(sea, "seed = 3", "seed = 3\nfetch_km = 20"));
+    const ProcessResult bad = build();
+    EXPECT_EQ(bad.code, 3);
+    EXPECT_NE(bad.err.find(manifest + ":10:"), std::string::npos) << bad.err;
+    EXPECT_NE(bad.err.find("'displacement[0].synth.fetch_km'"), std::string::npos) << bad.err;
+}
