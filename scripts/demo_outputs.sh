@@ -46,13 +46,12 @@ oiiotool "$OUT"/fresnel.exr --ch R,G,B --resize 256x32 --colorconvert linear sRG
 "$BUILD"/heightpack check "$OUT"/painted_tiled.png --preview "$OUT"/painted_check_after.png
 "$BUILD"/heightpack check examples/maps/swell.png --quiet && echo "examples/maps/swell.png tiles"
 
-# A material made entirely of synthesised maps: a JONSWAP swell and a Phillips chop (heights in metres),
-# built from a manifest into OUT/synth and rendered.
-"$BUILD"/heightpack synth --spectrum jonswap --wind 14m/s --fetch 200km --direction 20 --tile-size 256m --size 512 \
-  --seed 3 -o "$OUT"/synth_swell.exr
+# A material made entirely of synthesised maps: a JONSWAP swell the manifest synthesises itself
+# ([displacement.synth]) and a Phillips chop from `synth` (heights in metres; the normal map needs a
+# file), built from a manifest into OUT/synth and rendered.
 "$BUILD"/heightpack synth --spectrum phillips --wind 7m/s --direction 40 --tile-size 32m --size 256 --seed 5 \
   -o "$OUT"/synth_chop.exr
-# The material's manifest points at the synthesised maps (heights in metres, so amplitude 1); its
+# The material's manifest synthesises the swell and points at the chop (heights in metres, so amplitude 1); its
 # normal-map octaves use scales that share no small ratio, so the chop's tile does not repeat visibly.
 cat >"$OUT"/synth_sea.toml <<'TOML'
 format = 1
@@ -60,9 +59,16 @@ name = "synth_sea"
 
 [[displacement]]
 name = "swell"
-source = "synth_swell.exr"
 tile_size = 256.0
 scroll = [0.002, 0.001]
+
+[displacement.synth]
+spectrum = "jonswap"
+wind = 14.0
+fetch = 200000.0
+direction = 20.0
+size = 512
+seed = 3
 
 [[displacement]]
 name = "chop"
