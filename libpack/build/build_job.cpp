@@ -227,6 +227,9 @@ Status MaterialBuild::Impl::run() {
     // what it had not finished.
     std::atomic<bool> stop{false};
     forEachParallel(steps.size(), jobs, [&](size_t i) { makeStep(steps[i], stop); });
+    // Synthesised maps' intermediates are gone once packed; their folder goes too (only when empty, and
+    // only now, when no step can be writing into it).
+    for (const fs::path& f : folders) fs::remove(f / kSynthFolder, ec);
     if (auto e = firstError()) return *e;
     report.assets.clear();
     for (const Step& s : steps) report.assets.push_back(s.report);
