@@ -18,6 +18,8 @@ std::string cliHint(const Error& error) {
         case Fix::FewerJobs: return "use fewer --jobs or --threads";
         case Fix::WriteFloat:
             return "write float samples: an .exr or .tif output without --depth; heightpack never clips or rescales heights";
+        case Fix::AddDisplacement:
+            return "synthesise it with 'heightpack synth --displacement' to an .exr, or leave out --displacement";
         case Fix::MakeTileable: {
             std::string command = "heightpack tile " + arg(0) + " -o " + arg(1);
             if (!arg(2).empty()) command += " --filter " + arg(2);

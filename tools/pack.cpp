@@ -51,6 +51,9 @@ public:
                                               "next ones, with the mip filter")
             ->check(CLI::IsMember({"none", "pow2"}));
         cmd->add_option("--emit-plain", options_.plainOutput, "also write the unpacked one-channel mip chain here");
+        cmd->add_flag("--displacement", options_.displacement,
+                      "keep the input's horizontal displacement (Dx, Dy, as synth --displacement writes): packed "
+                      "beside the heights as layers Dx, Dy of the same .exr");
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
@@ -61,6 +64,7 @@ public:
             "  heightpack pack swell.png --pixel-type half -o swell.dds\n"
             "  heightpack pack swell.png --pixel-type auto --tolerance 1mm --height 6m -o swell.ktx2\n"
             "  heightpack pack swell.png --layout plain --pixel-type uint16 -o swell_r16.ktx2\n"
+            "  heightpack pack sea.####.exr --displacement -o sea_packed.exr\n"
             "Texel (i,j) of every level holds R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1), wrapped or clamped.\n");
         return cmd;
     }
@@ -88,6 +92,9 @@ public:
             checkContainerChoice({output_, options_.plainOutput}, options_.pixelType, compression_,
                                  compressionOption_->count() > 0, options_.supercompression);
         if (!containerProblem.empty()) return usage(containerProblem);
+        if (options_.displacement && (isGpuContainer(output_) || isGpuContainer(options_.plainOutput)))
+            return usage("--displacement writes an .exr only: a KTX2 or DDS texture holds four channels, heights "
+                         "with Dx, Dy need twelve");
         options_.resizeToPowerOfTwo = resize_ == "pow2";
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
@@ -167,6 +174,8 @@ private:
                 {"resized", r.resized},
                 {"resize", r.resized ? resizeJson(r.source.width, r.source.height, width, height) : nlohmann::json(nullptr)},
                 {"layout", nameOf(r.layout)},
+                {"displacement", !options_.displacement ? nlohmann::json(nullptr)
+                                 : r.layout == Layout::Neighbour4 ? nlohmann::json("neighbour4") : nlohmann::json("plain")},
                 {"wrap", wrap_},
                 {"filter", filter_},
                 {"compression", compression},

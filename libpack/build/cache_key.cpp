@@ -96,7 +96,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const FresnelOpti
 }
 
 void appendKeyText(std::string& text, std::string_view prefix, const PackOptions& o) {
-    static_assert(fieldCount<PackOptions>() == 14, "PackOptions changed: put the new field in its key text");
+    static_assert(fieldCount<PackOptions>() == 15, "PackOptions changed: put the new field in its key text");
     Key k(text, prefix);
     k.nested("load", o.load);
     k.nested("mip", o.mip);
@@ -111,6 +111,8 @@ void appendKeyText(std::string& text, std::string_view prefix, const PackOptions
     if (o.layout != Layout::Neighbour4 && o.layout != Layout::Plain) k.put("layout", o.layout);
     if (o.heightRange > 0.0) k.put("heightRange", o.heightRange);  // recorded in the file when known
     k.put("version", o.version);
+    // Issue 15: a line only when on, so every key made before it existed still matches.
+    if (o.displacement) k.put("displacement", o.displacement);
     // progress: reports, makes nothing
 }
 

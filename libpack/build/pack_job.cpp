@@ -2,9 +2,12 @@
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 
+#include "heightpack/build/pack_displacement.hpp"
 #include "heightpack/core/pack.hpp"
 #include "heightpack/core/parallel.hpp"
+#include "heightpack/io/displacement_read.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/read.hpp"
@@ -33,6 +36,12 @@ Result<PackedMaps> plainChain(Image heights, const SourceInfo& source, const Pac
     maps.plain = generateMipChain(heights, options.mip);
     if (options.progress) options.progress("mip", 1.0);
     return maps;
+}
+
+// The writer packs bands itself: the displacement's chains are made plain, as the heights' are.
+PackOptions withoutPacking(PackOptions options) {
+    options.layout = Layout::Plain;
+    return options;
 }
 
 }  // namespace
@@ -93,6 +102,21 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     Image heights = std::move(loaded->heights);
     progress("load", 1.0);
     report.loadSeconds = secondsSince(start);
+    std::optional<DisplacementMaps> displacement;
+    if (options.displacement) {
+        const auto gpu = [](const std::string& path) {
+            return !path.empty() && containerForPath(path).value_or(Container::Exr) != Container::Exr;
+        };
+        if (gpu(output) || gpu(options.plainOutput))
+            return cannotWrite(gpu(output) ? output : options.plainOutput,
+                               "a KTX2 or DDS texture holds at most four channels; heights with Dx, Dy need twelve",
+                               "write the displacement to an .exr");
+        auto d = loadDisplacement(input, options.load);
+        if (!d) return d.error();
+        auto maps = packDisplacement(std::move(*d), report.source, withoutPacking(options));
+        if (!maps) return maps.error();
+        displacement = std::move(*maps);
+    }
 
     start = std::chrono::steady_clock::now();
     // The plain chain only: the writer packs it a band at a time, so the packed chain is never held whole.
@@ -146,12 +170,24 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     report.lookupError = stored->lookupError;
     const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*stored);
     content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
+    // Dx, Dy join after the storage is chosen: the choice and its error are the heights'.
+    if (displacement) {
+        if (packed)
+            detail::fillPackedWithDisplacement(content, chain, *displacement, wrap);
+        else
+            detail::fillPlainWithDisplacement(content, chain, *displacement);
+        content.attributes.push_back(attribute(attr::displacement, packed ? "neighbour4" : "plain"));
+    }
     if (Status s = writeTexture(output, content, writeOptions); !s) return s.error();
     if (both) {
         content.channelNames = {"Y"};
         content.fillRows = fillPlain;
         content.attributes = heightAttributes(Layout::Plain, options, report.source, report.sourceHash);
         content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
+        if (displacement) {
+            detail::fillPlainWithDisplacement(content, chain, *displacement);
+            content.attributes.push_back(attribute(attr::displacement, "plain"));
+        }
         writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
         if (Status s = writeTexture(plainPath, content, writeOptions); !s) return s.error();
     }

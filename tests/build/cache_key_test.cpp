@@ -101,7 +101,7 @@ TEST(CacheKey, FresnelOptions) {
 }
 
 TEST(CacheKey, PackOptions) {
-    expectEveryFieldJudged(std::array<FieldChange<PackOptions>, 14>{{
+    expectEveryFieldJudged(std::array<FieldChange<PackOptions>, 15>{{
         {"load", [](PackOptions& o) { o.load.channel = ChannelSelect::Luma; }, true},
         {"mip", [](PackOptions& o) { o.mip.filter = Filter::Lanczos3; }, true},
         {"scale", [](PackOptions& o) { o.scale = 2.0f; }, true},
@@ -114,6 +114,7 @@ TEST(CacheKey, PackOptions) {
         {"plainOutput", [](PackOptions& o) { o.plainOutput = std::string("plain.exr"); }, true},
         {"layout", [](PackOptions& o) { o.layout = Layout::Plain; }, true},
         {"heightRange", [](PackOptions& o) { o.heightRange = 6.0; }, true},
+        {"displacement", [](PackOptions& o) { o.displacement = true; }, true},
         {"version", [](PackOptions& o) { o.version = std::string("9.9"); }, true},
         {"progress", [](PackOptions& o) { o.progress = [](std::string_view, double) {}; }, false},
     }});

@@ -34,6 +34,9 @@ struct PackOptions {
     // (textureGather or hardware filtering; foam, masks); plainOutput must then be empty.
     Layout layout = Layout::Neighbour4;
     double heightRange = 0.0;          // metres between a stored 0.0 and 1.0, when known: recorded, errors in metres
+    // Also keep the input's horizontal displacement (its Dx, Dy; see pack_displacement.hpp), packed beside
+    // the heights in the same EXR. An input without it is refused (BadInput, Fix::AddDisplacement).
+    bool displacement = false;
     std::string version;               // recorded as heightpack:version
     // Reports progress: the stage ("load", "mip", "write") and the fraction of it done.
     std::function<void(std::string_view stage, double fraction)> progress;

@@ -31,6 +31,8 @@ enum class Fix {
     WriteFloat,             // heights that integer samples cannot hold: write float samples
     MakeTileable,           // a map that must tile does not: make it tile with `heightpack tile`;
                             // fixArgs: {input, output, filter ("" for the default), threshold ("" for the default)}
+    AddDisplacement,        // horizontal displacement asked of a map without it: make the map with its Dx, Dy
+                            // channels (a synthesised EXR), or leave the displacement out
 };
 
 struct Error {

@@ -45,6 +45,10 @@ inline constexpr AttributeKey<Wrap> wrap{"heightpack:wrap"};
 inline constexpr AttributeKey<Filter> filter{"heightpack:filter"};
 inline constexpr AttributeKey<float> heightScale{"heightpack:heightScale"};
 inline constexpr AttributeKey<float> heightOffset{"heightpack:heightOffset"};
+// Horizontal displacement stored beside the heights (pack's displacement): "neighbour4" when layers Dx and
+// Dy hold Dx, Dy packed as the heights are (Dx.R = Dx(i,j), Dx.G = Dx(i+1,j), ...), "plain" when channels
+// Dx, Dy hold them unpacked. Absent: the file holds heights alone.
+inline constexpr AttributeKey<std::string> displacement{"heightpack:displacement"};
 // 16-bit normalised textures (KTX2, DDS): value = normalisedOffset + normalisedScale * u / 65535.
 inline constexpr AttributeKey<float> normalisedOffset{"heightpack:normalisedOffset"};
 inline constexpr AttributeKey<float> normalisedScale{"heightpack:normalisedScale"};

@@ -1,0 +1,177 @@
+// pack --displacement end to end (issue 15, point 3): Dx, Dy kept beside the heights, bit-exact at level 0,
+// mip-mapped as the heights are; refused where they cannot be kept; named by manifests and material.json.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "support/test_support.hpp"
+
+using namespace heightpack;
+using namespace heightpack::test;
+
+namespace {
+
+ProcessResult run(const std::vector<std::string>& args) {
+    std::vector<std::string> argv = {HEIGHTPACK_EXE};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return runProcess(argv);
+}
+
+// A float EXR with channels Y, Dx, Dy, as synth --displacement writes them.
+void writeSea(const std::string& path, const Image& y, const Image& dx, const Image& dy) {
+    OIIO::ImageSpec spec(y.width, y.height, 3, OIIO::TypeDesc::FLOAT);
+    spec.channelnames = {"Y", "Dx", "Dy"};
+    std::vector<float> pixels;
+    for (size_t i = 0; i < y.texelCount(); ++i) pixels.insert(pixels.end(), {y.pixels[i], dx.pixels[i], dy.pixels[i]});
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
+}
+
+// One level of an EXR: every channel by name.
+struct Level {
+    int width = 0, height = 0;
+    std::vector<std::string> names;
+    std::vector<float> pixels;
+    float at(const std::string& channel, int x, int y) const {
+        const size_t c = std::find(names.begin(), names.end(), channel) - names.begin();
+        EXPECT_LT(c, names.size()) << channel;
+        return c < names.size() ? pixels[(size_t(y) * width + x) * names.size() + c] : NAN;
+    }
+};
+
+Level readLevel(const std::string& path, int mip) {
+    Level l;
+    auto in = OIIO::ImageInput::open(path);
+    EXPECT_TRUE(in) << path;
+    if (!in || !in->seek_subimage(0, mip)) return l;
+    const OIIO::ImageSpec& spec = in->spec();
+    l.width = spec.width;
+    l.height = spec.height;
+    l.names = spec.channelnames;
+    l.pixels.resize(size_t(l.width) * l.height * spec.nchannels);
+    EXPECT_TRUE(in->read_image(0, mip, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, l.pixels.data()));
+    return l;
+}
+
+const Image kHeights = makeImage(32, 16, [](int x, int y) { return float(0.8 * std::sin(x * 0.39) * std::cos(y * 0.41)); });
+const Image kDx = randomImage(32, 16, 7, -1.5f, 1.5f);
+const Image kDy = randomImage(32, 16, 8, -0.5f, 0.5f);
+
+}  // namespace
+
+TEST(PackDisplacement, KeepsDxDyBitExactAtLevelZeroPackedAsTheHeights) {
+    ScratchDir dir;
+    writeSea(dir.file("sea.exr"), kHeights, kDx, kDy);
+    const ProcessResult packed = run({"pack", dir.file("sea.exr"), "--displacement", "--wrap", "clamp", "--json", "-o",
+                                      dir.file("sea_packed.exr")});
+    ASSERT_EQ(packed.code, 0) << packed.err;
+    EXPECT_EQ(nlohmann::json::parse(packed.out)["displacement"], "neighbour4");
+    const Level top = readLevel(dir.file("sea_packed.exr"), 0);
+    ASSERT_EQ(top.names.size(), 12u);
+    auto in = OIIO::ImageInput::open(dir.file("sea_packed.exr"));
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:displacement"), "neighbour4");
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:layout"), "neighbour4");
+    // Texel (i,j): R = D(i,j), G = D(i+1,j), B = D(i,j+1), A = D(i+1,j+1), clamped at the edges, every bit kept.
+    for (const auto& [layer, source] : {std::pair<std::string, const Image*>{"Dx", &kDx}, {"Dy", &kDy}, {"", &kHeights}}) {
+        const std::string prefix = layer.empty() ? "" : layer + ".";
+        for (int y = 0; y < 16; ++y) {
+            for (int x = 0; x < 32; ++x) {
+                const int x1 = std::min(x + 1, 31), y1 = std::min(y + 1, 15);
+                ASSERT_EQ(top.at(prefix + "R", x, y), source->at(x, y)) << layer << " " << x << "," << y;
+                ASSERT_EQ(top.at(prefix + "G", x, y), source->at(x1, y));
+                ASSERT_EQ(top.at(prefix + "B", x, y), source->at(x, y1));
+                ASSERT_EQ(top.at(prefix + "A", x, y), source->at(x1, y1));
+            }
+        }
+    }
+    // The heights are what pack writes without the displacement, at every level.
+    ASSERT_EQ(run({"pack", dir.file("sea.exr"), "--wrap", "clamp", "-q", "-o", dir.file("heights.exr")}).code, 0);
+    for (int mip = 0; mip < 6; ++mip) {
+        const Level with = readLevel(dir.file("sea_packed.exr"), mip), without = readLevel(dir.file("heights.exr"), mip);
+        ASSERT_EQ(with.width, without.width);
+        for (int y = 0; y < with.height; ++y)
+            for (int x = 0; x < with.width; ++x)
+                for (const char* c : {"R", "G", "B", "A"}) ASSERT_EQ(with.at(c, x, y), without.at(c, x, y)) << mip;
+    }
+}
+
+TEST(PackDisplacement, MipLevelsAreTheFiltersOfDxDy) {
+    ScratchDir dir;
+    writeSea(dir.file("sea.exr"), kHeights, kDx, kDy);
+    ASSERT_EQ(run({"pack", dir.file("sea.exr"), "--displacement", "--filter", "box", "-q", "-o", dir.file("box.exr")}).code, 0);
+    // Box: each texel of level 1 is the mean of the 2x2 below it, computed here from the input.
+    const Level one = readLevel(dir.file("box.exr"), 1);
+    ASSERT_EQ(one.width, 16);
+    for (const auto& [layer, source] : {std::pair<std::string, const Image*>{"Dx", &kDx}, {"Dy", &kDy}}) {
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 16; ++x) {
+                const double mean = (double(source->at(2 * x, 2 * y)) + source->at(2 * x + 1, 2 * y) +
+                                     source->at(2 * x, 2 * y + 1) + source->at(2 * x + 1, 2 * y + 1)) / 4;
+                ASSERT_NEAR(one.at(layer + ".R", x, y), mean, 1e-6) << layer << " " << x << "," << y;
+            }
+    }
+    // Kaiser: Dx's chain is the chain pack makes of the same values given as heights.
+    writeSea(dir.file("dx_as_heights.exr"), kDx, kDy, kDy);
+    ASSERT_EQ(run({"pack", dir.file("sea.exr"), "--displacement", "-q", "-o", dir.file("kaiser.exr")}).code, 0);
+    ASSERT_EQ(run({"pack", dir.file("dx_as_heights.exr"), "-q", "-o", dir.file("dx.exr")}).code, 0);
+    for (int mip = 1; mip < 6; ++mip) {
+        const Level a = readLevel(dir.file("kaiser.exr"), mip), b = readLevel(dir.file("dx.exr"), mip);
+        for (int y = 0; y < a.height; ++y)
+            for (int x = 0; x < a.width; ++x)
+                for (const char* c : {"R", "G", "B", "A"})
+                    ASSERT_EQ(a.at(std::string("Dx.") + c, x, y), b.at(c, x, y)) << mip << " " << x << "," << y;
+    }
+}
+
+TEST(PackDisplacement, RefusesWhatCannotHoldIt) {
+    ScratchDir dir;
+    writeImage(dir.file("painted.png"), makeImage(16, 16, [](int x, int) { return x / 16.0f; }), OIIO::TypeDesc::UINT8);
+    const ProcessResult none = run({"pack", dir.file("painted.png"), "--displacement", "-o", dir.file("p.exr")});
+    EXPECT_EQ(none.code, 3) << none.err;
+    EXPECT_EQ(none.err.rfind("heightpack: error: " + dir.file("painted.png") + ": ", 0), 0u) << none.err;
+    EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
+    EXPECT_NE(none.err.find("--displacement"), std::string::npos) << none.err;  // the hint names the way out
+    writeSea(dir.file("sea.exr"), kHeights, kDx, kDy);
+    for (const char* output : {"s.ktx2", "s.dds"}) {
+        const ProcessResult gpu = run({"pack", dir.file("sea.exr"), "--displacement", "-o", dir.file(output)});
+        EXPECT_EQ(gpu.code, 2) << gpu.err;
+        EXPECT_EQ(std::count(gpu.err.begin(), gpu.err.end(), '\n'), 1) << gpu.err;
+    }
+    EXPECT_EQ(dir.listing(), (std::vector<std::string>{"painted.png", "sea.exr"}));
+}
+
+TEST(PackDisplacement, SequencesAndManifestsCarryIt) {
+    ScratchDir dir;
+    ASSERT_EQ(run({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "32", "--frames", "2", "--loop", "4s",
+                   "--displacement", "-q", "-o", dir.file("sea.exr")}).code, 0);
+    ASSERT_EQ(run({"pack", dir.file("sea.exr"), "--displacement", "-q", "-o", dir.file("packed.exr")}).code, 0);
+    for (const char* frame : {"packed.0000.exr", "packed.0001.exr"}) {
+        auto in = OIIO::ImageInput::open(dir.file(frame));
+        ASSERT_TRUE(in) << frame;
+        EXPECT_EQ(in->spec().nchannels, 12);
+        EXPECT_FLOAT_EQ(in->spec().get_float_attribute("heightpack:loopPeriod"), 4.0f);
+    }
+    // A manifest packs Dx, Dy of a source that has them; choppiness = 0 leaves them out.
+    auto manifest = [&](const std::string& name, const std::string& extra) {
+        std::ofstream(dir.file(name + ".toml")) << "format = 1\nname = \"" << name
+                                                << "\"\n[[displacement]]\nname = \"sea\"\nsource = \"sea.exr\"\n"
+                                                   "tile_size = 32.0\n"
+                                                << extra;
+        const ProcessResult b = run({"build", dir.file(name + ".toml"), "-q", "-o", dir.file(name)});
+        EXPECT_EQ(b.code, 0) << b.err;
+        std::ifstream json(dir.file(name + "/material.json"));
+        return nlohmann::json::parse(json)["displacement"][0];
+    };
+    const auto choppy = manifest("choppy", "choppiness = 0.75\n");
+    EXPECT_EQ(choppy["horizontalDisplacement"], true);
+    EXPECT_EQ(choppy["choppiness"], 0.75);
+    EXPECT_EQ(readLevel(dir.file("choppy/sea.0001.exr"), 0).names.size(), 12u);
+    const auto flat = manifest("flat", "choppiness = 0\n");
+    EXPECT_FALSE(flat.contains("horizontalDisplacement"));
+    EXPECT_FALSE(flat.contains("choppiness"));
+    EXPECT_EQ(readLevel(dir.file("flat/sea.0000.exr"), 0).names.size(), 4u);
+}
