@@ -7,6 +7,7 @@
 #include "heightpack/build/normal_job.hpp"
 #include "heightpack/build/pack_job.hpp"
 #include "heightpack/io/attributes.hpp"
+#include "heightpack/io/displacement_read.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
 
@@ -158,8 +159,14 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
         PackOptions pack = packOptions(d.settings, version);
         pack.scale = static_cast<float>(d.layer.heightScale);
         pack.offset = static_cast<float>(d.layer.heightOffset);
-        if (d.synth) addSynthSteps(steps, d, pack);
-        else addSourcedSteps(steps, d, d.layer.name, "displacement", m.threshold, pack, makePacked);
+        if (d.synth) {
+            addSynthSteps(steps, d, pack);  // heights only: a synthesised map's Dx, Dy are not written yet
+        } else {
+            // Dx, Dy ride along when the source has them (synth's displacement), unless choppiness turns them
+            // off. Judged from the header, so a painted map's key stays what it was.
+            pack.displacement = d.layer.choppiness > 0 && hasDisplacement(d.frames.front());
+            addSourcedSteps(steps, d, d.layer.name, "displacement", m.threshold, pack, makePacked);
+        }
     }
     if (m.normals)
         addSourcedSteps(steps, *m.normals, m.normals->layer.name, "normals", m.threshold,

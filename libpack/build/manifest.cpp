@@ -241,6 +241,7 @@ private:
         d.layer.amplitude = s.number("amplitude", 1.0, -1e6, 1e6);
         d.layer.heightScale = s.number("height_scale", 1.0, -1e6, 1e6);
         d.layer.heightOffset = s.number("height_offset", 0.0, -1e6, 1e6);
+        d.layer.choppiness = s.number("choppiness", 1.0, 0.0, 10.0);
         if (d.layer.heightScale == 0) throw s.error("height_scale", "is 0, which would flatten the map");
         d.layer.wrap = d.settings.wrap;
         d.layer.filter = d.settings.filter;

@@ -108,6 +108,11 @@ std::string materialJson(const MaterialDescription& m) {
                   {"heightOffset", d.heightOffset}, {"tileSize", d.tileSize},    {"scroll", pairJson(d.scroll)},
                   {"amplitude", d.amplitude}};
         if (d.loopPeriod > 0) j["loopPeriod"] = d.loopPeriod;
+        // Only for a texture that holds Dx, Dy: every material.json written before them keeps its bytes.
+        if (d.horizontalDisplacement) {
+            j["horizontalDisplacement"] = true;
+            j["choppiness"] = d.choppiness;
+        }
         layers.push_back(std::move(j));
     }
     doc["displacement"] = std::move(layers);
@@ -178,6 +183,12 @@ Result<MaterialDescription> readMaterial(const std::string& path) {
             d.scroll = r.pair(j, "scroll", w);
             d.amplitude = r.number(j, "amplitude", w);
             d.loopPeriod = j.contains("loopPeriod") ? r.number(j, "loopPeriod", w) : 0.0;
+            if (j.contains("horizontalDisplacement")) {
+                const Json& h = j["horizontalDisplacement"];
+                if (!h.is_boolean()) throw r.missing(w + "horizontalDisplacement (true or false)");
+                d.horizontalDisplacement = h.get<bool>();
+            }
+            if (j.contains("choppiness")) d.choppiness = r.number(j, "choppiness", w);
             m.displacement.push_back(std::move(d));
         }
         if (doc.contains("normals")) {

@@ -12,7 +12,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // A texture's description from its file's header.
-Result<MaterialTexture> describeTexture(const std::string& folder, const std::string& output, int frames, double* loopPeriod) {
+Result<MaterialTexture> describeTexture(const std::string& folder, const std::string& output, int frames, double* loopPeriod,
+                                        bool* horizontalDisplacement = nullptr) {
     const std::string first = (fs::path(folder) / frameFileName(output, 0, frames)).string();
     auto layout = readTextureLayout(first, true);
     if (!layout) return layout.error();
@@ -26,6 +27,8 @@ Result<MaterialTexture> describeTexture(const std::string& folder, const std::st
         const std::string period = findAttribute(layout->attributes, attr::loopPeriod);
         *loopPeriod = period.empty() ? 0.0 : std::stod(period);
     }
+    if (horizontalDisplacement)
+        *horizontalDisplacement = findAttribute(layout->attributes, attr::displacement) == "neighbour4";
     return t;
 }
 
@@ -38,7 +41,8 @@ Result<MaterialDescription> describeMaterial(const Manifest& m, const std::strin
     d.manifest = fs::path(m.path).filename().string();
     for (const DisplacementAsset& a : m.displacement) {
         DisplacementLayer layer = a.layer;
-        auto t = describeTexture(folder, a.output, static_cast<int>(a.frames.size()), &layer.loopPeriod);
+        auto t = describeTexture(folder, a.output, static_cast<int>(a.frames.size()), &layer.loopPeriod,
+                                 &layer.horizontalDisplacement);
         if (!t) return t.error();
         layer.texture = *t;
         d.displacement.push_back(std::move(layer));

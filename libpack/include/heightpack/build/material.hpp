@@ -42,6 +42,10 @@ struct DisplacementLayer {
     std::array<double, 2> scroll{0.0, 0.0};  // B_i, tiles per second along u and v
     double amplitude = 1.0;            // metres per stored unit
     double loopPeriod = 0.0;           // seconds a sequence's frames span (0: one frame)
+    // Tessendorf's choppy waves: the texture also holds Dx, Dy (layers Dx, Dy, packed as the heights), and a
+    // renderer moves the point at x to x - choppiness * amplitude * D(x / tileSize + scroll * t).
+    bool horizontalDisplacement = false;
+    double choppiness = 1.0;
 };
 
 // One octave of the normal map's detail: the map sampled at its own scale and scroll, weighted.
