@@ -71,9 +71,9 @@ bool RenderTarget::create(int w, int h, GLenum colourFormat) {
     height = h;
     glGenTextures(1, &colour);
     glBindTexture(GL_TEXTURE_2D, colour);
-    const bool isFloat = colourFormat == GL_R32F;
-    glTexImage2D(GL_TEXTURE_2D, 0, colourFormat, w, h, 0, isFloat ? GL_RED : GL_RGBA, isFloat ? GL_FLOAT : GL_UNSIGNED_BYTE,
-                 nullptr);
+    const bool isFloat = colourFormat == GL_R32F || colourFormat == GL_RGBA32F;
+    glTexImage2D(GL_TEXTURE_2D, 0, colourFormat, w, h, 0, colourFormat == GL_R32F ? GL_RED : GL_RGBA,
+                 isFloat ? GL_FLOAT : GL_UNSIGNED_BYTE, nullptr);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glGenFramebuffers(1, &framebuffer);

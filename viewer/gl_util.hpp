@@ -26,7 +26,7 @@ struct RenderTarget {
     void destroy();
     // RGB 8-bit pixels, top row first.
     std::vector<unsigned char> readRgb() const;
-    // The red channel as floats (an R32F target), bottom row first, as GL stores it.
+    // The red channel as floats (an R32F or RGBA32F target), bottom row first, as GL stores it.
     std::vector<float> readRed() const;
 };
 

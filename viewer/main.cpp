@@ -2,6 +2,7 @@
 // chapter 18 radial grid. Everything is loaded before a window opens, so bad input never shows one.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -33,7 +34,8 @@ bool parseFloats(const std::string& text, std::vector<float>& out) {
 int main(int argc, char** argv) {
     using namespace heightpack::view;
     ViewerOptions o;
-    std::string size = "1280x720", camera, tiled, explosion, lookup = "trilinear", view = "shaded", tileSizes, amplitudes;
+    std::string size = "1280x720", camera, tiled, explosion, lookup = "trilinear", view = "shaded", tileSizes, amplitudes,
+                choppiness;
     bool frustumOff = false;
     float time = -1.0f;
     CLI::App app{"heightpack-view: water height maps on the GPU Gems 2 chapter 18 radial-grid renderer"};
@@ -76,6 +78,9 @@ int main(int argc, char** argv) {
     app.add_flag("--wireframe", o.settings.wireframe, "draw the grid as lines");
     app.add_option("--tile-size", tileSizes, "metres each map's tile spans, e.g. 64,16");
     app.add_option("--amplitude", amplitudes, "metres per stored unit for each map, e.g. 1.5,0.4");
+    app.add_option("--choppiness", choppiness,
+                   "how far the Dx, Dy of each map that has them move the grid sideways (0: heights only), e.g. 1 "
+                   "or 1,0.5; default the material's, else 1");
     app.add_option("--grid", o.settings.rings, "rings N of the radial grid (segments M follow --segments)");
     app.add_option("--segments", o.settings.segments, "segments M of the radial grid");
     app.add_flag("--json", o.json,
@@ -91,6 +96,7 @@ int main(int argc, char** argv) {
         "  heightpack-view out/swell.exr --screenshot shot.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10\n"
         "  heightpack-view out/swell.exr --bench 300\n"
         "  heightpack-view out/swell_half.ktx2 --lookup gather --headless --screenshot shot.png\n"
+        "  heightpack-view sea_packed.exr --choppiness 1.2      # a map packed with --displacement\n"
         "Keys: WASD fly, Space/Ctrl up/down, right mouse look, E or left click drops an explosion, F1 panel, Esc quits.\n"
         "Exit codes:\n"
         "  0   done\n"
@@ -143,6 +149,11 @@ int main(int argc, char** argv) {
     if (!amplitudes.empty()) {
         if (!parseFloats(amplitudes, v) || v.size() > 2) return usage("--amplitude must be one or two numbers, e.g. 1.5,0.4");
         for (size_t k = 0; k < v.size(); ++k) o.settings.layers[k].amplitude = v[k];
+    }
+    if (!choppiness.empty()) {
+        if (!parseFloats(choppiness, v) || v.size() > 2 || v[0] < 0 || v[0] > 10 || (v.size() > 1 && (v[1] < 0 || v[1] > 10)))
+            return usage("--choppiness must be one or two numbers from 0 to 10, e.g. 1 or 1,0.5");
+        for (size_t k = 0; k < o.settings.layers.size(); ++k) o.settings.layers[k].choppiness = v[std::min(k, v.size() - 1)];
     }
     if (o.settings.rings < 2 || o.settings.segments < 3 || o.settings.rings > 4096 || o.settings.segments > 4096)
         return usage("--grid and --segments must be 2..4096 and 3..4096");

@@ -44,6 +44,9 @@ void drawPanel(RenderSettings& s, PanelState& state, Camera& camera, const Scene
             ImGui::SliderFloat2("scroll (tiles/s)", glm::value_ptr(l.scroll), -0.2f, 0.2f);
             ImGui::SliderFloat("wave height (m)", &l.amplitude, 0.0f, 20.0f);
             ImGui::EndDisabled();
+            ImGui::BeginDisabled(!present || !scene.layers[k].horizontal);  // only maps with Dx, Dy move sideways
+            ImGui::SliderFloat("choppiness", &l.choppiness, 0.0f, 3.0f);
+            ImGui::EndDisabled();
             ImGui::PopID();
         }
         ImGui::SliderFloat("water level (m)", &s.waterLevel, -10.0f, 10.0f);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "displacement_gl.hpp"
 #include "shaders.hpp"
 #include "texture_upload.hpp"
 
@@ -16,7 +17,8 @@ namespace {
 // height textures and three shading ones: within the 16 units every GL 3.3 implementation offers a stage.
 enum Unit {
     kPacked0 = 0, kPacked1, kPlain0, kPlain1, kPacked0Next, kPacked1Next, kPlain0Next, kPlain1Next,
-    kGather0, kGather1, kGather0Next, kGather1Next, kNormal, kFresnel, kFoam, kCombined, kTiledMap
+    kGather0, kGather1, kGather0Next, kGather1Next, kNormal, kFresnel, kFoam, kCombined, kTiledMap,
+    kShift0, kShift1, kShift0Next, kShift1Next
 };
 
 constexpr int kMaxGatherLevels = 16;  // common.glsl's kMaxLevels: a 32768-texel side
@@ -82,13 +84,14 @@ bool Renderer::init(std::string& error, bool gather) {
     glGenQueries(3, queries_);
     // Bound to unused samplers so every sampler has a complete texture.
     dummyTexture_ = uploadFloatChain({Image(1, 1, 4, 0.0f)}, false, Wrap::Periodic);
+    zeroShift_ = uploadZeroShift();
     checkGl("Renderer::init");
     return true;
 }
 
 Renderer::~Renderer() {
     releaseLayers();
-    for (GLuint t : {normalTexture_, fresnelTexture_, foamTexture_, dummyTexture_})
+    for (GLuint t : {normalTexture_, fresnelTexture_, foamTexture_, dummyTexture_, zeroShift_})
         if (t) glDeleteTextures(1, &t);
     combined_.destroy();
     if (gridVao_) glDeleteVertexArrays(1, &gridVao_);
@@ -136,7 +139,7 @@ void Renderer::buildGrid(int rings, int segments) {
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)), indices.data(),
                  GL_STATIC_DRAW);
     glBindVertexArray(0);
-    combined_.create(segments, rings, GL_R32F);
+    combined_.create(segments, rings, GL_RGBA32F);  // height, and the horizontal shift of choppy maps
     checkGl("Renderer::buildGrid");
 }
 
@@ -153,6 +156,10 @@ void Renderer::bindLayers(GLuint program, float time) {
     set(program, "uGather1", int(kGather1));
     set(program, "uGather0Next", int(kGather0Next));
     set(program, "uGather1Next", int(kGather1Next));
+    set(program, "uShift0", int(kShift0));
+    set(program, "uShift1", int(kShift1));
+    set(program, "uShift0Next", int(kShift0Next));
+    set(program, "uShift1Next", int(kShift1Next));
     for (int k = 0; k < 2; ++k) {
         const bool has = k < int(layers_.size());
         // A sequence plays its loop: frame f covers [f, f+1) * period / frames, blended into the next.
@@ -177,6 +184,9 @@ void Renderer::bindLayers(GLuint program, float time) {
         const Normalisation a = has ? layers_[k].frames[current].decode : Normalisation{};
         const Normalisation b = has ? layers_[k].frames[next].decode : Normalisation{};
         glUniform4f(glGetUniformLocation(program, indexed("uLayerDecode", k).c_str()), a.offset, a.scale, b.offset, b.scale);
+        const bool shift = has && layers_[k].frames[current].shift;
+        bindArrayTexture(kShift0 + k, shift ? layers_[k].frames[current].shift : zeroShift_);
+        bindArrayTexture(kShift0Next + k, shift ? layers_[k].frames[next].shift : zeroShift_);
     }
 }
 
@@ -192,6 +202,8 @@ void Renderer::setCommonUniforms(GLuint p, const Camera& camera, const RenderSet
                                has && scene_->layers[k].wrap == Wrap::Clamp ? 1.0f : 0.0f);
         glUniform2fv(glGetUniformLocation(p, indexed("uLayerStored", k).c_str()), 1, glm::value_ptr(stored));
         glUniform1i(glGetUniformLocation(p, indexed("uLayerLevels", k).c_str()), has ? layers_[k].levels : 1);
+        const bool choppy = has && scene_->layers[k].horizontal;
+        glUniform1f(glGetUniformLocation(p, indexed("uLayerChop", k).c_str()), choppy ? l.choppiness : 0.0f);
         glUniform2i(glGetUniformLocation(p, indexed("uLayerSize", k).c_str()), has ? scene_->layers[k].frames[0].packed.width : 1,
                     has ? scene_->layers[k].frames[0].packed.height : 1);
         if (!has) continue;

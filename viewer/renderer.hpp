@@ -41,6 +41,9 @@ struct LayerSettings {
     float tileSize = 64.0f;       // metres a tile spans (scale A = 1 / tileSize)
     glm::vec2 scroll{0.01f, 0.004f};  // tiles per second (B)
     float amplitude = 1.0f;       // metres per stored unit
+    // For a map with Dx, Dy: the grid point at x moves to x - choppiness * amplitude * D (Tessendorf's
+    // x + lambda D with lambda = -choppiness: his D points away from the crests, so this sharpens them).
+    float choppiness = 1.0f;
 };
 
 struct Explosion {
@@ -130,7 +133,8 @@ public:
                 GLuint framebuffer, bool measure, bool wallClock = false);
     const PassTimes& times() const { return times_; }
     // The combine pass's last output: the height of every grid vertex, segment along x, ring along y
-    // (ring 0 first). Empty unless the last render was two-pass.
+    // (ring 0 first), from the red of its RGBA32F target (green and blue: the vertex's horizontal shift).
+    // Empty unless the last render was two-pass.
     std::vector<float> gridHeights() const { return combined_.readRed(); }
     const Scene* scene() const { return scene_; }
     ~Renderer();
@@ -147,6 +151,7 @@ private:
     struct FrameTextures {
         GLuint packed = 0, plain = 0, gather = 0;
         Normalisation decode;  // sampled texels to the file's values, the same for all three
+        GLuint shift = 0;      // Dx, Dy as a two-layer array texture (displacement_gl.hpp), or 0
     };
     struct LayerTextures {
         std::vector<FrameTextures> frames;
@@ -158,7 +163,7 @@ private:
     std::vector<LayerTextures> layers_;
     void releaseLayers();
     void uploadLayers(const Scene& scene);
-    GLuint normalTexture_ = 0, fresnelTexture_ = 0, foamTexture_ = 0, dummyTexture_ = 0;
+    GLuint normalTexture_ = 0, fresnelTexture_ = 0, foamTexture_ = 0, dummyTexture_ = 0, zeroShift_ = 0;
     Normalisation normalDecode_, fresnelDecode_;
     bool gather_ = false;
     std::string gatherProblem_;

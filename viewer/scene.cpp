@@ -7,6 +7,7 @@
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/read.hpp"
+#include "scene_displacement.hpp"
 #include "texture_reader.hpp"
 
 namespace heightpack::view {
@@ -41,6 +42,7 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
             layer.wrap = findAttribute(file->attributes, attr::wrap).value_or(Wrap::Periodic);
             layer.source = layout == "neighbour4" ? "packed texture" : "plain texture, packed in memory";
         }
+        if (Status s = takeDisplacement(path, *file, layer.wrap, frame); !s) return s;
         StoredChain stored = file->stored ? std::move(*file->stored) : storeFloats(file->levels);
         if (layout == "neighbour4") {
             if (stored.channels != 4) return badInput(path, "is marked neighbour4 but has no 4 channels", "pack it again");
@@ -72,6 +74,7 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
     measure(maps->plain, frame);
     frame.plain = storeFloats(maps->plain);
     frame.packed = storeFloats(maps->packed);
+    if (Status s = packDisplacementOf(path, load, loaded->source, pack, frame); !s) return s;
     if (first) layer.source = "painted map, packed in memory";
     return Done{};
 }
@@ -89,6 +92,9 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
                       frame.packed.width != layer.frames[0].packed.width ||
                       frame.packed.height != layer.frames[0].packed.height))
             return badInput(files[f], "differs in size from the sequence's first frame", "make every frame the same size");
+        if (f > 0 && frame.shiftX.empty() != layer.frames[0].shiftX.empty())
+            return badInput(files[f], "differs from the sequence's first frame in holding Dx, Dy",
+                            "make every frame with the displacement, or none");
         layer.frames.push_back(std::move(frame));
     }
     if (files.size() > 1) {
@@ -101,6 +107,7 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
         layer.minStored = std::min(layer.minStored, frame.minStored);
         layer.maxStored = std::max(layer.maxStored, frame.maxStored);
     }
+    layer.horizontal = !layer.frames[0].shiftX.empty();
     // Waves move about the map's mean: the 1x1 level of the first frame, whatever the map's units.
     layer.midStored = layer.frames[0].meanStored;
     return layer;

@@ -20,6 +20,8 @@ struct HeightFrame {
     StoredChain plain;            // R per level: the reference path, and the gather atlas is built from it
     float minStored = 0.0f, maxStored = 1.0f;  // over level 0, in the file's values
     float meanStored = 0.5f;      // the 1x1 level
+    // Horizontal displacement, packed as the heights (RGBA per level); empty for a map without Dx, Dy.
+    std::vector<Image> shiftX, shiftY;
 };
 
 struct HeightLayer {
@@ -30,6 +32,7 @@ struct HeightLayer {
     Wrap wrap = Wrap::Periodic;
     float midStored = 0.5f;       // the map's mean (its 1x1 level): subtracted so waves sit on the water level
     float minStored = 0.0f, maxStored = 1.0f;
+    bool horizontal = false;      // every frame carries Dx, Dy (Tessendorf's choppy waves)
 };
 
 struct NormalMap {

@@ -2,6 +2,7 @@
 // gather atlases where the context can use them, and counting the bytes that takes.
 #include <string>
 
+#include "displacement_gl.hpp"
 #include "renderer.hpp"
 #include "texture_upload.hpp"
 
@@ -23,7 +24,7 @@ void enableMipmaps() {
 void Renderer::releaseLayers() {
     for (const LayerTextures& l : layers_) {
         for (const FrameTextures& f : l.frames) {
-            for (GLuint t : {f.packed, f.plain, f.gather})
+            for (GLuint t : {f.packed, f.plain, f.gather, f.shift})
                 if (t) glDeleteTextures(1, &t);
         }
     }
@@ -41,6 +42,7 @@ void Renderer::uploadLayers(const Scene& scene) {
             // Packed and gather: nearest, since the shader filters. Plain: GL_LINEAR, the reference.
             FrameTextures f{uploadStoredChain(frame.packed, false, layer.wrap), uploadStoredChain(frame.plain, true, layer.wrap),
                             0, frame.plain.decode};
+            if (!frame.shiftX.empty()) f.shift = uploadShiftChain(frame.shiftX, frame.shiftY);
             if (gather_ && gatherProblem_.empty()) {
                 const GatherAtlas atlas = buildGatherAtlas(frame.plain, layer.wrap);
                 if (atlas.texels.width > maxSize || atlas.texels.height > maxSize) {

@@ -19,6 +19,7 @@ Result<ViewerTexture> readViewerTexture(const std::string& path) {
     if (!file) return file.error();
     texture.levels = std::move(file->levels);
     texture.attributes = std::move(file->attributes);
+    texture.channelNames = std::move(file->channelNames);
     if (file->pixelType == "half") texture.stored = storeFloats(texture.levels, ComponentKind::Float16);
     texture.unitIntegers = file->pixelType != "float" && file->pixelType != "half";
     return texture;

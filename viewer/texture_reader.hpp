@@ -18,6 +18,7 @@ struct ViewerTexture {
     std::vector<Image> levels;          // level 0 first, every channel, mapped back to the file's values
     std::optional<StoredChain> stored;  // KTX2, DDS and half EXR: the texels as stored
     Attributes attributes;              // the EXR header, KTX2 key/values, or what a DDS header records
+    std::vector<std::string> channelNames;  // of levels' channels, where the file names them (EXR)
     // An 8- or 16-bit integer image read through OpenImageIO (a painted PNG): values in [0, 1] that stand
     // for something else (a normal's 0.5 + 0.5 n, an sRGB colour). KTX2 and DDS normalised texels are
     // already mapped back through their recorded scale and offset, so this is false for them.

@@ -1,12 +1,13 @@
 // Pass one of the render-to-texture loop: the height of every grid vertex, one texel each (texel x =
-// segment, y = ring), so pass two displaces with a single plain fetch.
+// segment, y = ring), with its horizontal shift when a map is choppy, so pass two displaces with a single
+// plain fetch.
 uniform mat4 uViewProj;
 uniform bool uFrustumBranch;
 uniform vec2 uGuardBand;
 uniform int uSegments;
 uniform int uRings;
 
-layout(location = 0) out float outHeight;
+layout(location = 0) out vec4 outCombined;  // height, then the horizontal shift of choppy maps
 
 void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);
@@ -16,5 +17,6 @@ void main() {
     vec4 flatClip = uViewProj * vec4(xy, uWaterLevel, 1.0);
     bool visible = all(lessThan(abs(flatClip.xyz), flatClip.www * uGuardBand.x + uGuardBand.y));
     float lod;
-    outHeight = (!uFrustumBranch || visible) ? waterHeight(xy, d, lod) : 0.0;
+    bool sampled = !uFrustumBranch || visible;
+    outCombined = vec4(sampled ? waterHeight(xy, d, lod) : 0.0, sampled && anyChoppy() ? waterShift(xy, d) : vec2(0.0), 0.0);
 }

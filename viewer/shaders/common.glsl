@@ -130,6 +130,59 @@ float layerContribution(int k, sampler2D packedTex, sampler2D plainTex, sampler2
     return uLayerXform[k].w * (stored - uLayerStored[k].x);
 }
 
+// Tessendorf's choppy waves: maps that carry Dx, Dy move each point sideways as well as up. Their Dx, Dy
+// are packed as the heights are and read with the same lookup, at the same level and LOD band, so a
+// vertex's shift belongs to the very height it is given.
+uniform sampler2DArray uShift0, uShift1, uShift0Next, uShift1Next;  // layer 0: Dx, layer 1: Dy (RGBA packed)
+uniform float uLayerChop[kMaxLayers];   // choppiness of each map with Dx, Dy; 0 for a map without them
+
+vec2 packedShiftBilinear(sampler2DArray tex, int layer, vec2 uv, int level, bool clampMode) {
+    vec2 size = levelSize(layer, level);
+    vec2 p = (clampMode ? clamp(uv, 0.0, 1.0) : fract(uv)) * size - 0.5;
+    if (clampMode) p = clamp(p, vec2(0.0), size - 1.0);
+    vec2 i = floor(p);
+    vec2 f = p - i;
+    ivec2 at = ivec2(mod(i, size));
+    vec4 x = texelFetch(tex, ivec3(at, 0), level);
+    vec4 y = texelFetch(tex, ivec3(at, 1), level);
+    return vec2(mix(mix(x.r, x.g, f.x), mix(x.b, x.a, f.x), f.y), mix(mix(y.r, y.g, f.x), mix(y.b, y.a, f.x), f.y));
+}
+
+// layerHeight's levels and band for D (the reference and gather lookups are for heights: D stays packed).
+vec2 layerShiftAt(sampler2DArray tex, int layer, vec2 uv, float lod, bool clampMode) {
+    int last = uLayerLevels[layer] - 1;
+    if (uLookup % 2 == 0) return packedShiftBilinear(tex, layer, uv, 0, clampMode);
+    lod = clamp(lod, 0.0, float(last));
+    int level = min(int(floor(lod)), last);
+    float fr = lod - float(level);
+    if (level == last || fr < uBands.x) return packedShiftBilinear(tex, layer, uv, level, clampMode);
+    vec2 coarse = packedShiftBilinear(tex, layer, uv, level + 1, clampMode);
+    if (fr > uBands.y) return coarse;
+    vec2 fine = packedShiftBilinear(tex, layer, uv, level, clampMode);
+    return mix(fine, coarse, (fr - uBands.x) / (uBands.y - uBands.x));
+}
+
+// Layer k's horizontal shift at xy: x + lambda A D with lambda = -choppiness, since the D that synth
+// writes (Tessendorf's -i k/|k| h) points away from the crests; frames blended as the heights are.
+vec2 layerShift(int k, sampler2DArray tex, sampler2DArray next, vec2 xy, float d) {
+    float lod = layerLod(k, d);
+    vec2 uv = layerUv(k, xy);
+    bool clampMode = uLayerStored[k].y > 0.5;
+    vec2 D = layerShiftAt(tex, k, uv, lod, clampMode);
+    if (uLayerBlend[k] > 0.0) D = mix(D, layerShiftAt(next, k, uv, lod, clampMode), uLayerBlend[k]);
+    return -uLayerChop[k] * uLayerXform[k].w * D;
+}
+
+bool anyChoppy() { return (uLayerCount > 0 && uLayerChop[0] != 0.0) || (uLayerCount > 1 && uLayerChop[1] != 0.0); }
+
+// Where the grid point at xy moves sideways, seen from distance d (the same d as its height).
+vec2 waterShift(vec2 xy, float d) {
+    vec2 s = vec2(0.0);
+    if (uLayerCount > 0 && uLayerChop[0] != 0.0) s += layerShift(0, uShift0, uShift0Next, xy, d);
+    if (uLayerCount > 1 && uLayerChop[1] != 0.0) s += layerShift(1, uShift1, uShift1Next, xy, d);
+    return s;
+}
+
 // Height above the water level at world position xy, seen from distance d; lod0 receives layer 0's LOD.
 float waterHeight(vec2 xy, float d, out float lod0) {
     float h = 0.0;

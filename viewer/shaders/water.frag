@@ -2,6 +2,7 @@
 in vec3 vWorld;
 in float vHeight;
 in float vLod;
+in vec2 vGrid;
 
 uniform int uView;                  // 0 shaded, 1 height as grey, 2 LOD as colour
 uniform vec2 uHeightRange;          // heights mapped to grey in view 1
@@ -31,6 +32,20 @@ vec3 normalFromHeights(vec2 xy, float d) {
     float hx = waterHeight(xy + vec2(e, 0.0), d, lod) - waterHeight(xy - vec2(e, 0.0), d, lod);
     float hy = waterHeight(xy + vec2(0.0, e), d, lod) - waterHeight(xy - vec2(0.0, e), d, lod);
     return normalize(vec3(-hx, -hy, 2.0 * e));
+}
+
+// With choppy maps the surface is P(u) = (u + shift(u), H(u)) over the grid point u: its normal is the
+// cross product of P's differences along x and y (a fold turns it over; it is kept facing up).
+vec3 surfacePoint(vec2 u, float d) {
+    float lod;
+    return vec3(u + waterShift(u, d), waterHeight(u, d, lod));
+}
+
+vec3 normalFromSurface(vec2 u, float d) {
+    float e = max(0.02, d * uPixelAngle);
+    vec3 n = cross(surfacePoint(u + vec2(e, 0.0), d) - surfacePoint(u - vec2(e, 0.0), d),
+                   surfacePoint(u + vec2(0.0, e), d) - surfacePoint(u - vec2(0.0, e), d));
+    return normalize(n.z < 0.0 ? -n : n);
 }
 
 // The surface's own slope from the displaced heights, plus the detail of four normal-map octaves. The
@@ -73,7 +88,7 @@ void main() {
     vec3 toEye = uCameraPos - vWorld;
     float d = length(toEye);
     vec3 v = toEye / d;
-    vec3 n = normalFromHeights(vWorld.xy, d);
+    vec3 n = anyChoppy() ? normalFromSurface(vGrid, d) : normalFromHeights(vWorld.xy, d);
     if (uHasNormalMap) n = normalFromMap(vWorld.xy, n);
     // 18.2.4, back sides of waves: lighting assumes a flat surface, so normals facing away from the viewer
     // are tilted toward it.

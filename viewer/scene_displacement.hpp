@@ -1,0 +1,24 @@
+// The horizontal displacement (Dx, Dy) of a height map, loaded beside its heights: from the Dx, Dy layers of
+// a texture `heightpack pack --displacement` wrote, or packed in memory from a synthesised EXR's Dx, Dy.
+#pragma once
+
+#include <string>
+
+#include "heightpack/build/pack_job.hpp"
+#include "scene.hpp"
+#include "texture_reader.hpp"
+
+namespace heightpack::view {
+
+// For a heightpack texture (layout neighbour4 or plain) that records heightpack:displacement: moves its
+// Dx, Dy into frame.shiftX / shiftY (packed, per level) and leaves file's levels holding the heights alone
+// (R, G, B, A or Y), as a texture without displacement has them (a half EXR's stored texels are dropped:
+// the heights then upload as floats, which hold every half). Does nothing for any other file.
+Status takeDisplacement(const std::string& path, ViewerTexture& file, Wrap wrap, HeightFrame& frame);
+
+// For a map packed in memory: when the file at path has Dx, Dy channels, packs them as packHeights packed
+// its heights with the same options, into frame.shiftX / shiftY.
+Status packDisplacementOf(const std::string& path, const LoadOptions& load, const SourceInfo& source,
+                          const PackOptions& pack, HeightFrame& frame);
+
+}  // namespace heightpack::view
