@@ -66,8 +66,8 @@ const Image kDy = randomImage(32, 16, 8, -0.5f, 0.5f);
 TEST(PackDisplacement, KeepsDxDyBitExactAtLevelZeroPackedAsTheHeights) {
     ScratchDir dir;
     writeSea(dir.file("sea.exr"), kHeights, kDx, kDy);
-    const ProcessResult packed = run({"pack", dir.file("sea.exr"), "--displacement", "--wrap", "clamp", "--json", "-o",
-                                      dir.file("sea_packed.exr")});
+    const ProcessResult packed = run({"pack", dir.file("sea.exr"), "--displacement", "--wrap", "clamp", "--json",
+                                      "--emit-plain", dir.file("plain.exr"), "-o", dir.file("sea_packed.exr")});
     ASSERT_EQ(packed.code, 0) << packed.err;
     EXPECT_EQ(nlohmann::json::parse(packed.out)["displacement"], "neighbour4");
     const Level top = readLevel(dir.file("sea_packed.exr"), 0);
@@ -88,6 +88,14 @@ TEST(PackDisplacement, KeepsDxDyBitExactAtLevelZeroPackedAsTheHeights) {
             }
         }
     }
+    // The unpacked chain carries them too, as channels Y, Dx, Dy.
+    const Level plain = readLevel(dir.file("plain.exr"), 0);
+    ASSERT_EQ(plain.names, (std::vector<std::string>{"Y", "Dx", "Dy"}));
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 32; ++x) {
+            ASSERT_EQ(plain.at("Dx", x, y), kDx.at(x, y));
+            ASSERT_EQ(plain.at("Dy", x, y), kDy.at(x, y));
+        }
     // The heights are what pack writes without the displacement, at every level.
     ASSERT_EQ(run({"pack", dir.file("sea.exr"), "--wrap", "clamp", "-q", "-o", dir.file("heights.exr")}).code, 0);
     for (int mip = 0; mip < 6; ++mip) {
