@@ -41,8 +41,8 @@ struct LayerSettings {
     float tileSize = 64.0f;       // metres a tile spans (scale A = 1 / tileSize)
     glm::vec2 scroll{0.01f, 0.004f};  // tiles per second (B)
     float amplitude = 1.0f;       // metres per stored unit
-    // For a map with Dx, Dy: the grid point at x moves to x - choppiness * amplitude * D (Tessendorf's
-    // x + lambda D with lambda = -choppiness: his D points away from the crests, so this sharpens them).
+    // For a map with Dx, Dy: the grid point at x moves to x + choppiness * amplitude * D (Tessendorf's
+    // x + lambda D; synth's D points toward the crests, so a positive choppiness sharpens them).
     float choppiness = 1.0f;
 };
 

@@ -1,5 +1,5 @@
 // Tessendorf's choppy waves in heightpack-view (issue 15, point 3): a swell with Dx, Dy, packed with
-// --displacement, seen from straight above as heights in grey. Moving each grid point by -choppiness * D
+// --displacement, seen from straight above as heights in grey. Moving each grid point by choppiness * D
 // squeezes the crests and stretches the troughs by an amount known in closed form; the rendered grid must
 // show it, in the one-pass and the two-pass paths alike.
 #include <OpenImageIO/imageio.h>
@@ -20,7 +20,7 @@ namespace {
 constexpr double kAmplitude = 0.8;  // metres
 constexpr double kWavelength = 16.0;  // metres: one wave per tile
 
-// h = A cos(k x) and Tessendorf's D = -i k/|k| h, which for one cosine is Dx = A sin(k x), Dy = 0.
+// h = A cos(k x) and synth's D = i k/|k| h (toward the crests), which for one cosine is Dx = -A sin(k x), Dy = 0.
 void writeSwell(const std::string& path) {
     const int w = 64, h = 8;
     OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::FLOAT);
@@ -29,7 +29,7 @@ void writeSwell(const std::string& path) {
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const double phase = 2 * M_PI * (x + 0.5) / w;
-            pixels.insert(pixels.end(), {float(kAmplitude * std::cos(phase)), float(kAmplitude * std::sin(phase)), 0.0f});
+            pixels.insert(pixels.end(), {float(kAmplitude * std::cos(phase)), float(-kAmplitude * std::sin(phase)), 0.0f});
         }
     auto out = OIIO::ImageOutput::create(path);
     ASSERT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
@@ -115,7 +115,7 @@ TEST(ViewerChoppy, CrestsSharpenAndTroughsWidenByTheClosedFormAmount) {
             args.push_back("--two-pass");
             bands.push_back(measure(shot(dir, "two.png", args)));
         }
-        // A point at x moves to x - c A sin(k x): the band |k x| < pi/3 where h > A/2 shrinks by c A sqrt(3),
+        // A point at x moves to x + c D = x - c A sin(k x): the band |k x| < pi/3 where h > A/2 shrinks by c A sqrt(3),
         // the trough band grows by as much; as fractions of the wavelength L: 1/3 -+ c A sqrt(3) / L.
         const double shift = c * kAmplitude * std::sqrt(3.0) / kWavelength;
         for (const Bands& b : bands) {

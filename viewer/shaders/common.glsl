@@ -162,15 +162,15 @@ vec2 layerShiftAt(sampler2DArray tex, int layer, vec2 uv, float lod, bool clampM
     return mix(fine, coarse, (fr - uBands.x) / (uBands.y - uBands.x));
 }
 
-// Layer k's horizontal shift at xy: x + lambda A D with lambda = -choppiness, since the D that synth
-// writes (Tessendorf's -i k/|k| h) points away from the crests; frames blended as the heights are.
+// Layer k's horizontal shift at xy: x + choppiness A D, synth's D = i k/|k| h pointing toward the crests
+// (a Gerstner wave's sharpening for positive choppiness); frames blended as the heights are.
 vec2 layerShift(int k, sampler2DArray tex, sampler2DArray next, vec2 xy, float d) {
     float lod = layerLod(k, d);
     vec2 uv = layerUv(k, xy);
     bool clampMode = uLayerStored[k].y > 0.5;
     vec2 D = layerShiftAt(tex, k, uv, lod, clampMode);
     if (uLayerBlend[k] > 0.0) D = mix(D, layerShiftAt(next, k, uv, lod, clampMode), uLayerBlend[k]);
-    return -uLayerChop[k] * uLayerXform[k].w * D;
+    return uLayerChop[k] * uLayerXform[k].w * D;
 }
 
 bool anyChoppy() { return (uLayerCount > 0 && uLayerChop[0] != 0.0) || (uLayerCount > 1 && uLayerChop[1] != 0.0); }

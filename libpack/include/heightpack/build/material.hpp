@@ -43,7 +43,7 @@ struct DisplacementLayer {
     double amplitude = 1.0;            // metres per stored unit
     double loopPeriod = 0.0;           // seconds a sequence's frames span (0: one frame)
     // Tessendorf's choppy waves: the texture also holds Dx, Dy (layers Dx, Dy, packed as the heights), and a
-    // renderer moves the point at x to x - choppiness * amplitude * D(x / tileSize + scroll * t).
+    // renderer moves the point at x to x + choppiness * amplitude * D(x / tileSize + scroll * t).
     bool horizontalDisplacement = false;
     double choppiness = 1.0;
 };
