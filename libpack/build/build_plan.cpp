@@ -163,8 +163,10 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
             addSynthSteps(steps, d, pack);  // heights only: a synthesised map's Dx, Dy are not written yet
         } else {
             // Dx, Dy ride along when the source has them (synth's displacement), unless choppiness turns them
-            // off. Judged from the header, so a painted map's key stays what it was.
-            pack.displacement = d.layer.choppiness > 0 && hasDisplacement(d.frames.front());
+            // off, into an EXR (a KTX2 or DDS texel has four channels, not twelve). Judged from the header, so
+            // a painted map's key stays what it was.
+            pack.displacement = d.layer.choppiness > 0 && hasDisplacement(d.frames.front()) &&
+                                containerForPath(d.output).value_or(Container::Exr) == Container::Exr;
             addSourcedSteps(steps, d, d.layer.name, "displacement", m.threshold, pack, makePacked);
         }
     }
