@@ -37,10 +37,7 @@ bool hasDisplacement(const std::string& path) {
 
 Result<Image> loadDisplacement(const std::string& path, const LoadOptions& options) {
     detail::StderrSilencer quiet(options.silenceDecoderMessages);
-    detail::SizeLimits limits;
-    limits.maxSide = options.maxSide;
-    limits.maxTexels = options.maxTexels;
-    auto opened = detail::openImage(path, limits);
+    auto opened = detail::openImage(path, detail::sizeLimitsOf(options));
     if (!opened) return opened.error();
     OIIO::ImageInput& in = **opened;
     const OIIO::ImageSpec spec = in.spec();

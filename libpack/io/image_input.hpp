@@ -8,6 +8,7 @@
 #include <string>
 
 #include "heightpack/core/result.hpp"
+#include "heightpack/io/read.hpp"
 
 namespace heightpack::detail {
 
@@ -17,6 +18,14 @@ struct SizeLimits {
     int64_t maxTexels = int64_t(1) << 28;  // per level
     int64_t maxSamples = int64_t(1) << 30; // texels * channels per level: 4 GiB of floats
 };
+
+// The limits a height-map load asks for (LoadOptions' maxSide and maxTexels), for every reader of one.
+inline SizeLimits sizeLimitsOf(const LoadOptions& options) {
+    SizeLimits limits;
+    limits.maxSide = options.maxSide;
+    limits.maxTexels = options.maxTexels;
+    return limits;
+}
 
 // Fails with BadInput when spec (one level of path) is empty, 3D, or larger than limits.
 Status judgeSize(const std::string& path, const OIIO::ImageSpec& spec, const SizeLimits& limits);

@@ -92,10 +92,7 @@ std::string numberText(double v) {
 
 Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& options) {
     detail::StderrSilencer quiet(options.silenceDecoderMessages);
-    detail::SizeLimits limits;
-    limits.maxSide = options.maxSide;
-    limits.maxTexels = options.maxTexels;
-    auto opened = detail::openImage(path, limits);
+    auto opened = detail::openImage(path, detail::sizeLimitsOf(options));
     if (!opened) return opened.error();
     std::unique_ptr<OIIO::ImageInput>& in = *opened;
     const OIIO::ImageSpec spec = in->spec();
