@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "heightpack/build/synth_job.hpp"
+#include "heightpack/core/cascades.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/threads.hpp"
@@ -115,7 +116,7 @@ public:
             ->check(finiteRange(0.0, 1000.0));
         cmd->add_option("--cascades", options_.cascades, "bake N tiles of sizes tile * (17/61)^c, disjoint bands: NAME_c0.EXT ...")
             ->capture_default_str()
-            ->check(CLI::Range(1, 4));
+            ->check(CLI::Range(1, kMaxCascades));
         cmd->add_flag("--report", options_.report, "print the sea state: Hs, peak period, steepness, folds, displacement");
         addCommonOptions(*cmd);
         cmd->footer(
@@ -137,7 +138,8 @@ public:
         if (options_.frames < 1 || options_.frames > 10000) return usage("--frames must be 1 to 10000");
         if (options_.frames > 1 && loop_.empty()) return usage("--frames needs --loop: the period the frames cover");
         const int count = std::max(1, options_.cascades);
-        if (count > 1 && s.size < 32) return usage("--cascades needs --size 32 or more: each band needs rings of waves");
+        if (count > 1 && s.size < kCascadeMinSize)
+            return usage("--cascades needs --size " + std::to_string(kCascadeMinSize) + " or more: each band needs rings of waves");
         std::vector<OutputRule> outputs;
         for (int c = 0; c < count; ++c)
             for (int f = 0; f < options_.frames; ++f)

@@ -102,10 +102,11 @@ NormalJobOptions normalOptions(const NormalAsset& n, const std::string& version)
     return job;
 }
 
-// Frame f of a synthesised sea: the heights in metres at f * loop / frames, as `heightpack synth` writes
-// them, into the intermediate file (with the loop's timing, which the packed frame then carries), packed
-// from there like any source, and the intermediate removed. Its name is fixed, not a temporary one,
-// because the packed header records the source's name and the bytes must be the same on every run.
+// Frame f of a synthesised sea: the heights in metres at f * loop / frames, and with pack.displacement
+// Dx, Dy (metres per unit of choppiness), as `heightpack synth` writes them, into the intermediate file
+// (with the loop's timing, which the packed frame then carries), packed from there like any source, and
+// the intermediate removed. Its name is fixed, not a temporary one, because the packed header records the
+// source's name and the bytes must be the same on every run.
 Status makeSynthesised(const SynthSource& sea, int frame, const std::string& intermediate, const PackOptions& pack,
                        const std::string& output, int threads, const ProgressFn& progress) {
     const fs::path path = fs::path(output).parent_path() / intermediate;
@@ -114,15 +115,28 @@ Status makeSynthesised(const SynthSource& sea, int frame, const std::string& int
     if (ec) return cannotWrite(path.parent_path().string(), "cannot be created as a folder", "check the permissions");
     progress("synth", 0.0);
     const double t = sea.frames > 1 ? frame * sea.spectrum.loopPeriod / sea.frames : 0.0;
-    SeaFields fields = Ocean(sea.spectrum, threads).fields(t, {true, false, false}, 1.0, threads);
+    const bool withD = pack.displacement;
+    SeaFields fields = Ocean(sea.spectrum, threads).fields(t, {true, withD, false}, 1.0, threads);
+    Image image = std::move(fields.heights);
     FlatImageOptions flat;
+    if (withD) {
+        // Y, Dx, Dy interleaved, the channels synth --displacement writes and pack --displacement reads.
+        Image sea3(image.width, image.height, 3);
+        for (size_t i = 0; i < image.texelCount(); ++i) {
+            sea3.pixels[3 * i] = image.pixels[i];
+            sea3.pixels[3 * i + 1] = fields.displacement.pixels[2 * i];
+            sea3.pixels[3 * i + 2] = fields.displacement.pixels[2 * i + 1];
+        }
+        image = std::move(sea3);
+        flat.channelNames = {"Y", "Dx", "Dy"};
+    }
     flat.attributes = {attribute(attr::layout, "synthesised"), attribute(attr::version, pack.version)};
     if (sea.frames > 1) {
         flat.attributes.push_back(attribute(attr::frame, std::to_string(frame) + "/" + std::to_string(sea.frames)));
         flat.attributes.push_back(attribute(attr::loopPeriod, static_cast<float>(sea.spectrum.loopPeriod)));
         flat.attributes.push_back(attribute(attr::time, static_cast<float>(t)));
     }
-    Status made = writeFlatImage(path.string(), fields.heights, flat);
+    Status made = writeFlatImage(path.string(), image, flat);
     if (made) made = makePacked(pack, path.string(), output, threads, progress);
     fs::remove(path, ec);  // an intermediate only: the key, not this file, says whether to rebuild
     return made;
@@ -141,8 +155,13 @@ void addSynthSteps(std::vector<Step>& steps, const DisplacementAsset& d, const P
         step.report.line = d.line;
         step.report.output = frameFileName(d.output, f, frames);
         step.mustTile = false;
+        // The cascade's own band, tile size and seed are in its spectrum; its place among the others, a
+        // line only with cascades (so every key made before them still matches). Dx, Dy are pack's line.
+        const std::string cascade = sea.cascades > 1 ? "synth.cascade=" + std::to_string(sea.cascade) + "/" +
+                                                           std::to_string(sea.cascades) + "\n"
+                                                     : "";
         step.optionsText = "kind=displacement\nsynth.frame=" + std::to_string(f) + "/" + std::to_string(frames) +
-                           "\n" + keyText(sea.spectrum, "synth.") + keyText(pack, "displacement.");
+                           "\n" + cascade + keyText(sea.spectrum, "synth.") + keyText(pack, "displacement.");
         const std::string intermediate = d.frames[f];
         step.make = [sea, f, intermediate, pack](const std::string& output, int threads, const ProgressFn& progress) {
             return makeSynthesised(sea, f, intermediate, pack, output, threads, progress);
@@ -160,7 +179,10 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
         pack.scale = static_cast<float>(d.layer.heightScale);
         pack.offset = static_cast<float>(d.layer.heightOffset);
         if (d.synth) {
-            addSynthSteps(steps, d, pack);  // heights only: a synthesised map's Dx, Dy are not written yet
+            // displacement = true synthesises Dx, Dy and keeps them as a file's would be kept (below).
+            pack.displacement = d.synth->displacement && d.layer.choppiness > 0 &&
+                                containerForPath(d.output).value_or(Container::Exr) == Container::Exr;
+            addSynthSteps(steps, d, pack);
         } else {
             // Dx, Dy ride along when the source has them (synth's displacement), unless choppiness turns them
             // off, into an EXR (a KTX2 or DDS texel has four channels, not twelve). Judged from the header, so

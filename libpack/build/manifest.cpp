@@ -8,6 +8,8 @@
 #include <map>
 #include <set>
 
+#include "heightpack/build/synth_job.hpp"
+#include "heightpack/core/cascades.hpp"
 #include "heightpack/core/tileable.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
@@ -29,6 +31,8 @@ using detail::shorten;
 // to 1 km high. Anything larger is a typo, and would overflow float maths downstream.
 constexpr double kMaxTileSize = 1e5;
 constexpr double kMaxHeight = 1e3;
+// Height maps in a material, a synthesised sea's cascades each counted.
+constexpr size_t kMaxDisplacementMaps = 8;
 
 bool validName(const std::string& name) {
     if (name.empty() || name.size() > 64) return false;
@@ -62,10 +66,18 @@ public:
         const toml::array* array = top.require("displacement").as_array();
         if (!array || !array->is_array_of_tables() || array->empty())
             throw top.error("displacement", "must be one or more [[displacement]] tables");
-        if (array->size() > 8) throw top.error("displacement", "has " + std::to_string(array->size()) + " maps; at most 8");
+        if (array->size() > kMaxDisplacementMaps)
+            throw top.error("displacement", "has " + std::to_string(array->size()) + " maps; at most " +
+                                                std::to_string(kMaxDisplacementMaps));
         for (size_t i = 0; i < array->size(); ++i) {
             Section s(*(*array)[i].as_table(), "displacement[" + std::to_string(i) + "]", path_);
-            m.displacement.push_back(displacement(s));
+            mapsBefore_ = m.displacement.size();
+            for (DisplacementAsset& d : displacement(s)) m.displacement.push_back(std::move(d));
+            if (m.displacement.size() > kMaxDisplacementMaps)  // the cascades of a sea above it fill the material
+                throw s.error(s.line(), "[" + s.prefix() + "] is displacement map " + std::to_string(m.displacement.size()) +
+                                            ", counting each cascade of a synthesised sea; at most " +
+                                            std::to_string(kMaxDisplacementMaps),
+                              "use fewer cascades, or fewer [[displacement]] maps");
         }
         if (const toml::table* t = top.table("normals")) {
             Section s(*t, "normals", path_);
@@ -203,10 +215,17 @@ private:
     std::string assetName(Section& s, const std::string& fallback) {
         const std::string name = s.text("name").value_or(fallback);
         if (!validName(name)) throw s.error("name", "is '" + shorten(name) + "': use 1-64 letters, digits, '_', '-' or '.'");
+        claimName(s, name, name);
+        return name;
+    }
+
+    // Every asset of the material has its own name (cascades' NAME_cC included); given is what the
+    // manifest wrote, which a cascade's name is made from.
+    void claimName(Section& s, const std::string& name, const std::string& given) {
         const auto [it, fresh] = names_.emplace(name, s.line());
         if (!fresh)
-            throw s.error("name", "is '" + name + "', already the name of the asset on line " + std::to_string(it->second));
-        return name;
+            throw s.error("name", "is '" + given + "', " + (name == given ? "" : "so its cascade is '" + name + "', ") +
+                                      "already the name of the asset on line " + std::to_string(it->second));
     }
 
     std::array<double, 2> scroll(Section& s) {
@@ -214,7 +233,8 @@ private:
         return {v[0], v[1]};
     }
 
-    DisplacementAsset displacement(Section& s) {
+    // One asset, or with [displacement.synth] cascades = N, N of them (synthesisedSea).
+    std::vector<DisplacementAsset> displacement(Section& s) {
         DisplacementAsset d;
         d.layer.name = assetName(s, "");
         // A map comes from a file or from a spectrum, never both: which one would the output be?
@@ -231,11 +251,13 @@ private:
         if (synth) {
             Section t(*synth, s.prefix() + ".synth", path_);
             d.synth = detail::parseSynthSource(t, d.layer.tileSize);
+            if (const size_t maps = mapsBefore_ + d.synth->cascades; maps > kMaxDisplacementMaps)
+                throw t.error("cascades", "is " + std::to_string(d.synth->cascades) + ", which makes " +
+                                              std::to_string(maps) + " displacement maps; at most " +
+                                              std::to_string(kMaxDisplacementMaps),
+                              "use fewer cascades, or fewer [[displacement]] maps before this one");
             // Periodic by construction (a sum of whole waves over the tile): nothing to check.
             d.mustTile = false;
-            const fs::path stem = fs::path(d.output).filename().replace_extension(".exr");
-            for (int f = 0; f < d.synth->frames; ++f)
-                d.frames.push_back((fs::path(kSynthFolder) / frameFileName(stem.string(), f, d.synth->frames)).string());
         }
         d.layer.scroll = scroll(s);
         d.layer.amplitude = s.number("amplitude", 1.0, -1e6, 1e6);
@@ -245,9 +267,48 @@ private:
         if (d.layer.heightScale == 0) throw s.error("height_scale", "is 0, which would flatten the map");
         d.layer.wrap = d.settings.wrap;
         d.layer.filter = d.settings.filter;
+        if (d.synth) return synthesisedSea(s, d);
         claimFrames(s, d);
         s.finish();
-        return d;
+        return {d};
+    }
+
+    // The assets of a synthesised sea: itself, or with cascades = N one per cascade, as
+    // `heightpack synth --cascades` bakes them. Cascade c is named NAME_cC and written to the output's
+    // NAME_cC.EXT (cascadeFileName); it spans its own tile (core's cascadeBands), scrolls at the same
+    // metres per second as the first (scroll x tile_size / its tile size: the sea moves as one), and
+    // only cascade 0 takes height_offset, so the summed sea is the spectrum once and the offset once.
+    // Each map's frames are first written to kSynthFolder/ inside its output's folder.
+    std::vector<DisplacementAsset> synthesisedSea(Section& s, const DisplacementAsset& sea) {
+        const int count = sea.synth->cascades;
+        std::vector<CascadeBand> bands = {{sea.layer.tileSize, 0.0, 0.0, sea.synth->spectrum.seed}};
+        if (count > 1) bands = cascadeBands(sea.layer.tileSize, sea.synth->spectrum.size, count, sea.synth->spectrum.seed);
+        std::vector<DisplacementAsset> out;
+        for (int c = 0; c < count; ++c) {
+            DisplacementAsset d = sea;
+            if (count > 1) {
+                d.synth->spectrum = cascadeOptions(sea.synth->spectrum, bands[c]);
+                d.synth->cascade = c;
+                d.layer.name = sea.layer.name + "_c" + std::to_string(c);
+                if (!validName(d.layer.name))
+                    throw s.error("name", "is '" + shorten(sea.layer.name) + "', too long for its cascades' names ('" +
+                                              shorten(d.layer.name) + "')",
+                                  "use at most 61 characters with cascades");
+                claimName(s, d.layer.name, sea.layer.name);
+                d.output = cascadeFileName(sea.output, c, count);
+                claim(s, d.output);
+                d.layer.tileSize = bands[c].tileSize;
+                for (double& v : d.layer.scroll) v *= sea.layer.tileSize / bands[c].tileSize;
+                if (c > 0) d.layer.heightOffset = 0.0;
+            }
+            const fs::path stem = fs::path(d.output).filename().replace_extension(".exr");
+            for (int f = 0; f < d.synth->frames; ++f)
+                d.frames.push_back((fs::path(kSynthFolder) / frameFileName(stem.string(), f, d.synth->frames)).string());
+            claimFrames(s, d);
+            out.push_back(std::move(d));
+        }
+        s.finish();
+        return out;
     }
 
     // A sequence writes NAME.0000.exr ...: those names are claimed too.
@@ -340,6 +401,7 @@ private:
     std::optional<bool> defaultsMustTile_;
     std::map<std::string, int> outputs_;  // output path -> line that claimed it
     std::map<std::string, int> names_;
+    size_t mapsBefore_ = 0;  // displacement maps made by the tables before the one being read
 };
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "heightpack/core/cascades.hpp"
+
 namespace heightpack::detail {
 
 namespace {
@@ -51,6 +53,13 @@ SynthSource parseSynthSource(Section& t, double tileSize) {
     if (out.frames > 1 && o.loopPeriod == 0.0)
         throw t.error("frames", "is " + std::to_string(out.frames) + ", but there is no loop for the frames to cover",
                       "add loop = the period in seconds, such as 8");
+    // What is baked beside the heights, and into how many tiles: `synth`'s --displacement and --cascades.
+    out.displacement = t.boolean("displacement").value_or(false);
+    out.cascades = t.integer("cascades", 1, 1, kMaxCascades);
+    if (out.cascades > 1 && o.size < kCascadeMinSize)
+        throw t.error("cascades", "is " + std::to_string(out.cascades) + ", but size is " + std::to_string(o.size) +
+                                      ": each cascade's band needs rings of waves",
+                      "give size = " + std::to_string(kCascadeMinSize) + " or more, or remove cascades");
     t.finish();
     return out;
 }

@@ -45,16 +45,21 @@ struct SourcedAsset {
 };
 
 // A sea the build synthesises instead of reading a file ([displacement.synth]): the spectrum (its tile
-// size is the asset's tile_size) and how many frames of its loop to bake.
+// size is the asset's tile_size, or with cascades this cascade's), how many frames of its loop to bake,
+// whether Dx, Dy are synthesised beside the heights, and which cascade of how many this map is.
 struct SynthSource {
-    SpectrumOptions spectrum;
+    SpectrumOptions spectrum;         // with cascades, cascadeOptions(sea, band): its tile size, band and seed
     int frames = 1;                   // more than one needs spectrum.loopPeriod
+    bool displacement = false;        // Dx, Dy too, as `synth --displacement` (kept for an .exr output only)
+    int cascade = 0;                  // this map is cascade `cascade` of `cascades` (core/cascades.hpp)
+    int cascades = 1;
 };
 
 struct DisplacementAsset : SourcedAsset {
     DisplacementLayer layer;          // name, tile size, scroll, amplitude, height scale and offset
     // Set: the map is synthesised, source is empty and frames are the intermediate files' names
-    // (kSynthFolder/NAME.EXR inside the output's folder), one per frame.
+    // (kSynthFolder/NAME.EXR inside the output's folder), one per frame. A table with cascades = N
+    // becomes N assets, NAME_c0 ... (outputs NAME_c0.EXT ...), one per cascade.
     std::optional<SynthSource> synth;
 };
 

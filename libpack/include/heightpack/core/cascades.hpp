@@ -15,6 +15,11 @@ namespace heightpack {
 // with the largest tile and show its pattern every tile.
 inline constexpr double kCascadeRatio = 17.0 / 61.0;
 
+// At most 4 cascades (the last of 4 is (17/61)^3 = 2% of the first), each at least 32 texels across:
+// a band between half the coarser tile's Nyquist and its own needs several rings of wave vectors.
+inline constexpr int kMaxCascades = 4;
+inline constexpr int kCascadeMinSize = 32;
+
 struct CascadeBand {
     double tileSize = 0.0;  // m
     double low = 0.0;       // rad/m: the band this tile keeps is low <= |k| < high
