@@ -9,7 +9,9 @@
 #include <string>
 
 #include "heightpack/build/build_job.hpp"
+#include "heightpack/build/cache_key.hpp"
 #include "heightpack/build/manifest.hpp"
+#include "heightpack/core/cascades.hpp"
 
 #include "support/test_support.hpp"
 
@@ -88,6 +90,25 @@ TEST(ManifestSynth, BadTablesAreBadInputNamingTheLineAndTheKey) {
         {"format = 1\nname = \"sea\"\n[[displacement]]\nname = \"s\"\nsource = \"a.png\"\ntile_size = 4.0\n"
          "synth = { wind = 10.0 }\n", 5, "source"},                                 // both
         {"format = 1\nname = \"sea\"\n[[displacement]]\nname = \"s\"\ntile_size = 4.0\n", 3, "synth"},  // neither
+        {seaManifest("wind = 12.0\ndisplacement = 1\n"), 10, "displacement"},   // not true/false
+        {seaManifest("wind = 12.0\ncascades = 5\n"), 10, "cascades"},           // more than synth bakes
+        {seaManifest("wind = 12.0\ncascades = 0\n"), 10, "cascades"},
+        {seaManifest("wind = 12.0\nsize = 16\ncascades = 2\n"), 11, "cascades"},  // bands too narrow
+        // A cascade's name taken by an asset above; a name too long for its cascades'.
+        {"format = 1\nname = \"sea\"\n[[displacement]]\nname = \"swell_c1\"\nsource = \"a.png\"\ntile_size = 4.0\n"
+         "[[displacement]]\nname = \"swell\"\ntile_size = 64.0\nsynth = { wind = 10.0, size = 32, cascades = 2 }\n",
+         8, "swell_c1"},
+        {"format = 1\nname = \"sea\"\n[[displacement]]\nname = \"" + std::string(63, 'w') +
+             "\"\ntile_size = 64.0\nsynth = { wind = 10.0, size = 32, cascades = 2 }\n",
+         4, "cascades"},
+        // Seven maps and a sea of two cascades: nine in the material.
+        {"format = 1\nname = \"sea\"\n" + [] {
+             std::string maps;
+             for (int i = 0; i < 7; ++i)
+                 maps += "[[displacement]]\nname = \"m" + std::to_string(i) + "\"\nsource = \"a.png\"\ntile_size = 4.0\n";
+             return maps;
+         }() + "[[displacement]]\nname = \"swell\"\ntile_size = 64.0\nsynth = { wind = 10.0, size = 32, cascades = 2 }\n",
+         34, "cascades"},
     };
     for (const Case& c : cases) {
         auto m = parseText(dir, c.text);
@@ -96,6 +117,32 @@ TEST(ManifestSynth, BadTablesAreBadInputNamingTheLineAndTheKey) {
         EXPECT_EQ(e.kind, ErrorKind::BadInput) << c.text;
         EXPECT_EQ(e.path, dir.file("m.toml") + ":" + std::to_string(c.line)) << e.what << "\n" << c.text;
         EXPECT_NE((e.what + " " + e.hint).find(c.word), std::string::npos) << e.what << " (" << e.hint << ")";
+    }
+}
+
+// cascades = N splits the asset into N, each with the spectrum, tile size and names core's plan and
+// synth --cascades give cascade c; displacement = true rides along on each.
+TEST(ManifestSynth, CascadesAreOneAssetEachAsCorePlansThem) {
+    test::ScratchDir dir;
+    auto m = parseText(dir, seaManifest(std::string(kSea) + "cascades = 3\ndisplacement = true\n"));
+    ASSERT_TRUE(m) << m.error().path << ": " << m.error().what;
+    auto whole = parseText(dir, seaManifest(kSea));
+    ASSERT_TRUE(whole);
+    const SpectrumOptions sea = whole->displacement[0].synth->spectrum;
+    const std::vector<CascadeBand> bands = cascadeBands(64.0, 32, 3, 7);
+    ASSERT_EQ(m->displacement.size(), 3u);
+    for (int c = 0; c < 3; ++c) {
+        const DisplacementAsset& d = m->displacement[c];
+        const std::string name = "swell_c" + std::to_string(c);
+        ASSERT_TRUE(d.synth);
+        EXPECT_EQ(d.layer.name, name);
+        EXPECT_EQ(d.output, name + ".exr");
+        EXPECT_EQ(d.frames.at(2), std::string(kSynthFolder) + "/" + name + ".0002.exr");
+        EXPECT_EQ(d.layer.tileSize, bands[c].tileSize);
+        EXPECT_EQ(d.synth->cascade, c);
+        EXPECT_EQ(d.synth->cascades, 3);
+        EXPECT_TRUE(d.synth->displacement);
+        EXPECT_EQ(keyText(d.synth->spectrum, ""), keyText(cascadeOptions(sea, bands[c]), "")) << "cascade " << c;
     }
 }
 
@@ -134,6 +181,40 @@ TEST(ManifestSynth, TheSeaIsRemadeOnlyWhenItsSpectrumChanges) {
     EXPECT_EQ(build(dir, windier, "out", 1), 3) << "a new wind is a new sea";
     EXPECT_NE(bytes(dir.file("out/swell.0001.exr")), frame1);
     EXPECT_EQ(build(dir, windier, "out", 1), 0);
+}
+
+// The new keys are in each map's key: an unchanged manifest makes nothing; displacement, the cascade
+// count and a spectrum parameter each remake every map; a non-zero choppiness only rewrites material.json.
+TEST(ManifestSynth, DisplacementAndCascadesAreInTheKey) {
+    test::ScratchDir dir;
+    auto edited = [](std::string text, const std::string& from, const std::string& to) {
+        return text.replace(text.find(from), from.size(), to);
+    };
+    std::string sea = seaManifest(std::string(kSea) + "cascades = 2\ndisplacement = true\n");
+    sea = edited(sea, "frames = 3", "frames = 1");  // one frame each: fast
+    ASSERT_EQ(build(dir, sea, "out", 1), 2) << "two cascades";
+    EXPECT_EQ(build(dir, sea, "out", 1), 0) << "an unchanged manifest makes nothing";
+    const std::string choppy = bytes(dir.file("out/swell_c1.exr"));
+
+    const std::string calmer = edited(sea, "tile_size = 64.0\n", "tile_size = 64.0\nchoppiness = 0.5\n");
+    EXPECT_EQ(build(dir, calmer, "out", 1), 0) << "choppiness is the renderer's, not the texture's";
+    EXPECT_NE(bytes(dir.file("out/material.json")).find("\"choppiness\": 0.5"), std::string::npos);
+
+    const std::string flat = edited(sea, "displacement = true", "displacement = false");
+    EXPECT_EQ(build(dir, flat, "out", 1), 2) << "heights alone are other textures";
+    EXPECT_LT(bytes(dir.file("out/swell_c1.exr")).size(), choppy.size());
+    EXPECT_EQ(build(dir, flat, "out", 1), 0);
+
+    const std::string three = edited(flat, "cascades = 2", "cascades = 3");
+    EXPECT_EQ(build(dir, three, "out", 1), 3) << "each cascade's place and band";
+    EXPECT_EQ(build(dir, three, "out", 1), 0);
+
+    const std::string gamma = three + "gamma = 2.0\n";
+    EXPECT_EQ(build(dir, gamma, "out", 1), 3) << "a spectrum parameter";
+    EXPECT_EQ(build(dir, gamma, "out", 1), 0);
+
+    EXPECT_EQ(build(dir, sea, "out", 1), 2) << "back to two choppy cascades";
+    EXPECT_EQ(bytes(dir.file("out/swell_c1.exr")), choppy) << "the same manifest makes the same bytes";
 }
 
 }  // namespace

@@ -1,0 +1,225 @@
+// A manifest that bakes a whole sea (issue 15, point 7): [displacement.synth] with displacement = true
+// gives the texture `heightpack synth --displacement` then `pack --displacement` give, and with cascades
+// = N the N tiles of `synth --cascades`, each a layer of material.json at core's tile size. Both are
+// checked against the command line run on the same parameters, texel by texel, at every level.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "heightpack/core/cascades.hpp"
+
+#include "support/test_support.hpp"
+
+using namespace heightpack;
+using namespace heightpack::test;
+
+namespace {
+
+ProcessResult run(const std::vector<std::string>& args) {
+    std::vector<std::string> argv = {HEIGHTPACK_EXE};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return runProcess(argv);
+}
+
+// Every level of an EXR: its size, channel names and texels.
+struct Level {
+    int width = 0, height = 0;
+    std::vector<std::string> names;
+    std::vector<float> pixels;
+    float at(const std::string& channel, int x, int y) const {
+        const size_t c = std::find(names.begin(), names.end(), channel) - names.begin();
+        EXPECT_LT(c, names.size()) << channel;
+        return c < names.size() ? pixels[(size_t(y) * width + x) * names.size() + c] : NAN;
+    }
+};
+
+std::vector<Level> readLevels(const std::string& path) {
+    std::vector<Level> levels;
+    auto in = OIIO::ImageInput::open(path);
+    EXPECT_TRUE(in) << path;
+    for (int mip = 0; in && in->seek_subimage(0, mip); ++mip) {
+        const OIIO::ImageSpec& spec = in->spec();
+        Level l;
+        l.width = spec.width;
+        l.height = spec.height;
+        l.names = spec.channelnames;
+        l.pixels.resize(size_t(l.width) * l.height * spec.nchannels);
+        EXPECT_TRUE(in->read_image(0, mip, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, l.pixels.data())) << path;
+        levels.push_back(std::move(l));
+    }
+    return levels;
+}
+
+// Two textures hold the same texels in the same channels at every level (bit for bit).
+void expectSameTexels(const std::string& built, const std::string& reference) {
+    const std::vector<Level> a = readLevels(built), b = readLevels(reference);
+    ASSERT_FALSE(a.empty()) << built;
+    ASSERT_EQ(a.size(), b.size()) << built;
+    for (size_t mip = 0; mip < a.size(); ++mip) {
+        ASSERT_EQ(a[mip].names, b[mip].names) << built << " level " << mip;
+        ASSERT_EQ(a[mip].width, b[mip].width);
+        ASSERT_EQ(a[mip].height, b[mip].height);
+        for (size_t i = 0; i < a[mip].pixels.size(); ++i)
+            ASSERT_EQ(a[mip].pixels[i], b[mip].pixels[i]) << built << " level " << mip << " value " << i;
+    }
+}
+
+nlohmann::json material(const std::string& folder) {
+    std::ifstream in(folder + "/material.json");
+    return nlohmann::json::parse(in);
+}
+
+void writeText(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+const std::string kChoppy = R"(format = 1
+name = "choppy"
+
+[[displacement]]
+name = "sea"
+tile_size = 48.0
+choppiness = 0.8
+
+[displacement.synth]
+spectrum = "jonswap"
+wind = 11.0
+fetch = 80000.0
+direction = 25.0
+size = 64
+seed = 5
+loop = 6.0
+frames = 2
+displacement = true
+)";
+
+}  // namespace
+
+// displacement = true: each frame's packed EXR holds the heights and Dx, Dy that synth --displacement and
+// pack --displacement make of the same sea, and material.json tells the viewer to draw them choppy.
+TEST(SynthManifest, DisplacementIsWhatSynthThenPackMake) {
+    ScratchDir dir;
+    writeText(dir.file("choppy.toml"), kChoppy);
+    std::filesystem::create_directory(dir.file("cli"));
+    const ProcessResult built = run({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")});
+    ASSERT_EQ(built.code, 0) << built.err;
+    ASSERT_EQ(run({"synth", "--spectrum", "jonswap", "--wind", "11m/s", "--fetch", "80km", "--direction", "25",
+                   "--tile-size", "48m", "--size", "64", "--seed", "5", "--loop", "6s", "--frames", "2", "--displacement",
+                   "-q", "-o", dir.file("cli/sea.exr")}).code, 0);
+    ASSERT_EQ(run({"pack", dir.file("cli/sea.exr"), "--displacement", "--filter", "kaiser", "--wrap", "periodic", "-q",
+                   "-o", dir.file("cli/packed.exr")}).code, 0);
+    for (const char* frame : {"0000", "0001"}) {
+        const std::string out = dir.file(std::string("out/sea.") + frame + ".exr");
+        EXPECT_EQ(readLevels(out).at(0).names.size(), 12u) << "heights, Dx and Dy, four neighbours each";
+        expectSameTexels(out, dir.file(std::string("cli/packed.") + frame + ".exr"));
+    }
+    const nlohmann::json sea = material(dir.file("out"))["displacement"][0];
+    EXPECT_EQ(sea["horizontalDisplacement"], true);
+    EXPECT_EQ(sea["choppiness"], 0.8);
+    EXPECT_EQ(sea["loopPeriod"], 6.0);
+    EXPECT_EQ(sea["tileSize"], 48.0);
+
+    // A .ktx2 holds four channels: the same manifest packs the heights alone there, and says so.
+    std::string gpu = kChoppy;
+    gpu.replace(gpu.find("choppiness = 0.8"), 16, "output = \"sea.ktx2\"");
+    writeText(dir.file("gpu.toml"), gpu);
+    const ProcessResult ktx = run({"build", dir.file("gpu.toml"), "-q", "-o", dir.file("gpu")});
+    ASSERT_EQ(ktx.code, 0) << ktx.err;
+    const nlohmann::json flat = material(dir.file("gpu"))["displacement"][0];
+    EXPECT_EQ(flat["texture"]["file"], "sea.ktx2");
+    EXPECT_FALSE(flat.contains("horizontalDisplacement"));
+}
+
+// cascades = 3: three layers sea_c0..2, at the tile sizes core's cascadeBands plans, scrolling at the
+// first's metres per second, whose heights are the files synth --cascades writes for the same sea (the
+// height offset added once, to the first).
+TEST(SynthManifest, CascadesAreLayersOfSynthsTiles) {
+    ScratchDir dir;
+    writeText(dir.file("cascades.toml"), R"(format = 1
+name = "cascades"
+
+[[displacement]]
+name = "sea"
+tile_size = 100.0
+scroll = [0.01, -0.02]
+height_offset = 0.5
+
+[displacement.synth]
+spectrum = "pierson-moskowitz"
+wind = 9.0
+size = 32
+seed = 4
+cascades = 3
+)");
+    std::filesystem::create_directory(dir.file("cli"));
+    const ProcessResult built = run({"build", dir.file("cascades.toml"), "-q", "-o", dir.file("out")});
+    ASSERT_EQ(built.code, 0) << built.err;
+    ASSERT_EQ(run({"synth", "--spectrum", "pierson-moskowitz", "--wind", "9m/s", "--tile-size", "100m", "--size", "32",
+                   "--seed", "4", "--cascades", "3", "-q", "-o", dir.file("cli/sea.exr")}).code, 0);
+
+    const std::vector<CascadeBand> bands = cascadeBands(100.0, 32, 3, 4);
+    const nlohmann::json layers = material(dir.file("out"))["displacement"];
+    ASSERT_EQ(layers.size(), 3u) << layers.dump(1);
+    for (int c = 0; c < 3; ++c) {
+        SCOPED_TRACE("cascade " + std::to_string(c));
+        const std::string name = "sea_c" + std::to_string(c);
+        const nlohmann::json& layer = layers[c];
+        EXPECT_EQ(layer["name"], name);
+        EXPECT_EQ(layer["texture"]["file"], name + ".exr");
+        EXPECT_DOUBLE_EQ(layer["tileSize"].get<double>(), bands[c].tileSize);
+        EXPECT_NEAR(layer["scroll"][0].get<double>() * bands[c].tileSize, 0.01 * 100.0, 1e-12) << "m/s as the first";
+        EXPECT_NEAR(layer["scroll"][1].get<double>() * bands[c].tileSize, -0.02 * 100.0, 1e-12);
+        const float offset = c == 0 ? 0.5f : 0.0f;
+        EXPECT_EQ(layer["heightOffset"], offset);
+
+        // Level 0's R is the height at the texel: synth's, plus the offset as pack adds it.
+        const std::vector<Level> packed = readLevels(dir.file("out/" + name + ".exr"));
+        const std::vector<Level> synthesised = readLevels(dir.file("cli/" + name + ".exr"));
+        ASSERT_FALSE(packed.empty());
+        ASSERT_EQ(synthesised.size(), 1u);
+        ASSERT_EQ(packed[0].width, 32);
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x)
+                ASSERT_EQ(packed[0].at("R", x, y), offset + 1.0f * synthesised[0].at("Y", x, y)) << x << "," << y;
+        // The whole chain is what pack makes of synth's file with the same offset.
+        ASSERT_EQ(run({"pack", dir.file("cli/" + name + ".exr"), "--offset", c == 0 ? "0.5" : "0", "-q", "-o",
+                       dir.file("cli/" + name + "_packed.exr")}).code, 0);
+        expectSameTexels(dir.file("out/" + name + ".exr"), dir.file("cli/" + name + "_packed.exr"));
+    }
+    // The tiles' heights have the spectrum once: no two cascades are the same sea.
+    EXPECT_NE(readLevels(dir.file("cli/sea_c0.exr"))[0].pixels, readLevels(dir.file("cli/sea_c1.exr"))[0].pixels);
+}
+
+// A bad value of a new key is the manifest's error: one line naming FILE:LINE and the key, exit 3, and
+// the outputs of the previous build untouched (tests/build/manifest_synth_test.cpp has every bad value).
+TEST(SynthManifest, BadValuesNameTheKeyAndTouchNothing) {
+    ScratchDir dir;
+    writeText(dir.file("choppy.toml"), kChoppy);
+    ASSERT_EQ(run({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")}).code, 0);
+    const std::vector<unsigned char> before = readBytes(dir.file("out/sea.0001.exr"));
+    const std::vector<unsigned char> json = readBytes(dir.file("out/material.json"));
+    // Each case replaces a line of kChoppy (line 18 is displacement = true) and appends one (line 19).
+    const struct {
+        std::string from, to, append, key;
+        int line;
+    } cases[] = {
+        {"", "", "cascades = 5", "'displacement[0].synth.cascades'", 19},
+        {"displacement = true", "displacement = \"yes\"", "", "'displacement[0].synth.displacement'", 18},
+    };
+    for (const auto& c : cases) {
+        std::string text = kChoppy;
+        if (!c.from.empty()) text.replace(text.find(c.from), c.from.size(), c.to);
+        text += c.append + "\n";
+        writeText(dir.file("choppy.toml"), text);
+        const ProcessResult r = run({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")});
+        EXPECT_EQ(r.code, 3) << c.key;
+        EXPECT_NE(r.err.find(dir.file("choppy.toml") + ":" + std::to_string(c.line) + ":"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(c.key), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_EQ(readBytes(dir.file("out/sea.0001.exr")), before) << c.key;
+        EXPECT_EQ(readBytes(dir.file("out/material.json")), json) << c.key;
+    }
+}
