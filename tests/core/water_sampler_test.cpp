@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "heightpack/core/mip.hpp"
@@ -151,4 +152,135 @@ TEST(WaterSampler, LayersAdd) {
     for (float x = -50; x < 50; x += 7.3f)
         EXPECT_NEAR(sampleWaterHeight(both, x, 0.5f * x, 3.0f, 0.2f),
                     sampleWaterHeight(first, x, 0.5f * x, 3.0f, 0.2f) + sampleWaterHeight(second, x, 0.5f * x, 3.0f, 0.2f), 1e-6);
+}
+
+namespace {
+
+// A trochoidal (Gerstner) wave along one axis: heights a cos(k p) and synth's D = -sin(k p) toward the
+// crests, sampled at texel centres of an n-texel tile (n large enough that the bilinear of the cosine is
+// within 2e-7 m of it). The point that starts at p ends at X = p - c a sin(k p), at height a cos(k p): the
+// displaced surface in closed form, parametrised by p, whose slope stays below 1 (no fold) while
+// c a k < 1.
+struct Trochoid {
+    float tileSize = 64.0f, amplitude = 2.0f, choppiness = 3.0f;
+    int axis = 0;  // 0: crests along y, the wave runs along x; 1: the other way round
+    double k() const { return 2 * M_PI / tileSize; }
+    double lambda() const { return double(choppiness) * amplitude; }
+    double displaced(double p) const { return p - lambda() * std::sin(k() * p); }
+    double height(double p) const { return amplitude * std::cos(k() * p); }
+
+    SampledLayer layer(int n = 8192) const {
+        const int w = axis == 0 ? n : 2, h = axis == 0 ? 2 : n;
+        Image heights(w, h, 1), along(w, h, 1), across(w, h, 1, 0.0f);
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i) {
+                const double phase = 2 * M_PI * ((axis == 0 ? i : j) + 0.5) / n;
+                heights.pixels[size_t(j) * w + i] = float(std::cos(phase));
+                along.pixels[size_t(j) * w + i] = float(-std::sin(phase));
+            }
+        SampledLayer l;
+        l.frames = {{packNeighbour4(heights, Wrap::Periodic)}};
+        l.shiftX = {{packNeighbour4(axis == 0 ? along : across, Wrap::Periodic)}};
+        l.shiftY = {{packNeighbour4(axis == 0 ? across : along, Wrap::Periodic)}};
+        l.tileSize = tileSize;
+        l.amplitude = amplitude;
+        l.choppiness = choppiness;
+        l.scroll = {0.0f, 0.0f};
+        l.midStored = 0.0f;  // the cosine's mean
+        return l;
+    }
+};
+
+}  // namespace
+
+TEST(WaterSampler, ChoppyShiftAndTheHeightOverAPointFollowATrochoid) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> start(-100.0, 100.0), across(-50.0, 50.0);
+    for (int axis : {0, 1}) {
+        Trochoid wave;
+        wave.axis = axis;
+        ASSERT_LT(wave.lambda() * wave.k(), 0.6);  // no fold: the iteration contracts by 0.59 a step at worst
+        WaterSampler sampler;
+        sampler.layers = {wave.layer()};
+        ASSERT_TRUE(isChoppy(sampler));
+        int worstSteps = 0;
+        for (int i = 0; i < 300; ++i) {
+            const double p = start(rng), q = across(rng);
+            // The point that starts at p moves by -c a sin(k p) along the wave, not at all across it.
+            const float sx = axis == 0 ? float(p) : float(q), sy = axis == 0 ? float(q) : float(p);
+            const std::array<float, 2> shift = sampleWaterShift(sampler, sx, sy, 0.0f);
+            ASSERT_NEAR(shift[axis], -wave.lambda() * std::sin(wave.k() * (axis == 0 ? sx : sy)), 2e-5) << p;
+            ASSERT_EQ(shift[1 - axis], 0.0f);
+            // Over X = p - c a sin(k p) the surface stands at a cos(k p).
+            const double X = wave.displaced(p);
+            const float x = axis == 0 ? float(X) : float(q), y = axis == 0 ? float(q) : float(X);
+            const SurfaceHeight s = sampleSurfaceHeight(sampler, x, y, 0.0f);
+            ASSERT_TRUE(s.converged) << "X " << X << " after " << s.iterations << " steps, residual " << s.residual;
+            EXPECT_NEAR(s.height, wave.height(p), 1e-5) << "axis " << axis << " X " << X;
+            EXPECT_NEAR(s.origin[axis], p, 1e-4);
+            EXPECT_EQ(s.origin[1 - axis], axis == 0 ? y : x);
+            worstSteps = std::max(worstSteps, s.iterations);
+        }
+        EXPECT_LE(worstSteps, SurfaceSearch{}.maxIterations);
+        std::printf("axis %d: at most %d fixed-point steps\n", axis, worstSteps);
+    }
+}
+
+TEST(WaterSampler, AFoldGivesATruePointOrSaysItDidNotConverge) {
+    // c a k = 3: around each crest the surface folds over itself (X(p) runs backwards), so a point there
+    // lies under the surface three times; the fixed points at all three repel (slopes 3 and -1.95), and the
+    // steps wander.
+    Trochoid wave;
+    wave.choppiness = 15.28f;
+    ASSERT_GT(wave.lambda() * wave.k(), 2.99);
+    WaterSampler sampler;
+    sampler.layers = {wave.layer()};
+    int converged = 0, not_converged = 0;
+    for (double X = -3.0; X <= 3.0; X += 0.05) {
+        const SurfaceHeight s = sampleSurfaceHeight(sampler, float(X), 1.0f, 0.0f);
+        ASSERT_TRUE(std::isfinite(s.height) && std::isfinite(s.residual));
+        // Whatever it returns is the height at the origin it names, whose residual it reports truly.
+        EXPECT_FLOAT_EQ(s.height, sampleWaterHeight(sampler, s.origin[0], s.origin[1], 0.0f));
+        const double landed = s.origin[0] + sampleWaterShift(sampler, s.origin[0], s.origin[1], 0.0f)[0];
+        EXPECT_NEAR(s.residual, std::abs(landed - float(X)), 1e-5);
+        if (s.converged) {
+            // One of the (up to three) surface points over X: the trochoid's own height there.
+            EXPECT_LE(s.residual, 1e-5);
+            EXPECT_NEAR(s.height, wave.height(s.origin[0]), 1e-5);
+            ++converged;
+        } else {
+            EXPECT_EQ(s.iterations, SurfaceSearch{}.maxIterations);
+            EXPECT_GT(s.residual, 1e-6);
+            ++not_converged;
+        }
+    }
+    EXPECT_GT(not_converged, 0) << "the fold's middle should defeat the iteration somewhere";
+    std::printf("fold: %d converged, %d not\n", converged, not_converged);
+    // A search cut short says so, with its best iterate.
+    Trochoid steep;  // c a k = 0.59: slow enough that three steps do not reach 1e-6 m
+    WaterSampler slow;
+    slow.layers = {steep.layer()};
+    SurfaceSearch three;
+    three.maxIterations = 3;
+    const SurfaceHeight s = sampleSurfaceHeight(slow, float(steep.displaced(3.0)), 0.0f, 0.0f, 0.0f, three);
+    EXPECT_FALSE(s.converged);
+    EXPECT_EQ(s.iterations, 3);
+    EXPECT_GT(s.residual, 1e-6);
+}
+
+TEST(WaterSampler, ChoppinessZeroTakesTheUnshiftedPathBitForBit) {
+    Trochoid wave;
+    WaterSampler sampler;
+    sampler.layers = {wave.layer(256)};
+    sampler.layers[0].choppiness = 0.0f;  // Dx, Dy present, choppiness off
+    WaterSampler plain = sampler;
+    plain.layers[0].shiftX.clear();
+    plain.layers[0].shiftY.clear();
+    for (float x = -40.0f; x < 40.0f; x += 3.7f) {
+        const SurfaceHeight s = sampleSurfaceHeight(sampler, x, 0.3f * x, 1.5f, 0.1f);
+        EXPECT_EQ(s.height, sampleWaterHeight(plain, x, 0.3f * x, 1.5f, 0.1f));
+        EXPECT_EQ(s.iterations, 0);
+        EXPECT_TRUE(s.converged);
+        EXPECT_EQ(sampleWaterShift(sampler, x, 0.0f, 1.5f)[0], 0.0f);
+    }
 }
