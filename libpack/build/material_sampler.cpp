@@ -2,6 +2,7 @@
 // mid value (the first frame's 1x1 level) and on an untimed sequence's period (four frames a second).
 #include "heightpack/build/material_sampler.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -15,14 +16,33 @@
 namespace heightpack {
 namespace {
 
-Image firstChannel(const Image& image) {
-    Image out(image.width, image.height, 1);
-    for (size_t i = 0; i < image.texelCount(); ++i) out.pixels[i] = image.pixels[i * image.channels];
+// The named channels of image, in that order, as one image.
+Image pick(const Image& image, const std::vector<int>& channels) {
+    Image out(image.width, image.height, static_cast<int>(channels.size()));
+    for (size_t t = 0; t < image.texelCount(); ++t)
+        for (size_t c = 0; c < channels.size(); ++c)
+            out.pixels[t * channels.size() + c] = image.pixels[t * image.channels + channels[c]];
     return out;
 }
 
-// One frame's packed chain; the first frame also settles the layer's wrap and loop period.
-Result<std::vector<Image>> readPackedChain(const std::string& path, SampledLayer& layer, bool first) {
+// One frame's packed chains: the heights, and Dx, Dy when the file holds them (heightpack:displacement).
+struct FrameChains {
+    std::vector<Image> heights, shiftX, shiftY;
+};
+
+// The channel indices of names in file, or -1 for the first missing one.
+std::vector<int> channelIndices(const TextureFile& file, const std::vector<std::string>& names) {
+    std::vector<int> out;
+    for (const std::string& n : names) {
+        const auto it = std::find(file.channelNames.begin(), file.channelNames.end(), n);
+        out.push_back(it == file.channelNames.end() ? -1 : static_cast<int>(it - file.channelNames.begin()));
+    }
+    return out;
+}
+
+// One frame's chains; the first frame also settles the layer's wrap and loop period. A plain chain (and
+// its Dx, Dy) is packed in memory as the viewer packs it.
+Result<FrameChains> readFrameChains(const std::string& path, SampledLayer& layer, bool first) {
     auto file = readTextureFile(path, true);
     if (!file) return file.error();
     const std::string layout = findAttribute(file->attributes, attr::layout);
@@ -40,19 +60,35 @@ Result<std::vector<Image>> readPackedChain(const std::string& path, SampledLayer
             layer.loopPeriod = seconds;
         }
     }
-    std::vector<Image> chain;
+    const bool packed = layout == "neighbour4";
+    const bool displaced = !findAttribute(file->attributes, attr::displacement).empty();
+    // Without a displacement the heights are the file's first four (packed) or first (plain) channels, as
+    // ever; with one, the channels named as pack --displacement names them.
+    std::vector<int> heights = packed ? std::vector<int>{0, 1, 2, 3} : std::vector<int>{0}, dx, dy;
+    if (displaced) {
+        heights = channelIndices(*file, packed ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"Y"});
+        dx = channelIndices(*file, packed ? std::vector<std::string>{"Dx.R", "Dx.G", "Dx.B", "Dx.A"} : std::vector<std::string>{"Dx"});
+        dy = channelIndices(*file, packed ? std::vector<std::string>{"Dy.R", "Dy.G", "Dy.B", "Dy.A"} : std::vector<std::string>{"Dy"});
+        for (const auto* list : {&heights, &dx, &dy})
+            if (std::find(list->begin(), list->end(), -1) != list->end())
+                return badInput(path, "records a displacement but lacks one of its channels", "pack it again");
+    }
+    FrameChains chains;
     for (const Image& level : file->levels) {
-        if (layout == "plain") {
-            chain.push_back(packNeighbour4(firstChannel(level), layer.wrap));
-        } else if (level.channels != 4) {
+        if (packed && !displaced && level.channels != 4)
             return badInput(path, "is marked neighbour4 but has " + std::to_string(level.channels) + " channels",
                             "pack it again");
-        } else {
-            chain.push_back(level);
+        auto packedOf = [&](const std::vector<int>& channels) {
+            return packed ? pick(level, channels) : packNeighbour4(pick(level, channels), layer.wrap);
+        };
+        chains.heights.push_back(packedOf(heights));
+        if (displaced) {
+            chains.shiftX.push_back(packedOf(dx));
+            chains.shiftY.push_back(packedOf(dy));
         }
     }
-    if (chain.empty()) return badInput(path, "holds no levels", "pack it again");
-    return chain;
+    if (chains.heights.empty()) return badInput(path, "holds no levels", "pack it again");
+    return chains;
 }
 
 }  // namespace
@@ -70,13 +106,23 @@ Result<WaterSampler> loadMaterialSampler(const std::string& materialPath) {
         layer.loopPeriod = d.loopPeriod;
         const std::vector<std::string> files = expandSequence((folder / d.texture.file).string());
         for (size_t f = 0; f < files.size(); ++f) {
-            auto chain = readPackedChain(files[f], layer, f == 0);
-            if (!chain) return chain.error();
-            if (f > 0 && (chain->size() != layer.frames[0].size() || (*chain)[0].width != layer.frames[0][0].width ||
-                          (*chain)[0].height != layer.frames[0][0].height))
+            auto chains = readFrameChains(files[f], layer, f == 0);
+            if (!chains) return chains.error();
+            const std::vector<Image>& chain = chains->heights;
+            if (f > 0 && (chain.size() != layer.frames[0].size() || chain[0].width != layer.frames[0][0].width ||
+                          chain[0].height != layer.frames[0][0].height))
                 return badInput(files[f], "differs in size from the sequence's first frame", "make every frame the same size");
-            layer.frames.push_back(std::move(*chain));
+            if (f > 0 && chains->shiftX.empty() != layer.shiftX.empty())
+                return badInput(files[f], "differs from the sequence's first frame in holding Dx, Dy",
+                                "make every frame with the displacement, or none");
+            layer.frames.push_back(std::move(chains->heights));
+            if (!chains->shiftX.empty()) {
+                layer.shiftX.push_back(std::move(chains->shiftX));
+                layer.shiftY.push_back(std::move(chains->shiftY));
+            }
         }
+        // A map with Dx, Dy is choppy in the viewer: at the material's choppiness, or its own default of 1.
+        if (!layer.shiftX.empty()) layer.choppiness = d.horizontalDisplacement ? static_cast<float>(d.choppiness) : 1.0f;
         if (layer.frames.size() > 1 && !(layer.loopPeriod > 0.0)) layer.loopPeriod = layer.frames.size() / 4.0;
         layer.midStored = midStoredOf(layer.frames);
         sampler.layers.push_back(std::move(layer));
