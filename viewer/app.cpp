@@ -103,9 +103,11 @@ int interactive(GLFWwindow* window, ViewerOptions& o, Scene& scene, Renderer& re
                 auto reloaded = loadScene(o.files);
                 if (reloaded) {
                     scene = std::move(*reloaded);
-                    renderer.upload(scene);
-                    panel.reloadError.clear();
-                    std::fprintf(stderr, "heightpack-view: reloaded\n");
+                    panel.reloadError = renderer.upload(scene);
+                    if (panel.reloadError.empty())
+                        std::fprintf(stderr, "heightpack-view: reloaded\n");
+                    else
+                        std::fprintf(stderr, "heightpack-view: not reloaded: %s\n", panel.reloadError.c_str());
                 } else {
                     panel.reloadError = reloaded.error().path + ": " + reloaded.error().what;
                     std::fprintf(stderr, "heightpack-view: not reloaded: %s\n", panel.reloadError.c_str());
@@ -164,7 +166,8 @@ int draw(ViewerOptions& o, Scene& scene, const ContextInfo& context, GLFWwindow*
     std::string error;
     if (!renderer.init(error, context.gather()))
         return fail("shader build failed: " + error, "please report this with the GL_RENDERER string", ExitCode::Internal);
-    renderer.upload(scene);
+    if (const std::string problem = renderer.upload(scene); !problem.empty())
+        return fail(problem, "use a sequence of fewer frames", ExitCode::BadInput);
     if (isGather(o.settings.lookup) && !renderer.gatherAvailable()) {
         const std::string why = context.gather() ? renderer.gatherProblem()
                                                  : "textureGather needs OpenGL 4.0 and this " + context.platform +

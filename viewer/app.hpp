@@ -15,7 +15,7 @@ struct ViewerOptions {
     SceneFiles files;
     std::string material;         // the material.json the files and settings came from, if any
     std::string screenshot;       // render one frame offscreen to this PNG and exit
-    std::string gridHeights;      // render one frame two-pass and write the grid's heights to this EXR
+    std::string gridHeights;      // render one frame two-pass and write the grid's heights and shifts to this EXR
     int width = 1280, height = 720;
     std::optional<float> time;    // fixed animation clock
     int bench = 0;                // render this many frames offscreen, print GPU time per pass, exit

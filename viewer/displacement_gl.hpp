@@ -1,6 +1,6 @@
-// Horizontal displacement on the GPU: a frame's packed Dx, Dy as one two-layer array texture (layer 0 Dx,
-// layer 1 Dy, RGBA per level as the heights), so each layer costs one sampler, not two: the vertex stage
-// of OpenGL 3.3 promises only 16 (heights, plain references and next frames already take 9).
+// Horizontal displacement on the GPU: every frame's packed Dx, Dy of a map as one array texture (layer
+// 2f Dx, layer 2f + 1 Dy of frame f, RGBA per level as the heights), so a map's shift costs one sampler
+// however many frames it has: the vertex stage of OpenGL 3.3 promises only 16.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -11,9 +11,15 @@
 
 namespace heightpack::view {
 
-// A GL_TEXTURE_2D_ARRAY of two RGBA32F layers per level, nearest: the shader does the filtering from one
-// texelFetch per layer, as for the heights. x and y must hold the same levels.
-GLuint uploadShiftChain(const std::vector<Image>& x, const std::vector<Image>& y);
+// One frame's packed Dx and Dy chains (the same levels).
+struct ShiftFrame {
+    const std::vector<Image>* x = nullptr;
+    const std::vector<Image>* y = nullptr;
+};
+
+// A GL_TEXTURE_2D_ARRAY of RGBA32F layers, two per frame, nearest: the shader does the filtering from one
+// texelFetch per layer, as for the heights. Every frame must hold the same levels.
+GLuint uploadShiftArray(const std::vector<ShiftFrame>& frames);
 
 // A 1x1 two-layer array of zeros, bound to the samplers of maps without Dx, Dy.
 GLuint uploadZeroShift();

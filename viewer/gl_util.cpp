@@ -25,7 +25,48 @@ GLuint compile(GLenum stage, const std::string& source, const std::string& name,
     return shader;
 }
 
+bool isSampler(GLenum type) {
+    switch (type) {
+        case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE: case GL_SAMPLER_2D_ARRAY:
+        case GL_SAMPLER_1D_ARRAY: case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_2D_ARRAY_SHADOW: case GL_SAMPLER_CUBE_SHADOW:
+        case GL_SAMPLER_2D_RECT: case GL_SAMPLER_BUFFER: case GL_SAMPLER_2D_MULTISAMPLE: case GL_SAMPLER_2D_MULTISAMPLE_ARRAY:
+        case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_2D_ARRAY: case GL_INT_SAMPLER_3D: case GL_UNSIGNED_INT_SAMPLER_2D:
+        case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY: case GL_UNSIGNED_INT_SAMPLER_3D:
+            return true;
+        default:
+            return false;
+    }
+}
+
 }  // namespace
+
+StageSamplers activeSamplers(GLuint program) {
+    StageSamplers s;
+    if (epoxy_gl_version() >= 43 || epoxy_has_gl_extension("GL_ARB_program_interface_query")) {
+        GLint count = 0;
+        glGetProgramInterfaceiv(program, GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+        for (GLint i = 0; i < count; ++i) {
+            const GLenum props[] = {GL_TYPE, GL_ARRAY_SIZE, GL_REFERENCED_BY_VERTEX_SHADER, GL_REFERENCED_BY_FRAGMENT_SHADER};
+            GLint values[4] = {0, 0, 0, 0};
+            glGetProgramResourceiv(program, GL_UNIFORM, static_cast<GLuint>(i), 4, props, 4, nullptr, values);
+            if (!isSampler(static_cast<GLenum>(values[0]))) continue;
+            if (values[2]) s.vertex += values[1];
+            if (values[3]) s.fragment += values[1];
+        }
+        return s;
+    }
+    GLint count = 0;
+    glGetProgramiv(program, GL_ACTIVE_UNIFORMS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        GLint size = 0;
+        GLenum type = 0;
+        char name[256];
+        glGetActiveUniform(program, static_cast<GLuint>(i), sizeof name, nullptr, &size, &type, name);
+        if (isSampler(type)) s.vertex += size;
+    }
+    s.fragment = s.vertex;
+    return s;
+}
 
 GLuint buildProgram(const std::string& name, const std::string& preamble, const char* common, const char* vertex,
                     const char* fragment, std::string& log) {
@@ -112,11 +153,12 @@ std::vector<unsigned char> RenderTarget::readRgb() const {
     return flipped;
 }
 
-std::vector<float> RenderTarget::readRed() const {
-    std::vector<float> values(static_cast<size_t>(width) * height);
+std::vector<float> RenderTarget::readFloats(int channels) const {
+    static const GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+    std::vector<float> values(static_cast<size_t>(width) * height * channels);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width, height, GL_RED, GL_FLOAT, values.data());
+    glReadPixels(0, 0, width, height, formats[channels - 1], GL_FLOAT, values.data());
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return values;
 }

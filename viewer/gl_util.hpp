@@ -15,6 +15,14 @@ namespace heightpack::view {
 GLuint buildProgram(const std::string& name, const std::string& preamble, const char* common, const char* vertex,
                     const char* fragment, std::string& log);
 
+// How many samplers a linked program's vertex and fragment stages read (active sampler uniforms, arrays
+// counted by their size). Per stage where the context has GL 4.3's program interface query; before it,
+// both are the program's total, which bounds each stage.
+struct StageSamplers {
+    int vertex = 0, fragment = 0;
+};
+StageSamplers activeSamplers(GLuint program);
+
 // Prints any pending GL errors with where they were noticed; compiled out of release builds.
 void checkGl(const char* where);
 
@@ -26,8 +34,9 @@ struct RenderTarget {
     void destroy();
     // RGB 8-bit pixels, top row first.
     std::vector<unsigned char> readRgb() const;
-    // The red channel as floats (an R32F or RGBA32F target), bottom row first, as GL stores it.
-    std::vector<float> readRed() const;
+    // The first channels (1 to 4) of a float target as floats, interleaved, bottom row first, as GL
+    // stores it.
+    std::vector<float> readFloats(int channels) const;
 };
 
 }  // namespace heightpack::view

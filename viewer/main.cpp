@@ -55,8 +55,8 @@ int main(int argc, char** argv) {
     app.add_flag("--seams", o.settings.seamLines, "draw the tile lines in the tiled view");
     app.add_option("--screenshot", o.screenshot, "render one frame offscreen to this PNG and exit (works under xvfb-run)");
     app.add_option("--grid-heights", o.gridHeights,
-                   "render one frame two-pass, every grid vertex sampled, and write the vertices' heights to this EXR "
-                   "(x = segment, y = ring; camera and grid in its header) and exit");
+                   "render one frame two-pass, every grid vertex sampled, and write the vertices' heights (Y) and "
+                   "horizontal shifts (Dx, Dy) to this EXR (x = segment, y = ring; camera and grid in its header) and exit");
     bool headless = false;
     app.add_flag("--headless", headless,
                  "draw --screenshot, --grid-heights or --bench with no display at all, through EGL (a GPU, or "

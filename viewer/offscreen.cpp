@@ -60,6 +60,9 @@ nlohmann::ordered_json bytesJson(const TextureBytes& b) {
             {"fresnel", b.fresnel}, {"foam", b.foam}, {"total", b.total()}};
 }
 
+// The samplers the water program's vertex and fragment stages read (Renderer::samplers), each at most 16.
+nlohmann::ordered_json samplersJson(const StageSamplers& s) { return {{"vertex", s.vertex}, {"fragment", s.fragment}}; }
+
 void printBench(const ViewerOptions& o, const Renderer& renderer, const ContextInfo& context, const PassTimes& chosen,
                 const std::vector<std::pair<Lookup, PassTimes>>& lookups) {
     const std::string gl = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -84,6 +87,7 @@ void printBench(const ViewerOptions& o, const Renderer& renderer, const ContextI
                                         {"combineWallMs", t.combineWall}};
         j["lookups"] = each;
         j["gpuBytes"] = bytesJson(b);
+        j["samplers"] = samplersJson(renderer.samplers());
         std::printf("%s\n", j.dump().c_str());
         return;
     }
@@ -98,17 +102,19 @@ void printBench(const ViewerOptions& o, const Renderer& renderer, const ContextI
                 b.packed, b.plain, b.gather, b.normals, b.fresnel, b.foam, b.total());
 }
 
-// One two-pass frame, and the combine pass's heights with what places them: the camera, the grid's radii
-// and the pixel angle, so a reader can put each vertex at its (x, y) and compare heights computed
-// elsewhere (tests compare heightpack's CPU sampler with these).
+// One two-pass frame, and the combine pass's heights and horizontal shifts with what places them: the
+// camera, the grid's radii and the pixel angle, so a reader can put each vertex at its (x, y) and compare
+// heights computed elsewhere (tests compare heightpack's CPU sampler with these). Channels Y (height),
+// Dx, Dy (the shift of choppy maps, 0 for others): the names a synthesised sea's EXR gives the same things.
 int writeGridHeights(const ViewerOptions& o, Renderer& renderer, float time, GLuint framebuffer) {
     renderer.render(o.camera, o.settings, time, o.width, o.height, framebuffer, false);
-    Image image(o.settings.segments, o.settings.rings, 1);
-    image.pixels = renderer.gridHeights();  // row r is ring r
+    Image image(o.settings.segments, o.settings.rings, 3);
+    image.pixels = renderer.gridVertices();  // row r is ring r
     const glm::vec2 radius = gridRadius(o.settings);
     auto number = [](const char* name, float value) { return attribute(AttributeKey<float>{name}, value); };
     FlatImageOptions flat;
     flat.bits = 32;
+    flat.channelNames = {"Y", "Dx", "Dy"};
     flat.attributes = {attribute(attr::layout, "grid heights"), attribute(attr::time, time),
                        number("heightpack:cameraX", o.camera.position.x), number("heightpack:cameraY", o.camera.position.y),
                        number("heightpack:cameraZ", o.camera.position.z),
@@ -178,7 +184,8 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer, co
                                               {"glVersion", reinterpret_cast<const char*>(glGetString(GL_VERSION))},
                                               {"context", context.platform},
                                               {"lookup", lookupName(o.settings.lookup)},
-                                              {"gpuBytes", bytesJson(renderer.textureBytes())}};
+                                              {"gpuBytes", bytesJson(renderer.textureBytes())},
+                                              {"samplers", samplersJson(renderer.samplers())}};
             std::printf("%s\n", j.dump().c_str());
         } else if (o.bench == 0) {
             std::printf("wrote %s: %dx%d at t = %.2f s\n", o.screenshot.c_str(), o.width, o.height, time);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "displacement_gl.hpp"
@@ -13,13 +14,15 @@ namespace heightpack::view {
 
 namespace {
 
-// Texture units: height layers first, then the shading textures. The fragment stage reads the twelve
-// height textures and three shading ones: within the 16 units every GL 3.3 implementation offers a stage.
+// Texture units: height layers first (array textures, every frame of a map in one), then the shading
+// textures. Each stage reads at most the eight layer arrays and the combine target or three shading
+// textures: within the 16 samplers every GL 3.3 implementation offers a stage (init checks).
 enum Unit {
-    kPacked0 = 0, kPacked1, kPlain0, kPlain1, kPacked0Next, kPacked1Next, kPlain0Next, kPlain1Next,
-    kGather0, kGather1, kGather0Next, kGather1Next, kNormal, kFresnel, kFoam, kCombined, kTiledMap,
-    kShift0, kShift1, kShift0Next, kShift1Next
+    kPacked0 = 0, kPacked1, kPlain0, kPlain1, kGather0, kGather1, kShift0, kShift1, kNormal, kFresnel, kFoam, kCombined,
+    kTiledMap
 };
+
+constexpr int kSamplersPerStage = 16;  // GL_MAX_TEXTURE_IMAGE_UNITS / GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS in GL 3.3
 
 constexpr int kMaxGatherLevels = 16;  // common.glsl's kMaxLevels: a 32768-texel side
 
@@ -84,14 +87,27 @@ bool Renderer::init(std::string& error, bool gather) {
     glGenQueries(3, queries_);
     // Bound to unused samplers so every sampler has a complete texture.
     dummyTexture_ = uploadFloatChain({Image(1, 1, 4, 0.0f)}, false, Wrap::Periodic);
+    const StoredChain dummy = storeFloats({Image(1, 1, 4, 0.0f)});
+    dummyArray_ = uploadStoredArray({&dummy}, false, Wrap::Periodic);
     zeroShift_ = uploadZeroShift();
+    for (auto [name, program] : {std::pair{"water", waterProgram_}, std::pair{"combine", combineProgram_},
+                                 std::pair{"tiled", tiledProgram_}, std::pair{"sky", skyProgram_}}) {
+        const StageSamplers s = activeSamplers(program);
+        if (s.vertex > kSamplersPerStage || s.fragment > kSamplersPerStage) {
+            error = std::string("program ") + name + " reads " + std::to_string(s.vertex) + " samplers in its vertex stage and " +
+                    std::to_string(s.fragment) + " in its fragment stage, over the " + std::to_string(kSamplersPerStage) +
+                    " OpenGL 3.3 guarantees a stage";
+            return false;
+        }
+        if (std::string(name) == "water") waterSamplers_ = s;
+    }
     checkGl("Renderer::init");
     return true;
 }
 
 Renderer::~Renderer() {
     releaseLayers();
-    for (GLuint t : {normalTexture_, fresnelTexture_, foamTexture_, dummyTexture_, zeroShift_})
+    for (GLuint t : {normalTexture_, fresnelTexture_, foamTexture_, dummyTexture_, dummyArray_, zeroShift_})
         if (t) glDeleteTextures(1, &t);
     combined_.destroy();
     if (gridVao_) glDeleteVertexArrays(1, &gridVao_);
@@ -148,45 +164,33 @@ void Renderer::bindLayers(GLuint program, float time) {
     set(program, "uPacked1", int(kPacked1));
     set(program, "uPlain0", int(kPlain0));
     set(program, "uPlain1", int(kPlain1));
-    set(program, "uPacked0Next", int(kPacked0Next));
-    set(program, "uPacked1Next", int(kPacked1Next));
-    set(program, "uPlain0Next", int(kPlain0Next));
-    set(program, "uPlain1Next", int(kPlain1Next));
     set(program, "uGather0", int(kGather0));
     set(program, "uGather1", int(kGather1));
-    set(program, "uGather0Next", int(kGather0Next));
-    set(program, "uGather1Next", int(kGather1Next));
     set(program, "uShift0", int(kShift0));
     set(program, "uShift1", int(kShift1));
-    set(program, "uShift0Next", int(kShift0Next));
-    set(program, "uShift1Next", int(kShift1Next));
     for (int k = 0; k < 2; ++k) {
         const bool has = k < int(layers_.size());
         // A sequence plays its loop: frame f covers [f, f+1) * period / frames, blended into the next.
-        size_t current = 0, next = 0;
+        int current = 0, next = 0;
         float blend = 0.0f;
-        if (has && layers_[k].frames.size() > 1) {
-            const double frames = double(layers_[k].frames.size());
+        if (has && layers_[k].frames > 1) {
+            const double frames = double(layers_[k].frames);
             double position = std::fmod(time / layers_[k].loopPeriod * frames, frames);
             if (position < 0) position += frames;
-            current = static_cast<size_t>(position) % layers_[k].frames.size();
-            next = (current + 1) % layers_[k].frames.size();
+            current = static_cast<int>(position) % layers_[k].frames;
+            next = (current + 1) % layers_[k].frames;
             blend = static_cast<float>(position - std::floor(position));
         }
-        bindTexture(kPacked0 + k, has ? layers_[k].frames[current].packed : dummyTexture_);
-        bindTexture(kPlain0 + k, has ? layers_[k].frames[current].plain : dummyTexture_);
-        bindTexture(kPacked0Next + k, has ? layers_[k].frames[next].packed : dummyTexture_);
-        bindTexture(kPlain0Next + k, has ? layers_[k].frames[next].plain : dummyTexture_);
-        const GLuint gather = has ? layers_[k].frames[current].gather : 0, gatherNext = has ? layers_[k].frames[next].gather : 0;
-        bindTexture(kGather0 + k, gather ? gather : dummyTexture_);
-        bindTexture(kGather0Next + k, gatherNext ? gatherNext : dummyTexture_);
+        bindArrayTexture(kPacked0 + k, has ? layers_[k].packed : dummyArray_);
+        bindArrayTexture(kPlain0 + k, has ? layers_[k].plain : dummyArray_);
+        bindArrayTexture(kGather0 + k, has && layers_[k].gather ? layers_[k].gather : dummyArray_);
+        const bool shift = has && layers_[k].shift;
+        bindArrayTexture(kShift0 + k, shift ? layers_[k].shift : zeroShift_);
+        glUniform2i(glGetUniformLocation(program, indexed("uLayerFrame", k).c_str()), current, next);
         glUniform1f(glGetUniformLocation(program, indexed("uLayerBlend", k).c_str()), blend);
-        const Normalisation a = has ? layers_[k].frames[current].decode : Normalisation{};
-        const Normalisation b = has ? layers_[k].frames[next].decode : Normalisation{};
+        const Normalisation a = has ? layers_[k].decode[size_t(current)] : Normalisation{};
+        const Normalisation b = has ? layers_[k].decode[size_t(next)] : Normalisation{};
         glUniform4f(glGetUniformLocation(program, indexed("uLayerDecode", k).c_str()), a.offset, a.scale, b.offset, b.scale);
-        const bool shift = has && layers_[k].frames[current].shift;
-        bindArrayTexture(kShift0 + k, shift ? layers_[k].frames[current].shift : zeroShift_);
-        bindArrayTexture(kShift0Next + k, shift ? layers_[k].frames[next].shift : zeroShift_);
     }
 }
 
@@ -247,11 +251,11 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
         const WallClock wall(measure && wallClock);
         if (measure) glBeginQuery(GL_TIME_ELAPSED, queries_[2]);
         glUseProgram(tiledProgram_);
-        bindTexture(kTiledMap, layers_[0].frames[0].plain);
+        bindArrayTexture(kTiledMap, layers_[0].plain);  // frame 0
         set(tiledProgram_, "uMap", int(kTiledMap));
         set(tiledProgram_, "uTiles", glm::vec2(s.tiles));
         set(tiledProgram_, "uRange", glm::vec2(scene_->layers[0].minStored, scene_->layers[0].maxStored));
-        const Normalisation d = layers_[0].frames[0].decode;
+        const Normalisation d = layers_[0].decode[0];
         set(tiledProgram_, "uDecode", glm::vec2(d.offset, d.scale));
         set(tiledProgram_, "uSeamLines", int(s.seamLines));
         set(tiledProgram_, "uViewport", glm::vec2(width, height));

@@ -120,22 +120,28 @@ class Renderer {
 public:
     // Compiles the programs, with the gather lookup where the context is OpenGL 4.0 or newer. Returns false
     // with a message (the shader log) on failure.
+    // It also refuses programs whose stages would use more than the 16 samplers a GL 3.3 stage is
+    // guaranteed (activeSamplers), so they cannot creep back over it.
     bool init(std::string& error, bool gather);
-    void upload(const Scene& scene);
+    // Puts the scene on the GPU. Returns why not (a sequence of more frames than an array texture holds
+    // here, GL_MAX_ARRAY_TEXTURE_LAYERS), or empty.
+    std::string upload(const Scene& scene);
     // Whether the gather lookup can draw: a 4.0 context, and atlases no larger than GL_MAX_TEXTURE_SIZE.
     // When not, gatherProblem() says why in a few words.
     bool gatherAvailable() const { return gather_ && gatherProblem_.empty(); }
     const std::string& gatherProblem() const { return gatherProblem_; }
     const TextureBytes& textureBytes() const { return bytes_; }
+    // The samplers the water program's stages read (the most of any program): at most 16 each.
+    const StageSamplers& samplers() const { return waterSamplers_; }
     // measure: read timer queries into times(); wallClock: also bracket each pass with glFinish (for
     // --bench; it stalls the pipeline, so the interactive loop does not).
     void render(const Camera& camera, const RenderSettings& settings, float time, int width, int height,
                 GLuint framebuffer, bool measure, bool wallClock = false);
     const PassTimes& times() const { return times_; }
-    // The combine pass's last output: the height of every grid vertex, segment along x, ring along y
-    // (ring 0 first), from the red of its RGBA32F target (green and blue: the vertex's horizontal shift).
-    // Empty unless the last render was two-pass.
-    std::vector<float> gridHeights() const { return combined_.readRed(); }
+    // The combine pass's last output: the height of every grid vertex and its horizontal shift (x, y),
+    // three floats a vertex, segment along x, ring along y (ring 0 first), from its RGBA32F target.
+    // Meaningless unless the last render was two-pass.
+    std::vector<float> gridVertices() const { return combined_.readFloats(3); }
     const Scene* scene() const { return scene_; }
     ~Renderer();
 
@@ -148,13 +154,13 @@ private:
     GLuint gridVao_ = 0, gridVbo_ = 0, gridIbo_ = 0, emptyVao_ = 0;
     GLsizei gridIndexCount_ = 0;
     int gridRings_ = 0, gridSegments_ = 0;
-    struct FrameTextures {
-        GLuint packed = 0, plain = 0, gather = 0;
-        Normalisation decode;  // sampled texels to the file's values, the same for all three
-        GLuint shift = 0;      // Dx, Dy as a two-layer array texture (displacement_gl.hpp), or 0
-    };
+    // A map's textures: GL_TEXTURE_2D_ARRAYs holding frame f of a sequence in layer f, so the shader reads
+    // this frame and the next through one sampler (common.glsl's uLayerFrame picks the layers).
     struct LayerTextures {
-        std::vector<FrameTextures> frames;
+        GLuint packed = 0, plain = 0, gather = 0;
+        GLuint shift = 0;                   // Dx, Dy, two layers a frame (displacement_gl.hpp), or 0
+        std::vector<Normalisation> decode;  // per frame: sampled texels to the file's values, the same for all three
+        int frames = 1;
         int levels = 0;
         double loopPeriod = 0.0;
         std::vector<GatherAtlas::Origin> gatherOrigins;  // the same for every frame: they share a size
@@ -162,12 +168,13 @@ private:
     };
     std::vector<LayerTextures> layers_;
     void releaseLayers();
-    void uploadLayers(const Scene& scene);
-    GLuint normalTexture_ = 0, fresnelTexture_ = 0, foamTexture_ = 0, dummyTexture_ = 0, zeroShift_ = 0;
+    std::string uploadLayers(const Scene& scene);
+    GLuint normalTexture_ = 0, fresnelTexture_ = 0, foamTexture_ = 0, dummyTexture_ = 0, dummyArray_ = 0, zeroShift_ = 0;
     Normalisation normalDecode_, fresnelDecode_;
     bool gather_ = false;
     std::string gatherProblem_;
     TextureBytes bytes_;
+    StageSamplers waterSamplers_;
     RenderTarget combined_;
     GLuint queries_[3] = {0, 0, 0};
     PassTimes times_;

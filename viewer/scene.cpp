@@ -92,6 +92,10 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
                       frame.packed.width != layer.frames[0].packed.width ||
                       frame.packed.height != layer.frames[0].packed.height))
             return badInput(files[f], "differs in size from the sequence's first frame", "make every frame the same size");
+        // The frames share one array texture on the GPU: one texel type for all.
+        if (f > 0 && (frame.packed.kind != layer.frames[0].packed.kind || frame.plain.kind != layer.frames[0].plain.kind))
+            return badInput(files[f], "differs in pixel type from the sequence's first frame",
+                            "write every frame with the same pixel type");
         if (f > 0 && frame.shiftX.empty() != layer.frames[0].shiftX.empty())
             return badInput(files[f], "differs from the sequence's first frame in holding Dx, Dy",
                             "make every frame with the displacement, or none");

@@ -1,5 +1,6 @@
-// Renderer: putting a loaded Scene on the GPU, each chain in the type its file stored it in, with the
-// gather atlases where the context can use them, and counting the bytes that takes.
+// Renderer: putting a loaded Scene on the GPU, each chain in the type its file stored it in, a sequence's
+// frames as the layers of one array texture, with the gather atlases where the context can use them, and
+// counting the bytes that takes.
 #include <string>
 
 #include "displacement_gl.hpp"
@@ -22,50 +23,66 @@ void enableMipmaps() {
 }  // namespace
 
 void Renderer::releaseLayers() {
-    for (const LayerTextures& l : layers_) {
-        for (const FrameTextures& f : l.frames) {
-            for (GLuint t : {f.packed, f.plain, f.gather, f.shift})
-                if (t) glDeleteTextures(1, &t);
-        }
-    }
+    for (const LayerTextures& l : layers_)
+        for (GLuint t : {l.packed, l.plain, l.gather, l.shift})
+            if (t) glDeleteTextures(1, &t);
     layers_.clear();
 }
 
-void Renderer::uploadLayers(const Scene& scene) {
+std::string Renderer::uploadLayers(const Scene& scene) {
     releaseLayers();
     gatherProblem_.clear();
-    GLint maxSize = 0;
+    GLint maxSize = 0, maxLayers = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
     for (const HeightLayer& layer : scene.layers) {
+        // Every frame of a map in one array texture (and Dx, Dy in two layers a frame of another).
+        const long long layersNeeded = static_cast<long long>(layer.frames.size()) * (layer.horizontal ? 2 : 1);
+        if (layersNeeded > maxLayers)
+            return layer.path + ": " + std::to_string(layer.frames.size()) + " frames need " + std::to_string(layersNeeded) +
+                   " array layers, over GL_MAX_ARRAY_TEXTURE_LAYERS " + std::to_string(maxLayers) + " here";
         LayerTextures t;
+        std::vector<const StoredChain*> packed, plain;
+        std::vector<ShiftFrame> shifts;
         for (const HeightFrame& frame : layer.frames) {
-            // Packed and gather: nearest, since the shader filters. Plain: GL_LINEAR, the reference.
-            FrameTextures f{uploadStoredChain(frame.packed, false, layer.wrap), uploadStoredChain(frame.plain, true, layer.wrap),
-                            0, frame.plain.decode};
-            if (!frame.shiftX.empty()) f.shift = uploadShiftChain(frame.shiftX, frame.shiftY);
-            if (gather_ && gatherProblem_.empty()) {
-                const GatherAtlas atlas = buildGatherAtlas(frame.plain, layer.wrap);
-                if (atlas.texels.width > maxSize || atlas.texels.height > maxSize) {
-                    gatherProblem_ = layer.path + " needs a " + std::to_string(atlas.texels.width) + "x" +
-                                     std::to_string(atlas.texels.height) + " gather atlas, over GL_MAX_TEXTURE_SIZE " +
-                                     std::to_string(maxSize);
-                } else {
-                    f.gather = uploadStoredChain(atlas.texels, false, Wrap::Clamp);
-                    t.gatherOrigins = atlas.origins;
-                    t.gatherSize = glm::vec2(atlas.texels.width, atlas.texels.height);
-                }
-            }
-            t.frames.push_back(f);
+            packed.push_back(&frame.packed);
+            plain.push_back(&frame.plain);
+            t.decode.push_back(frame.plain.decode);
+            if (layer.horizontal) shifts.push_back({&frame.shiftX, &frame.shiftY});
         }
+        // Packed and gather: nearest, since the shader filters. Plain: GL_LINEAR, the reference.
+        t.packed = uploadStoredArray(packed, false, layer.wrap);
+        t.plain = uploadStoredArray(plain, true, layer.wrap);
+        if (layer.horizontal) t.shift = uploadShiftArray(shifts);
+        if (gather_ && gatherProblem_.empty()) {
+            std::vector<GatherAtlas> atlases;
+            for (const HeightFrame& frame : layer.frames) atlases.push_back(buildGatherAtlas(frame.plain, layer.wrap));
+            const StoredChain& texels = atlases[0].texels;
+            if (texels.width > maxSize || texels.height > maxSize) {
+                gatherProblem_ = layer.path + " needs a " + std::to_string(texels.width) + "x" + std::to_string(texels.height) +
+                                 " gather atlas, over GL_MAX_TEXTURE_SIZE " + std::to_string(maxSize);
+            } else {
+                std::vector<const StoredChain*> chains;
+                for (const GatherAtlas& a : atlases) chains.push_back(&a.texels);
+                t.gather = uploadStoredArray(chains, false, Wrap::Clamp);
+                t.gatherOrigins = atlases[0].origins;  // the same for every frame: they share a size
+                t.gatherSize = glm::vec2(texels.width, texels.height);
+            }
+        }
+        t.frames = static_cast<int>(layer.frames.size());
         t.levels = static_cast<int>(layer.frames[0].packed.levels.size());
         t.loopPeriod = layer.loopPeriod;
         layers_.push_back(t);
     }
+    return {};
 }
 
-void Renderer::upload(const Scene& scene) {
+std::string Renderer::upload(const Scene& scene) {
     scene_ = &scene;
-    uploadLayers(scene);
+    if (std::string problem = uploadLayers(scene); !problem.empty()) {
+        releaseLayers();
+        return problem;
+    }
     for (GLuint* t : {&normalTexture_, &fresnelTexture_, &foamTexture_})
         if (*t) glDeleteTextures(1, t), *t = 0;
     normalDecode_ = fresnelDecode_ = Normalisation{};
@@ -84,16 +101,15 @@ void Renderer::upload(const Scene& scene) {
     }
     bytes_ = TextureBytes{};
     for (const LayerTextures& l : layers_) {
-        for (const FrameTextures& f : l.frames) {
-            bytes_.packed += view::textureBytes(f.packed);
-            bytes_.plain += view::textureBytes(f.plain);
-            bytes_.gather += view::textureBytes(f.gather);
-        }
+        bytes_.packed += view::textureBytes(l.packed, GL_TEXTURE_2D_ARRAY);
+        bytes_.plain += view::textureBytes(l.plain, GL_TEXTURE_2D_ARRAY);
+        bytes_.gather += view::textureBytes(l.gather, GL_TEXTURE_2D_ARRAY);
     }
     bytes_.normals = view::textureBytes(normalTexture_);
     bytes_.fresnel = view::textureBytes(fresnelTexture_);
     bytes_.foam = view::textureBytes(foamTexture_);
     checkGl("Renderer::upload");
+    return {};
 }
 
 }  // namespace heightpack::view

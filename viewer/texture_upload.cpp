@@ -1,5 +1,7 @@
 #include "texture_upload.hpp"
 
+#include <cassert>
+
 #include "gl_util.hpp"
 
 namespace heightpack::view {
@@ -54,23 +56,58 @@ GLuint uploadFloatChain(const std::vector<Image>& levels, bool linear, Wrap wrap
     return uploadStoredChain(storeFloats(levels), linear, wrap);
 }
 
-long long textureBytes(GLuint texture) {
+GLuint uploadStoredArray(const std::vector<const StoredChain*>& chains, bool linear, Wrap wrap) {
+    assert(!chains.empty());
+    const StoredChain& first = *chains[0];
+    const GlFormat f = glFormatOf(first.channels, first.kind);
+    const GLsizei layers = static_cast<GLsizei>(chains.size());
+    GLuint texture = 0;
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (size_t level = 0; level < first.levels.size(); ++level) {
+        const int w = first.levelWidth(int(level)), h = first.levelHeight(int(level));
+        glTexImage3D(GL_TEXTURE_2D_ARRAY, static_cast<GLint>(level), static_cast<GLint>(f.internal), w, h, layers, 0, f.format,
+                     f.type, nullptr);
+        for (GLsizei layer = 0; layer < layers; ++layer) {
+            const StoredChain& c = *chains[size_t(layer)];
+            assert(c.kind == first.kind && c.channels == first.channels && c.levels.size() == first.levels.size() &&
+                   c.width == first.width && c.height == first.height);
+            glTexSubImage3D(GL_TEXTURE_2D_ARRAY, static_cast<GLint>(level), 0, 0, layer, w, h, 1, f.format, f.type,
+                            c.levels[level].data());
+        }
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    const bool mips = first.levels.size() > 1;
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, static_cast<GLint>(first.levels.size() - 1));
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER,
+                    linear ? (mips ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR) : (mips ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST));
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, linear ? GL_LINEAR : GL_NEAREST);
+    const GLint mode = wrap == Wrap::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, mode);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, mode);
+    checkGl("uploadStoredArray");
+    return texture;
+}
+
+long long textureBytes(GLuint texture, GLenum target) {
     if (!texture) return 0;
-    glBindTexture(GL_TEXTURE_2D, texture);
+    glBindTexture(target, texture);
     GLint maxLevel = 0;
-    glGetTexParameteriv(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, &maxLevel);
+    glGetTexParameteriv(target, GL_TEXTURE_MAX_LEVEL, &maxLevel);
     long long bytes = 0;
     for (GLint level = 0; level <= maxLevel && level < 16; ++level) {  // 16: levels of the largest texture GL allows
-        GLint w = 0, h = 0, bits = 0;
-        glGetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_WIDTH, &w);
-        glGetTexLevelParameteriv(GL_TEXTURE_2D, level, GL_TEXTURE_HEIGHT, &h);
+        GLint w = 0, h = 0, layers = 1, bits = 0;
+        glGetTexLevelParameteriv(target, level, GL_TEXTURE_WIDTH, &w);
+        glGetTexLevelParameteriv(target, level, GL_TEXTURE_HEIGHT, &h);
+        if (target == GL_TEXTURE_2D_ARRAY) glGetTexLevelParameteriv(target, level, GL_TEXTURE_DEPTH, &layers);
         if (w == 0 || h == 0) break;  // past the levels that exist (a shading texture's GL-made chain ends at 1x1)
         for (GLenum component : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE, GL_TEXTURE_ALPHA_SIZE}) {
             GLint b = 0;
-            glGetTexLevelParameteriv(GL_TEXTURE_2D, level, component, &b);
+            glGetTexLevelParameteriv(target, level, component, &b);
             bits += b;
         }
-        bytes += static_cast<long long>(w) * h * bits / 8;
+        bytes += static_cast<long long>(w) * h * layers * bits / 8;
     }
     return bytes;
 }

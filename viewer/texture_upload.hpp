@@ -20,8 +20,13 @@ GLuint uploadStoredChain(const StoredChain& chain, bool linear, Wrap wrap);
 // The same for float levels, as 32-bit floats.
 GLuint uploadFloatChain(const std::vector<Image>& levels, bool linear, Wrap wrap);
 
-// Bytes of every level of the texture, from the sizes and component bits GL reports for it (so a
-// format a driver widened on upload would show here).
-long long textureBytes(GLuint texture);
+// Chains of one size, channel count and type (a sequence's frames) as one GL_TEXTURE_2D_ARRAY, chain i in
+// layer i of every level, filtered and wrapped as uploadStoredChain's: a shader reads any frame through
+// one sampler, so the vertex stage's samplers do not grow with the frames it blends.
+GLuint uploadStoredArray(const std::vector<const StoredChain*>& chains, bool linear, Wrap wrap);
+
+// Bytes of every level (and layer) of the texture, from the sizes and component bits GL reports for it
+// (so a format a driver widened on upload would show here). target: GL_TEXTURE_2D or GL_TEXTURE_2D_ARRAY.
+long long textureBytes(GLuint texture, GLenum target = GL_TEXTURE_2D);
 
 }  // namespace heightpack::view

@@ -1,11 +1,16 @@
 // heightpack's CPU water sampler against the heights the viewer's GPU computes: the combine pass writes
-// the height of every grid vertex (--grid-heights), the test puts each vertex where the shader put it
-// and asks loadMaterialSampler's sampler for the same point, time and footprint.
+// the height and horizontal shift of every grid vertex (--grid-heights), the test puts each vertex where
+// the shader put it and asks loadMaterialSampler's sampler for the same point, time and footprint; with
+// choppy maps, it also asks for the height over the vertex's displaced position, which the sampler finds
+// by inverting the shift.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <algorithm>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "heightpack/build/material_sampler.hpp"
 #include "support/test_support.hpp"
@@ -18,7 +23,7 @@ namespace {
 
 struct GridHeights {
     int segments = 0, rings = 0;
-    std::vector<float> heights;  // ring-major
+    std::vector<float> heights, shiftX, shiftY;  // ring-major: channels Y, Dx, Dy
     float cameraX = 0, cameraY = 0, cameraZ = 0, pixelAngle = 0, innerRadius = 0, ringScale = 0, waterLevel = 0, time = 0;
 };
 
@@ -30,8 +35,13 @@ GridHeights readGridHeights(const std::string& path) {
     const OIIO::ImageSpec& spec = in->spec();
     g.segments = spec.width;
     g.rings = spec.height;
-    g.heights.resize(size_t(g.segments) * g.rings);
-    EXPECT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, g.heights.data()));
+    for (auto [name, values] : {std::pair{"Y", &g.heights}, std::pair{"Dx", &g.shiftX}, std::pair{"Dy", &g.shiftY}}) {
+        const int channel = spec.channelindex(name);
+        EXPECT_GE(channel, 0) << path << " has no channel " << name;
+        if (channel < 0) return g;
+        values->resize(size_t(g.segments) * g.rings);
+        EXPECT_TRUE(in->read_image(0, 0, channel, channel + 1, OIIO::TypeDesc::FLOAT, values->data()));
+    }
     auto number = [&](const char* name) { return spec.get_float_attribute(std::string("heightpack:") + name, NAN); };
     g.cameraX = number("cameraX"), g.cameraY = number("cameraY"), g.cameraZ = number("cameraZ");
     g.pixelAngle = number("pixelAngle"), g.innerRadius = number("gridInnerRadius"), g.ringScale = number("gridRingScale");
@@ -40,13 +50,17 @@ GridHeights readGridHeights(const std::string& path) {
 }
 
 struct Agreement {
-    double worst = 0.0;      // metres
-    double range = 0.0;      // of the GPU's heights compared, metres
-    int compared = 0;
+    double worst = 0.0;       // metres: heights at the vertex's undisplaced position
+    double worstShift = 0.0;  // metres: either component of the horizontal shift
+    double worstOver = 0.0;   // metres: the height over the displaced position (sampleSurfaceHeight)
+    double range = 0.0;       // of the GPU's heights compared, metres
+    double largestShift = 0.0;
+    int compared = 0, unconverged = 0, mostSteps = 0;
 };
 
 // Vertices within maxRadius of the camera, placed as viewer/shaders/combine.frag places them (in float).
-Agreement compareWithSampler(const GridHeights& g, const WaterSampler& sampler, float maxRadius) {
+// choppy: also compare the shift, and invert it at the vertex's displaced position.
+Agreement compareWithSampler(const GridHeights& g, const WaterSampler& sampler, float maxRadius, bool choppy = false) {
     Agreement a;
     float lo = INFINITY, hi = -INFINITY;
     for (int ring = 0; ring < g.rings; ++ring) {
@@ -57,11 +71,22 @@ Agreement compareWithSampler(const GridHeights& g, const WaterSampler& sampler, 
             const float x = g.cameraX + std::cos(angle) * radius, y = g.cameraY + std::sin(angle) * radius;
             const float dz = g.waterLevel - g.cameraZ;
             const float d = std::sqrt((x - g.cameraX) * (x - g.cameraX) + (y - g.cameraY) * (y - g.cameraY) + dz * dz);
-            const float gpu = g.heights[size_t(ring) * g.segments + segment];
+            const size_t at = size_t(ring) * g.segments + segment;
+            const float gpu = g.heights[at];
             const float cpu = sampleWaterHeight(sampler, x, y, g.time, d * g.pixelAngle);
             a.worst = std::max(a.worst, double(std::abs(gpu - cpu)));
             lo = std::min(lo, gpu), hi = std::max(hi, gpu);
             ++a.compared;
+            if (!choppy) continue;
+            const std::array<float, 2> shift = sampleWaterShift(sampler, x, y, g.time, d * g.pixelAngle);
+            a.worstShift = std::max({a.worstShift, double(std::abs(shift[0] - g.shiftX[at])), double(std::abs(shift[1] - g.shiftY[at]))});
+            a.largestShift = std::max(a.largestShift, double(std::hypot(g.shiftX[at], g.shiftY[at])));
+            // The vertex lands at xy + shift (grid.vert's vWorld, in float): the surface over that point is
+            // the vertex's own height.
+            const SurfaceHeight over = sampleSurfaceHeight(sampler, x + g.shiftX[at], y + g.shiftY[at], g.time, d * g.pixelAngle);
+            a.unconverged += over.converged ? 0 : 1;
+            a.mostSteps = std::max(a.mostSteps, over.iterations);
+            a.worstOver = std::max(a.worstOver, double(std::abs(over.height - gpu)));
         }
     }
     a.range = hi - lo;
@@ -107,4 +132,55 @@ TEST(GridHeights, TheCpuSamplerGivesTheHeightsTheViewerDraws) {
         EXPECT_LT(a.worst, 1e-5) << lookup << ": worst of " << a.compared << " vertices";
         std::printf("%s: %d vertices, heights over %.3f m, worst difference %.3g m\n", lookup, a.compared, a.range, a.worst);
     }
+}
+
+TEST(GridHeights, ChoppySeasShiftAndStandWhereTheViewerDrawsThem) {
+    // A synthesised choppy sea (two frames, blended) summed with a painted map that is not choppy.
+    ScratchDir dir;
+    ASSERT_EQ(runProcess({HEIGHTPACK_EXE, "synth", "--wind", "9m/s", "--tile-size", "48m", "--size", "64", "--frames", "2",
+                          "--loop", "8s", "--displacement", "-q", "-o", dir.file("sea.exr")})
+                  .code,
+              0);
+    std::ofstream(dir.file("m.toml")) << "format = 1\nname = \"m\"\n"
+                                      << "[[displacement]]\nname = \"sea\"\nsource = \"" << dir.file("sea.exr") << "\"\n"
+                                      << "tile_size = 48.0\nscroll = [0.010, 0.004]\namplitude = 1.0\nchoppiness = 0.8\n"
+                                      << "[[displacement]]\nname = \"choppy\"\nsource = \"" << HEIGHTPACK_SOURCE_DIR
+                                      << "/examples/maps/choppy.png\"\n"
+                                      << "tile_size = 10.0\nscroll = [-0.006, 0.011]\namplitude = 0.3\n";
+    const ProcessResult built = runProcess({HEIGHTPACK_EXE, "build", dir.file("m.toml"), "-q", "-o", dir.file("m")});
+    ASSERT_EQ(built.code, 0) << built.err;
+    auto sampler = loadMaterialSampler(dir.file("m/material.json"));
+    ASSERT_TRUE(sampler) << sampler.error().path << ": " << sampler.error().what;
+    ASSERT_EQ(sampler->layers.size(), 2u);
+    ASSERT_EQ(sampler->layers[0].shiftX.size(), 2u) << "the sea's Dx, Dy, every frame";
+    EXPECT_FLOAT_EQ(sampler->layers[0].choppiness, 0.8f);
+    EXPECT_FALSE(sampler->layers[1].choppy());
+
+    // A small window: the grid is the same, each pixel's shading (the slow part on llvmpipe) is not wanted.
+    const ViewRun run = view({dir.file("m/material.json"), "--grid-heights", dir.file("grid.exr"), "--time", "3.3",
+                              "--camera", "13,-7,25,30,-20", "--size", "160x120"});
+    ASSERT_EQ(run.code, 0) << run.err;
+    const GridHeights grid = readGridHeights(dir.file("grid.exr"));
+    ASSERT_EQ(grid.segments, 256);
+    const Agreement a = compareWithSampler(grid, *sampler, 100.0f, true);
+    EXPECT_GT(a.compared, 10000);
+    EXPECT_GT(a.largestShift, 0.2) << "the sea should move the vertices sideways";
+    EXPECT_LT(a.worst, 1e-5) << "heights at the undisplaced vertex";
+    EXPECT_LT(a.worstShift, 1e-5) << "horizontal shifts";
+    EXPECT_EQ(a.unconverged, 0) << "this sea does not fold: every displaced vertex has one point under it";
+    EXPECT_LT(a.worstOver, 1e-5) << "heights over the displaced vertex";
+    // Every map of this material in every lookup path (the gather lookup of a 4.x context binds the most
+    // textures): each stage of the program reads at most the 16 samplers OpenGL 3.3 promises it.
+    const ViewRun shot = view({dir.file("m/material.json"), "--screenshot", dir.file("shot.png"), "--size", "160x120", "--time",
+                               "3.3", "--lookup", "gather-trilinear", "--json"});
+    ASSERT_EQ(shot.code, 0) << shot.err;
+    const auto json = nlohmann::json::parse(shot.out);
+    EXPECT_GT(json["samplers"]["vertex"].get<int>(), 0);
+    EXPECT_LE(json["samplers"]["vertex"].get<int>(), 16);
+    EXPECT_LE(json["samplers"]["fragment"].get<int>(), 16);
+    std::printf("choppy: %d vertices, heights over %.3f m, shifts up to %.3f m; worst difference: height %.3g m, "
+                "shift %.3g m, height over the displaced vertex %.3g m (at most %d fixed-point steps); samplers: vertex %d, "
+                "fragment %d\n",
+                a.compared, a.range, a.largestShift, a.worst, a.worstShift, a.worstOver, a.mostSteps,
+                json["samplers"]["vertex"].get<int>(), json["samplers"]["fragment"].get<int>());
 }

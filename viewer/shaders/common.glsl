@@ -8,13 +8,15 @@ const int kMaxLayers = 2;  // the two largest maps displace the grid (18.2.1)
 
 uniform int uLayerCount;
 // Every height texture is in its file's type (32-bit float, half, 16-bit normalised); uLayerDecode maps
-// what they sample back to the file's values.
-uniform sampler2D uPacked0, uPacked1;   // RGBA, nearest, mip-mapped: R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1)
-uniform sampler2D uPlain0, uPlain1;     // R, GL_LINEAR, mip-mapped: the reference path
-uniform sampler2D uPacked0Next, uPacked1Next, uPlain0Next, uPlain1Next;  // a sequence's next frame
+// what they sample back to the file's values. Each is an array texture holding every frame of a map's
+// sequence, frame f in layer f, so blending this frame into the next costs no sampler of its own: the
+// vertex stage reads nine samplers, the fragment stage eleven, of the sixteen GL 3.3 promises a stage.
+uniform sampler2DArray uPacked0, uPacked1;   // RGBA, nearest, mip-mapped: R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1)
+uniform sampler2DArray uPlain0, uPlain1;     // R, GL_LINEAR, mip-mapped: the reference path
+uniform ivec2 uLayerFrame[kMaxLayers];  // the layers of this frame and the next (0, 0 for a single map)
 uniform float uLayerBlend[kMaxLayers];  // how far between this frame and the next (0 for a single map)
 uniform vec4 uLayerDecode[kMaxLayers];  // stored = x + y * sampled for this frame, z + w * sampled for the next
-uniform sampler2D uGather0, uGather1, uGather0Next, uGather1Next;  // R atlases, one level, nearest (gather only)
+uniform sampler2DArray uGather0, uGather1;  // R atlases, one level, nearest (gather only)
 uniform vec4 uLayerXform[kMaxLayers];   // tiles per metre, scroll u and v (tiles per second), amplitude (m)
 uniform vec2 uLayerStored[kMaxLayers];  // the stored value of a mid height (subtracted), and 1 if clamp-wrapped
 uniform int uLayerLevels[kMaxLayers];   // mip levels in each layer's chain
@@ -42,18 +44,18 @@ vec2 levelSize(int layer, int level) {
 }
 
 // Listing 18-2 with the design's lookup: p = uv * size - 0.5, one nearest fetch at floor(p).
-float packedBilinear(sampler2D tex, int layer, vec2 uv, int level, bool clampMode) {
+float packedBilinear(sampler2DArray tex, int layer, int frame, vec2 uv, int level, bool clampMode) {
     vec2 size = levelSize(layer, level);
     vec2 p = (clampMode ? clamp(uv, 0.0, 1.0) : fract(uv)) * size - 0.5;  // fract keeps far coordinates precise
     if (clampMode) p = clamp(p, vec2(0.0), size - 1.0);
     vec2 i = floor(p);
     vec2 f = p - i;
-    vec4 t = texelFetch(tex, ivec2(mod(i, size)), level);
+    vec4 t = texelFetch(tex, ivec3(mod(i, size), frame), level);
     return mix(mix(t.r, t.g, f.x), mix(t.b, t.a, f.x), f.y);
 }
 
-float referenceBilinear(sampler2D tex, vec2 uv, int level, bool clampMode) {
-    return textureLod(tex, clampMode ? uv : fract(uv), float(level)).r;
+float referenceBilinear(sampler2DArray tex, int frame, vec2 uv, int level, bool clampMode) {
+    return textureLod(tex, vec3(clampMode ? uv : fract(uv), float(frame)), float(level)).r;
 }
 
 #if HEIGHTPACK_GATHER
@@ -65,7 +67,7 @@ uniform ivec2 uGatherOrigin[kMaxLayers * kMaxLevels];
 uniform vec2 uGatherSize[kMaxLayers];   // the atlas in texels
 
 // The packed lookup's arithmetic on the four texels one gather returns.
-float gatherBilinear(sampler2D atlas, int layer, vec2 uv, int level, bool clampMode) {
+float gatherBilinear(sampler2DArray atlas, int layer, int frame, vec2 uv, int level, bool clampMode) {
     vec2 size = levelSize(layer, level);
     vec2 p = (clampMode ? clamp(uv, 0.0, 1.0) : fract(uv)) * size - 0.5;
     if (clampMode) p = clamp(p, vec2(0.0), size - 1.0);
@@ -74,32 +76,32 @@ float gatherBilinear(sampler2D atlas, int layer, vec2 uv, int level, bool clampM
     // The corner shared by texels i and i + 1: the bilinear footprint there is exactly those four,
     // half a texel from any rounding that could pick another.
     vec2 corner = vec2(uGatherOrigin[layer * kMaxLevels + level]) + mod(i, size) + 1.0;
-    vec4 t = textureGather(atlas, corner / uGatherSize[layer]);  // (i,j+1) (i+1,j+1) (i+1,j) (i,j)
+    vec4 t = textureGather(atlas, vec3(corner / uGatherSize[layer], float(frame)));  // (i,j+1) (i+1,j+1) (i+1,j) (i,j)
     return mix(mix(t.w, t.z, f.x), mix(t.x, t.y, f.x), f.y);
 }
 #endif
 
-float levelLookup(sampler2D packedTex, sampler2D plainTex, sampler2D gatherTex, int layer, vec2 uv, int level,
-                  bool clampMode) {
+float levelLookup(sampler2DArray packedTex, sampler2DArray plainTex, sampler2DArray gatherTex, int layer, int frame,
+                  vec2 uv, int level, bool clampMode) {
 #if HEIGHTPACK_GATHER
-    if (uLookup >= 4) return gatherBilinear(gatherTex, layer, uv, level, clampMode);
+    if (uLookup >= 4) return gatherBilinear(gatherTex, layer, frame, uv, level, clampMode);
 #endif
-    return uLookup >= 2 ? referenceBilinear(plainTex, uv, level, clampMode)
-                        : packedBilinear(packedTex, layer, uv, level, clampMode);
+    return uLookup >= 2 ? referenceBilinear(plainTex, frame, uv, level, clampMode)
+                        : packedBilinear(packedTex, layer, frame, uv, level, clampMode);
 }
 
 // Listing 18-3: one level below the band, the next above it, a blend inside it.
-float layerHeight(sampler2D packedTex, sampler2D plainTex, sampler2D gatherTex, int layer, vec2 uv, float lod,
-                  bool clampMode) {
+float layerHeight(sampler2DArray packedTex, sampler2DArray plainTex, sampler2DArray gatherTex, int layer, int frame,
+                  vec2 uv, float lod, bool clampMode) {
     int last = uLayerLevels[layer] - 1;
-    if (uLookup % 2 == 0) return levelLookup(packedTex, plainTex, gatherTex, layer, uv, 0, clampMode);
+    if (uLookup % 2 == 0) return levelLookup(packedTex, plainTex, gatherTex, layer, frame, uv, 0, clampMode);
     lod = clamp(lod, 0.0, float(last));
     int level = min(int(floor(lod)), last);
     float fr = lod - float(level);
-    if (level == last || fr < uBands.x) return levelLookup(packedTex, plainTex, gatherTex, layer, uv, level, clampMode);
-    float coarse = levelLookup(packedTex, plainTex, gatherTex, layer, uv, level + 1, clampMode);
+    if (level == last || fr < uBands.x) return levelLookup(packedTex, plainTex, gatherTex, layer, frame, uv, level, clampMode);
+    float coarse = levelLookup(packedTex, plainTex, gatherTex, layer, frame, uv, level + 1, clampMode);
     if (fr > uBands.y) return coarse;
-    float fine = levelLookup(packedTex, plainTex, gatherTex, layer, uv, level, clampMode);
+    float fine = levelLookup(packedTex, plainTex, gatherTex, layer, frame, uv, level, clampMode);
     return mix(fine, coarse, (fr - uBands.x) / (uBands.y - uBands.x));
 }
 
@@ -116,15 +118,15 @@ vec2 layerUv(int k, vec2 world) {
 // Layer k's height above its mean at xy, seen from distance d: this frame, blended into the next frame
 // of a sequence; lod receives the layer's level of detail. Every lookup is a weighted mean of texels,
 // so a normalised map's scale and offset apply once, after it.
-float layerContribution(int k, sampler2D packedTex, sampler2D plainTex, sampler2D gatherTex, sampler2D packedNext,
-                        sampler2D plainNext, sampler2D gatherNext, vec2 xy, float d, out float lod) {
+float layerContribution(int k, sampler2DArray packedTex, sampler2DArray plainTex, sampler2DArray gatherTex, vec2 xy,
+                        float d, out float lod) {
     lod = layerLod(k, d);
     vec2 uv = layerUv(k, xy);
     bool clampMode = uLayerStored[k].y > 0.5;
     vec4 decode = uLayerDecode[k];
-    float stored = decode.x + decode.y * layerHeight(packedTex, plainTex, gatherTex, k, uv, lod, clampMode);
+    float stored = decode.x + decode.y * layerHeight(packedTex, plainTex, gatherTex, k, uLayerFrame[k].x, uv, lod, clampMode);
     if (uLayerBlend[k] > 0.0) {
-        float next = decode.z + decode.w * layerHeight(packedNext, plainNext, gatherNext, k, uv, lod, clampMode);
+        float next = decode.z + decode.w * layerHeight(packedTex, plainTex, gatherTex, k, uLayerFrame[k].y, uv, lod, clampMode);
         stored = mix(stored, next, uLayerBlend[k]);
     }
     return uLayerXform[k].w * (stored - uLayerStored[k].x);
@@ -133,43 +135,43 @@ float layerContribution(int k, sampler2D packedTex, sampler2D plainTex, sampler2
 // Tessendorf's choppy waves: maps that carry Dx, Dy move each point sideways as well as up. Their Dx, Dy
 // are packed as the heights are and read with the same lookup, at the same level and LOD band, so a
 // vertex's shift belongs to the very height it is given.
-uniform sampler2DArray uShift0, uShift1, uShift0Next, uShift1Next;  // layer 0: Dx, layer 1: Dy (RGBA packed)
+uniform sampler2DArray uShift0, uShift1;  // layer 2f: Dx, layer 2f + 1: Dy of frame f (RGBA packed)
 uniform float uLayerChop[kMaxLayers];   // choppiness of each map with Dx, Dy; 0 for a map without them
 
-vec2 packedShiftBilinear(sampler2DArray tex, int layer, vec2 uv, int level, bool clampMode) {
+vec2 packedShiftBilinear(sampler2DArray tex, int layer, int frame, vec2 uv, int level, bool clampMode) {
     vec2 size = levelSize(layer, level);
     vec2 p = (clampMode ? clamp(uv, 0.0, 1.0) : fract(uv)) * size - 0.5;
     if (clampMode) p = clamp(p, vec2(0.0), size - 1.0);
     vec2 i = floor(p);
     vec2 f = p - i;
     ivec2 at = ivec2(mod(i, size));
-    vec4 x = texelFetch(tex, ivec3(at, 0), level);
-    vec4 y = texelFetch(tex, ivec3(at, 1), level);
+    vec4 x = texelFetch(tex, ivec3(at, 2 * frame), level);
+    vec4 y = texelFetch(tex, ivec3(at, 2 * frame + 1), level);
     return vec2(mix(mix(x.r, x.g, f.x), mix(x.b, x.a, f.x), f.y), mix(mix(y.r, y.g, f.x), mix(y.b, y.a, f.x), f.y));
 }
 
 // layerHeight's levels and band for D (the reference and gather lookups are for heights: D stays packed).
-vec2 layerShiftAt(sampler2DArray tex, int layer, vec2 uv, float lod, bool clampMode) {
+vec2 layerShiftAt(sampler2DArray tex, int layer, int frame, vec2 uv, float lod, bool clampMode) {
     int last = uLayerLevels[layer] - 1;
-    if (uLookup % 2 == 0) return packedShiftBilinear(tex, layer, uv, 0, clampMode);
+    if (uLookup % 2 == 0) return packedShiftBilinear(tex, layer, frame, uv, 0, clampMode);
     lod = clamp(lod, 0.0, float(last));
     int level = min(int(floor(lod)), last);
     float fr = lod - float(level);
-    if (level == last || fr < uBands.x) return packedShiftBilinear(tex, layer, uv, level, clampMode);
-    vec2 coarse = packedShiftBilinear(tex, layer, uv, level + 1, clampMode);
+    if (level == last || fr < uBands.x) return packedShiftBilinear(tex, layer, frame, uv, level, clampMode);
+    vec2 coarse = packedShiftBilinear(tex, layer, frame, uv, level + 1, clampMode);
     if (fr > uBands.y) return coarse;
-    vec2 fine = packedShiftBilinear(tex, layer, uv, level, clampMode);
+    vec2 fine = packedShiftBilinear(tex, layer, frame, uv, level, clampMode);
     return mix(fine, coarse, (fr - uBands.x) / (uBands.y - uBands.x));
 }
 
 // Layer k's horizontal shift at xy: x + choppiness A D, synth's D = i k/|k| h pointing toward the crests
 // (a Gerstner wave's sharpening for positive choppiness); frames blended as the heights are.
-vec2 layerShift(int k, sampler2DArray tex, sampler2DArray next, vec2 xy, float d) {
+vec2 layerShift(int k, sampler2DArray tex, vec2 xy, float d) {
     float lod = layerLod(k, d);
     vec2 uv = layerUv(k, xy);
     bool clampMode = uLayerStored[k].y > 0.5;
-    vec2 D = layerShiftAt(tex, k, uv, lod, clampMode);
-    if (uLayerBlend[k] > 0.0) D = mix(D, layerShiftAt(next, k, uv, lod, clampMode), uLayerBlend[k]);
+    vec2 D = layerShiftAt(tex, k, uLayerFrame[k].x, uv, lod, clampMode);
+    if (uLayerBlend[k] > 0.0) D = mix(D, layerShiftAt(tex, k, uLayerFrame[k].y, uv, lod, clampMode), uLayerBlend[k]);
     return uLayerChop[k] * uLayerXform[k].w * D;
 }
 
@@ -178,8 +180,8 @@ bool anyChoppy() { return (uLayerCount > 0 && uLayerChop[0] != 0.0) || (uLayerCo
 // Where the grid point at xy moves sideways, seen from distance d (the same d as its height).
 vec2 waterShift(vec2 xy, float d) {
     vec2 s = vec2(0.0);
-    if (uLayerCount > 0 && uLayerChop[0] != 0.0) s += layerShift(0, uShift0, uShift0Next, xy, d);
-    if (uLayerCount > 1 && uLayerChop[1] != 0.0) s += layerShift(1, uShift1, uShift1Next, xy, d);
+    if (uLayerCount > 0 && uLayerChop[0] != 0.0) s += layerShift(0, uShift0, xy, d);
+    if (uLayerCount > 1 && uLayerChop[1] != 0.0) s += layerShift(1, uShift1, xy, d);
     return s;
 }
 
@@ -189,9 +191,9 @@ float waterHeight(vec2 xy, float d, out float lod0) {
     lod0 = 0.0;
     float lod1;
     if (uLayerCount > 0)
-        h += layerContribution(0, uPacked0, uPlain0, uGather0, uPacked0Next, uPlain0Next, uGather0Next, xy, d, lod0);
+        h += layerContribution(0, uPacked0, uPlain0, uGather0, xy, d, lod0);
     if (uLayerCount > 1)
-        h += layerContribution(1, uPacked1, uPlain1, uGather1, uPacked1Next, uPlain1Next, uGather1Next, xy, d, lod1);
+        h += layerContribution(1, uPacked1, uPlain1, uGather1, xy, d, lod1);
     for (int e = 0; e < kMaxExplosions; ++e) {
         if (e >= uExplosionCount) break;
         float age = uTime - uExplosion[e].z;

@@ -1,7 +1,7 @@
-// The flat tiled view: one map (level 0, plain, hardware bilinear) repeated N x M across the window, as
+// The flat tiled view: one map (its first frame, level 0, plain, hardware bilinear) repeated N x M across the window, as
 // grey from its min to max, with the tile lines drawn on demand.
 in vec2 vUv;
-uniform sampler2D uMap;
+uniform sampler2DArray uMap;  // a map's frames, one a layer: frame 0 is shown
 uniform vec2 uTiles;
 uniform vec2 uRange;
 uniform vec2 uDecode;   // the map's texels back to its values: x + y * sampled
@@ -12,7 +12,7 @@ layout(location = 0) out vec4 outColour;
 
 void main() {
     vec2 t = vec2(vUv.x, 1.0 - vUv.y) * uTiles;  // row 0 of the map at the top, as an image viewer shows it
-    float h = uDecode.x + uDecode.y * textureLod(uMap, fract(t), 0.0).r;
+    float h = uDecode.x + uDecode.y * textureLod(uMap, vec3(fract(t), 0.0), 0.0).r;
     float g = clamp((h - uRange.x) / (uRange.y - uRange.x), 0.0, 1.0);
     vec3 colour = vec3(g);
     if (uSeamLines) {
