@@ -54,6 +54,9 @@ public:
         cmd->add_flag("--displacement", options_.displacement,
                       "keep the input's horizontal displacement (Dx, Dy, as synth --displacement writes): packed "
                       "beside the heights as layers Dx, Dy of the same .exr");
+        cmd->add_flag("--foam", options_.foam,
+                      "keep the input's foam coverage (its Foam channel, as synth --foam writes it): packed beside the "
+                      "heights as layer Foam of the same .exr");
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
@@ -65,6 +68,7 @@ public:
             "  heightpack pack swell.png --pixel-type auto --tolerance 1mm --height 6m -o swell.ktx2\n"
             "  heightpack pack swell.png --layout plain --pixel-type uint16 -o swell_r16.ktx2\n"
             "  heightpack pack sea.####.exr --displacement -o sea_packed.exr\n"
+            "  heightpack pack sea.####.exr --displacement --foam -o sea_packed.exr\n"
             "Texel (i,j) of every level holds R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1), wrapped or clamped.\n");
         return cmd;
     }
@@ -95,6 +99,9 @@ public:
         if (options_.displacement && (isGpuContainer(output_) || isGpuContainer(options_.plainOutput)))
             return usage("--displacement writes an .exr only: a KTX2 or DDS texture holds four channels, heights "
                          "with Dx, Dy need twelve");
+        if (options_.foam && (isGpuContainer(output_) || isGpuContainer(options_.plainOutput)))
+            return usage("--foam writes an .exr only: a KTX2 or DDS texture holds four channels, heights with their "
+                         "foam need eight");
         options_.resizeToPowerOfTwo = resize_ == "pow2";
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
@@ -176,6 +183,8 @@ private:
                 {"layout", nameOf(r.layout)},
                 {"displacement", !options_.displacement ? nlohmann::json(nullptr)
                                  : r.layout == Layout::Neighbour4 ? nlohmann::json("neighbour4") : nlohmann::json("plain")},
+                {"foam", !options_.foam ? nlohmann::json(nullptr)
+                         : r.layout == Layout::Neighbour4 ? nlohmann::json("neighbour4") : nlohmann::json("plain")},
                 {"wrap", wrap_},
                 {"filter", filter_},
                 {"compression", compression},

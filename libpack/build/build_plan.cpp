@@ -8,6 +8,7 @@
 #include "heightpack/build/pack_job.hpp"
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/displacement_read.hpp"
+#include "heightpack/io/foam_read.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
 
@@ -189,6 +190,9 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
             // a painted map's key stays what it was.
             pack.displacement = d.layer.choppiness > 0 && hasDisplacement(d.frames.front()) &&
                                 containerForPath(d.output).value_or(Container::Exr) == Container::Exr;
+            // Foam likewise, unless foam = false.
+            pack.foam = d.keepFoam && hasFoam(d.frames.front()) &&
+                        containerForPath(d.output).value_or(Container::Exr) == Container::Exr;
             addSourcedSteps(steps, d, d.layer.name, "displacement", m.threshold, pack, makePacked);
         }
     }

@@ -96,7 +96,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const FresnelOpti
 }
 
 void appendKeyText(std::string& text, std::string_view prefix, const PackOptions& o) {
-    static_assert(fieldCount<PackOptions>() == 15, "PackOptions changed: put the new field in its key text");
+    static_assert(fieldCount<PackOptions>() == 16, "PackOptions changed: put the new field in its key text");
     Key k(text, prefix);
     k.nested("load", o.load);
     k.nested("mip", o.mip);
@@ -113,6 +113,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const PackOptions
     k.put("version", o.version);
     // Issue 15: a line only when on, so every key made before it existed still matches.
     if (o.displacement) k.put("displacement", o.displacement);
+    if (o.foam) k.put("foam", o.foam);
     // progress: reports, makes nothing
 }
 

@@ -264,6 +264,7 @@ private:
         d.layer.heightScale = s.number("height_scale", 1.0, -1e6, 1e6);
         d.layer.heightOffset = s.number("height_offset", 0.0, -1e6, 1e6);
         d.layer.choppiness = s.number("choppiness", 1.0, 0.0, 10.0);
+        d.keepFoam = s.boolean("foam").value_or(true);
         if (d.layer.heightScale == 0) throw s.error("height_scale", "is 0, which would flatten the map");
         d.layer.wrap = d.settings.wrap;
         d.layer.filter = d.settings.filter;

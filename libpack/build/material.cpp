@@ -113,6 +113,7 @@ std::string materialJson(const MaterialDescription& m) {
             j["horizontalDisplacement"] = true;
             j["choppiness"] = d.choppiness;
         }
+        if (d.foam) j["foam"] = true;  // likewise only for a texture with a Foam layer
         layers.push_back(std::move(j));
     }
     doc["displacement"] = std::move(layers);
@@ -189,6 +190,11 @@ Result<MaterialDescription> readMaterial(const std::string& path) {
                 d.horizontalDisplacement = h.get<bool>();
             }
             if (j.contains("choppiness")) d.choppiness = r.number(j, "choppiness", w);
+            if (j.contains("foam")) {
+                const Json& f = j["foam"];
+                if (!f.is_boolean()) throw r.missing(w + "foam (true or false)");
+                d.foam = f.get<bool>();
+            }
             m.displacement.push_back(std::move(d));
         }
         if (doc.contains("normals")) {

@@ -13,7 +13,7 @@ namespace {
 
 // A texture's description from its file's header.
 Result<MaterialTexture> describeTexture(const std::string& folder, const std::string& output, int frames, double* loopPeriod,
-                                        bool* horizontalDisplacement = nullptr) {
+                                        bool* horizontalDisplacement = nullptr, bool* foam = nullptr) {
     const std::string first = (fs::path(folder) / frameFileName(output, 0, frames)).string();
     auto layout = readTextureLayout(first, true);
     if (!layout) return layout.error();
@@ -29,6 +29,7 @@ Result<MaterialTexture> describeTexture(const std::string& folder, const std::st
     }
     if (horizontalDisplacement)
         *horizontalDisplacement = findAttribute(layout->attributes, attr::displacement) == "neighbour4";
+    if (foam) *foam = findAttribute(layout->attributes, attr::foam) == "neighbour4";
     return t;
 }
 
@@ -42,7 +43,7 @@ Result<MaterialDescription> describeMaterial(const Manifest& m, const std::strin
     for (const DisplacementAsset& a : m.displacement) {
         DisplacementLayer layer = a.layer;
         auto t = describeTexture(folder, a.output, static_cast<int>(a.frames.size()), &layer.loopPeriod,
-                                 &layer.horizontalDisplacement);
+                                 &layer.horizontalDisplacement, &layer.foam);
         if (!t) return t.error();
         layer.texture = *t;
         d.displacement.push_back(std::move(layer));

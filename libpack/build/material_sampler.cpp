@@ -62,20 +62,25 @@ Result<FrameChains> readFrameChains(const std::string& path, SampledLayer& layer
     }
     const bool packed = layout == "neighbour4";
     const bool displaced = !findAttribute(file->attributes, attr::displacement).empty();
-    // Without a displacement the heights are the file's first four (packed) or first (plain) channels, as
-    // ever; with one, the channels named as pack --displacement names them.
+    // Foam coverage (pack --foam) rides in layer Foam: it moves no water, so the sampler skips it.
+    const bool foam = !findAttribute(file->attributes, attr::foam).empty();
+    // Without companions the heights are the file's first four (packed) or first (plain) channels, as
+    // ever; with them, the channels named as pack --displacement and --foam name them.
     std::vector<int> heights = packed ? std::vector<int>{0, 1, 2, 3} : std::vector<int>{0}, dx, dy;
-    if (displaced) {
+    if (displaced || foam)
         heights = channelIndices(*file, packed ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"Y"});
+    if (std::find(heights.begin(), heights.end(), -1) != heights.end())
+        return badInput(path, "records its companions but lacks a height channel", "pack it again");
+    if (displaced) {
         dx = channelIndices(*file, packed ? std::vector<std::string>{"Dx.R", "Dx.G", "Dx.B", "Dx.A"} : std::vector<std::string>{"Dx"});
         dy = channelIndices(*file, packed ? std::vector<std::string>{"Dy.R", "Dy.G", "Dy.B", "Dy.A"} : std::vector<std::string>{"Dy"});
-        for (const auto* list : {&heights, &dx, &dy})
+        for (const auto* list : {&dx, &dy})
             if (std::find(list->begin(), list->end(), -1) != list->end())
                 return badInput(path, "records a displacement but lacks one of its channels", "pack it again");
     }
     FrameChains chains;
     for (const Image& level : file->levels) {
-        if (packed && !displaced && level.channels != 4)
+        if (packed && !displaced && !foam && level.channels != 4)
             return badInput(path, "is marked neighbour4 but has " + std::to_string(level.channels) + " channels",
                             "pack it again");
         auto packedOf = [&](const std::vector<int>& channels) {

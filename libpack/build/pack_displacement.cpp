@@ -36,36 +36,47 @@ Result<DisplacementMaps> packDisplacement(Image d, const SourceInfo& source, con
     return maps;
 }
 
-std::vector<std::string> packedDisplacementChannels() {
-    return {"R", "G", "B", "A", "Dx.R", "Dx.G", "Dx.B", "Dx.A", "Dy.R", "Dy.G", "Dy.B", "Dy.A"};
+std::vector<CompanionChain> companionsOf(const DisplacementMaps* d, const std::vector<Image>* foam) {
+    std::vector<CompanionChain> companions;
+    if (d) companions.insert(companions.end(), {{"Dx", &d->plainX}, {"Dy", &d->plainY}});
+    if (foam) companions.push_back({"Foam", foam});
+    return companions;
+}
+
+std::vector<std::string> packedCompanionChannels(const std::vector<CompanionChain>& companions) {
+    std::vector<std::string> names = {"R", "G", "B", "A"};
+    for (const CompanionChain& c : companions)
+        for (const char* s : {".R", ".G", ".B", ".A"}) names.push_back(c.name + s);
+    return names;
 }
 
 namespace detail {
 
-void fillPackedWithDisplacement(TiledExrContent& content, const std::vector<Image>& heights, const DisplacementMaps& d,
-                                Wrap wrap) {
-    content.channelNames = packedDisplacementChannels();
-    content.fillRows = [&heights, &d, wrap](int level, int y0, int rows, float* dst) {
-        const Image* chains[3] = {&heights[level], &d.plainX[level], &d.plainY[level]};
-        const size_t texels = size_t(rows) * heights[level].width;
+void fillPackedWithCompanions(TiledExrContent& content, const std::vector<Image>& heights,
+                              std::vector<CompanionChain> companions, Wrap wrap) {
+    content.channelNames = packedCompanionChannels(companions);
+    content.fillRows = [&heights, companions = std::move(companions), wrap](int level, int y0, int rows, float* dst) {
+        const size_t texels = size_t(rows) * heights[level].width, stride = 4 * (1 + companions.size());
         std::vector<float> band(texels * 4);
-        // Each chain packed alone, then interleaved: texel t holds its 4 heights, 4 Dx, 4 Dy.
-        for (int c = 0; c < 3; ++c) {
-            packNeighbour4Rows(*chains[c], wrap, y0, rows, band.data());
-            for (size_t t = 0; t < texels; ++t) std::copy_n(band.data() + 4 * t, 4, dst + 12 * t + 4 * c);
+        // Each chain packed alone, then interleaved: texel t holds its 4 heights, then 4 of each companion.
+        for (size_t c = 0; c <= companions.size(); ++c) {
+            packNeighbour4Rows(c == 0 ? heights[level] : (*companions[c - 1].levels)[level], wrap, y0, rows, band.data());
+            for (size_t t = 0; t < texels; ++t) std::copy_n(band.data() + 4 * t, 4, dst + stride * t + 4 * c);
         }
     };
 }
 
-void fillPlainWithDisplacement(TiledExrContent& content, const std::vector<Image>& heights, const DisplacementMaps& d) {
-    content.channelNames = {"Y", "Dx", "Dy"};
-    content.fillRows = [&heights, &d](int level, int y0, int rows, float* dst) {
+void fillPlainWithCompanions(TiledExrContent& content, const std::vector<Image>& heights,
+                             std::vector<CompanionChain> companions) {
+    content.channelNames = {"Y"};
+    for (const CompanionChain& c : companions) content.channelNames.push_back(c.name);
+    content.fillRows = [&heights, companions = std::move(companions)](int level, int y0, int rows, float* dst) {
         const Image& h = heights[level];
-        const size_t begin = size_t(y0) * h.width, texels = size_t(rows) * h.width;
+        const size_t begin = size_t(y0) * h.width, texels = size_t(rows) * h.width, stride = 1 + companions.size();
         for (size_t t = 0; t < texels; ++t) {
-            dst[3 * t] = h.pixels[begin + t];
-            dst[3 * t + 1] = d.plainX[level].pixels[begin + t];
-            dst[3 * t + 2] = d.plainY[level].pixels[begin + t];
+            dst[stride * t] = h.pixels[begin + t];
+            for (size_t c = 0; c < companions.size(); ++c)
+                dst[stride * t + 1 + c] = (*companions[c].levels)[level].pixels[begin + t];
         }
     };
 }

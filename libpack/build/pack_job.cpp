@@ -5,10 +5,12 @@
 #include <optional>
 
 #include "heightpack/build/pack_displacement.hpp"
+#include "heightpack/build/pack_foam.hpp"
 #include "heightpack/core/pack.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/displacement_read.hpp"
 #include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/foam_read.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/read.hpp"
 #include "heightpack/io/texture_write.hpp"
@@ -102,11 +104,11 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     Image heights = std::move(loaded->heights);
     progress("load", 1.0);
     report.loadSeconds = secondsSince(start);
+    const auto gpu = [](const std::string& path) {
+        return !path.empty() && containerForPath(path).value_or(Container::Exr) != Container::Exr;
+    };
     std::optional<DisplacementMaps> displacement;
     if (options.displacement) {
-        const auto gpu = [](const std::string& path) {
-            return !path.empty() && containerForPath(path).value_or(Container::Exr) != Container::Exr;
-        };
         if (gpu(output) || gpu(options.plainOutput))
             return cannotWrite(gpu(output) ? output : options.plainOutput,
                                "a KTX2 or DDS texture holds at most four channels; heights with Dx, Dy need twelve",
@@ -117,6 +119,19 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         if (!maps) return maps.error();
         displacement = std::move(*maps);
     }
+    std::optional<std::vector<Image>> foam;
+    if (options.foam) {
+        if (gpu(output) || gpu(options.plainOutput))
+            return cannotWrite(gpu(output) ? output : options.plainOutput,
+                               "a KTX2 or DDS texture holds at most four channels; heights with foam need eight",
+                               "write the foam to an .exr");
+        auto f = loadFoam(input, options.load);
+        if (!f) return f.error();
+        auto chain = foamChain(std::move(*f), report.source, options);
+        if (!chain) return chain.error();
+        foam = std::move(*chain);
+    }
+    const std::vector<CompanionChain> companions = companionsOf(displacement ? &*displacement : nullptr, foam ? &*foam : nullptr);
 
     start = std::chrono::steady_clock::now();
     // The plain chain only: the writer packs it a band at a time, so the packed chain is never held whole.
@@ -170,24 +185,24 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     report.lookupError = stored->lookupError;
     const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*stored);
     content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
-    // Dx, Dy join after the storage is chosen: the choice and its error are the heights'.
-    if (displacement) {
+    // Dx, Dy and foam join after the storage is chosen: the choice and its error are the heights'.
+    if (!companions.empty()) {
         if (packed)
-            detail::fillPackedWithDisplacement(content, chain, *displacement, wrap);
+            detail::fillPackedWithCompanions(content, chain, companions, wrap);
         else
-            detail::fillPlainWithDisplacement(content, chain, *displacement);
-        content.attributes.push_back(attribute(attr::displacement, packed ? "neighbour4" : "plain"));
+            detail::fillPlainWithCompanions(content, chain, companions);
     }
+    if (displacement) content.attributes.push_back(attribute(attr::displacement, packed ? "neighbour4" : "plain"));
+    if (foam) content.attributes.push_back(attribute(attr::foam, packed ? "neighbour4" : "plain"));
     if (Status s = writeTexture(output, content, writeOptions); !s) return s.error();
     if (both) {
         content.channelNames = {"Y"};
         content.fillRows = fillPlain;
         content.attributes = heightAttributes(Layout::Plain, options, report.source, report.sourceHash);
         content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
-        if (displacement) {
-            detail::fillPlainWithDisplacement(content, chain, *displacement);
-            content.attributes.push_back(attribute(attr::displacement, "plain"));
-        }
+        if (!companions.empty()) detail::fillPlainWithCompanions(content, chain, companions);
+        if (displacement) content.attributes.push_back(attribute(attr::displacement, "plain"));
+        if (foam) content.attributes.push_back(attribute(attr::foam, "plain"));
         writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
         if (Status s = writeTexture(plainPath, content, writeOptions); !s) return s.error();
     }

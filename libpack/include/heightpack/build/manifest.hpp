@@ -61,6 +61,9 @@ struct DisplacementAsset : SourcedAsset {
     // (kSynthFolder/NAME.EXR inside the output's folder), one per frame. A table with cascades = N
     // becomes N assets, NAME_c0 ... (outputs NAME_c0.EXT ...), one per cascade.
     std::optional<SynthSource> synth;
+    // The key foam (default true): keep the source's foam coverage (synth --foam's Foam channel) in an EXR
+    // output; false leaves it out.
+    bool keepFoam = true;
 };
 
 // Where a synthesised map is written, inside its output's folder, before it is packed: a hidden folder in

@@ -46,6 +46,9 @@ struct DisplacementLayer {
     // renderer moves the point at x to x + choppiness * amplitude * D(x / tileSize + scroll * t).
     bool horizontalDisplacement = false;
     double choppiness = 1.0;
+    // Synth's looping foam coverage (0..1): the texture also holds layer Foam, packed as the heights, which a
+    // renderer reads at x / tileSize + scroll * t, frames blended as the heights are.
+    bool foam = false;
 };
 
 // One octave of the normal map's detail: the map sampled at its own scale and scroll, weighted.

@@ -25,17 +25,28 @@ struct DisplacementMaps {
 // apply), mip-mapped with options.mip, and packed when options.layout is Neighbour4.
 Result<DisplacementMaps> packDisplacement(Image d, const SourceInfo& source, const PackOptions& options);
 
-// The channel names of a packed texture with its displacement: the heights' R, G, B, A, then the layers
-// Dx and Dy, each R, G, B, A packed as the heights are.
-std::vector<std::string> packedDisplacementChannels();
+// A chain written beside the heights in the same EXR: its layer name (Dx, Dy, Foam) and its plain levels,
+// one channel each, the sizes of the heights' levels.
+struct CompanionChain {
+    std::string name;
+    const std::vector<Image>* levels = nullptr;
+};
+
+// Dx, Dy of d (when given), then foam (when given): the layers, in the order they are written.
+std::vector<CompanionChain> companionsOf(const DisplacementMaps* d, const std::vector<Image>* foam);
+
+// The channel names of a packed texture with companions: the heights' R, G, B, A, then each companion's
+// NAME.R, NAME.G, NAME.B, NAME.A, packed as the heights are.
+std::vector<std::string> packedCompanionChannels(const std::vector<CompanionChain>& companions);
 
 namespace detail {
 
-// Makes content (channels, rows) the packed heights and displacement: the chains must share their sizes.
-void fillPackedWithDisplacement(TiledExrContent& content, const std::vector<Image>& heights, const DisplacementMaps& d,
-                                Wrap wrap);
-// Makes content the plain chain with its displacement: channels Y, Dx, Dy.
-void fillPlainWithDisplacement(TiledExrContent& content, const std::vector<Image>& heights, const DisplacementMaps& d);
+// Makes content (channels, rows) the packed heights and their companions: the chains must share their sizes.
+void fillPackedWithCompanions(TiledExrContent& content, const std::vector<Image>& heights,
+                              std::vector<CompanionChain> companions, Wrap wrap);
+// Makes content the plain chain with its companions: channels Y, then each companion's NAME.
+void fillPlainWithCompanions(TiledExrContent& content, const std::vector<Image>& heights,
+                             std::vector<CompanionChain> companions);
 
 }  // namespace detail
 

@@ -37,6 +37,10 @@ struct PackOptions {
     // Also keep the input's horizontal displacement (its Dx, Dy; see pack_displacement.hpp), packed beside
     // the heights in the same EXR. An input without it is refused (BadInput, Fix::AddDisplacement).
     bool displacement = false;
+    // Also keep the input's foam coverage (its Foam channel, as synth --foam writes it; see pack_foam.hpp),
+    // packed beside the heights (and Dx, Dy) in the same EXR as layer Foam. An input without it is refused
+    // (BadInput).
+    bool foam = false;
     std::string version;               // recorded as heightpack:version
     // Reports progress: the stage ("load", "mip", "write") and the fraction of it done.
     std::function<void(std::string_view stage, double fraction)> progress;

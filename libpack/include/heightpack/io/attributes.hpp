@@ -49,6 +49,10 @@ inline constexpr AttributeKey<float> heightOffset{"heightpack:heightOffset"};
 // Dy hold Dx, Dy packed as the heights are (Dx.R = Dx(i,j), Dx.G = Dx(i+1,j), ...), "plain" when channels
 // Dx, Dy hold them unpacked. Absent: the file holds heights alone.
 inline constexpr AttributeKey<std::string> displacement{"heightpack:displacement"};
+// Foam coverage (synth --foam, 0..1) stored beside the heights (pack --foam): "neighbour4" when layer Foam
+// holds it packed as the heights are (Foam.R = F(i,j), Foam.G = F(i+1,j), ...), "plain" when channel Foam
+// holds it unpacked. Absent: the file holds no foam.
+inline constexpr AttributeKey<std::string> foam{"heightpack:foam"};
 // 16-bit normalised textures (KTX2, DDS): value = normalisedOffset + normalisedScale * u / 65535.
 inline constexpr AttributeKey<float> normalisedOffset{"heightpack:normalisedOffset"};
 inline constexpr AttributeKey<float> normalisedScale{"heightpack:normalisedScale"};

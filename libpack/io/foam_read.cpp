@@ -1,0 +1,58 @@
+#include "heightpack/io/foam_read.hpp"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "heightpack/io/attributes.hpp"
+
+#include "image_input.hpp"
+#include "stderr_silencer.hpp"
+
+namespace heightpack {
+
+namespace {
+
+// The channel holding F(i,j) of level 0; -1 when the file has none.
+int foamChannel(const OIIO::ImageSpec& spec) {
+    const std::string stored = spec.get_string_attribute(attr::foam.name);
+    const std::string name = stored == "neighbour4" ? "Foam.R" : "Foam";  // R = F(i,j) of a packed layer
+    const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
+    return it == spec.channelnames.end() ? -1 : static_cast<int>(it - spec.channelnames.begin());
+}
+
+}  // namespace
+
+bool hasFoam(const std::string& path) {
+    detail::StderrSilencer quiet(true);
+    auto opened = detail::openImage(path, detail::SizeLimits{});
+    return opened && foamChannel((*opened)->spec()) >= 0;
+}
+
+Result<Image> loadFoam(const std::string& path, const LoadOptions& options) {
+    detail::StderrSilencer quiet(options.silenceDecoderMessages);
+    auto opened = detail::openImage(path, detail::sizeLimitsOf(options));
+    if (!opened) return opened.error();
+    OIIO::ImageInput& in = **opened;
+    const OIIO::ImageSpec spec = in.spec();
+    const int c = foamChannel(spec);
+    if (c < 0) {
+        std::string list;
+        for (const std::string& n : spec.channelnames) list += (list.empty() ? "" : ", ") + n;
+        return badInput(path, "holds no foam coverage (no Foam channel; it has " + list + ")",
+                        "make the map with synth --foam, or leave --foam out");
+    }
+    Image foam(spec.width, spec.height, 1);
+    if (Status s = detail::readPixels(in, path, 0, 0, c, c + 1, foam.pixels.data()); !s) return s.error();
+    for (size_t t = 0; t < foam.pixels.size(); ++t) {
+        if (std::isfinite(foam.pixels[t])) continue;
+        return badInput(path,
+                        std::string("Foam holds ") + (std::isnan(foam.pixels[t]) ? "NaN" : "an infinite value") +
+                            " at texel " + std::to_string(t % foam.width) + "," + std::to_string(t / foam.width),
+                        "fix the map in the tool that made it");
+    }
+    return foam;
+}
+
+}  // namespace heightpack

@@ -1,0 +1,151 @@
+// pack --foam end to end (issue 15, point 4): synth's looping foam coverage kept beside the heights, bit-exact
+// at level 0, mip-mapped as the heights are; refused where it cannot be kept; named by manifests and
+// material.json.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "support/test_support.hpp"
+
+using namespace heightpack;
+using namespace heightpack::test;
+
+namespace {
+
+ProcessResult run(const std::vector<std::string>& args) {
+    std::vector<std::string> argv = {HEIGHTPACK_EXE};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return runProcess(argv);
+}
+
+// One level of an EXR: every channel by name.
+struct Level {
+    int width = 0, height = 0;
+    std::vector<std::string> names;
+    std::vector<float> pixels;
+    float at(const std::string& channel, int x, int y) const {
+        const size_t c = std::find(names.begin(), names.end(), channel) - names.begin();
+        EXPECT_LT(c, names.size()) << channel;
+        return c < names.size() ? pixels[(size_t(y) * width + x) * names.size() + c] : NAN;
+    }
+};
+
+Level readLevel(const std::string& path, int mip) {
+    Level l;
+    auto in = OIIO::ImageInput::open(path);
+    EXPECT_TRUE(in) << path;
+    if (!in || !in->seek_subimage(0, mip)) return l;
+    const OIIO::ImageSpec& spec = in->spec();
+    l.width = spec.width;
+    l.height = spec.height;
+    l.names = spec.channelnames;
+    l.pixels.resize(size_t(l.width) * l.height * spec.nchannels);
+    EXPECT_TRUE(in->read_image(0, mip, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, l.pixels.data()));
+    return l;
+}
+
+// A small choppy sea whose foam covers a good part of it: a threshold of 0.9 on the Jacobian marks every
+// texel the waves squeeze by a tenth.
+const std::vector<std::string> kSynth = {"synth", "--wind", "14m/s", "--tile-size", "32m", "--size", "32",
+                                         "--choppiness", "1.5", "--foam", "--foam-threshold", "0.9", "-q"};
+
+}  // namespace
+
+TEST(PackFoam, KeepsSynthsCoverageBitExactAndItsMipsAreItsBoxMeans) {
+    ScratchDir dir;
+    auto synth = kSynth;
+    synth.insert(synth.end(), {"-o", dir.file("sea.exr")});
+    ASSERT_EQ(run(synth).code, 0);
+    const Level sea = readLevel(dir.file("sea.exr"), 0);
+    ASSERT_EQ(sea.width, 32);
+    double lo = 1, hi = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) lo = std::min<double>(lo, sea.at("Foam", x, y)), hi = std::max<double>(hi, sea.at("Foam", x, y));
+    ASSERT_LT(lo, 0.5 * hi) << "the sea must have foam in some places and less in others";
+
+    const ProcessResult packed = run({"pack", dir.file("sea.exr"), "--displacement", "--foam", "--filter", "box", "--json",
+                                      "--emit-plain", dir.file("plain.exr"), "-o", dir.file("packed.exr")});
+    ASSERT_EQ(packed.code, 0) << packed.err;
+    EXPECT_EQ(nlohmann::json::parse(packed.out)["foam"], "neighbour4");
+    auto in = OIIO::ImageInput::open(dir.file("packed.exr"));
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:foam"), "neighbour4");
+    // Level 0: Foam.R = F(i,j), G = F(i+1,j), B = F(i,j+1), A = F(i+1,j+1), wrapped (a synthesised sea is
+    // periodic), every bit of synth's Foam channel kept; Dx, Dy and the heights are there as without foam.
+    const Level top = readLevel(dir.file("packed.exr"), 0);
+    ASSERT_EQ(top.names.size(), 16u);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            const int x1 = (x + 1) % 32, y1 = (y + 1) % 32;
+            ASSERT_EQ(top.at("Foam.R", x, y), sea.at("Foam", x, y)) << x << "," << y;
+            ASSERT_EQ(top.at("Foam.G", x, y), sea.at("Foam", x1, y));
+            ASSERT_EQ(top.at("Foam.B", x, y), sea.at("Foam", x, y1));
+            ASSERT_EQ(top.at("Foam.A", x, y), sea.at("Foam", x1, y1));
+            ASSERT_EQ(top.at("Dx.R", x, y), sea.at("Dx", x, y));
+            ASSERT_EQ(top.at("R", x, y), sea.at("Y", x, y));
+        }
+    // Box mips: level m's texel is the mean of the 2^m x 2^m block of level 0 under it, summed here.
+    for (const int mip : {1, 3}) {
+        const Level level = readLevel(dir.file("packed.exr"), mip);
+        const int block = 1 << mip;
+        ASSERT_EQ(level.width, 32 / block);
+        for (int y = 0; y < level.height; ++y)
+            for (int x = 0; x < level.width; ++x) {
+                double sum = 0;
+                for (int j = 0; j < block; ++j)
+                    for (int i = 0; i < block; ++i) sum += sea.at("Foam", x * block + i, y * block + j);
+                ASSERT_NEAR(level.at("Foam.R", x, y), sum / (block * block), 1e-6) << mip << " " << x << "," << y;
+            }
+    }
+    // The unpacked twin carries it as channel Foam.
+    const Level plain = readLevel(dir.file("plain.exr"), 0);
+    ASSERT_EQ(plain.names, (std::vector<std::string>{"Y", "Dx", "Dy", "Foam"}));
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) ASSERT_EQ(plain.at("Foam", x, y), sea.at("Foam", x, y));
+}
+
+TEST(PackFoam, RefusesWhatCannotHoldIt) {
+    ScratchDir dir;
+    // A sea with Dx, Dy but no foam: bad input, exit 3, one line, nothing written.
+    ASSERT_EQ(run({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "16", "--displacement", "-q", "-o",
+                   dir.file("sea.exr")}).code, 0);
+    const ProcessResult none = run({"pack", dir.file("sea.exr"), "--foam", "-o", dir.file("p.exr")});
+    EXPECT_EQ(none.code, 3) << none.err;
+    EXPECT_EQ(none.err.rfind("heightpack: error: " + dir.file("sea.exr") + ": ", 0), 0u) << none.err;
+    EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
+    EXPECT_NE(none.err.find("Foam"), std::string::npos) << none.err;
+    // Four channels of a KTX2 or DDS texel cannot hold the heights with their foam: a usage error.
+    for (const char* output : {"s.ktx2", "s.dds"}) {
+        const ProcessResult gpu = run({"pack", dir.file("sea.exr"), "--foam", "-o", dir.file(output)});
+        EXPECT_EQ(gpu.code, 2) << gpu.err;
+        EXPECT_EQ(std::count(gpu.err.begin(), gpu.err.end(), '\n'), 1) << gpu.err;
+    }
+    EXPECT_EQ(dir.listing(), (std::vector<std::string>{"sea.exr"}));
+}
+
+TEST(PackFoam, ManifestsCarryItAndMaterialJsonSaysSo) {
+    ScratchDir dir;
+    auto synth = kSynth;
+    synth.insert(synth.end(), {"-o", dir.file("sea.exr")});
+    ASSERT_EQ(run(synth).code, 0);
+    auto manifest = [&](const std::string& name, const std::string& extra) {
+        std::ofstream(dir.file(name + ".toml")) << "format = 1\nname = \"" << name
+                                                << "\"\n[[displacement]]\nname = \"sea\"\nsource = \"sea.exr\"\n"
+                                                   "tile_size = 32.0\n"
+                                                << extra;
+        const ProcessResult b = run({"build", dir.file(name + ".toml"), "-q", "-o", dir.file(name)});
+        EXPECT_EQ(b.code, 0) << b.err;
+        std::ifstream json(dir.file(name + "/material.json"));
+        return nlohmann::json::parse(json)["displacement"][0];
+    };
+    const auto foamy = manifest("foamy", "");
+    EXPECT_EQ(foamy["foam"], true);
+    EXPECT_EQ(readLevel(dir.file("foamy/sea.exr"), 0).names.size(), 16u);  // heights, Dx, Dy, Foam
+    const auto plain = manifest("plain", "foam = false\n");
+    EXPECT_FALSE(plain.contains("foam"));
+    EXPECT_EQ(readLevel(dir.file("plain/sea.exr"), 0).names.size(), 12u);
+}
