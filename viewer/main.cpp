@@ -47,6 +47,10 @@ int main(int argc, char** argv) {
     app.add_option("--normals", o.files.normals, "normal map from heightpack normal (else derived from the heights)");
     app.add_option("--fresnel", o.files.fresnel, "Fresnel ramp from heightpack fresnel (else Schlick and fixed colours)");
     app.add_option("--foam", o.files.foam, "foam texture, grey (else procedural)");
+    bool noBakedFoam = false;
+    app.add_flag("--no-baked-foam", noBakedFoam,
+                 "ignore the foam coverage of maps that carry it (pack --foam): foam from the height threshold, as "
+                 "for maps without it");
     app.add_option("--channel", o.files.channel,
                    "where the height is in a painted colour map: r, g, b, a, luma, or a channel's name (height.Y, Z)");
     app.add_option("--explosion", explosion, "drop an explosion at x,y (metres) at t = 0 [,start time s [,strength I0]]");
@@ -97,6 +101,7 @@ int main(int argc, char** argv) {
         "  heightpack-view out/swell.exr --bench 300\n"
         "  heightpack-view out/swell_half.ktx2 --lookup gather --headless --screenshot shot.png\n"
         "  heightpack-view sea_packed.exr --choppiness 1.2      # a map packed with --displacement\n"
+        "  heightpack-view sea_packed.exr                       # packed with --foam: its foam where synth put it\n"
         "Keys: WASD fly, Space/Ctrl up/down, right mouse look, E or left click drops an explosion, F1 panel, Esc quits.\n"
         "Exit codes:\n"
         "  0   done\n"
@@ -175,6 +180,7 @@ int main(int argc, char** argv) {
         if (lookup == lookupName(static_cast<Lookup>(l))) o.settings.lookup = static_cast<Lookup>(l);
     o.settings.view = view == "height" ? ViewMode::Height : view == "lod" ? ViewMode::Lod : ViewMode::Shaded;
     o.settings.frustumBranch = !frustumOff;
+    o.settings.bakedFoam = !noBakedFoam;
     if (!o.gridHeights.empty()) {
         if (std::filesystem::path(o.gridHeights).extension() != ".exr") return usage("--grid-heights must name an .exr file");
         o.settings.twoPass = true;          // the heights come from the combine pass

@@ -107,6 +107,8 @@ void drawPanel(RenderSettings& s, PanelState& state, Camera& camera, const Scene
         ImGui::SliderFloat3("sun direction", glm::value_ptr(s.sunDirection), -1.0f, 1.0f);
         ImGui::SliderFloat("back-side tilt", &s.tilt, 0.0f, 0.5f);
         ImGui::Text("foam: %s", scene.foam ? "texture" : "procedural");
+        const bool baked = std::any_of(scene.layers.begin(), scene.layers.end(), [](const HeightLayer& l) { return l.foam; });
+        if (baked) ImGui::Checkbox("baked foam coverage (else from H0, Hmax)", &s.bakedFoam);
         ImGui::SliderFloat2("foam H0, Hmax (m)", glm::value_ptr(s.foamRange), -5.0f, 10.0f);
     }
     if (ImGui::CollapsingHeader("Perturbations (18.2.5)")) {

@@ -7,6 +7,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "displacement_gl.hpp"
+#include "foam_gl.hpp"
 #include "shaders.hpp"
 #include "texture_upload.hpp"
 
@@ -15,11 +16,12 @@ namespace heightpack::view {
 namespace {
 
 // Texture units: height layers first (array textures, every frame of a map in one), then the shading
-// textures. Each stage reads at most the eight layer arrays and the combine target or three shading
-// textures: within the 16 samplers every GL 3.3 implementation offers a stage (init checks).
+// textures and the two maps' baked foam coverage. Each stage reads at most the eight layer arrays and the
+// combine target, or three shading textures and two coverage arrays: within the 16 samplers every GL 3.3
+// implementation offers a stage (init checks).
 enum Unit {
     kPacked0 = 0, kPacked1, kPlain0, kPlain1, kGather0, kGather1, kShift0, kShift1, kNormal, kFresnel, kFoam, kCombined,
-    kTiledMap
+    kTiledMap, kFoamCoverage0, kFoamCoverage1
 };
 
 constexpr int kSamplersPerStage = 16;  // GL_MAX_TEXTURE_IMAGE_UNITS / GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS in GL 3.3
@@ -90,6 +92,11 @@ bool Renderer::init(std::string& error, bool gather) {
     const StoredChain dummy = storeFloats({Image(1, 1, 4, 0.0f)});
     dummyArray_ = uploadStoredArray({&dummy}, false, Wrap::Periodic);
     zeroShift_ = uploadZeroShift();
+    HeightLayer none;  // a 1x1 one-frame array of no foam, bound to the samplers of maps without it
+    none.foam = true;
+    none.frames.resize(1);
+    none.frames[0].foam = {Image(1, 1, 1, 0.0f)};
+    zeroCoverage_ = uploadFoamCoverage(none);
     for (auto [name, program] : {std::pair{"water", waterProgram_}, std::pair{"combine", combineProgram_},
                                  std::pair{"tiled", tiledProgram_}, std::pair{"sky", skyProgram_}}) {
         const StageSamplers s = activeSamplers(program);
@@ -107,7 +114,7 @@ bool Renderer::init(std::string& error, bool gather) {
 
 Renderer::~Renderer() {
     releaseLayers();
-    for (GLuint t : {normalTexture_, fresnelTexture_, foamTexture_, dummyTexture_, dummyArray_, zeroShift_})
+    for (GLuint t : {normalTexture_, fresnelTexture_, foamTexture_, dummyTexture_, dummyArray_, zeroShift_, zeroCoverage_})
         if (t) glDeleteTextures(1, &t);
     combined_.destroy();
     if (gridVao_) glDeleteVertexArrays(1, &gridVao_);
@@ -192,6 +199,20 @@ void Renderer::bindLayers(GLuint program, float time) {
         const Normalisation b = has ? layers_[k].decode[size_t(next)] : Normalisation{};
         glUniform4f(glGetUniformLocation(program, indexed("uLayerDecode", k).c_str()), a.offset, a.scale, b.offset, b.scale);
     }
+}
+
+// The frames' layers and blend are bindLayers' uLayerFrame and uLayerBlend: the coverage array holds frame
+// f in layer f, as the heights' arrays do.
+void Renderer::bindFoamCoverage(GLuint program, const RenderSettings& s) {
+    glm::vec2 on(0.0f);
+    for (int k = 0; k < 2; ++k) {
+        const bool has = k < int(layers_.size()) && layers_[k].foamCoverage && s.bakedFoam;
+        bindArrayTexture(kFoamCoverage0 + k, has ? layers_[k].foamCoverage : zeroCoverage_);
+        on[k] = has ? 1.0f : 0.0f;
+    }
+    set(program, "uFoamCoverage0", int(kFoamCoverage0));
+    set(program, "uFoamCoverage1", int(kFoamCoverage1));
+    set(program, "uCoverageOn", on);
 }
 
 void Renderer::setCommonUniforms(GLuint p, const Camera& camera, const RenderSettings& s, float time, int height) {
@@ -340,6 +361,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
     set(waterProgram_, "uFoam", int(kFoam));
     bindTexture(kFoam, foamTexture_ ? foamTexture_ : dummyTexture_);
     set(waterProgram_, "uFoamScale", 1.0f / s.foamTileSize);
+    bindFoamCoverage(waterProgram_, s);
     glPolygonMode(GL_FRONT_AND_BACK, s.wireframe ? GL_LINE : GL_FILL);
     glBindVertexArray(gridVao_);
     glDrawElements(GL_TRIANGLES, gridIndexCount_, GL_UNSIGNED_INT, nullptr);

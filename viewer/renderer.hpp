@@ -81,6 +81,9 @@ struct RenderSettings {
     float tilt = 0.08f;
     glm::vec2 foamRange{1.2f, 2.2f};  // H0, Hmax
     float foamTileSize = 4.0f;
+    // Maps with synth's baked foam coverage (pack --foam) put foam where it says, instead of above H0;
+    // false: every map's foam from the height threshold, as for maps without it.
+    bool bakedFoam = true;
     // Perturbations (18.2.5)
     std::vector<Explosion> explosions;
     glm::vec3 explosionShape{1.2f, -6.0f, 0.35f};  // k, w, b of I0 sin(k r + w t) exp(-b t) / r^2
@@ -113,7 +116,8 @@ struct TextureBytes {
     long long plain = 0;    // one-channel chains (the reference lookup)
     long long gather = 0;   // one-channel atlases (the gather lookup), with a 4.0 context only
     long long normals = 0, fresnel = 0, foam = 0;
-    long long total() const { return packed + plain + gather + normals + fresnel + foam; }
+    long long foamCoverage = 0;  // baked foam coverage (R32F arrays, every frame of every map with it)
+    long long total() const { return packed + plain + gather + normals + fresnel + foam + foamCoverage; }
 };
 
 class Renderer {
@@ -149,6 +153,7 @@ private:
     void buildGrid(int rings, int segments);
     void setCommonUniforms(GLuint program, const Camera& camera, const RenderSettings& s, float time, int height);
     void bindLayers(GLuint program, float time);
+    void bindFoamCoverage(GLuint program, const RenderSettings& s);
 
     GLuint waterProgram_ = 0, combineProgram_ = 0, tiledProgram_ = 0, skyProgram_ = 0;
     GLuint gridVao_ = 0, gridVbo_ = 0, gridIbo_ = 0, emptyVao_ = 0;
@@ -161,6 +166,7 @@ private:
         GLuint shift = 0;                   // Dx, Dy, two layers a frame (displacement_gl.hpp), or 0
         std::vector<Normalisation> decode;  // per frame: sampled texels to the file's values, the same for all three
         int frames = 1;
+        GLuint foamCoverage = 0;            // every frame's baked foam, one array layer each (foam_gl.hpp), or 0
         int levels = 0;
         double loopPeriod = 0.0;
         std::vector<GatherAtlas::Origin> gatherOrigins;  // the same for every frame: they share a size
@@ -169,7 +175,7 @@ private:
     std::vector<LayerTextures> layers_;
     void releaseLayers();
     std::string uploadLayers(const Scene& scene);
-    GLuint normalTexture_ = 0, fresnelTexture_ = 0, foamTexture_ = 0, dummyTexture_ = 0, dummyArray_ = 0, zeroShift_ = 0;
+    GLuint normalTexture_ = 0, fresnelTexture_ = 0, foamTexture_ = 0, dummyTexture_ = 0, dummyArray_ = 0, zeroShift_ = 0, zeroCoverage_ = 0;
     Normalisation normalDecode_, fresnelDecode_;
     bool gather_ = false;
     std::string gatherProblem_;

@@ -8,6 +8,7 @@
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/read.hpp"
 #include "scene_displacement.hpp"
+#include "scene_foam.hpp"
 #include "texture_reader.hpp"
 
 namespace heightpack::view {
@@ -42,6 +43,7 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
             layer.wrap = findAttribute(file->attributes, attr::wrap).value_or(Wrap::Periodic);
             layer.source = layout == "neighbour4" ? "packed texture" : "plain texture, packed in memory";
         }
+        if (Status s = takeFoam(path, *file, frame); !s) return s;  // first: it leaves the channels as without foam
         if (Status s = takeDisplacement(path, *file, layer.wrap, frame); !s) return s;
         StoredChain stored = file->stored ? std::move(*file->stored) : storeFloats(file->levels);
         if (layout == "neighbour4") {
@@ -75,6 +77,7 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
     frame.plain = storeFloats(maps->plain);
     frame.packed = storeFloats(maps->packed);
     if (Status s = packDisplacementOf(path, load, loaded->source, pack, frame); !s) return s;
+    if (Status s = foamChainOf(path, load, loaded->source, pack, frame); !s) return s;
     if (first) layer.source = "painted map, packed in memory";
     return Done{};
 }
@@ -99,6 +102,9 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
         if (f > 0 && frame.shiftX.empty() != layer.frames[0].shiftX.empty())
             return badInput(files[f], "differs from the sequence's first frame in holding Dx, Dy",
                             "make every frame with the displacement, or none");
+        if (f > 0 && frame.foam.empty() != layer.frames[0].foam.empty())
+            return badInput(files[f], "differs from the sequence's first frame in holding foam",
+                            "make every frame with foam, or none");
         layer.frames.push_back(std::move(frame));
     }
     if (files.size() > 1) {
@@ -112,6 +118,7 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
         layer.maxStored = std::max(layer.maxStored, frame.maxStored);
     }
     layer.horizontal = !layer.frames[0].shiftX.empty();
+    layer.foam = !layer.frames[0].foam.empty();
     // Waves move about the map's mean: the 1x1 level of the first frame, whatever the map's units.
     layer.midStored = layer.frames[0].meanStored;
     return layer;

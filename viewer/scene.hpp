@@ -22,6 +22,8 @@ struct HeightFrame {
     float meanStored = 0.5f;      // the 1x1 level
     // Horizontal displacement, packed as the heights (RGBA per level); empty for a map without Dx, Dy.
     std::vector<Image> shiftX, shiftY;
+    // Baked foam coverage (0..1), one channel per level, unpacked; empty for a map without it.
+    std::vector<Image> foam;
 };
 
 struct HeightLayer {
@@ -33,6 +35,7 @@ struct HeightLayer {
     float midStored = 0.5f;       // the map's mean (its 1x1 level): subtracted so waves sit on the water level
     float minStored = 0.0f, maxStored = 1.0f;
     bool horizontal = false;      // every frame carries Dx, Dy (Tessendorf's choppy waves)
+    bool foam = false;            // every frame carries synth's foam coverage
 };
 
 struct NormalMap {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "displacement_gl.hpp"
+#include "foam_gl.hpp"
 #include "renderer.hpp"
 #include "texture_upload.hpp"
 
@@ -24,7 +25,7 @@ void enableMipmaps() {
 
 void Renderer::releaseLayers() {
     for (const LayerTextures& l : layers_)
-        for (GLuint t : {l.packed, l.plain, l.gather, l.shift})
+        for (GLuint t : {l.packed, l.plain, l.gather, l.shift, l.foamCoverage})
             if (t) glDeleteTextures(1, &t);
     layers_.clear();
 }
@@ -70,6 +71,7 @@ std::string Renderer::uploadLayers(const Scene& scene) {
             }
         }
         t.frames = static_cast<int>(layer.frames.size());
+        t.foamCoverage = uploadFoamCoverage(layer);
         t.levels = static_cast<int>(layer.frames[0].packed.levels.size());
         t.loopPeriod = layer.loopPeriod;
         layers_.push_back(t);
@@ -108,6 +110,10 @@ std::string Renderer::upload(const Scene& scene) {
     bytes_.normals = view::textureBytes(normalTexture_);
     bytes_.fresnel = view::textureBytes(fresnelTexture_);
     bytes_.foam = view::textureBytes(foamTexture_);
+    // R32F: four bytes a texel of every level of every frame (textureBytes reads 2D textures, not arrays).
+    for (const HeightLayer& layer : scene.layers)
+        for (const HeightFrame& frame : layer.frames)
+            for (const Image& level : frame.foam) bytes_.foamCoverage += static_cast<long long>(level.texelCount()) * 4;
     checkGl("Renderer::upload");
     return {};
 }

@@ -22,6 +22,10 @@ uniform vec2 uFoamRange;            // H0, Hmax
 uniform bool uHasFoam;
 uniform sampler2D uFoam;
 uniform float uFoamScale;           // tiles per metre
+// Synth's baked foam coverage (pack --foam): every frame of a map's coverage as one R32F array, layer f =
+// frame f as in the heights' arrays (uLayerFrame picks this frame and the next), filtered in hardware (the fragment has derivatives, so a pixel sees its footprint's mean foam).
+uniform sampler2DArray uFoamCoverage0, uFoamCoverage1;
+uniform vec2 uCoverageOn;           // 1 for a map whose baked coverage is shown
 
 layout(location = 0) out vec4 outColour;
 
@@ -60,6 +64,15 @@ vec3 normalFromMap(vec2 xy, vec3 base) {
         sum += vec3(n.x, uNormalGreen * n.y, 0.0) * uNormalOctave[k].w;
     }
     return normalize(vec3(sum.xy, 1.0));
+}
+
+// Map k's coverage at the grid point u (before its horizontal shift: synth's foam, like its heights, belongs
+// to the point u carries), at the map's tile size and scroll, this frame blended into the next.
+float layerCoverage(int k, sampler2DArray coverage, vec2 u) {
+    vec2 uv = layerUv(k, u);
+    float c = texture(coverage, vec3(uv, float(uLayerFrame[k].x))).r;
+    if (uLayerBlend[k] > 0.0) c = mix(c, texture(coverage, vec3(uv, float(uLayerFrame[k].y))).r, uLayerBlend[k]);
+    return clamp(c, 0.0, 1.0);  // a sharp filter's ringing can leave 0..1 in the mip levels
 }
 
 float foamPattern(vec2 xy) {
@@ -110,8 +123,17 @@ void main() {
     vec3 r = reflect(-v, n);
     r.z = abs(r.z);
     vec3 colour = mix(waterColour, sky(r), fresnel);
-    float foam = clamp((vHeight - uFoamRange.x) / max(uFoamRange.y - uFoamRange.x, 1e-4), 0.0, 1.0);
-    colour = mix(colour, vec3(0.92), foam * foamPattern(vWorld.xy));
+    if (uCoverageOn.x > 0.5 || uCoverageOn.y > 0.5) {
+        // Baked foam: where the sea's Jacobian put it. Two maps' coverages combine as independent ones; a
+        // foam texture, when given, still breaks it up, and without one the coverage is the foam.
+        float c0 = uCoverageOn.x > 0.5 ? layerCoverage(0, uFoamCoverage0, vGrid) : 0.0;
+        float c1 = uCoverageOn.y > 0.5 ? layerCoverage(1, uFoamCoverage1, vGrid) : 0.0;
+        float foam = 1.0 - (1.0 - c0) * (1.0 - c1);
+        colour = mix(colour, vec3(0.92), foam * (uHasFoam ? foamPattern(vWorld.xy) : 1.0));
+    } else {
+        float foam = clamp((vHeight - uFoamRange.x) / max(uFoamRange.y - uFoamRange.x, 1e-4), 0.0, 1.0);
+        colour = mix(colour, vec3(0.92), foam * foamPattern(vWorld.xy));
+    }
     colour = mix(colour, sky(normalize(vec3(-v.xy, 0.02))), 1.0 - exp(-d / 30000.0));  // haze toward the horizon
     outColour = vec4(pow(colour, vec3(1.0 / 2.2)), 1.0);
 }
