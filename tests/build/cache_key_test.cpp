@@ -101,7 +101,7 @@ TEST(CacheKey, FresnelOptions) {
 }
 
 TEST(CacheKey, PackOptions) {
-    expectEveryFieldJudged(std::array<FieldChange<PackOptions>, 15>{{
+    expectEveryFieldJudged(std::array<FieldChange<PackOptions>, 16>{{
         {"load", [](PackOptions& o) { o.load.channel = ChannelSelect::Luma; }, true},
         {"mip", [](PackOptions& o) { o.mip.filter = Filter::Lanczos3; }, true},
         {"scale", [](PackOptions& o) { o.scale = 2.0f; }, true},
@@ -115,6 +115,7 @@ TEST(CacheKey, PackOptions) {
         {"layout", [](PackOptions& o) { o.layout = Layout::Plain; }, true},
         {"heightRange", [](PackOptions& o) { o.heightRange = 6.0; }, true},
         {"displacement", [](PackOptions& o) { o.displacement = true; }, true},
+        {"foam", [](PackOptions& o) { o.foam = true; }, true},
         {"version", [](PackOptions& o) { o.version = std::string("9.9"); }, true},
         {"progress", [](PackOptions& o) { o.progress = [](std::string_view, double) {}; }, false},
     }});

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "heightpack/build/material_sampler.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -148,4 +149,15 @@ TEST(PackFoam, ManifestsCarryItAndMaterialJsonSaysSo) {
     const auto plain = manifest("plain", "foam = false\n");
     EXPECT_FALSE(plain.contains("foam"));
     EXPECT_EQ(readLevel(dir.file("plain/sea.exr"), 0).names.size(), 12u);
+    // Without Dx, Dy (choppiness = 0) the texture holds heights and foam: the CPU sampler reads its heights,
+    // which are those of the texture built without the foam.
+    manifest("foamAlone", "choppiness = 0\n");
+    manifest("bare", "choppiness = 0\nfoam = false\n");
+    EXPECT_EQ(readLevel(dir.file("foamAlone/sea.exr"), 0).names.size(), 8u);
+    auto withFoam = loadMaterialSampler(dir.file("foamAlone/material.json"));
+    auto without = loadMaterialSampler(dir.file("bare/material.json"));
+    ASSERT_TRUE(withFoam) << withFoam.error().what;
+    ASSERT_TRUE(without) << without.error().what;
+    for (const float x : {0.3f, 7.9f, 21.4f})
+        EXPECT_EQ(sampleWaterHeight(*withFoam, x, 0.7f * x, 1.5f), sampleWaterHeight(*without, x, 0.7f * x, 1.5f)) << x;
 }
