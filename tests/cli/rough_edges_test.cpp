@@ -12,18 +12,13 @@
 #include <cmath>
 #include <filesystem>
 
+#include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
 using namespace heightpack::test;
 
 namespace {
-
-ProcessResult heightpackRun(const std::vector<std::string>& args) {
-    std::vector<std::string> argv = {HEIGHTPACK_EXE};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return runProcess(argv);
-}
 
 // Runs heightpack with stdout and stderr on one pseudo-terminal, as a person at a terminal sees it.
 ProcessResult runInPty(const std::vector<std::string>& args, const std::string& cwd = {}) {

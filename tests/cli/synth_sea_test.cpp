@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "support/spectral_derivative.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -53,20 +54,7 @@ int channel(const Channels& c, const char* name) {
 
 // d/dx (axis 0) or d/dy (axis 1) of one channel, by the test's own DFT.
 cv::Mat derivative(const Channels& c, int ch, int axis, double tileSize) {
-    const int n = c.size;
-    cv::Mat f(n, n, CV_64F), F, out;
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) f.at<double>(y, x) = c.at(x, y, ch);
-    cv::dft(f, F, cv::DFT_COMPLEX_OUTPUT);
-    for (int r = 0; r < n; ++r)
-        for (int q = 0; q < n; ++q) {
-            const int m = axis == 0 ? (q < n / 2 ? q : q - n) : (r < n / 2 ? r : r - n);
-            const double k = (m == -n / 2 ? 0 : m) * 2 * kPi / tileSize;
-            const cv::Vec2d z = F.at<cv::Vec2d>(r, q);
-            F.at<cv::Vec2d>(r, q) = cv::Vec2d(-z[1] * k, z[0] * k);
-        }
-    cv::dft(F, out, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
-    return out;
+    return spectralDerivative([&](int x, int y) { return c.at(x, y, ch); }, c.size, axis, tileSize);
 }
 
 const std::vector<std::string> kSea = {"synth", "--spectrum", "jonswap", "--wind", "20m/s", "--fetch", "300km",

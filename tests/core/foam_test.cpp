@@ -8,6 +8,7 @@
 #include "heightpack/core/foam.hpp"
 #include "heightpack/core/sea_report.hpp"
 #include "heightpack/core/spectrum.hpp"
+#include "support/spectral_derivative.hpp"
 
 using namespace heightpack;
 
@@ -27,23 +28,10 @@ SpectrumOptions choppySea() {
     return o;
 }
 
-// d/dx or d/dy of a periodic field by the test's own forward and inverse DFT (i k times the spectrum).
+// d/dx or d/dy of one channel of a periodic field by the test's own DFT (tests/support).
 cv::Mat spectralDerivative(const Image& field, int channel, int axis, double tileSize) {
-    const int n = field.width;
-    cv::Mat f(n, n, CV_64F), F;
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) f.at<double>(y, x) = field.at(x, y, channel);
-    cv::dft(f, F, cv::DFT_COMPLEX_OUTPUT);
-    for (int r = 0; r < n; ++r)
-        for (int q = 0; q < n; ++q) {
-            const int m = axis == 0 ? (q < n / 2 ? q : q - n) : (r < n / 2 ? r : r - n);
-            const double k = (m == -n / 2 ? 0 : m) * 2 * kPi / tileSize;
-            const cv::Vec2d z = F.at<cv::Vec2d>(r, q);
-            F.at<cv::Vec2d>(r, q) = cv::Vec2d(-z[1] * k, z[0] * k);
-        }
-    cv::Mat out;
-    cv::dft(F, out, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
-    return out;
+    return test::spectralDerivative([&](int x, int y) { return double(field.at(x, y, channel)); }, field.width, axis,
+                                    tileSize);
 }
 
 }  // namespace

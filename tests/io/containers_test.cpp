@@ -15,6 +15,7 @@
 #include "heightpack/core/normal.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/read.hpp"
+#include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -22,23 +23,6 @@ using namespace heightpack::test;
 using nlohmann::json;
 
 namespace {
-
-ProcessResult heightpackRun(const std::vector<std::string>& args) {
-    std::vector<std::string> argv = {HEIGHTPACK_EXE};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return runProcess(argv);
-}
-
-bool independentReaderInstalled() {
-    return std::filesystem::exists(std::string(HEIGHTPACK_NPM_DIR) + "/node_modules/ktx-parse/package.json");
-}
-
-// The independent reader's view of a KTX2 or DDS file.
-json readIndependently(const std::string& path) {
-    const ProcessResult r = runProcess({"node", HEIGHTPACK_READER_MJS, path, HEIGHTPACK_NPM_DIR});
-    EXPECT_EQ(r.code, 0) << r.err;
-    return r.code == 0 ? json::parse(r.out) : json();
-}
 
 // Nearest binary16 value to v, ties to even, from the definition: a 10-bit fraction at v's binary
 // exponent (subnormals at 2^-24 steps).

@@ -21,6 +21,7 @@
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/read.hpp"
+#include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -28,22 +29,6 @@ using namespace heightpack::test;
 using nlohmann::json;
 
 namespace {
-
-ProcessResult heightpackRun(const std::vector<std::string>& args) {
-    std::vector<std::string> argv = {HEIGHTPACK_EXE};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return runProcess(argv);
-}
-
-bool independentReaderInstalled() {
-    return std::filesystem::exists(std::string(HEIGHTPACK_NPM_DIR) + "/node_modules/ktx-parse/package.json");
-}
-
-json readIndependently(const std::string& path) {
-    const ProcessResult r = runProcess({"node", HEIGHTPACK_READER_MJS, path, HEIGHTPACK_NPM_DIR});
-    EXPECT_EQ(r.code, 0) << r.err;
-    return r.code == 0 ? json::parse(r.out) : json();
-}
 
 // The packed lookup from design.md, by hand: p = uv * size - 0.5, nearest texel at floor(p) (wrapped or
 // clamped), two lerps of its R, G, B, A by frac(p); with clamp p is first kept inside the level.
