@@ -20,6 +20,7 @@ std::string cliHint(const Error& error) {
             return "write float samples: an .exr or .tif output without --depth; heightpack never clips or rescales heights";
         case Fix::AddDisplacement:
             return "synthesise it with 'heightpack synth --displacement' to an .exr, or leave out --displacement";
+        case Fix::AddFoam: return "synthesise it with 'heightpack synth --foam' to an .exr, or leave out --foam";
         case Fix::MakeTileable: {
             std::string command = "heightpack tile " + arg(0) + " -o " + arg(1);
             if (!arg(2).empty()) command += " --filter " + arg(2);

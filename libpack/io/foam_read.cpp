@@ -40,8 +40,9 @@ Result<Image> loadFoam(const std::string& path, const LoadOptions& options) {
     if (c < 0) {
         std::string list;
         for (const std::string& n : spec.channelnames) list += (list.empty() ? "" : ", ") + n;
-        return badInput(path, "holds no foam coverage (no Foam channel; it has " + list + ")",
-                        "make the map with synth --foam, or leave --foam out");
+        return withFix(badInput(path, "holds no foam coverage (no Foam channel; it has " + list + ")",
+                                "make the map with its Foam channel, or leave the foam out"),
+                       Fix::AddFoam);
     }
     Image foam(spec.width, spec.height, 1);
     if (Status s = detail::readPixels(in, path, 0, 0, c, c + 1, foam.pixels.data()); !s) return s.error();

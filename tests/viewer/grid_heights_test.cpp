@@ -119,7 +119,7 @@ TEST(GridHeights, TheCpuSamplerGivesTheHeightsTheViewerDraws) {
         sampler->filter = std::string(lookup) == "bilinear" ? LevelFilter::Bilinear : LevelFilter::Trilinear;
         // t = 3.3 s lies between frames 1 and 2 of the 8 s loop; the camera is off the origin and tilted.
         const ViewRun run = view({dir.file("m/material.json"), "--grid-heights", dir.file("grid.exr"), "--time", "3.3",
-                                  "--camera", "13,-7,25,30,-20", "--lookup", lookup});
+                                  "--camera", "13,-7,25,30,-20", "--lookup", lookup, "--size", "160x120"});
         ASSERT_EQ(run.code, 0) << run.err;
         const GridHeights grid = readGridHeights(dir.file("grid.exr"));
         ASSERT_EQ(grid.segments, 256);

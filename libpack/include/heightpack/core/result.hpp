@@ -33,6 +33,8 @@ enum class Fix {
                             // fixArgs: {input, output, filter ("" for the default), threshold ("" for the default)}
     AddDisplacement,        // horizontal displacement asked of a map without it: make the map with its Dx, Dy
                             // channels (a synthesised EXR), or leave the displacement out
+    AddFoam,                // foam coverage asked of a map without it: make the map with its Foam channel
+                            // (a synthesised EXR with foam), or leave the foam out
 };
 
 struct Error {
