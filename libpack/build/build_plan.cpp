@@ -131,6 +131,7 @@ Status makeSynthesised(const SynthSource& sea, int frame, const std::string& int
         image = std::move(sea3);
         flat.channelNames = {"Y", "Dx", "Dy"};
     }
+    flat.threads = threads;
     flat.attributes = {attribute(attr::layout, "synthesised"), attribute(attr::version, pack.version)};
     if (sea.frames > 1) {
         flat.attributes.push_back(attribute(attr::frame, std::to_string(frame) + "/" + std::to_string(sea.frames)));

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "heightpack/core/cascades.hpp"
+#include "heightpack/core/parallel.hpp"
 #include "heightpack/core/sea_report.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
@@ -121,16 +122,19 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
         const int channels = 1 + (withD ? 2 : 0) + (options.foam ? 1 : 0);
         Image image(h.width, h.height, channels);
         const Image coverage = options.foam ? foamCoverage(foam[f], h.width, h.height) : Image();
-        for (size_t i = 0; i < h.texelCount(); ++i) {
-            float* texel = &image.pixels[i * channels];
-            texel[0] = static_cast<float>((h.pixels[i] - offset) / scale);
-            if (withD) texel[1] = fields[f].displacement.pixels[2 * i], texel[2] = fields[f].displacement.pixels[2 * i + 1];
-            if (options.foam) texel[3] = coverage.pixels[i];
-        }
+        parallelFor(h.height, options.threads, [&](int y0, int y1) {
+            for (size_t i = size_t(y0) * h.width; i < size_t(y1) * h.width; ++i) {
+                float* texel = &image.pixels[i * channels];
+                texel[0] = static_cast<float>((h.pixels[i] - offset) / scale);
+                if (withD) texel[1] = fields[f].displacement.pixels[2 * i], texel[2] = fields[f].displacement.pixels[2 * i + 1];
+                if (options.foam) texel[3] = coverage.pixels[i];
+            }
+        });
         FlatImageOptions flat;
         if (withD) flat.channelNames = {"Y", "Dx", "Dy"};
         if (options.foam) flat.channelNames.push_back("Foam");
         flat.bits = metres ? 32 : 16;
+        flat.threads = options.threads;
         flat.attributes = sea;
         flat.attributes.push_back(attribute(attr::heightScale, static_cast<float>(scale)));
         flat.attributes.push_back(attribute(attr::heightOffset, static_cast<float>(offset)));

@@ -225,6 +225,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
 
     FlatImageOptions flat;
     flat.bits = report.bits;
+    flat.threads = options.mip.threads;
     flat.attributes = {
         attribute(attr::tileMethod, report.methodUsed),
         attribute(attr::source, std::filesystem::path(input).filename().string()),

@@ -1,4 +1,4 @@
-// Flat image files through OpenImageIO, written to a temporary file and renamed into place.
+// Flat image files through OpenImageIO (a float EXR through exr_write.cpp), written to a temporary file and renamed into place.
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
 
@@ -30,13 +31,6 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
     const std::string ext = lowerExtension(path);
     if (ext != ".png" && ext != ".tif" && ext != ".tiff" && ext != ".exr")
         return cannotWrite(path, "names no format heightpack writes", "use .png, .tif or .exr");
-    // The last guard before bytes reach a file: an output never holds NaN or infinity.
-    for (size_t i = 0; i < image.pixels.size(); ++i)
-        if (!std::isfinite(image.pixels[i]))
-            return Error{ErrorKind::Internal, path, "internal error: the image holds a non-finite value; nothing was written",
-                         "please report this with the command line"};
-    TemporaryFile temp(path);
-
     const OIIO::TypeDesc type = options.bits == 8    ? OIIO::TypeDesc::UINT8
                                 : options.bits == 16 ? OIIO::TypeDesc::UINT16
                                 : options.half      ? OIIO::TypeDesc::HALF
@@ -49,6 +43,23 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
         spec.channelnames = options.channelNames;
         spec.alpha_channel = -1;
     }
+    if (ext == ".exr" && options.bits == 32) {
+        // Our own ZIP writer: libdeflate on all threads, where OpenImageIO deflates with zlib.
+        ScanlineExrContent content;
+        content.width = image.width;
+        content.height = image.height;
+        content.channelNames = spec.channelnames;
+        content.pixels = image.pixels.data();
+        content.attributes = options.attributes;
+        return writeScanlineExr(path, content, options.half, options.threads);
+    }
+    // The last guard before bytes reach a file: an output never holds NaN or infinity
+    // (writeScanlineExr keeps its own).
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        if (!std::isfinite(image.pixels[i]))
+            return Error{ErrorKind::Internal, path, "internal error: the image holds a non-finite value; nothing was written",
+                         "please report this with the command line"};
+    TemporaryFile temp(path);
     spec.attribute("oiio:UnassociatedAlpha", 1);
     // OpenImageIO's EXR writer stamps the current time (capDate) when no DateTime is given; a fixed,
     // empty one keeps the same inputs giving the same bytes.

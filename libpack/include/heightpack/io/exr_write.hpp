@@ -1,4 +1,5 @@
-// Tiled, mip-mapped 32-bit float OpenEXR files, written a band at a time, atomically.
+// OpenEXR files written on our own OpenEXRCore path, atomically: tiled, mip-mapped float maps a band at a
+// time, and flat scanline maps (what writeFlatImage writes as .exr).
 #pragma once
 
 #include <functional>
@@ -52,5 +53,19 @@ struct ExrWriteOptions {
 // file appears at path only once complete: it is written to a temporary file in the same folder and
 // renamed, so a failure or interruption leaves no partial file and any existing file untouched.
 Status writeTiledExr(const std::string& path, const TiledExrContent& content, const ExrWriteOptions& options);
+
+// A flat (one-level) scanline EXR: interleaved float pixels, each channel stored as float or half.
+struct ScanlineExrContent {
+    int width = 0;
+    int height = 0;
+    std::vector<std::string> channelNames;  // interleaved in this order in pixels
+    const float* pixels = nullptr;          // width * height * channelNames.size() values, row by row
+    std::vector<ExrAttribute> attributes;
+};
+
+// Writes content as a scanline EXR in ZIP (16 rows a block; lossless), atomically as writeTiledExr does.
+// The blocks are packed and deflated on `threads` threads (0 = all cores) and written in file order, so
+// the bytes never depend on the thread count. A non-finite value is an internal error: nothing is written.
+Status writeScanlineExr(const std::string& path, const ScanlineExrContent& content, bool half, int threads);
 
 }  // namespace heightpack

@@ -17,10 +17,12 @@ struct FlatImageOptions {
     int srgbChannels = 0;   // the first this many channels are linear colours to encode as sRGB (8/16-bit)
     std::vector<ExrAttribute> attributes;  // metadata; a PNG holds numbers as text
     std::vector<std::string> channelNames; // empty: Y, RGB or RGBA by count
+    int threads = 0;        // for compressing a float EXR (0 = all cores); the bytes do not depend on it
 };
 
 // Writes image (1 to 4 channels: Y, RGB or RGBA) atomically, as writeTiledExr does. Integer formats clamp
-// to [0,1] and round to nearest; alpha is stored unassociated.
+// to [0,1] and round to nearest; alpha is stored unassociated. A float (or half) EXR is a ZIP scanline
+// file from writeScanlineExr; the rest go through OpenImageIO.
 Status writeFlatImage(const std::string& path, const Image& image, const FlatImageOptions& options);
 
 }  // namespace heightpack
