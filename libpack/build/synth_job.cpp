@@ -121,7 +121,7 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
         const Image& h = fields[f].heights;
         const int channels = 1 + (withD ? 2 : 0) + (options.foam ? 1 : 0);
         Image image(h.width, h.height, channels);
-        const Image coverage = options.foam ? foamCoverage(foam[f], h.width, h.height) : Image();
+        const Image coverage = options.foam ? foamCoverage(foam[f], h.width, h.height, options.threads) : Image();
         parallelFor(h.height, options.threads, [&](int y0, int y1) {
             for (size_t i = size_t(y0) * h.width; i < size_t(y1) * h.width; ++i) {
                 float* texel = &image.pixels[i * channels];

@@ -3,6 +3,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "heightpack/core/parallel.hpp"
+
 namespace heightpack {
 
 void advanceFoam(std::vector<float>& density, const Image& jacobian, double dt, const FoamOptions& o) {
@@ -15,9 +17,13 @@ void advanceFoam(std::vector<float>& density, const Image& jacobian, double dt, 
     }
 }
 
-Image foamCoverage(const std::vector<float>& density, int width, int height) {
+Image foamCoverage(const std::vector<float>& density, int width, int height, int threads) {
+    assert(density.size() == size_t(width) * height);
     Image out(width, height, 1);
-    for (size_t i = 0; i < density.size(); ++i) out.pixels[i] = static_cast<float>(-std::expm1(-double(density[i])));
+    parallelFor(height, threads, [&](int y0, int y1) {
+        for (size_t i = size_t(y0) * width; i < size_t(y1) * width; ++i)
+            out.pixels[i] = static_cast<float>(-std::expm1(-double(density[i])));
+    });
     return out;
 }
 

@@ -4,6 +4,7 @@
 
 #include <cassert>
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "heightpack/core/mip.hpp"
@@ -154,32 +155,37 @@ SeaFields Ocean::fields(double t, const SeaFieldSet& which, double choppiness, i
         }
     });
 
-    auto image = [&](Field field) {
-        Image img(n, n, 1);
-        for (int y = 0; y < n; ++y) {
-            const double* src = out[field].ptr<double>(y);
-            for (int x = 0; x < n; ++x) img.at(x, y) = static_cast<float>(src[x]);
-        }
-        return img;
+    // The conversions to float, rows shared among the threads (each texel on its own: any count gives the same).
+    auto rows = [&](const std::function<void(int y)>& convert) {
+        parallelFor(n, threads, [&](int begin, int end) {
+            for (int y = begin; y < end; ++y) convert(y);
+        });
     };
     SeaFields result;
-    if (which.heights) result.heights = image(Height);
+    if (which.heights) {
+        result.heights = Image(n, n, 1);
+        rows([&](int y) {
+            const double* src = out[Height].ptr<double>(y);
+            float* dst = result.heights.row(y);
+            for (int x = 0; x < n; ++x) dst[x] = static_cast<float>(src[x]);
+        });
+    }
     if (which.displacement) {
         result.displacement = Image(n, n, 2);
-        for (int y = 0; y < n; ++y) {
+        rows([&](int y) {
             const double *dx = out[DispX].ptr<double>(y), *dy = out[DispY].ptr<double>(y);
             float* dst = result.displacement.row(y);
             for (int x = 0; x < n; ++x) dst[2 * x] = float(dx[x]), dst[2 * x + 1] = float(dy[x]);
-        }
+        });
     }
     if (which.jacobian) {
         result.jacobian = Image(n, n, 1);
         const double c = choppiness;
-        for (int y = 0; y < n; ++y) {
+        rows([&](int y) {
             const double *xx = out[DispXX].ptr<double>(y), *yy = out[DispYY].ptr<double>(y), *xy = out[DispXY].ptr<double>(y);
             float* dst = result.jacobian.row(y);
             for (int x = 0; x < n; ++x) dst[x] = float((1 + c * xx[x]) * (1 + c * yy[x]) - c * c * xy[x] * xy[x]);
-        }
+        });
     }
     return result;
 }

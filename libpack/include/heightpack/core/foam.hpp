@@ -21,7 +21,8 @@ struct FoamOptions {
 void advanceFoam(std::vector<float>& density, const Image& jacobian, double dt, const FoamOptions& options);
 
 // Coverage in [0, 1) from a density: 1 - exp(-density), so coverage saturates instead of clipping.
-Image foamCoverage(const std::vector<float>& density, int width, int height);
+// Rows shared among `threads` threads (0 = all cores); each texel on its own, so any count gives the same.
+Image foamCoverage(const std::vector<float>& density, int width, int height, int threads = 1);
 
 // The foam densities of a looping sequence: jacobians[f] is frame f's, at t = f * period / F. The foam
 // starts one full period early from nothing (the warm-up), and since the dynamics are linear in the
