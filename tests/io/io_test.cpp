@@ -1,5 +1,11 @@
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfStandardAttributes.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfTiledInputFile.h>
+#include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -8,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "heightpack/build/pack_job.hpp"
@@ -347,6 +355,63 @@ TEST(Io, FastPngDecoderReadsTheExamplesAsOpenImageIODoes) {
         ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, reference.data()));
         EXPECT_EQ(fast->heights.pixels, reference) << name;
     }
+}
+
+// A float EXR from writeFlatImage is our own ZIP scanline file: OpenEXR's C++ library (its own zlib
+// decoder) reads back every value exactly, by channel name, with the attributes; a half file rounds each
+// value to nearest; the bytes are the same at any thread count. 1100 rows: more than one batch of blocks,
+// and a last block of 12 rows.
+TEST(Io, FlatFloatExrIsAZipScanlineFileThatOpenExrReadsBackExactly) {
+    ScratchDir dir;
+    const int w = 21, h = 1100, channels = 4;
+    Image image(w, h, channels);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < channels; ++c)  // noise-like low bits, so some blocks do not shrink
+                image.pixels[(size_t(y) * w + x) * channels + c] = float(std::sin(0.37 * x + 0.011 * y * (c + 1)) * (c + 1) + 1e-3 * ((x * 7919 + y * 104729 + c) % 1000));
+    FlatImageOptions flat;
+    flat.channelNames = {"Y", "Dx", "Dy", "Foam"};  // not EXR's (alphabetical) order
+    flat.attributes = {attribute(attr::significantWaveHeight, 2.5f), attribute(attr::layout, "synthesised")};
+    auto bytes = [&](const std::string& name) {
+        std::ifstream in(dir.file(name), std::ios::binary);
+        return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+    };
+    for (int threads : {1, 3}) {
+        flat.threads = threads;
+        ASSERT_TRUE(writeFlatImage(dir.file("t" + std::to_string(threads) + ".exr"), image, flat).ok());
+    }
+    EXPECT_EQ(bytes("t1.exr"), bytes("t3.exr"));
+    flat.half = true;
+    ASSERT_TRUE(writeFlatImage(dir.file("half.exr"), image, flat).ok());
+
+    for (const char* name : {"t3.exr", "half.exr"}) {
+        const bool half = std::string(name) == "half.exr";
+        Imf::InputFile exr(dir.file(name).c_str());
+        EXPECT_FALSE(exr.header().hasTileDescription());
+        EXPECT_EQ(exr.header().compression(), Imf::ZIP_COMPRESSION);
+        const auto* hs = exr.header().findTypedAttribute<Imf::FloatAttribute>("heightpack:significantWaveHeight");
+        ASSERT_TRUE(hs);
+        EXPECT_EQ(hs->value(), 2.5f);
+        const auto* layout = exr.header().findTypedAttribute<Imf::StringAttribute>("heightpack:layout");
+        ASSERT_TRUE(layout);
+        EXPECT_EQ(layout->value(), "synthesised");
+        std::vector<float> back(image.pixels.size(), -1.0f);
+        Imf::FrameBuffer frame;
+        for (int c = 0; c < channels; ++c)
+            frame.insert(flat.channelNames[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(back.data() + c),
+                                                          sizeof(float) * channels, sizeof(float) * channels * w));
+        exr.setFrameBuffer(frame);
+        exr.readPixels(0, h - 1);
+        for (size_t i = 0; i < back.size(); ++i)
+            ASSERT_EQ(back[i], half ? float(Imath::half(image.pixels[i])) : image.pixels[i]) << name << " value " << i;
+        for (const char* c : {"Dx", "Dy", "Foam", "Y"})
+            EXPECT_EQ(exr.header().channels().findChannel(c)->type, half ? Imf::HALF : Imf::FLOAT) << c;
+    }
+    // OpenImageIO reads it too, Y first as before.
+    auto in = OIIO::ImageInput::open(dir.file("t1.exr"));
+    ASSERT_TRUE(in) << OIIO::geterror();
+    EXPECT_EQ(in->spec().channelnames, (std::vector<std::string>{"Y", "Dx", "Dy", "Foam"}));
+    EXPECT_FLOAT_EQ(in->spec().get_float_attribute("heightpack:significantWaveHeight"), 2.5f);
 }
 
 TEST(Io, WritersNeverWriteNonFiniteTexelsOrOneFormatUnderAnothersName) {
