@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -89,9 +90,22 @@ int removeStaleTemporaryFiles(const std::string& folder, const std::string& stem
     return removed;
 }
 
+namespace {
+
+// NAME.####.EXT, the way compositing and DCC tools spell a sequence, as NAME.EXT (which is ours).
+std::string withoutFramePlaceholder(const std::string& path) {
+    constexpr std::string_view kPlaceholder = ".####";
+    const fs::path p(path);
+    const std::string stem = p.stem().string();
+    if (stem.size() <= kPlaceholder.size() || !stem.ends_with(kPlaceholder)) return path;
+    return (p.parent_path() / (stem.substr(0, stem.size() - kPlaceholder.size()) + p.extension().string())).string();
+}
+
+}  // namespace
+
 std::string frameFileName(const std::string& path, int frame, int frames) {
     if (frames <= 1) return path;
-    const fs::path p(path);
+    const fs::path p(withoutFramePlaceholder(path));
     char number[16];
     std::snprintf(number, sizeof number, ".%04d", frame);
     return (p.parent_path() / (p.stem().string() + number + p.extension().string())).string();

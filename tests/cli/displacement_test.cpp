@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include "support/test_support.hpp"
@@ -163,6 +164,20 @@ TEST(PackDisplacement, SequencesAndManifestsCarryIt) {
         EXPECT_EQ(in->spec().nchannels, 12);
         EXPECT_FLOAT_EQ(in->spec().get_float_attribute("heightpack:loopPeriod"), 4.0f);
     }
+    // NAME.####.EXT, as compositing tools spell a sequence (and the issue's example), is NAME.EXT: the
+    // same frames read, the same files written (packed.####.exr is packed.0000.exr ...), byte for byte
+    // but for the header's source name.
+    const ProcessResult hashes = run({"pack", dir.file("sea.####.exr"), "--displacement", "-q", "-o",
+                                      dir.file("hashes.####.exr")});
+    ASSERT_EQ(hashes.code, 0) << hashes.err;
+    for (const char* frame : {"0000", "0001"}) {
+        const Level a = readLevel(dir.file(std::string("packed.") + frame + ".exr"), 1);
+        const Level b = readLevel(dir.file(std::string("hashes.") + frame + ".exr"), 1);
+        EXPECT_EQ(a.names, b.names);
+        EXPECT_EQ(a.pixels, b.pixels) << frame;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("hashes.####.exr")));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("hashes.0002.exr")));
     // A manifest packs Dx, Dy of a source that has them; choppiness = 0 leaves them out.
     auto manifest = [&](const std::string& name, const std::string& extra) {
         std::ofstream(dir.file(name + ".toml")) << "format = 1\nname = \"" << name

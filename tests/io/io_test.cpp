@@ -114,6 +114,22 @@ TEST(Io, ColourNeedsAChannelAndEachChannelIsTakenAsStored) {
                     1e-4);
 }
 
+TEST(Io, ASequenceIsNameDotExtOrNameDotHashesDotExt) {
+    EXPECT_EQ(frameFileName("out/sea.exr", 3, 8), "out/sea.0003.exr");
+    EXPECT_EQ(frameFileName("out/sea.####.exr", 3, 8), "out/sea.0003.exr");
+    EXPECT_EQ(frameFileName("out/sea.####.exr", 0, 1), "out/sea.####.exr") << "one frame: the path as given";
+    EXPECT_EQ(frameFileName("out/####.exr", 2, 4), "out/####.0002.exr") << "no NAME before the hashes";
+    EXPECT_EQ(frameFileName("out/sea.###.exr", 2, 4), "out/sea.###.0002.exr") << "three hashes are a name";
+    ScratchDir dir;
+    for (const char* name : {"sea.0000.png", "sea.0001.png", "sea.0002.png", "sea.0004.png"}) std::ofstream(dir.file(name)) << "x";
+    const std::vector<std::string> frames = expandSequence(dir.file("sea.png"));
+    ASSERT_EQ(frames.size(), 3u) << "consecutive frames from 0000: 0004 is after a gap";
+    EXPECT_EQ(frames[2], dir.file("sea.0002.png"));
+    EXPECT_EQ(expandSequence(dir.file("sea.####.png")), frames);
+    EXPECT_EQ(expandSequence(dir.file("none.####.png")), std::vector<std::string>{dir.file("none.####.png")})
+        << "no frames: the path as given, so the error names it";
+}
+
 TEST(Io, BadInputsAreRefusedWithAReason) {
     ScratchDir dir;
     EXPECT_NE(loadError(dir.file("missing.png")).what.find("no such file"), std::string::npos);

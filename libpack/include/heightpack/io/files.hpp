@@ -32,7 +32,8 @@ Status checkOutputPath(const std::filesystem::path& path);
 Status writeTextFile(const std::string& path, const std::string& text);
 
 // Sequences of frames are numbered files: NAME.0000.EXT, NAME.0001.EXT, ... The file frame f of n goes
-// to: path itself when n is 1, else NAME.FFFF.EXT.
+// to: path itself when n is 1, else NAME.FFFF.EXT. A path NAME.####.EXT (four '#', as compositing tools
+// write a sequence) means the same as NAME.EXT, for inputs and outputs alike.
 std::string frameFileName(const std::string& path, int frame, int frames);
 
 // The files a path names: itself when it exists; else, when NAME.0000.EXT exists, every consecutive
