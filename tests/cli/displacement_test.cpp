@@ -9,18 +9,14 @@
 #include <filesystem>
 #include <fstream>
 
+#include "support/exr_levels.hpp"
+#include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
 using namespace heightpack::test;
 
 namespace {
-
-ProcessResult run(const std::vector<std::string>& args) {
-    std::vector<std::string> argv = {HEIGHTPACK_EXE};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return runProcess(argv);
-}
 
 // A float EXR with channels Y, Dx, Dy, as synth --displacement writes them.
 void writeSea(const std::string& path, const Image& y, const Image& dx, const Image& dy) {
@@ -32,32 +28,6 @@ void writeSea(const std::string& path, const Image& y, const Image& dx, const Im
     ASSERT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
 }
 
-// One level of an EXR: every channel by name.
-struct Level {
-    int width = 0, height = 0;
-    std::vector<std::string> names;
-    std::vector<float> pixels;
-    float at(const std::string& channel, int x, int y) const {
-        const size_t c = std::find(names.begin(), names.end(), channel) - names.begin();
-        EXPECT_LT(c, names.size()) << channel;
-        return c < names.size() ? pixels[(size_t(y) * width + x) * names.size() + c] : NAN;
-    }
-};
-
-Level readLevel(const std::string& path, int mip) {
-    Level l;
-    auto in = OIIO::ImageInput::open(path);
-    EXPECT_TRUE(in) << path;
-    if (!in || !in->seek_subimage(0, mip)) return l;
-    const OIIO::ImageSpec& spec = in->spec();
-    l.width = spec.width;
-    l.height = spec.height;
-    l.names = spec.channelnames;
-    l.pixels.resize(size_t(l.width) * l.height * spec.nchannels);
-    EXPECT_TRUE(in->read_image(0, mip, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, l.pixels.data()));
-    return l;
-}
-
 const Image kHeights = makeImage(32, 16, [](int x, int y) { return float(0.8 * std::sin(x * 0.39) * std::cos(y * 0.41)); });
 const Image kDx = randomImage(32, 16, 7, -1.5f, 1.5f);
 const Image kDy = randomImage(32, 16, 8, -0.5f, 0.5f);
@@ -67,7 +37,7 @@ const Image kDy = randomImage(32, 16, 8, -0.5f, 0.5f);
 TEST(PackDisplacement, KeepsDxDyBitExactAtLevelZeroPackedAsTheHeights) {
     ScratchDir dir;
     writeSea(dir.file("sea.exr"), kHeights, kDx, kDy);
-    const ProcessResult packed = run({"pack", dir.file("sea.exr"), "--displacement", "--wrap", "clamp", "--json",
+    const ProcessResult packed = heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "--wrap", "clamp", "--json",
                                       "--emit-plain", dir.file("plain.exr"), "-o", dir.file("sea_packed.exr")});
     ASSERT_EQ(packed.code, 0) << packed.err;
     EXPECT_EQ(nlohmann::json::parse(packed.out)["displacement"], "neighbour4");
@@ -98,7 +68,7 @@ TEST(PackDisplacement, KeepsDxDyBitExactAtLevelZeroPackedAsTheHeights) {
             ASSERT_EQ(plain.at("Dy", x, y), kDy.at(x, y));
         }
     // The heights are what pack writes without the displacement, at every level.
-    ASSERT_EQ(run({"pack", dir.file("sea.exr"), "--wrap", "clamp", "-q", "-o", dir.file("heights.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--wrap", "clamp", "-q", "-o", dir.file("heights.exr")}).code, 0);
     for (int mip = 0; mip < 6; ++mip) {
         const Level with = readLevel(dir.file("sea_packed.exr"), mip), without = readLevel(dir.file("heights.exr"), mip);
         ASSERT_EQ(with.width, without.width);
@@ -111,7 +81,7 @@ TEST(PackDisplacement, KeepsDxDyBitExactAtLevelZeroPackedAsTheHeights) {
 TEST(PackDisplacement, MipLevelsAreTheFiltersOfDxDy) {
     ScratchDir dir;
     writeSea(dir.file("sea.exr"), kHeights, kDx, kDy);
-    ASSERT_EQ(run({"pack", dir.file("sea.exr"), "--displacement", "--filter", "box", "-q", "-o", dir.file("box.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "--filter", "box", "-q", "-o", dir.file("box.exr")}).code, 0);
     // Box: each texel of level 1 is the mean of the 2x2 below it, computed here from the input.
     const Level one = readLevel(dir.file("box.exr"), 1);
     ASSERT_EQ(one.width, 16);
@@ -125,8 +95,8 @@ TEST(PackDisplacement, MipLevelsAreTheFiltersOfDxDy) {
     }
     // Kaiser: Dx's chain is the chain pack makes of the same values given as heights.
     writeSea(dir.file("dx_as_heights.exr"), kDx, kDy, kDy);
-    ASSERT_EQ(run({"pack", dir.file("sea.exr"), "--displacement", "-q", "-o", dir.file("kaiser.exr")}).code, 0);
-    ASSERT_EQ(run({"pack", dir.file("dx_as_heights.exr"), "-q", "-o", dir.file("dx.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "-q", "-o", dir.file("kaiser.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("dx_as_heights.exr"), "-q", "-o", dir.file("dx.exr")}).code, 0);
     for (int mip = 1; mip < 6; ++mip) {
         const Level a = readLevel(dir.file("kaiser.exr"), mip), b = readLevel(dir.file("dx.exr"), mip);
         for (int y = 0; y < a.height; ++y)
@@ -139,14 +109,14 @@ TEST(PackDisplacement, MipLevelsAreTheFiltersOfDxDy) {
 TEST(PackDisplacement, RefusesWhatCannotHoldIt) {
     ScratchDir dir;
     writeImage(dir.file("painted.png"), makeImage(16, 16, [](int x, int) { return x / 16.0f; }), OIIO::TypeDesc::UINT8);
-    const ProcessResult none = run({"pack", dir.file("painted.png"), "--displacement", "-o", dir.file("p.exr")});
+    const ProcessResult none = heightpackRun({"pack", dir.file("painted.png"), "--displacement", "-o", dir.file("p.exr")});
     EXPECT_EQ(none.code, 3) << none.err;
     EXPECT_EQ(none.err.rfind("heightpack: error: " + dir.file("painted.png") + ": ", 0), 0u) << none.err;
     EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
     EXPECT_NE(none.err.find("--displacement"), std::string::npos) << none.err;  // the hint names the way out
     writeSea(dir.file("sea.exr"), kHeights, kDx, kDy);
     for (const char* output : {"s.ktx2", "s.dds"}) {
-        const ProcessResult gpu = run({"pack", dir.file("sea.exr"), "--displacement", "-o", dir.file(output)});
+        const ProcessResult gpu = heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "-o", dir.file(output)});
         EXPECT_EQ(gpu.code, 2) << gpu.err;
         EXPECT_EQ(std::count(gpu.err.begin(), gpu.err.end(), '\n'), 1) << gpu.err;
     }
@@ -155,9 +125,9 @@ TEST(PackDisplacement, RefusesWhatCannotHoldIt) {
 
 TEST(PackDisplacement, SequencesAndManifestsCarryIt) {
     ScratchDir dir;
-    ASSERT_EQ(run({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "32", "--frames", "2", "--loop", "4s",
+    ASSERT_EQ(heightpackRun({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "32", "--frames", "2", "--loop", "4s",
                    "--displacement", "-q", "-o", dir.file("sea.exr")}).code, 0);
-    ASSERT_EQ(run({"pack", dir.file("sea.exr"), "--displacement", "-q", "-o", dir.file("packed.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "-q", "-o", dir.file("packed.exr")}).code, 0);
     for (const char* frame : {"packed.0000.exr", "packed.0001.exr"}) {
         auto in = OIIO::ImageInput::open(dir.file(frame));
         ASSERT_TRUE(in) << frame;
@@ -167,7 +137,7 @@ TEST(PackDisplacement, SequencesAndManifestsCarryIt) {
     // NAME.####.EXT, as compositing tools spell a sequence (and the issue's example), is NAME.EXT: the
     // same frames read, the same files written (packed.####.exr is packed.0000.exr ...), byte for byte
     // but for the header's source name.
-    const ProcessResult hashes = run({"pack", dir.file("sea.####.exr"), "--displacement", "-q", "-o",
+    const ProcessResult hashes = heightpackRun({"pack", dir.file("sea.####.exr"), "--displacement", "-q", "-o",
                                       dir.file("hashes.####.exr")});
     ASSERT_EQ(hashes.code, 0) << hashes.err;
     for (const char* frame : {"0000", "0001"}) {
@@ -184,7 +154,7 @@ TEST(PackDisplacement, SequencesAndManifestsCarryIt) {
                                                 << "\"\n[[displacement]]\nname = \"sea\"\nsource = \"sea.exr\"\n"
                                                    "tile_size = 32.0\n"
                                                 << extra;
-        const ProcessResult b = run({"build", dir.file(name + ".toml"), "-q", "-o", dir.file(name)});
+        const ProcessResult b = heightpackRun({"build", dir.file(name + ".toml"), "-q", "-o", dir.file(name)});
         EXPECT_EQ(b.code, 0) << b.err;
         std::ifstream json(dir.file(name + "/material.json"));
         return nlohmann::json::parse(json)["displacement"][0];

@@ -10,44 +10,14 @@
 #include <fstream>
 
 #include "heightpack/build/material_sampler.hpp"
+#include "support/exr_levels.hpp"
+#include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
 using namespace heightpack::test;
 
 namespace {
-
-ProcessResult run(const std::vector<std::string>& args) {
-    std::vector<std::string> argv = {HEIGHTPACK_EXE};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return runProcess(argv);
-}
-
-// One level of an EXR: every channel by name.
-struct Level {
-    int width = 0, height = 0;
-    std::vector<std::string> names;
-    std::vector<float> pixels;
-    float at(const std::string& channel, int x, int y) const {
-        const size_t c = std::find(names.begin(), names.end(), channel) - names.begin();
-        EXPECT_LT(c, names.size()) << channel;
-        return c < names.size() ? pixels[(size_t(y) * width + x) * names.size() + c] : NAN;
-    }
-};
-
-Level readLevel(const std::string& path, int mip) {
-    Level l;
-    auto in = OIIO::ImageInput::open(path);
-    EXPECT_TRUE(in) << path;
-    if (!in || !in->seek_subimage(0, mip)) return l;
-    const OIIO::ImageSpec& spec = in->spec();
-    l.width = spec.width;
-    l.height = spec.height;
-    l.names = spec.channelnames;
-    l.pixels.resize(size_t(l.width) * l.height * spec.nchannels);
-    EXPECT_TRUE(in->read_image(0, mip, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, l.pixels.data()));
-    return l;
-}
 
 // A small choppy sea whose foam covers a good part of it: a threshold of 0.9 on the Jacobian marks every
 // texel the waves squeeze by a tenth.
@@ -60,7 +30,7 @@ TEST(PackFoam, KeepsSynthsCoverageBitExactAndItsMipsAreItsBoxMeans) {
     ScratchDir dir;
     auto synth = kSynth;
     synth.insert(synth.end(), {"-o", dir.file("sea.exr")});
-    ASSERT_EQ(run(synth).code, 0);
+    ASSERT_EQ(heightpackRun(synth).code, 0);
     const Level sea = readLevel(dir.file("sea.exr"), 0);
     ASSERT_EQ(sea.width, 32);
     double lo = 1, hi = 0;
@@ -68,7 +38,7 @@ TEST(PackFoam, KeepsSynthsCoverageBitExactAndItsMipsAreItsBoxMeans) {
         for (int x = 0; x < 32; ++x) lo = std::min<double>(lo, sea.at("Foam", x, y)), hi = std::max<double>(hi, sea.at("Foam", x, y));
     ASSERT_LT(lo, 0.5 * hi) << "the sea must have foam in some places and less in others";
 
-    const ProcessResult packed = run({"pack", dir.file("sea.exr"), "--displacement", "--foam", "--filter", "box", "--json",
+    const ProcessResult packed = heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "--foam", "--filter", "box", "--json",
                                       "--emit-plain", dir.file("plain.exr"), "-o", dir.file("packed.exr")});
     ASSERT_EQ(packed.code, 0) << packed.err;
     EXPECT_EQ(nlohmann::json::parse(packed.out)["foam"], "neighbour4");
@@ -112,16 +82,16 @@ TEST(PackFoam, KeepsSynthsCoverageBitExactAndItsMipsAreItsBoxMeans) {
 TEST(PackFoam, RefusesWhatCannotHoldIt) {
     ScratchDir dir;
     // A sea with Dx, Dy but no foam: bad input, exit 3, one line, nothing written.
-    ASSERT_EQ(run({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "16", "--displacement", "-q", "-o",
+    ASSERT_EQ(heightpackRun({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "16", "--displacement", "-q", "-o",
                    dir.file("sea.exr")}).code, 0);
-    const ProcessResult none = run({"pack", dir.file("sea.exr"), "--foam", "-o", dir.file("p.exr")});
+    const ProcessResult none = heightpackRun({"pack", dir.file("sea.exr"), "--foam", "-o", dir.file("p.exr")});
     EXPECT_EQ(none.code, 3) << none.err;
     EXPECT_EQ(none.err.rfind("heightpack: error: " + dir.file("sea.exr") + ": ", 0), 0u) << none.err;
     EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
     EXPECT_NE(none.err.find("Foam"), std::string::npos) << none.err;
     // Four channels of a KTX2 or DDS texel cannot hold the heights with their foam: a usage error.
     for (const char* output : {"s.ktx2", "s.dds"}) {
-        const ProcessResult gpu = run({"pack", dir.file("sea.exr"), "--foam", "-o", dir.file(output)});
+        const ProcessResult gpu = heightpackRun({"pack", dir.file("sea.exr"), "--foam", "-o", dir.file(output)});
         EXPECT_EQ(gpu.code, 2) << gpu.err;
         EXPECT_EQ(std::count(gpu.err.begin(), gpu.err.end(), '\n'), 1) << gpu.err;
     }
@@ -132,13 +102,13 @@ TEST(PackFoam, ManifestsCarryItAndMaterialJsonSaysSo) {
     ScratchDir dir;
     auto synth = kSynth;
     synth.insert(synth.end(), {"-o", dir.file("sea.exr")});
-    ASSERT_EQ(run(synth).code, 0);
+    ASSERT_EQ(heightpackRun(synth).code, 0);
     auto manifest = [&](const std::string& name, const std::string& extra) {
         std::ofstream(dir.file(name + ".toml")) << "format = 1\nname = \"" << name
                                                 << "\"\n[[displacement]]\nname = \"sea\"\nsource = \"sea.exr\"\n"
                                                    "tile_size = 32.0\n"
                                                 << extra;
-        const ProcessResult b = run({"build", dir.file(name + ".toml"), "-q", "-o", dir.file(name)});
+        const ProcessResult b = heightpackRun({"build", dir.file(name + ".toml"), "-q", "-o", dir.file(name)});
         EXPECT_EQ(b.code, 0) << b.err;
         std::ifstream json(dir.file(name + "/material.json"));
         return nlohmann::json::parse(json)["displacement"][0];

@@ -13,47 +13,14 @@
 
 #include "heightpack/core/cascades.hpp"
 
+#include "support/exr_levels.hpp"
+#include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
 using namespace heightpack::test;
 
 namespace {
-
-ProcessResult run(const std::vector<std::string>& args) {
-    std::vector<std::string> argv = {HEIGHTPACK_EXE};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return runProcess(argv);
-}
-
-// Every level of an EXR: its size, channel names and texels.
-struct Level {
-    int width = 0, height = 0;
-    std::vector<std::string> names;
-    std::vector<float> pixels;
-    float at(const std::string& channel, int x, int y) const {
-        const size_t c = std::find(names.begin(), names.end(), channel) - names.begin();
-        EXPECT_LT(c, names.size()) << channel;
-        return c < names.size() ? pixels[(size_t(y) * width + x) * names.size() + c] : NAN;
-    }
-};
-
-std::vector<Level> readLevels(const std::string& path) {
-    std::vector<Level> levels;
-    auto in = OIIO::ImageInput::open(path);
-    EXPECT_TRUE(in) << path;
-    for (int mip = 0; in && in->seek_subimage(0, mip); ++mip) {
-        const OIIO::ImageSpec& spec = in->spec();
-        Level l;
-        l.width = spec.width;
-        l.height = spec.height;
-        l.names = spec.channelnames;
-        l.pixels.resize(size_t(l.width) * l.height * spec.nchannels);
-        EXPECT_TRUE(in->read_image(0, mip, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, l.pixels.data())) << path;
-        levels.push_back(std::move(l));
-    }
-    return levels;
-}
 
 // Two textures hold the same texels in the same channels at every level (bit for bit).
 void expectSameTexels(const std::string& built, const std::string& reference) {
@@ -104,12 +71,12 @@ TEST(SynthManifest, DisplacementIsWhatSynthThenPackMake) {
     ScratchDir dir;
     writeText(dir.file("choppy.toml"), kChoppy);
     std::filesystem::create_directory(dir.file("cli"));
-    const ProcessResult built = run({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")});
+    const ProcessResult built = heightpackRun({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")});
     ASSERT_EQ(built.code, 0) << built.err;
-    ASSERT_EQ(run({"synth", "--spectrum", "jonswap", "--wind", "11m/s", "--fetch", "80km", "--direction", "25",
+    ASSERT_EQ(heightpackRun({"synth", "--spectrum", "jonswap", "--wind", "11m/s", "--fetch", "80km", "--direction", "25",
                    "--tile-size", "48m", "--size", "64", "--seed", "5", "--loop", "6s", "--frames", "2", "--displacement",
                    "-q", "-o", dir.file("cli/sea.exr")}).code, 0);
-    ASSERT_EQ(run({"pack", dir.file("cli/sea.exr"), "--displacement", "--filter", "kaiser", "--wrap", "periodic", "-q",
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--displacement", "--filter", "kaiser", "--wrap", "periodic", "-q",
                    "-o", dir.file("cli/packed.exr")}).code, 0);
     for (const char* frame : {"0000", "0001"}) {
         const std::string out = dir.file(std::string("out/sea.") + frame + ".exr");
@@ -126,7 +93,7 @@ TEST(SynthManifest, DisplacementIsWhatSynthThenPackMake) {
     std::string gpu = kChoppy;
     gpu.replace(gpu.find("choppiness = 0.8"), 16, "output = \"sea.ktx2\"");
     writeText(dir.file("gpu.toml"), gpu);
-    const ProcessResult ktx = run({"build", dir.file("gpu.toml"), "-q", "-o", dir.file("gpu")});
+    const ProcessResult ktx = heightpackRun({"build", dir.file("gpu.toml"), "-q", "-o", dir.file("gpu")});
     ASSERT_EQ(ktx.code, 0) << ktx.err;
     const nlohmann::json flat = material(dir.file("gpu"))["displacement"][0];
     EXPECT_EQ(flat["texture"]["file"], "sea.ktx2");
@@ -155,9 +122,9 @@ seed = 4
 cascades = 3
 )");
     std::filesystem::create_directory(dir.file("cli"));
-    const ProcessResult built = run({"build", dir.file("cascades.toml"), "-q", "-o", dir.file("out")});
+    const ProcessResult built = heightpackRun({"build", dir.file("cascades.toml"), "-q", "-o", dir.file("out")});
     ASSERT_EQ(built.code, 0) << built.err;
-    ASSERT_EQ(run({"synth", "--spectrum", "pierson-moskowitz", "--wind", "9m/s", "--tile-size", "100m", "--size", "32",
+    ASSERT_EQ(heightpackRun({"synth", "--spectrum", "pierson-moskowitz", "--wind", "9m/s", "--tile-size", "100m", "--size", "32",
                    "--seed", "4", "--cascades", "3", "-q", "-o", dir.file("cli/sea.exr")}).code, 0);
 
     const std::vector<CascadeBand> bands = cascadeBands(100.0, 32, 3, 4);
@@ -185,7 +152,7 @@ cascades = 3
             for (int x = 0; x < 32; ++x)
                 ASSERT_EQ(packed[0].at("R", x, y), offset + 1.0f * synthesised[0].at("Y", x, y)) << x << "," << y;
         // The whole chain is what pack makes of synth's file with the same offset.
-        ASSERT_EQ(run({"pack", dir.file("cli/" + name + ".exr"), "--offset", c == 0 ? "0.5" : "0", "-q", "-o",
+        ASSERT_EQ(heightpackRun({"pack", dir.file("cli/" + name + ".exr"), "--offset", c == 0 ? "0.5" : "0", "-q", "-o",
                        dir.file("cli/" + name + "_packed.exr")}).code, 0);
         expectSameTexels(dir.file("out/" + name + ".exr"), dir.file("cli/" + name + "_packed.exr"));
     }
@@ -198,7 +165,7 @@ cascades = 3
 TEST(SynthManifest, BadValuesNameTheKeyAndTouchNothing) {
     ScratchDir dir;
     writeText(dir.file("choppy.toml"), kChoppy);
-    ASSERT_EQ(run({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")}).code, 0);
+    ASSERT_EQ(heightpackRun({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")}).code, 0);
     const std::vector<unsigned char> before = readBytes(dir.file("out/sea.0001.exr"));
     const std::vector<unsigned char> json = readBytes(dir.file("out/material.json"));
     // Each case replaces a line of kChoppy (line 18 is displacement = true) and appends one (line 19).
@@ -214,7 +181,7 @@ TEST(SynthManifest, BadValuesNameTheKeyAndTouchNothing) {
         if (!c.from.empty()) text.replace(text.find(c.from), c.from.size(), c.to);
         text += c.append + "\n";
         writeText(dir.file("choppy.toml"), text);
-        const ProcessResult r = run({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")});
+        const ProcessResult r = heightpackRun({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")});
         EXPECT_EQ(r.code, 3) << c.key;
         EXPECT_NE(r.err.find(dir.file("choppy.toml") + ":" + std::to_string(c.line) + ":"), std::string::npos) << r.err;
         EXPECT_NE(r.err.find(c.key), std::string::npos) << r.err;
