@@ -41,6 +41,8 @@ bench "512x512 x 60 frames, everything" "${wind[@]}" --swell 2.5m,12s,250deg --d
   --tile-size 256m --size 512 --loop 20s --frames 60 --displacement --foam --report
 sequence=$last
 awk -v h="$heights" -v f="$full" -v s="$sequence" 'BEGIN {
-  printf "displacement and foam / heights only: %.2fx (target under 2x of the ~4 s before issue 15: %s)\n", f / h, (f < 8 ? "met" : "missed");
+  # The issue says "under 2x that" of a heights-only run it put at about 4 s: judged both ways, the ratio on
+  # this machine now and the 8 s it meant, as the two part when heights alone get faster.
+  printf "displacement and foam / heights only: %.2fx (target under 2x: %s); %.2f s (under 8 s, 2x the ~4 s before issue 15: %s)\n", f / h, (f < 2 * h ? "met" : "missed"), f, (f < 8 ? "met" : "missed");
   printf "60-frame 512x512 sequence: %.2f s (target under 20 s: %s)\n", s, (s < 20 ? "met" : "missed") }'
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
