@@ -8,19 +8,6 @@
 
 namespace heightpack::view {
 
-namespace {
-
-// The named channels of image, in that order, as one image.
-Image pick(const Image& image, const std::vector<int>& channels) {
-    Image out(image.width, image.height, static_cast<int>(channels.size()));
-    for (size_t t = 0; t < image.texelCount(); ++t)
-        for (size_t c = 0; c < channels.size(); ++c)
-            out.pixels[t * channels.size() + c] = image.pixels[t * image.channels + channels[c]];
-    return out;
-}
-
-}  // namespace
-
 Status takeDisplacement(const std::string& path, ViewerTexture& file, Wrap wrap, HeightFrame& frame) {
     const std::string stored = findAttribute(file.attributes, attr::displacement);
     if (stored.empty()) return Done{};
@@ -40,10 +27,10 @@ Status takeDisplacement(const std::string& path, ViewerTexture& file, Wrap wrap,
             out->push_back(index(n));
         }
     for (Image& level : file.levels) {
-        Image shiftX = pick(level, x), shiftY = pick(level, y);
+        Image shiftX = selectChannels(level, x), shiftY = selectChannels(level, y);
         frame.shiftX.push_back(packed ? std::move(shiftX) : packNeighbour4(shiftX, wrap));
         frame.shiftY.push_back(packed ? std::move(shiftY) : packNeighbour4(shiftY, wrap));
-        level = pick(level, h);
+        level = selectChannels(level, h);
     }
     file.stored.reset();  // its texels hold all twelve (or three) channels
     return Done{};

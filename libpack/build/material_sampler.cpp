@@ -16,15 +16,6 @@
 namespace heightpack {
 namespace {
 
-// The named channels of image, in that order, as one image.
-Image pick(const Image& image, const std::vector<int>& channels) {
-    Image out(image.width, image.height, static_cast<int>(channels.size()));
-    for (size_t t = 0; t < image.texelCount(); ++t)
-        for (size_t c = 0; c < channels.size(); ++c)
-            out.pixels[t * channels.size() + c] = image.pixels[t * image.channels + channels[c]];
-    return out;
-}
-
 // One frame's packed chains: the heights, and Dx, Dy when the file holds them (heightpack:displacement).
 struct FrameChains {
     std::vector<Image> heights, shiftX, shiftY;
@@ -84,7 +75,7 @@ Result<FrameChains> readFrameChains(const std::string& path, SampledLayer& layer
             return badInput(path, "is marked neighbour4 but has " + std::to_string(level.channels) + " channels",
                             "pack it again");
         auto packedOf = [&](const std::vector<int>& channels) {
-            return packed ? pick(level, channels) : packNeighbour4(pick(level, channels), layer.wrap);
+            return packed ? selectChannels(level, channels) : packNeighbour4(selectChannels(level, channels), layer.wrap);
         };
         chains.heights.push_back(packedOf(heights));
         if (displaced) {

@@ -9,16 +9,6 @@
 
 namespace heightpack {
 
-namespace {
-
-Image channelOf(const Image& image, int c) {
-    Image out(image.width, image.height, 1);
-    for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = image.pixels[i * image.channels + c];
-    return out;
-}
-
-}  // namespace
-
 Result<DisplacementMaps> packDisplacement(Image d, const SourceInfo& source, const PackOptions& options) {
     assert(d.channels == 2);
     // The same resample the heights get, so D stays where its heights are.
@@ -27,8 +17,8 @@ Result<DisplacementMaps> packDisplacement(Image d, const SourceInfo& source, con
     if (options.scale != 1.0f)
         for (float& v : d.pixels) v *= options.scale;
     DisplacementMaps maps;
-    maps.plainX = generateMipChain(channelOf(d, 0), options.mip);
-    maps.plainY = generateMipChain(channelOf(d, 1), options.mip);
+    maps.plainX = generateMipChain(selectChannels(d, {0}), options.mip);
+    maps.plainY = generateMipChain(selectChannels(d, {1}), options.mip);
     if (options.layout == Layout::Neighbour4) {
         maps.packedX = packMipChain(maps.plainX, options.mip.wrap);
         maps.packedY = packMipChain(maps.plainY, options.mip.wrap);

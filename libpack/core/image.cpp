@@ -10,4 +10,14 @@ Image transposed(const Image& image) {
     return out;
 }
 
+Image selectChannels(const Image& image, const std::vector<int>& channels) {
+    Image out(image.width, image.height, static_cast<int>(channels.size()));
+    for (size_t t = 0; t < image.texelCount(); ++t)
+        for (size_t c = 0; c < channels.size(); ++c) {
+            assert(channels[c] >= 0 && channels[c] < image.channels);
+            out.pixels[t * channels.size() + c] = image.pixels[t * image.channels + channels[c]];
+        }
+    return out;
+}
+
 }  // namespace heightpack

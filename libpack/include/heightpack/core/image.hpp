@@ -69,4 +69,8 @@ private:
 // The image with rows and columns swapped (one channel): its columns become rows that read contiguously.
 Image transposed(const Image& image);
 
+// The given channels of image, in that order, as an image of that many channels (e.g. {1, 2} of Y, Dx, Dy
+// is Dx, Dy).
+Image selectChannels(const Image& image, const std::vector<int>& channels);
+
 }  // namespace heightpack
