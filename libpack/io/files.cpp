@@ -25,7 +25,7 @@ namespace {
 
 // Paths of temporary files being written, kept in plain arrays so a signal handler can unlink them
 // without allocating or locking.
-constexpr int kMaxPending = 32;
+constexpr int kMaxPending = 256;  // a staged sequence holds one per frame and layer until it commits
 constexpr size_t kMaxPath = 4096;
 char pendingPath[kMaxPending][kMaxPath];
 std::atomic<bool> pendingUsed[kMaxPending];
@@ -75,14 +75,19 @@ Status checkWritable(const std::string& path) {
 int removeStaleTemporaryFiles(const std::string& folder, const std::string& stem) {
     std::error_code ec;
     int removed = 0;
-    const std::string prefix = stem.empty() ? std::string() : "." + stem + ".hptmp-";
+    const std::string prefix = stem + ".hptmp-";
     for (const fs::directory_entry& entry : fs::directory_iterator(folder.empty() ? "." : folder, ec)) {
-        // .STEM.hptmp-PID-N.EXT, as TemporaryFile names them.
+        // .STEM.hptmp-PID-N.EXT, as TemporaryFile names them, and any name made of one (earlier versions
+        // wrapped a staged frame's name again: ..STEM.hptmp-PID-N.hptmp-PID-M.EXT). The first PID is the
+        // process whose death makes the file stale.
         const std::string name = entry.path().filename().string();
-        const size_t mark = prefix.empty() ? name.find(".hptmp-") : (name.rfind(prefix, 0) == 0 ? stem.size() + 1 : std::string::npos);
-        if (name.empty() || name[0] != '.' || mark == std::string::npos) continue;
+        const size_t dots = name.find_first_not_of('.');
+        if (dots == 0 || dots == std::string::npos) continue;
+        const std::string bare = name.substr(dots);
+        const size_t mark = stem.empty() ? bare.find(".hptmp-") : (bare.rfind(prefix, 0) == 0 ? stem.size() : std::string::npos);
+        if (mark == std::string::npos) continue;
         if (!entry.is_regular_file(ec) || entry.is_symlink(ec)) continue;
-        const long pid = std::strtol(name.c_str() + mark + 7, nullptr, 10);
+        const long pid = std::strtol(bare.c_str() + mark + 7, nullptr, 10);
         if (pid <= 0 || pid == ::getpid()) continue;
         if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // its writer still runs
         if (fs::remove(entry.path(), ec)) ++removed;
@@ -129,7 +134,28 @@ Status copyFile(const std::string& from, const std::string& to) {
 }
 
 
+namespace {
+
+// Whether path is a temporary file this process has open: a staged output (StagedOutputs) that a
+// writer is now asked to write.
+bool isPendingTemporary(const std::string& path) {
+    std::lock_guard<std::mutex> lock(pendingMutex);
+    for (int i = 0; i < kMaxPending; ++i)
+        if (pendingUsed[i].load() && path == pendingPath[i]) return true;
+    return false;
+}
+
+}  // namespace
+
 TemporaryFile::TemporaryFile(const std::string& finalPath) : finalPath_(finalPath) {
+    // A staged output is written where it is: it is already a temporary file, which its own
+    // TemporaryFile moves into place (or removes) later. Wrapping it again would leave temporaries of
+    // temporaries after a kill.
+    if (isPendingTemporary(finalPath)) {
+        path_ = finalPath;
+        inPlace_ = true;
+        return;
+    }
     static std::atomic<unsigned> counter{0};
     const fs::path target(finalPath);
     // Built with append: GCC 12 gives a false -Wrestrict on a chain of operator+ here.
@@ -151,11 +177,13 @@ TemporaryFile::TemporaryFile(const std::string& finalPath) : finalPath_(finalPat
 }
 
 TemporaryFile::~TemporaryFile() {
+    if (inPlace_) return;
     if (!committed_) ::unlink(path_.c_str());
     if (slot_ >= 0) pendingUsed[slot_].store(false);
 }
 
 Status TemporaryFile::commit() {
+    if (inPlace_) return Done{};  // the staged file's own TemporaryFile flushes and moves it
     struct stat st {};
     if (::stat(finalPath_.c_str(), &st) == 0) ::chmod(path_.c_str(), st.st_mode & 07777);
     // The bytes reach the disk before the name does, and the name before commit() returns: after a

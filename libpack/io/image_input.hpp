@@ -2,10 +2,12 @@
 // refuses the same things the same way before a pixel is read.
 #pragma once
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/read.hpp"
@@ -30,10 +32,31 @@ inline SizeLimits sizeLimitsOf(const LoadOptions& options) {
 // Fails with BadInput when spec (one level of path) is empty, 3D, or larger than limits.
 Status judgeSize(const std::string& path, const OIIO::ImageSpec& spec, const SizeLimits& limits);
 
-// Opens path for reading through OpenImageIO, after checking that it is a readable, non-empty regular
-// file (checkReadable) in a form heightpack decodes faithfully (no RLE-compressed BMP), and judging the
-// first level's size against limits. Every failure is BadInput naming path, with a hint.
-Result<std::unique_ptr<OIIO::ImageInput>> openImage(const std::string& path, const SizeLimits& limits);
+// An image being read: OpenImageIO's reader over the file's bytes, which heightpack read and judged
+// itself (input_format.hpp). Use it as the reader (->, *); the bytes live as long as it does.
+class OpenedImage {
+public:
+    OpenedImage() = default;
+    OpenedImage(OpenedImage&&) noexcept;
+    OpenedImage& operator=(OpenedImage&&) noexcept;
+    ~OpenedImage();
+
+    OIIO::ImageInput* operator->() const { return input_.get(); }
+    OIIO::ImageInput& operator*() const { return *input_; }
+
+private:
+    friend Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits);
+    std::vector<unsigned char> bytes_;
+    std::unique_ptr<OIIO::Filesystem::IOProxy> proxy_;
+    std::unique_ptr<OIIO::ImageInput> input_;
+};
+
+// Opens path for reading, after checking that it is a readable, non-empty regular file (checkReadable)
+// in a format heightpack reads, told by its first bytes and decoded by that format's reader alone
+// (input_format.hpp), whose header claims nothing its bytes cannot hold, in a form heightpack decodes
+// faithfully (no RLE-compressed BMP), and judging the first level's size against limits. Every failure
+// is BadInput naming path, with a hint.
+Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits);
 
 // Reads channels [chBegin, chEnd) of the current subimage and level as floats into dst, failing with
 // BadInput when the decoder reports any error, even one it did not fail on (OpenImageIO 2.4 returns

@@ -19,10 +19,10 @@ namespace heightpack {
 namespace {
 
 // Opens path and fills header from its first level; the caller walks the levels.
-Result<std::unique_ptr<OIIO::ImageInput>> openTexture(const std::string& path, TextureHeader& header) {
+Result<detail::OpenedImage> openTexture(const std::string& path, TextureHeader& header) {
     auto opened = detail::openImage(path, detail::SizeLimits{});
     if (!opened) return opened.error();
-    std::unique_ptr<OIIO::ImageInput> in = std::move(*opened);
+    detail::OpenedImage in = std::move(*opened);
     header.path = path;
     header.format = in->format_name();
     const OIIO::ImageSpec& top = in->spec();

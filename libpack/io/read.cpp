@@ -94,7 +94,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     detail::StderrSilencer quiet(options.silenceDecoderMessages);
     auto opened = detail::openImage(path, detail::sizeLimitsOf(options));
     if (!opened) return opened.error();
-    std::unique_ptr<OIIO::ImageInput>& in = *opened;
+    detail::OpenedImage& in = *opened;
     const OIIO::ImageSpec spec = in->spec();
 
     LoadedHeights out;
@@ -280,67 +280,6 @@ Status checkReadable(const std::string& path) {
 }
 
 
-namespace detail {
-
-Status judgeSize(const std::string& path, const OIIO::ImageSpec& spec, const SizeLimits& limits) {
-    if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1 || spec.nchannels <= 0)
-        return badInput(path, "has no 2D pixel data", "export it as a flat 2D image");
-    const int64_t texels = int64_t(spec.width) * spec.height;
-    if (spec.width > limits.maxSide || spec.height > limits.maxSide || texels > limits.maxTexels ||
-        texels * spec.nchannels > limits.maxSamples) {
-        return badInput(path, "is " + sizeText(spec.width, spec.height) + " with " + std::to_string(spec.nchannels) +
-                                  " channels, larger than heightpack accepts (" + std::to_string(limits.maxSide) +
-                                  " texels a side, " + std::to_string(limits.maxTexels) + " texels in all)",
-                        "split or downsize the map");
-    }
-    return Done{};
-}
-
-namespace {
-
-// BMP's RLE8 and RLE4 (compression 1 and 2 in the info header): OpenImageIO 2.4 decodes them wrongly.
-bool isRleBmp(const std::string& path) {
-    unsigned char h[34] = {};
-    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
-    if (!f || std::fread(h, 1, sizeof h, f.get()) != sizeof h || h[0] != 'B' || h[1] != 'M') return false;
-    auto le32 = [&](int at) {
-        return uint32_t(h[at]) | uint32_t(h[at + 1]) << 8 | uint32_t(h[at + 2]) << 16 | uint32_t(h[at + 3]) << 24;
-    };
-    const uint32_t infoSize = le32(14), compression = le32(30);
-    return infoSize >= 40 && (compression == 1 || compression == 2);
-}
-
-}  // namespace
-
-Result<std::unique_ptr<OIIO::ImageInput>> openImage(const std::string& path, const SizeLimits& limits) {
-    if (Status s = checkReadable(path); !s) return s.error();
-    if (isRleBmp(path))
-        return badInput(path, "is an RLE-compressed BMP, which heightpack cannot decode faithfully",
-                        "re-export it as PNG (or as an uncompressed BMP)");
-    // Keep colour and alpha as stored: an RGBA height map's channels are data, not premultiplied colour.
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) {
-        return badInput(path, "cannot be read as an image: " + firstLine(OIIO::geterror()),
-                        "export it as PNG, TIFF or EXR");
-    }
-    if (Status s = judgeSize(path, in->spec(), limits); !s) return s.error();
-    return in;
-}
-
-Status readPixels(OIIO::ImageInput& in, const std::string& path, int subimage, int level, int chBegin, int chEnd,
-                  float* dst, const std::string& what) {
-    (void)in.geterror();  // forget anything said while opening: only this read's errors count
-    const bool ok = in.read_image(subimage, level, chBegin, chEnd, OIIO::TypeDesc::FLOAT, dst);
-    const std::string error = in.geterror();
-    if (!ok || !error.empty())
-        return badInput(path, what + ": " + firstLine(error.empty() ? "the decoder failed" : error),
-                        "export the file again");
-    return Done{};
-}
-
-}  // namespace detail
 
 std::string hashPixels(const Image& image) {
     const XXH64_hash_t h = XXH3_64bits(image.pixels.data(), image.pixels.size() * sizeof(float));

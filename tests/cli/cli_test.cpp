@@ -134,7 +134,7 @@ TEST(Cli, BadInputsExitThreeWithOneLineAndNoOutput) {
     writeBytes(dir.file("huge.png"), pngWithClaimedSize(100000, 100000));
 
     const std::pair<const char*, const char*> cases[] = {
-        {"missing.png", "no such file"},  {"empty.png", "empty"},      {"text.png", "cannot be read"},
+        {"missing.png", "no such file"},  {"empty.png", "empty"},      {"text.png", "not an image in a format heightpack reads"},
         {"truncated.png", "truncated"},   {"colour.png", "--channel"}, {"nan.exr", "NaN"},
         {"odd.png", "--resize pow2"},     {"huge.png", "100000x100000"},
     };

@@ -11,6 +11,7 @@
 # is loading OpenImageIO's shared libraries).
 set -u
 HP=$(realpath "${1:-build/heightpack}")
+HOSTILE=$(realpath "$(dirname "$0")/../io/hostile")   # fuzz findings (issue 21), refused by every reader
 [ -x "$HP" ] || { echo "no heightpack at $HP" >&2; exit 2; }
 SHARDS=("pack normal info check" "tile synth fresnel build")
 if [ -z "${SWEEP_SHARD:-}" ]; then
@@ -79,6 +80,9 @@ b64 iVBORw0KGgoAAAANSUhEUgAAABAAAAAQCAAAAAA6mKC9AAAAt0lEQat4nGNgYOcTlVHWMrSwd/MN
   for i in $(seq 0 255); do printf "\\$(printf %03o "$i")\\$(printf %03o "$i")\\$(printf %03o "$i")\\0"; done
   printf '\004\012\0\0\004\310\0\001'; } > rle.bmp
 head -c 100 rle.bmp > cutrle.bmp
+cp "$HOSTILE"/load_image-oom-* "$HOSTILE"/tiff_huge_alloc.tif .
+HOSTILE_MAPS=(load_image-oom-*.dpx load_image-oom-*.exr load_image-oom-*.png tiff_huge_alloc.tif)
+printf 'GIF89a\001\000\001\000\000\000\000;' > a.gif   # a format heightpack does not read
 # A map whose sides are not powers of two: the first 3 rows of good.png are not a PNG, so crop via tile's
 # mirror of a 1-row... simplest: synth refuses non-powers of two, so use a PFM 3x3.
 { printf 'Pf\n3 3\n-1.0\n'; for i in 1 2 3 4 5 6 7 8 9; do printf '\0\0\0\077'; done; } > odd.pfm
@@ -139,7 +143,7 @@ expect() {
 BAD_MAPS=(missing.png empty.png text.png signature.png cut.png cut.tif cut.exr text.exr text.tif folder.png fifo.png
           /dev/zero dangling.png fifolink.png short.pfm hugeheader.pfm huge.png big.png split.png
           badcrc.png rle.bmp cutrle.bmp zeros.png yes.exr header.png header.exr header.tif dirlink.png
-          good.png/ "")
+          good.png/ "" "${HOSTILE_MAPS[@]}" a.gif)
 # ...and those refused by commands that need heights, not by info (which describes them): colour, NaN.
 HEIGHT_ONLY=(colour.png nan.pfm inf.pfm)
 

@@ -56,6 +56,8 @@ std::string lowerExtension(const std::filesystem::path& path);
 // A temporary file beside the final output (same folder, so rename is atomic; same extension, so
 // libraries that choose a format by name still see it). commit() renames it over the output; otherwise
 // the destructor removes it. While it exists its path is registered for removePendingTemporaryFiles().
+// Given a path that is itself a pending temporary file (a StagedOutputs frame), it writes that path
+// directly and commit() leaves the move to the staged file's owner: one temporary name per output.
 class TemporaryFile {
 public:
     explicit TemporaryFile(const std::string& finalPath);
@@ -72,6 +74,7 @@ private:
     std::string path_;
     int slot_ = -1;
     bool committed_ = false;
+    bool inPlace_ = false;  // finalPath is a staged output: written where it is, moved by its own owner
 };
 
 // The outputs of a sequence, written under temporary names and moved into place together once every

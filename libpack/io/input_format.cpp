@@ -1,0 +1,291 @@
+#include "input_format.hpp"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+
+#include "heightpack/io/files.hpp"
+#include "image_input.hpp"
+
+namespace heightpack::detail {
+
+namespace {
+
+constexpr const char* kExportHint = "export it as PNG, TIFF or EXR";
+
+bool startsWith(const std::vector<unsigned char>& b, const char* magic, size_t n) {
+    return b.size() >= n && std::memcmp(b.data(), magic, n) == 0;
+}
+
+// Formats heightpack recognises but does not read, so the refusal can name what the file is.
+const char* refusedFormatName(const std::vector<unsigned char>& b) {
+    if (startsWith(b, "SDPX", 4) || startsWith(b, "XPDS", 4)) return "a DPX file";
+    if (startsWith(b, "GIF8", 4)) return "a GIF";
+    if (b.size() >= 12 && startsWith(b, "RIFF", 4) && std::memcmp(b.data() + 8, "WEBP", 4) == 0) return "a WebP image";
+    if (startsWith(b, "DDS ", 4)) return "a DDS texture";
+    if (startsWith(b, "\xABKTX 20\xBB", 8)) return "a KTX2 texture";
+    if (startsWith(b, "\x80\x2A\x5F\xD7", 4) || startsWith(b, "\xD7\x5F\x2A\x80", 4)) return "a Cineon file";
+    if (startsWith(b, "\x00\x00\x00\x0CjP  ", 8) || startsWith(b, "\xFF\x4F\xFF\x51", 4)) return "a JPEG 2000 file";
+    if (startsWith(b, "\x01\xDA", 2)) return "an SGI image";
+    if (b.size() >= 12 && std::memcmp(b.data() + 4, "ftyp", 4) == 0) return "a HEIF/AVIF image or a video";
+    return nullptr;
+}
+
+// Targa has no magic number: a .tga name and a header whose colour-map, image-type and depth fields hold
+// values the format defines.
+bool plausibleTarga(const std::string& path, const std::vector<unsigned char>& b) {
+    const std::string ext = lowerExtension(path);
+    if ((ext != ".tga" && ext != ".tpic") || b.size() < 18) return false;
+    const unsigned colourMap = b[1], type = b[2], depth = b[16];
+    const bool knownType = type == 1 || type == 2 || type == 3 || type == 9 || type == 10 || type == 11;
+    return colourMap <= 1 && knownType && (depth == 8 || depth == 15 || depth == 16 || depth == 24 || depth == 32);
+}
+
+std::optional<InputFormat> sniff(const std::string& path, const std::vector<unsigned char>& b) {
+    if (startsWith(b, "\x89PNG\r\n\x1A\n", 8)) return InputFormat::Png;
+    if (startsWith(b, "\xFF\xD8\xFF", 3)) return InputFormat::Jpeg;
+    if (startsWith(b, "II*\0", 4) || startsWith(b, "MM\0*", 4) || startsWith(b, "II+\0", 4) || startsWith(b, "MM\0+", 4))
+        return InputFormat::Tiff;
+    if (startsWith(b, "\x76\x2F\x31\x01", 4)) return InputFormat::Exr;
+    if (startsWith(b, "BM", 2) && b.size() >= 26) return InputFormat::Bmp;
+    if (startsWith(b, "8BPS", 4)) return InputFormat::Psd;
+    if (startsWith(b, "#?RADIANCE", 10) || startsWith(b, "#?RGBE", 6)) return InputFormat::Hdr;
+    // P1-P6 (PBM, PGM, PPM) and PF, Pf (PFM), each followed by white space.
+    if (b.size() >= 3 && b[0] == 'P' && std::strchr("123456Ff", b[1]) && b[1] != 0 && std::strchr(" \t\r\n", b[2]) && b[2] != 0)
+        return InputFormat::Pnm;
+    if (plausibleTarga(path, b)) return InputFormat::Targa;
+    return std::nullopt;
+}
+
+// ---- JPEG: marker segments --------------------------------------------------------------------------
+
+// Copies a JPEG up to its first scan keeping only the segments libjpeg needs to decode (frame, tables,
+// restart interval, JFIF's APP0 and Adobe's APP14, which says how colours were transformed), then the
+// scans as they are. OpenImageIO 2.4 parses EXIF (APP1), ICC (APP2) and IPTC (APP13) itself, and its IPTC
+// parser reads past its buffer on a crafted segment; heights need none of them.
+Status stripJpegMetadata(const std::string& path, std::vector<unsigned char>& bytes) {
+    const size_t n = bytes.size();
+    std::vector<unsigned char> out(bytes.begin(), bytes.begin() + 2);  // SOI
+    size_t at = 2;
+    const auto damaged = [&](const std::string& what) {
+        return badInput(path, "is a damaged JPEG: " + what, "export it again");
+    };
+    while (true) {
+        // Bytes before a marker are skipped, as libjpeg skips them (with a warning): a file that decodes
+        // elsewhere decodes here.
+        while (at < n && bytes[at] != 0xFF) ++at;
+        while (at < n && bytes[at] == 0xFF) ++at;  // fill bytes
+        if (at >= n) return damaged("it ends before its first scan");
+        const unsigned marker = bytes[at++];
+        const bool standalone = marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8);
+        if (standalone) {
+            out.push_back(0xFF), out.push_back(static_cast<unsigned char>(marker));
+            continue;
+        }
+        if (marker == 0xD9) return damaged("it ends before its first scan");
+        if (at + 2 > n) return damaged("a marker segment runs past the end of the file");
+        const size_t length = size_t(bytes[at]) << 8 | bytes[at + 1];
+        if (length < 2 || at + length > n) return damaged("a marker segment runs past the end of the file");
+        const bool metadata = (marker >= 0xE1 && marker <= 0xEF && marker != 0xEE) || marker == 0xFE;
+        if (!metadata) {
+            out.push_back(0xFF), out.push_back(static_cast<unsigned char>(marker));
+            out.insert(out.end(), bytes.begin() + at, bytes.begin() + at + length);
+        }
+        at += length;
+        if (marker == 0xDA) {  // start of scan: the entropy-coded data and everything after, as they are
+            out.insert(out.end(), bytes.begin() + at, bytes.end());
+            bytes = std::move(out);
+            return Done{};
+        }
+    }
+}
+
+// ---- OpenEXR: the header --------------------------------------------------------------------------
+
+// A bounds-checked little-endian reader over the header bytes.
+struct Cursor {
+    const std::vector<unsigned char>& b;
+    size_t at = 0;
+    bool ok = true;
+
+    bool has(size_t n) const { return ok && at <= b.size() && b.size() - at >= n; }
+    uint32_t u32() {
+        if (!has(4)) return ok = false, 0;
+        const uint32_t v = uint32_t(b[at]) | uint32_t(b[at + 1]) << 8 | uint32_t(b[at + 2]) << 16 | uint32_t(b[at + 3]) << 24;
+        at += 4;
+        return v;
+    }
+    int32_t i32() { return static_cast<int32_t>(u32()); }
+    // A NUL-terminated name of at most maxLength characters.
+    std::string name(size_t maxLength) {
+        const size_t start = at;
+        while (has(1) && b[at] != 0 && at - start <= maxLength) ++at;
+        if (!has(1) || b[at] != 0) return ok = false, std::string();
+        return std::string(reinterpret_cast<const char*>(b.data() + start), at++ - start);
+    }
+};
+
+struct ExrPart {
+    bool tiled = false, deep = false;
+    bool haveWindow = false;
+    int64_t width = 0, height = 0;
+    int channels = 0;
+    unsigned compression = 0;
+    uint32_t tileX = 0, tileY = 0;
+    unsigned levelMode = 0, roundUp = 0;
+    int64_t chunkCount = -1;  // multi-part files record it
+};
+
+int64_t ceilDiv(int64_t a, int64_t b) { return (a + b - 1) / b; }
+
+int64_t levelSize(int64_t size, int level, bool roundUp) {
+    const int64_t down = size >> level;
+    const bool exact = (down << level) == size;
+    return std::max<int64_t>(1, roundUp && !exact ? down + 1 : down);
+}
+
+int levelCount(int64_t size, bool roundUp) {
+    int levels = 1;
+    while (levelSize(size, levels - 1, roundUp) > 1) ++levels;
+    return levels;
+}
+
+// How many chunks (and so offset-table entries) a part of this shape has: a lower bound on the file's size.
+int64_t chunksOf(const ExrPart& p) {
+    if (p.chunkCount >= 0) return p.chunkCount;
+    if (!p.tiled) {
+        static const int64_t linesPerBlock[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+        const int64_t lines = p.compression < std::size(linesPerBlock) ? linesPerBlock[p.compression] : 1;
+        return ceilDiv(p.height, lines);
+    }
+    const bool up = p.roundUp != 0;
+    const int lx = levelCount(p.width, up), ly = levelCount(p.height, up);
+    int64_t chunks = 0;
+    const auto tiles = [&](int x, int y) {
+        return ceilDiv(levelSize(p.width, x, up), p.tileX) * ceilDiv(levelSize(p.height, y, up), p.tileY);
+    };
+    if (p.levelMode == 0) return tiles(0, 0);
+    if (p.levelMode == 1)
+        for (int l = 0; l < std::max(lx, ly); ++l) chunks += tiles(std::min(l, lx - 1), std::min(l, ly - 1));
+    else
+        for (int x = 0; x < lx; ++x)
+            for (int y = 0; y < ly; ++y) chunks += tiles(x, y);
+    return chunks;
+}
+
+Status judgeExrHeader(const std::string& path, const std::vector<unsigned char>& bytes, const SizeLimits& limits) {
+    const auto damaged = [&](const std::string& what) {
+        return badInput(path, "is a damaged OpenEXR file: " + what, "export it again");
+    };
+    Cursor c{bytes, 4};
+    const uint32_t version = c.u32();
+    if (!c.ok || (version & 0xFF) != 2) return damaged("its version field is not 2");
+    const bool multiPart = version & 0x1000, longNames = version & 0x400;
+    if (version & 0x800) return badInput(path, "is a deep OpenEXR file, not a height map", kExportHint);
+    const size_t maxName = longNames ? 255 : 31;
+    std::vector<ExrPart> parts;
+    while (true) {
+        if (multiPart && c.has(1) && bytes[c.at] == 0) break;  // the empty header that ends the list
+        ExrPart part;
+        part.tiled = !multiPart && (version & 0x200);
+        while (true) {
+            if (!c.has(1)) return damaged("its header runs past the end of the file");
+            if (bytes[c.at] == 0) {
+                ++c.at;
+                break;
+            }
+            const std::string name = c.name(maxName), type = c.name(maxName);
+            const int32_t size = c.i32();
+            if (!c.ok || size < 0 || !c.has(size_t(size)))
+                return damaged("attribute '" + name.substr(0, 64) + "' claims more bytes than the file holds");
+            Cursor value{bytes, c.at};
+            if (name == "dataWindow" && type == "box2i" && size == 16) {
+                const int64_t x0 = value.i32(), y0 = value.i32(), x1 = value.i32(), y1 = value.i32();
+                part.width = x1 - x0 + 1, part.height = y1 - y0 + 1, part.haveWindow = true;
+            } else if (name == "channels" && type == "chlist") {
+                while (value.at < c.at + size_t(size) && value.has(1) && bytes[value.at] != 0) {
+                    value.name(maxName);
+                    value.at += 16;
+                    ++part.channels;
+                }
+            } else if (name == "compression" && size == 1) {
+                part.compression = bytes[value.at];
+            } else if (name == "tiles" && type == "tiledesc" && size == 9) {
+                part.tileX = value.u32(), part.tileY = value.u32();
+                part.levelMode = bytes[value.at] & 0x0F, part.roundUp = bytes[value.at] >> 4 & 1;
+            } else if (name == "type" && type == "string") {
+                const std::string kind(reinterpret_cast<const char*>(bytes.data() + c.at), size_t(size));
+                part.tiled = kind == "tiledimage", part.deep = kind.rfind("deep", 0) == 0;
+            } else if (name == "chunkCount" && type == "int" && size == 4) {
+                part.chunkCount = value.i32();
+            }
+            c.at += size_t(size);
+        }
+        if (!part.haveWindow) return damaged("its header has no dataWindow");
+        if (part.deep) return badInput(path, "is a deep OpenEXR file, not a height map", kExportHint);
+        if (part.width <= 0 || part.height <= 0 || part.width > limits.maxSide || part.height > limits.maxSide ||
+            part.width * part.height > limits.maxTexels)
+            return badInput(path, "claims a data window of " + std::to_string(part.width) + "x" + std::to_string(part.height) +
+                                      ", outside what heightpack accepts (" + std::to_string(limits.maxSide) + " texels a side)",
+                            "split or downsize the map");
+        if (part.channels < 1) return damaged("it has no channels");
+        if (part.tiled && (part.tileX == 0 || part.tileY == 0 || part.levelMode > 2))
+            return damaged("its tile description is invalid");
+        parts.push_back(part);
+        if (!multiPart) break;
+    }
+    // Every chunk has an 8-byte entry in the offset tables that follow the headers.
+    int64_t chunks = 0;
+    for (const ExrPart& p : parts) chunks += std::max<int64_t>(0, chunksOf(p));
+    if (chunks > int64_t(bytes.size() / 8))
+        return damaged("its header claims " + std::to_string(chunks) + " chunks, more than its " +
+                       std::to_string(bytes.size()) + " bytes can hold");
+    return Done{};
+}
+
+}  // namespace
+
+Result<InputBytes> readInputBytes(const std::string& path) {
+    InputBytes input;
+    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
+    struct stat st {};
+    if (!f || ::fstat(::fileno(f.get()), &st) != 0)
+        return badInput(path, std::string("cannot be opened: ") + std::strerror(errno), "check the file");
+    try {
+        input.bytes.resize(size_t(st.st_size));
+    } catch (const std::bad_alloc&) {
+        return badInput(path, "is too large for this machine's memory", "split or downsize the map");
+    }
+    if (std::fread(input.bytes.data(), 1, input.bytes.size(), f.get()) != input.bytes.size())
+        return badInput(path, "could not be read whole (did it change while being read?)", "check the file");
+    if (const auto format = sniff(path, input.bytes)) {
+        input.format = *format;
+        return input;
+    }
+    if (const char* what = refusedFormatName(input.bytes))
+        return badInput(path, std::string("is ") + what + ", a format heightpack does not read", kExportHint);
+    return badInput(path, "is not an image in a format heightpack reads (" + joinedNames<InputFormat>() + ")", kExportHint);
+}
+
+Status judgeHeader(const std::string& path, InputBytes& input, const SizeLimits& limits) {
+    switch (input.format) {
+        case InputFormat::Exr: return judgeExrHeader(path, input.bytes, limits);
+        case InputFormat::Jpeg: return stripJpegMetadata(path, input.bytes);
+        default: return Done{};
+    }
+}
+
+Status judgeDecodedSize(const std::string& path, int64_t texels, int channels, uint64_t fileBytes) {
+    const uint64_t floats = uint64_t(texels) * uint64_t(std::max(channels, 1)) * sizeof(float);
+    if (floats / (uint64_t(1) << 17) <= fileBytes) return Done{};
+    return badInput(path,
+                    "claims " + std::to_string(texels) + " texels of " + std::to_string(channels) + " channels, more than its " +
+                        std::to_string(fileBytes) + " bytes can hold",
+                    "the file is damaged: export it again");
+}
+
+}  // namespace heightpack::detail

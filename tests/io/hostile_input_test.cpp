@@ -1,0 +1,142 @@
+// Files made to break the readers underneath (issue 21), found by fuzzing (tests/io/hostile/README.md):
+// each is refused as bad input naming the file, or loads whole, and never reaches a reader that would
+// read out of bounds or allocate what its header claims. Run under AddressSanitizer in CI, where the
+// JPEG that made OpenImageIO's IPTC parser read past its buffer is the regression test for that.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "heightpack/io/info.hpp"
+#include "heightpack/io/read.hpp"
+
+#include "support/test_support.hpp"
+
+using namespace heightpack;
+using namespace heightpack::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kHostile = std::string(HEIGHTPACK_SOURCE_DIR) + "/tests/io/hostile/";
+
+TEST(HostileInput, EveryFuzzFindingIsRefusedNamingTheFileOrLoadsWhole) {
+    int refused = 0;
+    for (const auto& e : fs::directory_iterator(kHostile)) {
+        const std::string path = e.path().string();
+        if (e.path().extension() == ".md") continue;
+        auto heights = loadHeightMap(path);
+        auto texture = readTextureFile(path);
+        if (e.path().filename() == "iptc_overflow.jpg") {
+            // Its malformed IPTC segment is dropped before OpenImageIO parses it; the pixels are fine.
+            ASSERT_TRUE(heights) << heights.error().what;
+            EXPECT_EQ(heights->heights.width, 8);
+            for (float v : heights->heights.pixels) EXPECT_TRUE(std::isfinite(v) && v >= 0 && v <= 1);
+            EXPECT_TRUE(texture);
+            continue;
+        }
+        ++refused;
+        ASSERT_FALSE(heights) << path;
+        EXPECT_EQ(heights.error().kind, ErrorKind::BadInput) << path;
+        EXPECT_EQ(heights.error().path, path);
+        ASSERT_FALSE(texture) << path;
+        EXPECT_EQ(texture.error().kind, ErrorKind::BadInput) << path;
+    }
+    EXPECT_EQ(refused, 7);
+}
+
+// What the readers refuse and why, one file each, made here from a good file.
+class HostileHeaders : public ::testing::Test {
+protected:
+    ScratchDir dir;
+    std::string good(const std::string& name, int size = 64) {
+        const std::string path = dir.file(name);
+        writeImage(path, randomImage(size, size, 7), name.ends_with(".exr") ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+        return path;
+    }
+    std::string refusal(const std::vector<unsigned char>& bytes, const std::string& name) {
+        writeBytes(dir.file(name), bytes);
+        auto loaded = loadHeightMap(dir.file(name));
+        if (loaded) return "loaded";
+        EXPECT_EQ(loaded.error().kind, ErrorKind::BadInput);
+        return loaded.error().what;
+    }
+};
+
+TEST_F(HostileHeaders, FormatsHeightpackDoesNotReadAreRefusedByTheirMagicNotTheirName) {
+    // A DPX header, named .png: OpenImageIO would try its DPX reader once the PNG reader refused it.
+    std::vector<unsigned char> dpx = {'S', 'D', 'P', 'X'};
+    dpx.resize(2048, 0);
+    EXPECT_NE(refusal(dpx, "dpx.png").find("DPX"), std::string::npos);
+    EXPECT_NE(refusal({'G', 'I', 'F', '8', '9', 'a', 1, 0, 1, 0, 0, 0, 0}, "a.gif").find("GIF"), std::string::npos);
+    EXPECT_NE(refusal({'h', 'e', 'l', 'l', 'o'}, "hello.tif").find("not an image in a format heightpack reads"),
+              std::string::npos);
+    // A good PNG named .exr still loads: the bytes decide, not the name.
+    const std::string png = good("real.png");
+    fs::copy_file(png, dir.file("real_png.exr"));
+    EXPECT_TRUE(loadHeightMap(dir.file("real_png.exr")));
+}
+
+TEST_F(HostileHeaders, AnExrAttributeLongerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
+    std::vector<unsigned char> bytes = readBytes(good("a.exr"));
+    ASSERT_TRUE(loadHeightMap(dir.file("a.exr")));
+    // The first attribute's size field follows its name and type names, 8 bytes into the file.
+    size_t at = 8;
+    while (bytes[at]) ++at;
+    ++at;
+    while (bytes[at]) ++at;
+    ++at;
+    bytes[at] = 0xF0, bytes[at + 1] = 0xFF, bytes[at + 2] = 0xFF, bytes[at + 3] = 0x3F;  // ~1 GB
+    EXPECT_NE(refusal(bytes, "long.exr").find("claims more bytes than the file holds"), std::string::npos);
+}
+
+TEST_F(HostileHeaders, AnExrWhoseOffsetTableCannotFitInTheFileIsRefused) {
+    std::vector<unsigned char> bytes = readBytes(good("b.exr", 8));
+    // Widen the data window to 16384x16384 (within the size limits): its 1024 zip chunks would need an
+    // offset table of 8 KiB, which OpenEXR allocates before reading it from a file of a few hundred bytes.
+    const std::string key("dataWindow\0box2i\0", 17);
+    const auto at = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+    ASSERT_NE(at, bytes.end());
+    const size_t window = size_t(at - bytes.begin()) + key.size() + 4;
+    for (size_t corner : {window + 8, window + 12}) {
+        bytes[corner] = 0xFF, bytes[corner + 1] = 0x3F, bytes[corner + 2] = 0, bytes[corner + 3] = 0;
+    }
+    ASSERT_LT(bytes.size(), 8192u);
+    const std::string why = refusal(bytes, "wide.exr");
+    EXPECT_NE(why.find("chunks"), std::string::npos) << why;
+}
+
+TEST_F(HostileHeaders, ATinyFileClaimingAHugeImageIsRefusedFromItsHeader) {
+    // tiff_huge_alloc.tif's shape: a valid TIFF header claiming hundreds of channels in a few hundred bytes.
+    const std::string why = refusal(readBytes(kHostile + "tiff_huge_alloc.tif"), "huge.tif");
+    EXPECT_NE(why.find("bytes can hold"), std::string::npos) << why;
+}
+
+// Dropping a JPEG's metadata segments changes no pixel: heightpack's heights are OpenImageIO's decode of
+// the same file, for JPEGs with EXIF and comments as oiiotool and cameras write them.
+TEST_F(HostileHeaders, JpegsLoadTheSamePixelsWithoutTheirMetadata) {
+    for (int quality : {50, 95}) {
+        const std::string path = dir.file("q" + std::to_string(quality) + ".jpg");
+        const Image source = randomImage(48, 40, quality);
+        auto out = OIIO::ImageOutput::create(path);
+        OIIO::ImageSpec spec(48, 40, 1, OIIO::TypeDesc::UINT8);
+        spec.attribute("CompressionQuality", quality);
+        spec.attribute("ImageDescription", "a comment that becomes a COM segment");
+        spec.attribute("Exif:ImageHistory", "an EXIF field in APP1");
+        spec.attribute("IPTC:Caption", "an IPTC caption in APP13");
+        ASSERT_TRUE(out->open(path, spec));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, source.pixels.data()));
+        out->close();
+        auto in = OIIO::ImageInput::open(path);
+        ASSERT_TRUE(in);
+        std::vector<float> reference(48 * 40);
+        ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, reference.data()));
+        auto loaded = loadHeightMap(path);
+        ASSERT_TRUE(loaded) << loaded.error().what;
+        EXPECT_EQ(loaded->heights.pixels, reference) << quality;
+    }
+}
+
+}  // namespace
