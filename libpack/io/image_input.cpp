@@ -2,7 +2,9 @@
 
 #include <OpenImageIO/filesystem.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include "input_format.hpp"
@@ -23,6 +25,29 @@ bool isRleBmp(const std::vector<unsigned char>& h) {
     const uint32_t infoSize = le32(14), compression = le32(30);
     return infoSize >= 40 && (compression == 1 || compression == 2);
 }
+
+// The file's bytes as OpenImageIO's readers see them: its memory reader (the JPEG reader takes the buffer
+// from it directly), with reads that stay inside the bytes. OpenImageIO 2.4's own pread copies from before
+// the buffer when a damaged EXR offset table seeks to a negative position (found by fuzz_load_image).
+class BytesReader final : public OIIO::Filesystem::IOMemReader {
+public:
+    using IOMemReader::IOMemReader;
+    bool seek(int64_t offset) override {
+        m_pos = offset;
+        return offset >= 0 && offset <= int64_t(m_buf.size());
+    }
+    size_t read(void* buf, size_t size) override {
+        const size_t n = pread(buf, size, m_pos);
+        m_pos += int64_t(n);
+        return n;
+    }
+    size_t pread(void* buf, size_t size, int64_t offset) override {
+        if (offset < 0 || offset >= int64_t(m_buf.size()) || size == 0) return 0;
+        const size_t n = std::min<size_t>(size, m_buf.size() - size_t(offset));
+        std::memcpy(buf, m_buf.data() + offset, n);
+        return n;
+    }
+};
 
 }  // namespace
 
@@ -62,7 +87,7 @@ Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits)
                         "re-export it as PNG (or as an uncompressed BMP)");
     // The reader the magic bytes chose, and no other: OpenImageIO would otherwise try every format it
     // knows on a file its first choice refuses.
-    opened.proxy_ = std::make_unique<OIIO::Filesystem::IOMemReader>(opened.bytes_.data(), opened.bytes_.size());
+    opened.proxy_ = std::make_unique<BytesReader>(opened.bytes_.data(), opened.bytes_.size());
     opened.input_ = OIIO::ImageInput::create(nameOf(judged.format), false, nullptr, opened.proxy_.get());
     if (!opened.input_)
         return badInput(path, "cannot be read: " + firstLine(OIIO::geterror()), "export it as PNG, TIFF or EXR");

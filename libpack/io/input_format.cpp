@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -247,6 +248,29 @@ Status judgeExrHeader(const std::string& path, const std::vector<unsigned char>&
     return Done{};
 }
 
+// ---- PNG: chunk lengths ------------------------------------------------------------------------------
+
+// Walks the chunks to IEND: each must fit in the bytes that follow it. libpng allocates a text or
+// metadata chunk's claimed length before reading it, so a 1 kB file could ask for gigabytes.
+Status judgePngChunks(const std::string& path, const std::vector<unsigned char>& bytes) {
+    size_t at = 8;
+    while (at + 8 <= bytes.size()) {
+        const uint32_t length = uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+        const std::string type(reinterpret_cast<const char*>(bytes.data() + at + 4), 4);
+        if (length > 0x7FFFFFFFu || uint64_t(length) + 12 > bytes.size() - at) {
+            std::string printable;
+            for (char ch : type) printable += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '?';
+            return badInput(path,
+                            "is a damaged or truncated PNG: chunk '" + printable + "' claims " + std::to_string(length) +
+                                " bytes, the file has " + std::to_string(bytes.size() - at - 8) + " left",
+                            "export it again");
+        }
+        if (type == "IEND") return Done{};
+        at += size_t(length) + 12;
+    }
+    return badInput(path, "is a truncated PNG: it ends before its IEND chunk", "export it again");
+}
+
 }  // namespace
 
 Result<InputBytes> readInputBytes(const std::string& path) {
@@ -275,6 +299,7 @@ Status judgeHeader(const std::string& path, InputBytes& input, const SizeLimits&
     switch (input.format) {
         case InputFormat::Exr: return judgeExrHeader(path, input.bytes, limits);
         case InputFormat::Jpeg: return stripJpegMetadata(path, input.bytes);
+        case InputFormat::Png: return judgePngChunks(path, input.bytes);
         default: return Done{};
     }
 }

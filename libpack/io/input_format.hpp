@@ -58,8 +58,9 @@ Result<InputBytes> readInputBytes(const std::string& path);
 
 // Judges what a header claims before any reader allocates for it: for an EXR, every attribute's size
 // against the bytes that follow, the data window against limits, and the chunk offset table against the
-// file's size; for a JPEG, the marker segments' lengths (and the metadata segments are dropped from
-// input.bytes: no APPn but JFIF and Adobe, no comment, reaches the decoder). Fails with BadInput.
+// file's size; for a PNG, every chunk's length against the bytes left (libpng allocates a text chunk's
+// claimed length); for a JPEG, the marker segments' lengths, and the metadata segments are dropped from
+// input.bytes: no APPn but JFIF and Adobe, no comment, reaches the decoder. Fails with BadInput.
 Status judgeHeader(const std::string& path, InputBytes& input, const SizeLimits& limits);
 
 // Fails with BadInput when a file of fileBytes cannot hold an image of texels x channels: no codec
