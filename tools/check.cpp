@@ -11,6 +11,7 @@
 
 #include "command.hpp"
 #include "hints.hpp"
+#include "look_report.hpp"
 
 namespace heightpack::cli {
 
@@ -27,6 +28,17 @@ public:
             ->capture_default_str()
             ->check(finiteRange(1.0, 1e6));
         previewOption_ = cmd->add_option("--preview", options_.previewPath, "write a PNG of the map tiled 2x2 with failing seams marked");
+        cmd->add_flag("--look-fails", options_.lookFails,
+                      "fail (exit 1) when the frame, blob or echo statistic is over its threshold, not only warn");
+        cmd->add_option("--frame-threshold", options_.look.frame, "largest frame score that passes (a z-score)")
+            ->capture_default_str()
+            ->check(finiteRange(0.5, 1e6));
+        cmd->add_option("--blob-threshold", options_.look.blobs, "largest blob score that passes (a z-score)")
+            ->capture_default_str()
+            ->check(finiteRange(0.5, 1e6));
+        cmd->add_option("--echo-threshold", options_.look.echo, "largest echo (an autocorrelation) that passes")
+            ->capture_default_str()
+            ->check(finiteRange(0.0, 1.0));
         cmd->add_option("--wrap", wrap_, "wrap of the mip chain made from a flat image, as pack would")
             ->capture_default_str()
             ->check(CLI::IsMember(allNames<Wrap>()));
@@ -44,7 +56,10 @@ public:
             "A score says how far the tile edge stands out from every other place the tile could be cut, in\n"
             "robust standard deviations: 0 to about 5 by chance, large at a seam. value scores jumps in height,\n"
             "slope scores kinks. Every level pack would make is judged (levels under 32 texels a side are too\n"
-            "small to judge). Exit codes: 0 tiles, 1 does not, 2 usage, 3 bad input, 4 cannot write.\n");
+            "small to judge). Level 0 is also judged as the eye sees it tiled: frame (a band of other contrast\n"
+            "around every tile), blobs (along the edges, at the corners) and echo (one feature shown twice in a\n"
+            "tile); over a threshold is a warning, or a failure with --look-fails.\n"
+            "Exit codes: 0 tiles, 1 does not, 2 usage, 3 bad input, 4 cannot write.\n");
         return cmd;
     }
 
@@ -79,7 +94,7 @@ public:
             auto report = checkFile(inputs[f], options_);
             if (!report) return fail(report.error());
             progress.clear();
-            all = all && report->tiles;
+            all = all && report->passed();
             if (common_.json && inputs.size() > 1)
                 frames.push_back(toJson(*report));
             else if (stage)
@@ -111,6 +126,8 @@ private:
                               {"firstBadLevel", r.packing->firstBadLevel}};
         if (!shownPreview_.empty()) doc["preview"] = shownPreview_;
         if (!r.source.channelUsed.empty()) doc["channel"] = channelJson(r.source);
+        doc["look"] = lookJson(r.look, r.lookThresholds);
+        doc["passed"] = r.passed();
         return doc;
     }
 
@@ -153,6 +170,7 @@ private:
         if (r.packing)
             std::printf("  packing: %s (largest difference %.3g)\n", r.packing->consistent ? "consistent" : "INCONSISTENT",
                         r.packing->maxError);
+        printLook(r.look, r.lookThresholds, r.lookFails);
         if (!shownPreview_.empty()) std::printf("  preview: %s\n", shownPreview_.c_str());
     }
 

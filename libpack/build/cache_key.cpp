@@ -133,11 +133,17 @@ void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOp
 }
 
 void appendKeyText(std::string& text, std::string_view prefix, const CheckOptions& o) {
-    static_assert(fieldCount<CheckOptions>() == 5, "CheckOptions changed: put the new field in its key text");
+    static_assert(fieldCount<CheckOptions>() == 7, "CheckOptions changed: put the new field in its key text");
     Key k(text, prefix);
     k.nested("load", o.load);
     k.nested("mip", o.mip);
     k.put("threshold", o.threshold);
+    // The look's verdict: lines only when not the defaults, so keys made before it stay as they were.
+    const LookThresholds defaults;
+    if (o.look.frame != defaults.frame) k.put("lookFrame", o.look.frame);
+    if (o.look.blobs != defaults.blobs) k.put("lookBlobs", o.look.blobs);
+    if (o.look.echo != defaults.echo) k.put("lookEcho", o.look.echo);
+    if (o.lookFails) k.put("lookFails", o.lookFails);
     k.put("previewPath", o.previewPath);
     // progress: reports, judges nothing
 }

@@ -10,6 +10,8 @@
 
 #include "heightpack/core/tileable.hpp"
 
+#include "gaussianise.hpp"
+
 namespace heightpack {
 
 namespace {
@@ -20,69 +22,6 @@ double smoothstep(double edge, double x) {
     const double t = std::clamp(x / edge, 0.0, 1.0);
     return t * t * (3 - 2 * t);
 }
-
-// The standard normal CDF and its inverse (Acklam's rational approximation refined by one Halley step,
-// accurate to about 1e-15).
-double normalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
-
-double inverseNormalCdf(double p) {
-    static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
-                               1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
-    static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
-                               6.680131188771972e+01, -1.328068155288572e+01};
-    static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
-                               -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
-    static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
-                               3.754408661907416e+00};
-    const double low = 0.02425;
-    double x;
-    if (p < low) {
-        const double q = std::sqrt(-2 * std::log(p));
-        x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
-    } else if (p > 1 - low) {
-        const double q = std::sqrt(-2 * std::log(1 - p));
-        x = -(((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
-    } else {
-        const double q = p - 0.5, r = q * q;
-        x = (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
-            (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
-    }
-    const double e = normalCdf(x) - p;
-    const double u = e * std::sqrt(2 * kPi) * std::exp(x * x / 2);
-    return x - u / (1 + x * u / 2);
-}
-
-// The Gaussianising transform of Heitz & Neyret: each value to the standard normal quantile of its
-// (mid-)rank, so equal values map to equal Gaussians; and back through the sorted values.
-struct Gaussianiser {
-    std::vector<float> sorted;
-    std::vector<double> gaussian;  // per texel of the map it was built from
-
-    explicit Gaussianiser(const std::vector<float>& values) : sorted(values), gaussian(values.size()) {
-        const size_t n = values.size();
-        std::vector<size_t> order(n);
-        std::iota(order.begin(), order.end(), size_t(0));
-        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return values[a] < values[b]; });
-        std::sort(sorted.begin(), sorted.end());
-        for (size_t start = 0; start < n;) {
-            size_t end = start + 1;
-            while (end < n && values[order[end]] == values[order[start]]) ++end;
-            const double midRank = 0.5 * (start + end - 1);
-            const double g = inverseNormalCdf((midRank + 0.5) / n);
-            for (size_t k = start; k < end; ++k) gaussian[order[k]] = g;
-            start = end;
-        }
-    }
-
-    float back(double g) const {
-        const double pos = std::clamp(normalCdf(g) * sorted.size() - 0.5, 0.0, double(sorted.size() - 1));
-        const size_t i = static_cast<size_t>(pos);
-        const size_t j = std::min(i + 1, sorted.size() - 1);
-        return static_cast<float>(sorted[i] + (double(sorted[j]) - sorted[i]) * (pos - i));
-    }
-};
 
 // relativeToSlope: the jump across an edge is measured from the line through the slopes beside it
 // (the step minus their mean), so a smooth slope running through the edge is kept rather than flattened
@@ -214,7 +153,7 @@ Image crossfadeTile(const Image& map, double width, CrossfadeBlend blend) {
         return out;
     }
     // The shifted copy has the same histogram, so one transform serves both.
-    const Gaussianiser g(map.pixels);
+    const detail::Gaussianiser g(map.pixels, 0);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const double a = crossfadeWeight(x, y, w, h, width);

@@ -9,6 +9,7 @@
 
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/core/tile_look.hpp"
 #include "heightpack/core/tileable.hpp"
 #include "heightpack/io/read.hpp"
 
@@ -18,6 +19,10 @@ struct CheckOptions {
     LoadOptions load;
     MipOptions mip;  // the chain `pack` would make from a flat image (a texture's own levels are used as they are)
     double threshold = kDefaultSeamThreshold;
+    // What the eye sees at the tile grid (frame, blobs, echo of level 0): always measured; a map that
+    // exceeds these fails the check only with lookFails (otherwise it is a warning the shell words).
+    LookThresholds look;
+    bool lookFails = false;
     std::string previewPath;  // write the 2x2 seam preview PNG here, if not empty
     // Reports progress: the stage ("load", "mip", "check") and the fraction of it done; may be empty.
     std::function<void(std::string_view stage, double fraction)> progress;
@@ -35,6 +40,12 @@ struct CheckReport {
     std::optional<SeamFailure> failure;  // the first failing edge, finest level first
     std::optional<PackingCheck> packing;  // for neighbour4 textures
     bool tiles = true;  // every measured level passes (and the packing is consistent)
+    TileLook look;      // level 0's frame, blobs and echo
+    LookThresholds lookThresholds;
+    bool lookFails = false;  // CheckOptions::lookFails: a look over its thresholds fails the check
+    bool looksRight() const { return look.passes(lookThresholds); }
+    // The verdict: seams pass at every level, and the look too when it counts.
+    bool passed() const { return tiles && (!lookFails || looksRight()); }
 };
 
 // The quantum of a source's samples: 1/255 for 8 bits, 1/65535 for 16, 0 for float.

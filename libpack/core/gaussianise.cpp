@@ -1,0 +1,98 @@
+#include "gaussianise.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "heightpack/core/parallel.hpp"
+
+namespace heightpack::detail {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+double normalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+
+double inverseNormalCdf(double p) {
+    static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
+                               1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
+    static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
+                               6.680131188771972e+01, -1.328068155288572e+01};
+    static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
+                               -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
+    static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
+                               3.754408661907416e+00};
+    const double low = 0.02425;
+    double x;
+    if (p < low) {
+        const double q = std::sqrt(-2 * std::log(p));
+        x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
+    } else if (p > 1 - low) {
+        const double q = std::sqrt(-2 * std::log(1 - p));
+        x = -(((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
+    } else {
+        const double q = p - 0.5, r = q * q;
+        x = (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+            (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
+    }
+    const double e = normalCdf(x) - p;
+    const double u = e * std::sqrt(2 * kPi) * std::exp(x * x / 2);
+    return x - u / (1 + x * u / 2);
+}
+
+Gaussianiser::Gaussianiser(const std::vector<float>& values, int threads) : Gaussianiser(values, values, threads) {}
+
+Gaussianiser::Gaussianiser(const std::vector<float>& values, const std::vector<float>& tieBreak, int threads)
+    : sorted(values.size()), gaussian(values.size()) {
+    const size_t n = values.size();
+    if (n == 0) return;
+    // (value, tie-break, index) triples are all distinct, so any sort of them gives the same order: chunks
+    // sorted on their own threads, then merged pairwise.
+    struct Key {
+        float value, tie;
+        uint32_t index;
+        bool operator<(const Key& o) const {
+            return value != o.value ? value < o.value : tie != o.tie ? tie < o.tie : index < o.index;
+        }
+    };
+    std::vector<Key> order(n);
+    for (size_t i = 0; i < n; ++i) order[i] = {values[i], tieBreak[i], static_cast<uint32_t>(i)};
+    const int chunks = std::max(1, std::min<int>(resolveThreadCount(threads), static_cast<int>(n / 65536)));
+    std::vector<size_t> bounds(chunks + 1);
+    for (int c = 0; c <= chunks; ++c) bounds[c] = n * c / chunks;
+    parallelFor(chunks, threads, [&](int begin, int end) {
+        for (int c = begin; c < end; ++c) std::sort(order.begin() + bounds[c], order.begin() + bounds[c + 1]);
+    });
+    for (size_t width = 1; width < size_t(chunks); width *= 2)
+        for (size_t c = 0; c + width < size_t(chunks); c += 2 * width)
+            std::inplace_merge(order.begin() + bounds[c], order.begin() + bounds[c + width],
+                               order.begin() + bounds[std::min(c + 2 * width, size_t(chunks))]);
+    for (size_t i = 0; i < n; ++i) sorted[i] = order[i].value;
+    // Runs of equal values share their mid-rank's quantile; the quantiles are computed on all threads.
+    std::vector<std::pair<size_t, size_t>> runs;
+    for (size_t start = 0; start < n;) {
+        size_t end = start + 1;
+        while (end < n && sorted[end] == sorted[start] && order[end].tie == order[start].tie) ++end;
+        runs.emplace_back(start, end);
+        start = end;
+    }
+    parallelFor(static_cast<int>(runs.size()), threads, [&](int begin, int end) {
+        for (int r = begin; r < end; ++r) {
+            const auto [start, stop] = runs[r];
+            const double g = inverseNormalCdf((0.5 * double(start + stop - 1) + 0.5) / double(n));
+            for (size_t k = start; k < stop; ++k) gaussian[order[k].index] = g;
+        }
+    });
+}
+
+float Gaussianiser::back(double g) const {
+    const double pos = std::clamp(normalCdf(g) * sorted.size() - 0.5, 0.0, double(sorted.size() - 1));
+    const size_t i = static_cast<size_t>(pos);
+    const size_t j = std::min(i + 1, sorted.size() - 1);
+    return static_cast<float>(sorted[i] + (double(sorted[j]) - sorted[i]) * (pos - i));
+}
+
+}  // namespace heightpack::detail

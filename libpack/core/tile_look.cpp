@@ -1,0 +1,246 @@
+// The frame, blob and echo statistics of tile_look.hpp.
+#include "heightpack/core/tile_look.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "heightpack/core/tileable.hpp"
+
+namespace heightpack {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A row-major w x h field of doubles.
+struct Grid {
+    int w = 0, h = 0;
+    std::vector<double> v;
+    Grid(int width, int height) : w(width), h(height), v(size_t(width) * height, 0.0) {}
+    double& at(int x, int y) { return v[size_t(y) * w + x]; }
+    double at(int x, int y) const { return v[size_t(y) * w + x]; }
+};
+
+cv::Mat spectrumOf(const Image& map) {
+    cv::Mat m(map.height, map.width, CV_64F);
+    for (int y = 0; y < map.height; ++y)
+        for (int x = 0; x < map.width; ++x) m.at<double>(y, x) = map.at(x, y);
+    cv::Mat spectrum;
+    cv::dft(m, spectrum, cv::DFT_COMPLEX_OUTPUT);
+    return spectrum;
+}
+
+// The map filtered periodically with a radial gain g(f), f in cycles per texel.
+template <class Gain>
+Grid filtered(const cv::Mat& spectrum, Gain gain) {
+    const int h = spectrum.rows, w = spectrum.cols;
+    cv::Mat s = spectrum.clone();
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const double fx = double(std::min(x, w - x)) / w, fy = double(std::min(y, h - y)) / h;
+            s.at<cv::Vec2d>(y, x) *= gain(std::sqrt(fx * fx + fy * fy));
+        }
+    Grid out(w, h);
+    cv::Mat m(h, w, CV_64F, out.v.data());
+    cv::dft(s, m, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    return out;
+}
+
+double gaussianGain(double f, double sigma) { return std::exp(-2 * kPi * kPi * sigma * sigma * f * f); }
+
+// Torus distance between offsets a and b on a circle of n.
+int circularDistance(int a, int n) {
+    a = ((a % n) + n) % n;
+    return std::min(a, n - a);
+}
+
+// z = (value - mean) / std of the null values, taken as Student's t with `independent` - 1 degrees of
+// freedom (neighbouring placements overlap: only about `independent` of them say something new) and
+// brought to the normal scale (Wallace's approximation), so a wide ring on a small map, judged against a
+// handful of independent placements, does not score like a narrow one judged against hundreds.
+double zScore(double value, const std::vector<double>& null, double independent) {
+    if (null.size() < 2) return 0.0;
+    double mean = 0, var = 0;
+    for (double x : null) mean += x;
+    mean /= double(null.size());
+    for (double x : null) var += (x - mean) * (x - mean);
+    const double sd = std::sqrt(var / double(null.size() - 1));
+    if (!(sd > 1e-12)) return 0.0;
+    const double t = (value - mean) / sd, nu = std::max(1.0, independent - 1);
+    const double z = (1 - 1 / (8 * nu)) * std::sqrt(nu * std::log1p(t * t / nu));
+    return t < 0 ? -z : z;
+}
+
+// The largest |z| over rings at distances [0,1), [1,2), [2,4), ... up to reach from a grid line placed at
+// offset 0 of a circular profile, against the same rings around every offset at least 2 * reach away
+// (whose rings cannot reach into a band the tile edge spoiled).
+// Ring means are compared as log ratios to the profile's mean, plus floor (energies and squared values
+// are skewed: their logs are closer to normal, so a z-score means the same on smooth and rough maps).
+double ringScore(const std::vector<double>& profile, int reach, double floor) {
+    const int n = static_cast<int>(profile.size());
+    std::vector<double> prefix(2 * n + 1, 0.0);  // over the profile repeated twice
+    for (int i = 0; i < 2 * n; ++i) prefix[i + 1] = prefix[i] + profile[i % n];
+    const double mean = prefix[n] / n;
+    auto range = [&](int from, int count) {  // sum of count values starting at from (circular)
+        const int start = ((from % n) + n) % n;
+        return prefix[start + count] - prefix[start];
+    };
+    double worst = 0;
+    for (int lo = 0, hi = 1; lo < reach; lo = hi, hi *= 2) {
+        const int top = std::min(hi, reach), count = top - lo;
+        auto ring = [&](int o) {  // columns o + lo .. o + top - 1 and o - top .. o - lo - 1
+            const double r = (range(o + lo, count) + range(o - top, count)) / (2.0 * count);
+            return std::log((r + floor * mean + 1e-30) / (mean + floor * mean + 1e-30));
+        };
+        std::vector<double> null;
+        for (int o = 0; o < n; ++o)
+            if (circularDistance(o, n) >= 2 * reach) null.push_back(ring(o));
+        worst = std::max(worst, std::abs(zScore(ring(0), null, double(null.size()) / count)));
+    }
+    return worst;
+}
+
+std::vector<double> columnMeans(const Grid& g) {
+    std::vector<double> c(g.w, 0.0);
+    for (int y = 0; y < g.h; ++y)
+        for (int x = 0; x < g.w; ++x) c[x] += g.at(x, y);
+    for (double& v : c) v /= g.h;
+    return c;
+}
+
+std::vector<double> rowMeans(const Grid& g) {
+    std::vector<double> r(g.h, 0.0);
+    for (int y = 0; y < g.h; ++y) {
+        for (int x = 0; x < g.w; ++x) r[y] += g.at(x, y);
+        r[y] /= g.w;
+    }
+    return r;
+}
+
+// The largest |z| of the mean of q over squares of half-side s centred on the tile corner (0, 0), against
+// squares centred on every point at least an eighth of the tile from both grid lines.
+double cornerScore(const Grid& q, int half) {
+    const int w = q.w, h = q.h;
+    // A summed-area table of q tiled 2x2, so any circular square is one lookup.
+    std::vector<double> sat(size_t(2 * w + 1) * (2 * h + 1), 0.0);
+    auto s = [&](int x, int y) -> double& { return sat[size_t(y) * (2 * w + 1) + x]; };
+    for (int y = 0; y < 2 * h; ++y)
+        for (int x = 0; x < 2 * w; ++x) s(x + 1, y + 1) = q.at(x % w, y % h) + s(x, y + 1) + s(x + 1, y) - s(x, y);
+    auto square = [&](int cx, int cy) {
+        const int x0 = ((cx - half) % w + w) % w, y0 = ((cy - half) % h + h) % h, side = 2 * half;
+        return std::log(0.05 + (s(x0 + side, y0 + side) - s(x0, y0 + side) - s(x0 + side, y0) + s(x0, y0)) / (double(side) * side));
+    };
+    std::vector<double> null;
+    const int step = std::max(1, half / 4);
+    for (int cy = 0; cy < h; cy += step)
+        for (int cx = 0; cx < w; cx += step)
+            if (circularDistance(cx, w) >= w / 8 && circularDistance(cy, h) >= h / 8) null.push_back(square(cx, cy));
+    return std::abs(zScore(square(0, 0), null, double(null.size()) * step * step / (4.0 * half * half)));
+}
+
+Image halved(const Image& map) {
+    Image out(map.width / 2, map.height / 2, 1);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            out.at(x, y) = 0.25f * (map.at(2 * x, 2 * y) + map.at(2 * x + 1, 2 * y) + map.at(2 * x, 2 * y + 1) +
+                                    map.at(2 * x + 1, 2 * y + 1));
+    return out;
+}
+
+}  // namespace
+
+double echoOf(const Image& map) {
+    const int w = map.width, h = map.height;
+    if (w < 64 || h < 64) return 0.0;
+    // The autocorrelation of the map whitened by its own smoothed spectrum: a stationary field's structure
+    // (smooth, directional, large or small scaled) divides out, leaving a spike at lag 0 and noise of about
+    // 1/sqrt(texels); a feature repeated at lag L multiplies the spectrum by 1 + cos(k.L), an oscillation
+    // finer than the smoothing, which stays and becomes a peak at L.
+    cv::Mat spectrum = spectrumOf(map);
+    Grid power(w, h), smooth(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const cv::Vec2d z = spectrum.at<cv::Vec2d>(y, x);
+            power.at(x, y) = (x == 0 && y == 0) ? 0.0 : z[0] * z[0] + z[1] * z[1];
+        }
+    // Smoothed over 5x5 frequency bins (a box, three times each way, circular).
+    smooth = power;
+    for (int pass = 0; pass < 3; ++pass) {
+        Grid next(w, h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                double sum = 0;
+                for (int d = -2; d <= 2; ++d) sum += smooth.at((x + d + w) % w, y);
+                next.at(x, y) = sum / 5;
+            }
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                double sum = 0;
+                for (int d = -2; d <= 2; ++d) sum += next.at(x, (y + d + h) % h);
+                smooth.at(x, y) = sum / 5;
+            }
+    }
+    cv::Mat whitened(h, w, CV_64FC2);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            whitened.at<cv::Vec2d>(y, x) = cv::Vec2d(smooth.at(x, y) > 0 ? power.at(x, y) / smooth.at(x, y) : 0.0, 0.0);
+    cv::Mat correlation;
+    cv::dft(whitened, correlation, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    const double zero = correlation.at<double>(0, 0);
+    if (!(zero > 0)) return 0.0;
+    double worst = -1.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (circularDistance(x, w) > w / 16 || circularDistance(y, h) > h / 16)
+                worst = std::max(worst, correlation.at<double>(y, x) / zero);
+    return worst;
+}
+
+TileLook measureTileLook(const Image& input, const LookOptions& options) {
+    TileLook look;
+    Image map = input.channels == 1 ? input : selectChannels(input, {0});
+    while (map.width > 2048 || map.height > 2048) map = halved(map);
+    const int w = map.width, h = map.height;
+    if (w < 64 || h < 64) return look;
+    look.measured = true;
+    const cv::Mat spectrum = spectrumOf(map);
+    const int reachX = std::max(4, w / 8), reachY = std::max(4, h / 8);
+
+    // Frame: band-pass energy in octaves, from 1-2 texels up to 1/64-1/32 of the tile (a smooth painting's
+    //        detail is far coarser than a texel, and a frame is a loss or excess of its contrast).
+    for (double fine = 1.0; fine == 1.0 || 2 * fine <= std::max(w, h) / 32.0; fine *= 2) {
+        const double coarse = 2 * fine;
+        Grid energy = filtered(spectrum, [&](double f) { return gaussianGain(f, fine) - gaussianGain(f, coarse); });
+        for (double& v : energy.v) v *= v;
+        look.frame = std::max({look.frame, ringScore(columnMeans(energy), reachX, 0.0),
+                               ringScore(rowMeans(energy), reachY, 0.0)});
+    }
+    // Blobs: the squared standardised band-pass at the scale of a blob, 1/128 to 1/32 of the tile (the
+    //        low-pass of the detail: a red-noise map's swell, far larger, would make every place unlike
+    //        every other).
+    const double large = std::max(w, h) / 32.0, small = std::max(1.0, std::max(w, h) / 128.0);
+    Grid q = filtered(spectrum, [&](double f) { return gaussianGain(f, small) - gaussianGain(f, large); });
+    double mean = 0, var = 0;
+    for (double v : q.v) mean += v;
+    mean /= double(q.v.size());
+    for (double v : q.v) var += (v - mean) * (v - mean);
+    const double sd = std::sqrt(var / double(q.v.size()));
+    for (double& v : q.v) v = sd > 1e-12 ? ((v - mean) / sd) * ((v - mean) / sd) : 0.0;
+    look.blobs = std::max({ringScore(columnMeans(q), reachX, 0.05), ringScore(rowMeans(q), reachY, 0.05),
+                           cornerScore(q, std::max(2, std::min(w, h) / 32)), cornerScore(q, std::max(2, std::min(w, h) / 16))});
+    // Echo, less the source's own (of its periodic component: its seams would echo along their lines).
+    look.echo = echoOf(map);
+    if (options.source && options.source->width >= 64 && options.source->height >= 64) {
+        Image source = options.source->channels == 1 ? *options.source : selectChannels(*options.source, {0});
+        while (source.width > 2048 || source.height > 2048) source = halved(source);
+        look.echoBaseline = std::max(0.0, echoOf(periodicComponent(source, PeriodicContinuity::Heights)));
+        look.echo -= look.echoBaseline;
+    }
+    (void)options.threads;
+    return look;
+}
+
+}  // namespace heightpack

@@ -1,0 +1,349 @@
+// Band re-synthesis by Gaussian conditional simulation: see tile_resynthesis.hpp for the steps.
+#include "heightpack/core/tile_resynthesis.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <vector>
+
+#include "heightpack/core/parallel.hpp"
+#include "heightpack/core/tileable.hpp"
+
+#include "gaussianise.hpp"
+
+namespace heightpack {
+
+namespace {
+
+using Complex = std::complex<double>;
+constexpr double kPi = 3.14159265358979323846;
+
+// A row-major w x h field of doubles.
+struct Field {
+    int w = 0, h = 0;
+    std::vector<double> v;
+    Field(int width, int height) : w(width), h(height), v(size_t(width) * height, 0.0) {}
+    double& at(int x, int y) { return v[size_t(y) * w + x]; }
+    double at(int x, int y) const { return v[size_t(y) * w + x]; }
+    cv::Mat mat() { return cv::Mat(h, w, CV_64F, v.data()); }
+};
+
+Field transposedField(const Field& f) {
+    Field t(f.h, f.w);
+    for (int y = 0; y < f.h; ++y)
+        for (int x = 0; x < f.w; ++x) t.at(y, x) = f.at(x, y);
+    return t;
+}
+
+// A standard normal value for (seed, index) alone (SplitMix64, Box-Muller): the same noise on any thread.
+double whiteNoise(uint64_t seed, uint64_t index) {
+    auto mix = [](uint64_t z) {
+        z += 0x9E3779B97F4A7C15ull;
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    };
+    const uint64_t a = mix(seed * 0x632BE59BD9B4E019ull + 2 * index), b = mix(seed * 0x632BE59BD9B4E019ull + 2 * index + 1);
+    const double u1 = (double(a >> 11) + 0.5) / 9007199254740992.0, u2 = double(b >> 11) / 9007199254740992.0;
+    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * kPi * u2);
+}
+
+// The stationary Gaussian model of a periodic field p: its circular autocovariance and one sample of the
+// field with that covariance (asymptotic discrete spot noise: p's spectrum times white noise's).
+struct GaussianModel {
+    Field covariance, sample;
+    GaussianModel(int w, int h) : covariance(w, h), sample(w, h) {}
+};
+
+// noise: the variance of the input's quantisation, in the Gaussian domain: white noise that the map holds
+// as terraces and a sample would show as grain. Its level is taken off the power spectrum, so the model is
+// of the field the quantised map samples, and the kriging treats it as measurement noise (a nugget).
+GaussianModel modelOf(Field p, double noise, uint64_t seed) {
+    const int w = p.w, h = p.h;
+    const double n = double(w) * h;
+    double mean = 0;
+    for (double x : p.v) mean += x;
+    mean /= n;
+    for (double& x : p.v) x -= mean;
+    GaussianModel model(w, h);
+    cv::Mat spectrum, power, noiseSpectrum;
+    cv::dft(p.mat(), spectrum, cv::DFT_COMPLEX_OUTPUT);
+    power = spectrum.clone();
+    const double floor = n * noise;  // the expected |A(k)|^2 of white noise of that variance
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            auto& z = power.at<cv::Vec2d>(y, x);
+            auto& a = spectrum.at<cv::Vec2d>(y, x);
+            const double raw = z[0] * z[0] + z[1] * z[1], clean = std::max(raw - floor, 0.0);
+            z = cv::Vec2d(clean, 0.0);
+            const double gain = raw > 0 ? std::sqrt(clean / raw) : 0.0;
+            a = cv::Vec2d(a[0] * gain, a[1] * gain);
+        }
+    cv::Mat covariance = model.covariance.mat();
+    cv::dft(power, covariance, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    model.covariance.mat() /= n;  // covariance is a view of model.covariance.v: dft wrote in place
+    power.release();
+    Field white(w, h);
+    for (size_t i = 0; i < white.v.size(); ++i) white.v[i] = whiteNoise(seed, i);
+    cv::dft(white.mat(), noiseSpectrum, cv::DFT_COMPLEX_OUTPUT);
+    cv::mulSpectrums(spectrum, noiseSpectrum, noiseSpectrum, 0);
+    cv::Mat sample = model.sample.mat();
+    cv::dft(noiseSpectrum, sample, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    model.sample.mat() /= std::sqrt(n);
+    return model;
+}
+
+// Rows of a (rows x length) complex spectrum, one row per input sequence: seq(r, i) for i in [0, length).
+template <class Get>
+cv::Mat rowSpectra(int rows, int length, Get seq) {
+    cv::Mat m(rows, length, CV_64F), out;
+    for (int r = 0; r < rows; ++r)
+        for (int i = 0; i < length; ++i) m.at<double>(r, i) = seq(r, i);
+    cv::dft(m, out, cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
+    return out;
+}
+
+// In-place Cholesky of a Hermitian positive definite n x n matrix (lower triangle), then solves A x = b.
+void choleskySolve(std::vector<Complex>& a, std::vector<Complex>& b, int n) {
+    for (int j = 0; j < n; ++j) {
+        double d = a[j * n + j].real();
+        for (int k = 0; k < j; ++k) d -= std::norm(a[j * n + k]);
+        d = std::sqrt(std::max(d, 1e-300));
+        a[j * n + j] = d;
+        for (int i = j + 1; i < n; ++i) {
+            Complex s = a[i * n + j];
+            for (int k = 0; k < j; ++k) s -= a[i * n + k] * std::conj(a[j * n + k]);
+            a[i * n + j] = s / d;
+        }
+    }
+    for (int i = 0; i < n; ++i) {  // L y = b
+        Complex s = b[i];
+        for (int k = 0; k < i; ++k) s -= a[i * n + k] * b[k];
+        b[i] = s / a[i * n + i].real();
+    }
+    for (int i = n - 1; i >= 0; --i) {  // L^H x = y
+        Complex s = b[i];
+        for (int k = i + 1; k < n; ++k) s -= std::conj(a[k * n + i]) * b[k];
+        b[i] = s / a[i * n + i].real();
+    }
+}
+
+// The variance, in the Gaussian domain, of rounding the map to its levels: each run of equal values spans
+// an interval of Gaussians, over which a value is spread as if uniformly. 0 for a float map.
+double quantisationNoise(const std::vector<float>& sorted) {
+    const double n = double(sorted.size());
+    auto quantile = [&](double rank) { return detail::inverseNormalCdf(std::clamp(rank / n, 0.5 / n, 1 - 0.5 / n)); };
+    double variance = 0;
+    for (size_t start = 0; start < sorted.size();) {
+        size_t end = start + 1;
+        while (end < sorted.size() && sorted[end] == sorted[start]) ++end;
+        if (end - start > 1) {
+            const double span = quantile(double(end)) - quantile(double(start));
+            variance += double(end - start) / n * span * span / 12;
+        }
+        start = end;
+    }
+    return variance;
+}
+
+// Replaces the `band` columns around the wrap line between column w-1 and column 0 of field (which must
+// wrap top to bottom) with the model's sample conditioned on `context` columns on each side.
+void resynthesiseColumns(Field& field, const GaussianModel& model, int band, int context, double noise, int threads) {
+    const int w = field.w, h = field.h, c = context, strip = band + 2 * context;
+    const int first = w - band / 2 - context;  // the strip's first column, modulo w
+    auto column = [&](int local) { return ((first + local) % w + w) % w; };
+    double mean = 0;
+    for (double x : field.v) mean += x;
+    mean /= double(field.v.size());
+    // The covariance between columns dx apart, per vertical frequency: dft of C's column dx along y.
+    const cv::Mat covHat = rowSpectra(strip, h, [&](int dx, int dy) { return model.covariance.at(dx % w, dy); });
+    auto cov = [&](int dx, int ky) {
+        const cv::Vec2d z = covHat.at<cv::Vec2d>(std::abs(dx), ky);
+        return dx >= 0 ? Complex(z[0], z[1]) : Complex(z[0], -z[1]);  // C(-dx, dy) = C(dx, -dy)
+    };
+    const int conditioning = 2 * c;
+    auto local = [&](int k) { return k < c ? k : band + k; };  // context column k's place in the strip
+    const cv::Mat residual = rowSpectra(conditioning, h, [&](int k, int y) {
+        const int x = column(local(k));
+        return field.at(x, y) - mean - model.sample.at(x, y);
+    });
+    const double nugget = noise + 1e-7 * std::max(model.covariance.at(0, 0), 1e-12);
+    const int half = h / 2;
+    cv::Mat kriged(band, h, CV_64FC2, cv::Scalar(0, 0));
+    parallelFor(half + 1, threads, [&](int begin, int end) {
+        std::vector<Complex> a(size_t(conditioning) * conditioning), weights(conditioning);
+        for (int ky = begin; ky < end; ++ky) {
+            for (int i = 0; i < conditioning; ++i) {
+                for (int j = 0; j <= i; ++j) a[size_t(i) * conditioning + j] = cov(local(i) - local(j), ky);
+                a[size_t(i) * conditioning + i] += nugget;
+                const cv::Vec2d r = residual.at<cv::Vec2d>(i, ky);
+                weights[i] = Complex(r[0], r[1]);
+            }
+            choleskySolve(a, weights, conditioning);
+            for (int m = 0; m < band; ++m) {
+                Complex sum = 0;
+                for (int j = 0; j < conditioning; ++j) sum += cov(c + m - local(j), ky) * weights[j];
+                kriged.at<cv::Vec2d>(m, ky) = cv::Vec2d(sum.real(), sum.imag());
+                if (ky > 0 && ky < h - ky) kriged.at<cv::Vec2d>(m, h - ky) = cv::Vec2d(sum.real(), -sum.imag());
+            }
+        }
+    });
+    cv::Mat values;
+    cv::dft(kriged, values, cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    for (int m = 0; m < band; ++m) {
+        const int x = column(c + m);
+        for (int y = 0; y < h; ++y) field.at(x, y) = mean + model.sample.at(x, y) + values.at<double>(m, y);
+    }
+}
+
+// Moisan's smooth field of the jumps across the top/bottom wrap line alone: periodic in both directions,
+// harmonic but at that line, where it carries the jump. Taking it off makes field wrap top to bottom
+// without touching the left/right wrap line, as the left/right band's Fourier treatment along y needs.
+Field topBottomSmoothField(const Field& f) {
+    const int w = f.w, h = f.h;
+    Field v(w, h);
+    for (int x = 0; x < w; ++x) {
+        const double jump = f.at(x, h - 1) - f.at(x, 0);
+        v.at(x, 0) += jump;
+        v.at(x, h - 1) -= jump;
+    }
+    cv::Mat spectrum;
+    cv::dft(v.mat(), spectrum, cv::DFT_COMPLEX_OUTPUT);
+    for (int r = 0; r < h; ++r)
+        for (int q = 0; q < w; ++q) {
+            auto& z = spectrum.at<cv::Vec2d>(r, q);
+            const double denominator = 2 * std::cos(2 * kPi * q / w) + 2 * std::cos(2 * kPi * r / h) - 4;
+            z = (q == 0 && r == 0) ? cv::Vec2d(0, 0) : cv::Vec2d(z[0] / denominator, z[1] / denominator);
+        }
+    Field s(w, h);
+    cv::Mat out = s.mat();
+    cv::dft(spectrum, out, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    return s;
+}
+
+// Where the slopes along x stop resembling themselves: the lag at which the autocorrelation of the
+// x-difference field falls below 1/e, from the covariance C of the heights.
+double slopeCorrelationLength(const Field& covariance) {
+    const int w = covariance.w;
+    auto c = [&](int dx) { return covariance.at(((dx % w) + w) % w, 0); };
+    auto d = [&](int dx) { return 2 * c(dx) - c(dx + 1) - c(dx - 1); };
+    const double d0 = d(0);
+    if (!(d0 > 0)) return 1.0;
+    double previous = 1.0;
+    for (int dx = 1; dx < w / 2; ++dx) {
+        const double r = d(dx) / d0;
+        if (r < std::exp(-1.0)) return dx - 1 + (previous - std::exp(-1.0)) / std::max(previous - r, 1e-12);
+        previous = r;
+    }
+    return w / 2.0;
+}
+
+// A Gaussian blur of sigma texels by three box passes each way (O(1) per texel whatever sigma), the map
+// mirrored at its edges: the low-pass whose wrap-line jumps are the large-scale part of the map's.
+Field blurred(const Field& f, double sigma) {
+    const int radius = std::max(1, static_cast<int>(std::lround(std::sqrt(sigma * sigma + 0.25) - 0.5)));
+    auto pass = [&](const Field& in) {
+        Field out(in.w, in.h);
+        const int n = in.w;
+        auto mirror = [&](long i) {
+            while (i < 0 || i >= n) i = i < 0 ? -1 - i : 2L * n - 1 - i;
+            return static_cast<int>(i);
+        };
+        for (int y = 0; y < in.h; ++y) {
+            double sum = 0;
+            for (long i = -radius - 1; i < radius; ++i) sum += in.at(mirror(i), y);
+            for (int x = 0; x < n; ++x) {
+                sum += in.at(mirror(x + radius), y) - in.at(mirror(long(x) - radius - 1), y);
+                out.at(x, y) = sum / (2 * radius + 1);
+            }
+        }
+        return out;
+    };
+    Field x = pass(pass(pass(f)));
+    Field t = transposedField(x);
+    return transposedField(pass(pass(pass(t))));
+}
+
+// A smooth map that rounds back to map: starting from the map, blurred and projected back into each
+// texel's rounding interval [v - q/2, v + q/2], a few times (projections onto convex sets). The plateaus of
+// a quantised gradient become the ramp they were rounded from; no texel leaves its interval.
+std::vector<float> dequantised(const Image& map, double quantum) {
+    Field x(map.width, map.height);
+    x.v.assign(map.pixels.begin(), map.pixels.end());
+    const double half = 0.4999 * quantum;
+    for (int iteration = 0; iteration < 8; ++iteration) {
+        x = blurred(x, 1.5);
+        for (size_t i = 0; i < x.v.size(); ++i)
+            x.v[i] = std::clamp(x.v[i], double(map.pixels[i]) - half, double(map.pixels[i]) + half);
+    }
+    return std::vector<float>(x.v.begin(), x.v.end());
+}
+
+int chooseBand(double fraction, double correlation, int size) {
+    const int texels = fraction > 0 ? static_cast<int>(std::lround(fraction * size))
+                                    : static_cast<int>(std::lround(std::clamp(4 * correlation, size / 32.0, size / 4.0)));
+    return std::clamp(texels, std::min(4, size / 4), size / 2);
+}
+
+}  // namespace
+
+ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& options) {
+    ResynthesisResult result;
+    const int w = map.width, h = map.height;
+    if (w < 16 || h < 16) {
+        result.map = periodicComponent(map, PeriodicContinuity::Heights);
+        return result;
+    }
+    // 1. Ranks to Gaussians, of the map with its quantisation undone: otherwise a smooth 8-bit painting is a
+    //    staircase whose steps the model takes for fine detail, and a sample shows them as grain.
+    const std::vector<float> values = options.quantum > 0 ? dequantised(map, options.quantum) : map.pixels;
+    const detail::Gaussianiser ranks(values, options.threads);
+    Field g(w, h);
+    g.v = ranks.gaussian;
+    // The model: the covariance and a sample of the Gaussianised map's periodic component (which has no
+    // cross of edge jumps in its spectrum).
+    Image gImage(w, h, 1);
+    for (size_t i = 0; i < g.v.size(); ++i) gImage.pixels[i] = static_cast<float>(g.v[i]);
+    Field p(w, h);
+    const Image periodic = periodicComponent(gImage, PeriodicContinuity::Heights);
+    for (size_t i = 0; i < p.v.size(); ++i) p.v[i] = periodic.pixels[i];
+    const double noise = quantisationNoise(ranks.sorted);
+    GaussianModel model = modelOf(std::move(p), noise, options.seed);
+    result.bandX = chooseBand(options.band, slopeCorrelationLength(model.covariance), w);
+    result.bandY = chooseBand(options.band, slopeCorrelationLength(transposedField(model.covariance)), h);
+    // 2. Large scales: Moisan's smooth field of a low-pass at the band's scale, taken from the map.
+    {
+        const Field low = blurred(g, 0.5 * std::max(result.bandX, result.bandY));
+        Image lowImage(w, h, 1);
+        for (size_t i = 0; i < low.v.size(); ++i) lowImage.pixels[i] = static_cast<float>(low.v[i]);
+        const Image lowPeriodic = periodicComponent(lowImage, PeriodicContinuity::Heights);
+        for (size_t i = 0; i < g.v.size(); ++i) g.v[i] -= double(lowImage.pixels[i]) - lowPeriodic.pixels[i];
+    }
+    // 3. and 4. The bands, left/right first, then top/bottom on the transposed field.
+    const int contextX = std::clamp(result.bandX / 2, 4, 32), contextY = std::clamp(result.bandY / 2, 4, 32);
+    if (result.bandX + 2 * contextX <= w) {
+        // The left/right band is solved per frequency along y, so its field must wrap top to bottom: the
+        // top/bottom jump is set aside meanwhile (the top/bottom band replaces what it touches later).
+        const Field aside = topBottomSmoothField(g);
+        for (size_t i = 0; i < g.v.size(); ++i) g.v[i] -= aside.v[i];
+        resynthesiseColumns(g, model, result.bandX, contextX, noise, options.threads);
+        for (size_t i = 0; i < g.v.size(); ++i) g.v[i] += aside.v[i];
+    }
+    Field gt = transposedField(g);
+    GaussianModel modelT(h, w);
+    modelT.covariance = transposedField(model.covariance);
+    modelT.sample = transposedField(model.sample);
+    if (result.bandY + 2 * contextY <= h) resynthesiseColumns(gt, modelT, result.bandY, contextY, noise, options.threads);
+    g = transposedField(gt);
+    // 5. Back to heights through the map's own sorted values.
+    result.map = Image(w, h, 1);
+    parallelFor(h, options.threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y)
+            for (int x = 0; x < w; ++x) result.map.at(x, y) = ranks.back(g.at(x, y));
+    });
+    return result;
+}
+
+}  // namespace heightpack
