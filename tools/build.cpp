@@ -13,6 +13,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "look_report.hpp"
 
 namespace heightpack::cli {
 
@@ -34,9 +35,11 @@ nlohmann::json assetJson(const AssetReport& a, double threshold) {
     if (a.check) {
         const AssetCheck& c = *a.check;
         j["check"] = {{"ran", c.ran}, {"passedEarlier", c.earlier}, {"tiles", c.tiles}};
-        if (c.ran)
+        if (c.ran) {
             j["check"]["worst"] = {{"leftRight", seamScoreJson(c.worst.leftRight, threshold)},
                                    {"topBottom", seamScoreJson(c.worst.topBottom, threshold)}};
+            j["check"]["look"] = lookJson(c.look, c.lookThresholds);
+        }
         if (!c.failure.empty()) j["check"]["failure"] = c.failure;
     } else {
         j["check"] = nullptr;
@@ -189,7 +192,9 @@ private:
                 const char* verdict = a.check         ? (a.check->tiles ? "tiles" : "does NOT tile")
                                       : a.input.empty() ? "nothing to check (made, not painted)"
                                                         : "not checked (tileable = false)";
-                std::printf("  %-28s %-30s %s\n", a.output.c_str(), (a.kind + " '" + a.name + "'").c_str(), verdict);
+                const bool lookOver = a.check && a.check->ran && !a.check->look.passes(a.check->lookThresholds);
+                std::printf("  %-28s %-30s %s%s\n", a.output.c_str(), (a.kind + " '" + a.name + "'").c_str(), verdict,
+                            lookOver ? ("; WARNING look: " + lookText(a.check->look, a.check->lookThresholds)).c_str() : "");
             }
             std::printf("%s: %s\n", r.material.c_str(),
                         r.checkFailures.empty() ? "manifest valid, every map that must tile does" : "checks FAILED");

@@ -11,6 +11,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "look_report.hpp"
 
 namespace heightpack::cli {
 
@@ -23,11 +24,11 @@ public:
         cmd->add_option("input", input_, "the height map")->required();
         cmd->add_option("-o,--output", output_, "the tiling map to write (.png, .tif, .exr)")->required();
         cmd->add_option("--method", method_,
-                        "periodic: subtract the smooth field behind the height jumps (Moisan 2011), then bend "
-                        "the slopes together within an eighth of the tile of each edge, or where slopes still break at some level, "
-                        "crossfade that near the edges; moisan: the first part "
-                        "only; crossfade: offset and blend keeping contrast (Heitz-Neyret); mirror: mirror "
-                        "tiling, twice the size")
+                        "periodic: re-synthesise a band around each wrap line as new content that continues both "
+                        "sides (Gaussian conditional simulation with the map's own statistics), the large scales made "
+                        "periodic by Moisan's smooth field; moisan: Moisan's periodic component only (slopes may kink "
+                        "at the edges); crossfade: offset and blend (leaves an echo: features shown twice per tile); "
+                        "mirror: mirror tiling, twice the size")
             ->capture_default_str()
             ->check(CLI::IsMember({"periodic", "moisan", "crossfade", "mirror"}));
         widthOption_ = cmd->add_option("--width", options_.width, "crossfade band as a fraction of the tile, in (0, 0.5]")
@@ -42,6 +43,8 @@ public:
                 },
                 "FRACTION"));
         cmd->add_flag("--force", options_.force, "apply the method even when the map already tiles");
+        cmd->add_option("--seed", options_.seed, "periodic: the re-synthesis noise; the same seed gives the same bytes")
+            ->capture_default_str();
         cmd->add_option("--threshold", options_.threshold, "seam score that counts as tiling (see check)")
             ->capture_default_str()
             ->check(finiteRange(1.0, 1e6));
@@ -58,7 +61,9 @@ public:
             "  heightpack tile painted_not_tileable.png -o painted_tiled.png\n"
             "  heightpack tile painted.png --method crossfade --width 0.1 -o painted_tiled.png\n"
             "  heightpack tile painted.png --method mirror -o painted_mirrored.png\n"
-            "The map is judged as check judges it, at every level pack would make. One that tiles is written\n"
+            "The map is judged as check judges it, at every level pack would make, and periodic's result also as\n"
+            "the eye sees it tiled (frame, blobs, echo: see check --help); it tries the next seeds and wider\n"
+            "bands before it gives up. One that tiles is written\n"
             "unchanged (the same bytes, or as float when its heights came from a colour channel); --force applies\n"
             "the method anyway. Heights are never clipped or rescaled: when the fixed map leaves [0,1] an integer\n"
             "output cannot hold it, so .exr and .tif outputs become float (said in the output) and a .png fails.\n"
@@ -99,14 +104,16 @@ public:
                        {"method", r.methodUsed}, {"alreadyTiled", r.alreadyTiled},
                        {"width", r.width}, {"height", r.height}, {"bits", r.bits}, {"widenedToFloat", r.widened},
                        {"range", {r.low, r.high}}, {"inputRange", {r.inputLow, r.inputHigh}}, {"threshold", t},
-                       {"before", chain(r.before)}, {"after", chain(r.after)}, {"channel", channelJson(r.source)}});
+                       {"before", chain(r.before)}, {"after", chain(r.after)}, {"look", lookJson(r.look, r.lookThresholds)},
+                       {"band", {r.bandX, r.bandY}}, {"seed", r.seed}, {"channel", channelJson(r.source)}});
         } else if (!common_.quiet && !r.written) {
             clearProgressLine();
-            std::fprintf(stderr,
-                         "heightpack: error: %s: --method %s could not make it tile: %s (%s); nothing written\n",
-                         r.input.c_str(), method_.c_str(), describeSeamFailure(*r.after.failure, t).c_str(),
-                         method_ == "periodic" ? "no candidate tiled without stretching the heights past 1.5x: is it a "
-                                                 "sheet of unrelated pictures rather than one map?"
+            const std::string why = r.after.failure ? describeSeamFailure(*r.after.failure, t)
+                                                    : "its look does not pass: " + lookText(r.look, r.lookThresholds);
+            std::fprintf(stderr, "heightpack: error: %s: --method %s could not make it tile: %s (%s); nothing written\n",
+                         r.input.c_str(), method_.c_str(), why.c_str(),
+                         method_ == "periodic" ? "no seed or band width passed: is it a sheet of unrelated pictures "
+                                                 "rather than one map? --method moisan changes it least"
                                                : "try the default --method periodic");
         } else if (chatty()) {
             if (r.alreadyTiled) {
@@ -117,6 +124,11 @@ public:
                 std::printf("wrote %s: %dx%d, %s, tiles at every level; heights %.4g..%.4g (input %.4g..%.4g)\n",
                             r.output.c_str(), r.width, r.height, r.methodUsed.c_str(), r.low, r.high, r.inputLow,
                             r.inputHigh);
+                if (r.seed != 0)
+                    std::printf("  re-synthesised %d texels across the left/right wrap line and %d across the "
+                                "top/bottom one (seed %llu)\n",
+                                r.bandX, r.bandY, static_cast<unsigned long long>(r.seed));
+                printLook(r.look, r.lookThresholds, false);
             }
             if (r.widened)
                 std::printf("note: written as float: %s\n",

@@ -121,7 +121,7 @@ Status MaterialBuild::Impl::prepare() {
     // 2. Tileability, before anything is written: a map that must tile and does not stops the build.
     forEachParallel(steps.size(), jobs, [&](size_t i) {
         Step& s = steps[i];
-        if (s.mustTile) s.report.check = AssetCheck{false, !s.needCheck, true, {}, {}};
+        if (s.mustTile) s.report.check = AssetCheck{false, !s.needCheck, true, {}, {}, {}, {}};
         if (s.needCheck) guarded(s, [&] { checkStep(s); });
     });
     if (auto e = firstError()) return *e;
@@ -172,6 +172,8 @@ void MaterialBuild::Impl::checkStep(Step& s) {
     c.ran = true;
     c.tiles = r->tiles;
     c.worst = r->worst;
+    c.look = r->look;
+    c.lookThresholds = r->lookThresholds;
     if (!r->tiles) c.failure = describeFailure(*r);
     emit(BuildEvent::Type::Progress, s, "check", 1.0);
 }

@@ -8,6 +8,7 @@
 
 #include "heightpack/build/check_job.hpp"
 #include "heightpack/core/mip.hpp"
+#include "heightpack/core/tile_resynthesis.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
 
@@ -42,11 +43,6 @@ bool exactIn(const Image& map, int bits) {
     });
 }
 
-double span(const Image& map) {
-    const auto [low, high] = std::minmax_element(map.pixels.begin(), map.pixels.end());
-    return double(*high) - *low;
-}
-
 // How a result will be stored: the type asked for, else the input's (a PNG holds no floats: 16 bits there),
 // widened to float where an integer type would clip (or round a map that should stay unchanged) and the
 // format holds floats; `storable` is false where it cannot be stored faithfully at all.
@@ -79,37 +75,56 @@ struct Storage {
     static double quantum(int bits) { return bits == 8 ? 1.0 / 255 : bits == 16 ? 1.0 / 65535 : 0.0; }
 };
 
-// The method's result; for Periodic, the first candidate that tiles at every level and keeps the height
-// span within 1.5x the input's: Moisan with the edge slopes bent together; Moisan crossfaded near the
-// edges (its heights already meet there, so the blend only hides kinks: a change of slope at a scale
-// the bend did not reach, a line along the edge); the map itself crossfaded (when Moisan's smooth field
-// would stretch the span: a sheet of unrelated tiles); then the same two with a band of a fifth of the
-// tile (wider would reach the middle half of the map, which no candidate may change). The last candidate
-// is returned when none passes, and the caller writes nothing. `judged` is set to the verdict on the
-// returned candidate as stored when one was reached, so the caller need not judge it again.
+// The method's result. For Periodic, candidates judged as they will be stored, at every level pack would
+// make (seams) and as the eye sees it (look), the first that passes both: the re-synthesis four times, each
+// with the next seed, the last two with a band half as wide again and then twice the first; then, for maps
+// a Gaussian field does not describe (a few pure waves whose periods do not divide the tile), Moisan's
+// periodic component with the edge slopes bent together, then Moisan's component and the map crossfaded over
+// the crossfade width and over a fifth of the tile, judged by their seams alone (the shell warns when their look does not pass). The last is returned when none passes, and
+// the caller writes nothing. `judged` is the verdict on the returned
+// candidate as stored.
 Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, const Storage& storage,
-                  std::string& name, double& band, std::optional<ChainSeams>& judged) {
-    name = tileMethodName(options.method);
-    band = options.width;
+                  TileReport& report, std::optional<ChainSeams>& judged) {
+    report.methodUsed = tileMethodName(options.method);
+    report.crossfadeWidth = options.width;
     switch (options.method) {
         case TileMethod::Moisan: return periodicComponent(map, PeriodicContinuity::Heights);
         case TileMethod::Crossfade: return crossfadeTile(map, options.width);
         case TileMethod::Mirror: return mirrorTile(map);
         case TileMethod::Periodic: break;
     }
-    const double maxSpan = 1.5 * span(map);
-    // Judged as it will be stored: a candidate the output cannot hold (a PNG, heights past [0,1]) is passed
-    // over for one it can.
+    bool lookRequired = true;
     auto acceptable = [&](const Image& candidate) {
         judged.reset();
         const Storage::Choice c = storage.choose(candidate, false);
-        if (!c.storable || span(candidate) > maxSpan) return false;
+        if (!c.storable) return false;
         SeamOptions stored = seamOptions;
         stored.quantum = Storage::quantum(c.bits);
-        judged = measureChainSeams(seamChain(Storage::rounded(candidate, c.bits), options.mip), options.threshold, stored);
-        return judged->tiles();
+        const Image asStored = Storage::rounded(candidate, c.bits);
+        judged = measureChainSeams(seamChain(asStored, options.mip), options.threshold, stored);
+        return judged->tiles() &&
+               (!lookRequired || measureTileLook(asStored, {&map, options.mip.threads}).passes(options.look));
     };
-    Image result = periodicComponent(map);
+    ResynthesisOptions resynthesis;
+    resynthesis.quantum = seamOptions.quantum;
+    resynthesis.threads = options.mip.threads;
+    double firstBand = 0;
+    for (int attempt = 0; attempt < 4; ++attempt) {
+        resynthesis.seed = options.seed + uint64_t(attempt);
+        resynthesis.band = attempt < 2 ? 0.0 : std::min(0.25, firstBand * (attempt == 2 ? 1.5 : 2.0));
+        ResynthesisResult r = resynthesiseTile(map, resynthesis);
+        if (attempt == 0) firstBand = double(std::max(r.bandX, 1)) / map.width;
+        report.bandX = r.bandX;
+        report.bandY = r.bandY;
+        report.seed = resynthesis.seed;
+        if (acceptable(r.map)) return std::move(r.map);
+    }
+    // The fallbacks are judged by their seams alone (as before the look existed); their look is reported.
+    lookRequired = false;
+    report.bandX = report.bandY = 0;
+    report.seed = 0;
+    Image result = periodicComponent(map, PeriodicContinuity::HeightsAndSlopes);
+    report.methodUsed = "moisan+bend";
     if (acceptable(result)) return result;
     const Image moisan = periodicComponent(map, PeriodicContinuity::Heights);
     for (double width : {options.width, 0.2}) {
@@ -117,8 +132,8 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         std::snprintf(text, sizeof text, " over %g of the tile", width);
         for (const Image* base : {&moisan, &map}) {
             result = crossfadeTile(*base, width);
-            name = std::string(base == &moisan ? "moisan+crossfade" : "crossfade") + text;
-            band = width;
+            report.methodUsed = std::string(base == &moisan ? "moisan+crossfade" : "crossfade") + text;
+            report.crossfadeWidth = width;
             if (acceptable(result)) return result;
         }
     }
@@ -176,9 +191,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     storage.floatFormat = holdsFloat(ext);
     if (storage.bits == 32 && !storage.floatFormat) storage.bits = 16;
     std::optional<ChainSeams> judged;
-    Image result = report.alreadyTiled ? map
-                                       : applyMethod(map, options, seamOptions, storage, report.methodUsed,
-                                                     report.crossfadeWidth, judged);
+    Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, storage, report, judged);
     if (report.alreadyTiled) report.methodUsed = "none";
     progress("tile", 1.0);
     report.width = result.width;
@@ -212,6 +225,9 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
         afterOptions.quantum = Storage::quantum(report.bits);
         report.after = measureChainSeams(seamChain(result, options.mip), options.threshold, afterOptions);
     }
+    report.lookThresholds = options.look;
+    report.look = measureTileLook(result, {&map, options.mip.threads});
+    const bool lookCounts = options.method == TileMethod::Periodic && !report.alreadyTiled && report.seed != 0;
     // Mirror tiling breaks slopes at its mirror lines by design (the help says so): it is written when its
     // heights meet, and the report still shows the kinks.
     const bool onlyDesignedKinks =
@@ -222,6 +238,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
         });
     if (!report.after.tiles() && !report.alreadyTiled && !onlyDesignedKinks)
         return report;  // nothing written: the caller says why
+    if (lookCounts && !report.look.passes(options.look)) return report;  // likewise
 
     FlatImageOptions flat;
     flat.bits = report.bits;
@@ -236,6 +253,10 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     };
     if (report.methodUsed.find("crossfade") != std::string::npos)
         flat.attributes.push_back(attribute(attr::crossfadeWidth, static_cast<float>(report.crossfadeWidth)));
+    if (report.seed != 0) {
+        flat.attributes.push_back(attribute(attr::tileBand, std::to_string(report.bandX) + "x" + std::to_string(report.bandY)));
+        flat.attributes.push_back(attribute(attr::seed, std::to_string(report.seed)));
+    }
     progress("write", 0.0);
     if (Status s = writeFlatImage(output, result, flat); !s) return s.error();
     report.written = true;

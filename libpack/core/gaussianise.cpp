@@ -70,7 +70,8 @@ Gaussianiser::Gaussianiser(const std::vector<float>& values, const std::vector<f
         for (size_t c = 0; c + width < size_t(chunks); c += 2 * width)
             std::inplace_merge(order.begin() + bounds[c], order.begin() + bounds[c + width],
                                order.begin() + bounds[std::min(c + 2 * width, size_t(chunks))]);
-    for (size_t i = 0; i < n; ++i) sorted[i] = order[i].value;
+    this->order.resize(n);
+    for (size_t i = 0; i < n; ++i) sorted[i] = order[i].value, this->order[i] = order[i].index;
     // Runs of equal values share their mid-rank's quantile; the quantiles are computed on all threads.
     std::vector<std::pair<size_t, size_t>> runs;
     for (size_t start = 0; start < n;) {
@@ -88,11 +89,11 @@ Gaussianiser::Gaussianiser(const std::vector<float>& values, const std::vector<f
     });
 }
 
-float Gaussianiser::back(double g) const {
-    const double pos = std::clamp(normalCdf(g) * sorted.size() - 0.5, 0.0, double(sorted.size() - 1));
+float Gaussianiser::backThrough(const std::vector<float>& increasing, double g) {
+    const double pos = std::clamp(normalCdf(g) * increasing.size() - 0.5, 0.0, double(increasing.size() - 1));
     const size_t i = static_cast<size_t>(pos);
-    const size_t j = std::min(i + 1, sorted.size() - 1);
-    return static_cast<float>(sorted[i] + (double(sorted[j]) - sorted[i]) * (pos - i));
+    const size_t j = std::min(i + 1, increasing.size() - 1);
+    return static_cast<float>(increasing[i] + (double(increasing[j]) - increasing[i]) * (pos - i));
 }
 
 }  // namespace heightpack::detail

@@ -152,16 +152,40 @@ Image crossfadeTile(const Image& map, double width, CrossfadeBlend blend) {
             }
         return out;
     }
-    // The shifted copy has the same histogram, so one transform serves both.
+    // Four copies: the map, and the map shifted by half a tile in x, in y and in both. Near a left/right
+    // edge the x-shifted copy is used (continuous there, its own seam in the middle of the tile), near a
+    // top/bottom edge the y-shifted one, near a corner the diagonal one: no copy brings a seam of the map to
+    // the middle of an edge. In the Gaussianised domain (the copies share one histogram), the low-pass is
+    // blended linearly (the copies' shared large scales add, not their variance) and the high-pass with
+    // weights whose squares sum to one, so fine contrast is kept in the band (Heitz & Neyret) without the
+    // lows swelling by up to sqrt(2).
     const detail::Gaussianiser g(map.pixels, 0);
+    cv::Mat field(h, w, CV_64F), spectrum, low;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) field.at<double>(y, x) = g.gaussian[size_t(y) * w + x];
+    cv::dft(field, spectrum, cv::DFT_COMPLEX_OUTPUT);
+    const double sigma = std::max(1.0, width * std::min(w, h) / 3.0);
+    for (int r = 0; r < h; ++r)
+        for (int q = 0; q < w; ++q) {
+            const double fx = double(std::min(q, w - q)) / w, fy = double(std::min(r, h - r)) / h;
+            spectrum.at<cv::Vec2d>(r, q) *= std::exp(-2 * kPi * kPi * sigma * sigma * (fx * fx + fy * fy));
+        }
+    cv::dft(spectrum, low, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-            const double a = crossfadeWeight(x, y, w, h, width);
-            const double original = g.gaussian[size_t(y) * w + x];
-            const double other = g.gaussian[size_t((y + h / 2) % h) * w + (x + w / 2) % w];
-            // Weights whose squares sum to one keep the variance of the Gaussian blend at one.
-            const double blended = (a * original + (1 - a) * other) / std::sqrt(a * a + (1 - a) * (1 - a));
-            out.at(x, y) = g.back(blended);
+            const double ax = smoothstep(width, double(std::min(x, w - 1 - x)) / w);
+            const double ay = smoothstep(width, double(std::min(y, h - 1 - y)) / h);
+            const double weights[4] = {ax * ay, (1 - ax) * ay, ax * (1 - ay), (1 - ax) * (1 - ay)};
+            const int xs[4] = {x, (x + w / 2) % w, x, (x + w / 2) % w};
+            const int ys[4] = {y, y, (y + h / 2) % h, (y + h / 2) % h};
+            double lowSum = 0, highSum = 0, squares = 0;
+            for (int c = 0; c < 4; ++c) {
+                const double l = low.at<double>(ys[c], xs[c]);
+                lowSum += weights[c] * l;
+                highSum += weights[c] * (field.at<double>(ys[c], xs[c]) - l);
+                squares += weights[c] * weights[c];
+            }
+            out.at(x, y) = g.back(lowSum + highSum / std::sqrt(squares));
         }
     }
     return out;

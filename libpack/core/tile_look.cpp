@@ -131,7 +131,7 @@ double cornerScore(const Grid& q, int half) {
         for (int x = 0; x < 2 * w; ++x) s(x + 1, y + 1) = q.at(x % w, y % h) + s(x, y + 1) + s(x + 1, y) - s(x, y);
     auto square = [&](int cx, int cy) {
         const int x0 = ((cx - half) % w + w) % w, y0 = ((cy - half) % h + h) % h, side = 2 * half;
-        return std::log(0.05 + (s(x0 + side, y0 + side) - s(x0, y0 + side) - s(x0 + side, y0) + s(x0, y0)) / (double(side) * side));
+        return std::sqrt(std::max(0.0, (s(x0 + side, y0 + side) - s(x0, y0 + side) - s(x0 + side, y0) + s(x0, y0)) / (double(side) * side)));
     };
     std::vector<double> null;
     const int step = std::max(1, half / 4);
@@ -150,17 +150,18 @@ Image halved(const Image& map) {
     return out;
 }
 
-}  // namespace
+// The map's power spectrum and the same smoothed over 5x5 frequency bins (a box, three times each way,
+// circular): the smooth part is the field's statistics, what stays in the ratio is fine structure.
+struct Spectra {
+    Grid power, smooth;
+    Spectra(int w, int h) : power(w, h), smooth(w, h) {}
+};
 
-double echoOf(const Image& map) {
-    const int w = map.width, h = map.height;
-    if (w < 64 || h < 64) return 0.0;
-    // The autocorrelation of the map whitened by its own smoothed spectrum: a stationary field's structure
-    // (smooth, directional, large or small scaled) divides out, leaving a spike at lag 0 and noise of about
-    // 1/sqrt(texels); a feature repeated at lag L multiplies the spectrum by 1 + cos(k.L), an oscillation
-    // finer than the smoothing, which stays and becomes a peak at L.
-    cv::Mat spectrum = spectrumOf(map);
-    Grid power(w, h), smooth(w, h);
+Spectra spectraOf(const cv::Mat& spectrum) {
+    const int h = spectrum.rows, w = spectrum.cols;
+    Spectra out(w, h);
+    Grid& power = out.power;
+    Grid& smooth = out.smooth;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const cv::Vec2d z = spectrum.at<cv::Vec2d>(y, x);
@@ -183,10 +184,24 @@ double echoOf(const Image& map) {
                 smooth.at(x, y) = sum / 5;
             }
     }
+    return out;
+}
+
+}  // namespace
+
+double echoOf(const Image& map) {
+    const int w = map.width, h = map.height;
+    if (w < 64 || h < 64) return 0.0;
+    // The autocorrelation of the map whitened by its own smoothed spectrum: a stationary field's structure
+    // (smooth, directional, large or small scaled) divides out, leaving a spike at lag 0 and noise of about
+    // 1/sqrt(texels); a feature repeated at lag L multiplies the spectrum by 1 + cos(k.L), an oscillation
+    // finer than the smoothing, which stays and becomes a peak at L.
+    const Spectra s = spectraOf(spectrumOf(map));
     cv::Mat whitened(h, w, CV_64FC2);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            whitened.at<cv::Vec2d>(y, x) = cv::Vec2d(smooth.at(x, y) > 0 ? power.at(x, y) / smooth.at(x, y) : 0.0, 0.0);
+            whitened.at<cv::Vec2d>(y, x) =
+                cv::Vec2d(s.smooth.at(x, y) > 0 ? s.power.at(x, y) / s.smooth.at(x, y) : 0.0, 0.0);
     cv::Mat correlation;
     cv::dft(whitened, correlation, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
     const double zero = correlation.at<double>(0, 0);

@@ -299,28 +299,42 @@ ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& o
     // 1. Ranks to Gaussians, of the map with its quantisation undone: otherwise a smooth 8-bit painting is a
     //    staircase whose steps the model takes for fine detail, and a sample shows them as grain.
     const std::vector<float> values = options.quantum > 0 ? dequantised(map, options.quantum) : map.pixels;
-    const detail::Gaussianiser ranks(values, options.threads);
-    Field g(w, h);
-    g.v = ranks.gaussian;
-    // The model: the covariance and a sample of the Gaussianised map's periodic component (which has no
-    // cross of edge jumps in its spectrum).
-    Image gImage(w, h, 1);
-    for (size_t i = 0; i < g.v.size(); ++i) gImage.pixels[i] = static_cast<float>(g.v[i]);
-    Field p(w, h);
-    const Image periodic = periodicComponent(gImage, PeriodicContinuity::Heights);
-    for (size_t i = 0; i < p.v.size(); ++i) p.v[i] = periodic.pixels[i];
-    const double noise = quantisationNoise(ranks.sorted);
-    GaussianModel model = modelOf(std::move(p), noise, options.seed);
+    GaussianModel model(w, h);
+    double noise = 0;
+    {
+        const detail::Gaussianiser ranks(values, options.threads);
+        // The model: the covariance and a sample of the Gaussianised map's periodic component (which has
+        // no cross of edge jumps in its spectrum).
+        Image gImage(w, h, 1);
+        for (size_t i = 0; i < gImage.pixels.size(); ++i) gImage.pixels[i] = static_cast<float>(ranks.gaussian[i]);
+        Field p(w, h);
+        const Image periodic = periodicComponent(gImage, PeriodicContinuity::Heights);
+        for (size_t i = 0; i < p.v.size(); ++i) p.v[i] = periodic.pixels[i];
+        noise = quantisationNoise(ranks.sorted);
+        model = modelOf(std::move(p), noise, options.seed);
+    }
     result.bandX = chooseBand(options.band, slopeCorrelationLength(model.covariance), w);
     result.bandY = chooseBand(options.band, slopeCorrelationLength(transposedField(model.covariance)), h);
-    // 2. Large scales: Moisan's smooth field of a low-pass at the band's scale, taken from the map.
+    // 2. Large scales, in heights: Moisan's smooth field of a low-pass of the map at the band's scale (at
+    //    least 1/16 of the tile: only scales the eye reads as the map's swell; each side of a wrap line
+    //    blurred apart, mirrored). Beyond the bands this is the whole change.
+    std::vector<float> smooth(values.size(), 0.0f), corrected(values.size());
     {
-        const Field low = blurred(g, 0.5 * std::max(result.bandX, result.bandY));
+        Field heights(w, h);
+        heights.v.assign(values.begin(), values.end());
+        const double sigma = std::max(0.5 * std::max(result.bandX, result.bandY), std::min(w, h) / 16.0);
+        const Field low = blurred(heights, sigma);
         Image lowImage(w, h, 1);
         for (size_t i = 0; i < low.v.size(); ++i) lowImage.pixels[i] = static_cast<float>(low.v[i]);
         const Image lowPeriodic = periodicComponent(lowImage, PeriodicContinuity::Heights);
-        for (size_t i = 0; i < g.v.size(); ++i) g.v[i] -= double(lowImage.pixels[i]) - lowPeriodic.pixels[i];
+        for (size_t i = 0; i < values.size(); ++i) {
+            smooth[i] = lowImage.pixels[i] - lowPeriodic.pixels[i];
+            corrected[i] = values[i] - smooth[i];
+        }
     }
+    const detail::Gaussianiser ranks(corrected, options.threads);
+    Field g(w, h);
+    g.v = ranks.gaussian;
     // 3. and 4. The bands, left/right first, then top/bottom on the transposed field.
     const int contextX = std::clamp(result.bandX / 2, 4, 32), contextY = std::clamp(result.bandY / 2, 4, 32);
     if (result.bandX + 2 * contextX <= w) {
@@ -337,11 +351,20 @@ ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& o
     modelT.sample = transposedField(model.sample);
     if (result.bandY + 2 * contextY <= h) resynthesiseColumns(gt, modelT, result.bandY, contextY, noise, options.threads);
     g = transposedField(gt);
-    // 5. Back to heights through the map's own sorted values.
+    // 5. Back to heights through the sorted values. Beyond the bands, the map itself plus the large-scale
+    //    change there (so its own fine detail, terraces and all, stays exactly); in the bands, the new
+    //    content, which a quantised output rounds to its levels.
+    auto inBand = [&](int x, int y) {
+        const int dx = std::min(x, w - 1 - x), dy = std::min(y, h - 1 - y);
+        return dx < (result.bandX + 1) / 2 + 1 || dy < (result.bandY + 1) / 2 + 1;
+    };
     result.map = Image(w, h, 1);
     parallelFor(h, options.threads, [&](int begin, int end) {
         for (int y = begin; y < end; ++y)
-            for (int x = 0; x < w; ++x) result.map.at(x, y) = ranks.back(g.at(x, y));
+            for (int x = 0; x < w; ++x) {
+                const size_t i = size_t(y) * w + x;
+                result.map.pixels[i] = inBand(x, y) ? ranks.back(g.v[i]) : map.pixels[i] - smooth[i];
+            }
     });
     return result;
 }

@@ -146,10 +146,12 @@ TEST(CacheKey, NormalJobOptions) {
 }
 
 TEST(CacheKey, CheckOptions) {
-    expectEveryFieldJudged(std::array<FieldChange<CheckOptions>, 5>{{
+    expectEveryFieldJudged(std::array<FieldChange<CheckOptions>, 7>{{
         {"load", [](CheckOptions& o) { o.load.channel = ChannelSelect::R; }, true},
         {"mip", [](CheckOptions& o) { o.mip.wrap = Wrap::Clamp; }, true},
         {"threshold", [](CheckOptions& o) { o.threshold = 3.0; }, true},
+        {"look", [](CheckOptions& o) { o.look.echo = 0.5; }, true},
+        {"lookFails", [](CheckOptions& o) { o.lookFails = true; }, true},
         {"previewPath", [](CheckOptions& o) { o.previewPath = std::string("p.png"); }, true},
         {"progress", [](CheckOptions& o) { o.progress = [](std::string_view, double) {}; }, false},
     }});

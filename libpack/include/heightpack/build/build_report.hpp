@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "heightpack/core/result.hpp"
+#include "heightpack/core/tile_look.hpp"
 #include "heightpack/core/tileable.hpp"
 
 namespace heightpack {
@@ -32,6 +33,8 @@ struct AssetCheck {
     bool tiles = true;
     LevelSeams worst;       // per edge pair, the highest scores over the judged levels
     std::string failure;    // what failed, for a person: edge, level, score
+    TileLook look;          // level 0's frame, blobs and echo (a warning when over: the build still passes)
+    LookThresholds lookThresholds;
 };
 
 // One output of the material (a sequence gives one per frame).

@@ -1,22 +1,25 @@
 // The whole `tile` operation: make a map tile, changing the painting as little as the method allows.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
 
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/core/tile_look.hpp"
 #include "heightpack/core/tileable.hpp"
 #include "heightpack/io/read.hpp"
 
 namespace heightpack {
 
 enum class TileMethod {
-    Periodic,   // Moisan's periodic component with the edge slopes bent together; where slopes still break at
-                // some level or the span grows past 1.5x, a crossfade near the edges (the measure chooses)
+    Periodic,   // re-synthesis of a band around each wrap line (core/tile_resynthesis.hpp), the large scales
+                // made periodic by Moisan's smooth field; judged by the seam measure and the look, with
+                // another seed and then a wider band when a result does not pass
     Moisan,     // Moisan's original periodic component: heights meet, slopes may kink at the edges
-    Crossfade,  // offset and blend with a histogram-preserving blend over a band
+    Crossfade,  // offset and blend: four copies, the high-pass blended keeping variance (leaves an echo)
     Mirror,     // mirror tiling: twice the size, symmetric
 };
 const char* tileMethodName(TileMethod method);
@@ -28,6 +31,8 @@ struct TileOptions {
     double width = 0.1;  // crossfade band, fraction of the tile, (0, 0.5]
     bool force = false;  // apply the method even to a map that already tiles
     double threshold = kDefaultSeamThreshold;
+    LookThresholds look;  // what Periodic's result must pass beyond its seams (frame, blobs, echo)
+    uint64_t seed = 1;    // Periodic's re-synthesis noise (the next seeds when a result does not pass)
     int bits = 0;  // 8, 16 or 32 (float); 0 keeps the input's depth (float inputs stay float)
     std::string version;
     // Reports progress: the stage ("load", "check", "tile", "write") and the fraction of it done; may be empty.
@@ -43,6 +48,10 @@ struct TileReport {
     std::string methodUsed;     // "none", the method's name, or what Periodic chose ("moisan+crossfade over 0.1 of the tile")
     ChainSeams before;          // the input, judged at every level as `check` judges it
     ChainSeams after;           // the output as written (rounded to its type), likewise
+    TileLook look;              // the output's frame, blobs and echo (the input's own echo subtracted)
+    LookThresholds lookThresholds;
+    int bandX = 0, bandY = 0;   // Periodic: texels re-synthesised across the left/right and top/bottom wrap lines
+    uint64_t seed = 0;          // Periodic: the seed of the result written
     double crossfadeWidth = 0.0;  // the band of a crossfade used, fraction of the tile
     int bits = 0;
     // Written as float although the input (or --depth) is an integer type: the heights left [0,1], which
@@ -58,7 +67,7 @@ struct TileReport {
 // writes it unchanged: the file's bytes when it is a one-channel file of output's format, else its
 // heights in a type that holds them exactly. Otherwise applies the method and judges the result as it
 // will be stored; writes it only when it tiles (mirror: when its heights meet, its mirror lines kinking
-// slopes by design). Integer outputs are never clipped or rescaled: heights
+// slopes by design) and, for Periodic, when its look passes too (the other methods' looks are reported). Integer outputs are never clipped or rescaled: heights
 // outside [0,1] are written as float where the format holds floats (.exr, .tif), else it fails with
 // CannotWrite and writes nothing.
 Result<TileReport> tileFile(const std::string& input, const std::string& output, const TileOptions& options);

@@ -28,17 +28,18 @@ struct ResynthesisResult {
 // Gaussian conditional simulation of the bands around the wrap lines (Galerne & Leclaire 2017, "Texture
 // inpainting using efficient Gaussian conditional simulation"), in the rank-Gaussianised domain of Heitz &
 // Neyret, so the heights keep the map's histogram:
-//   1. the map's values become standard Gaussians through their ranks;
-//   2. the large scales are made periodic by Moisan's smooth field of a low-pass of the map (heights only:
-//      the offsets it removes are larger than the band could bridge);
+//   1. the map's model: its values become standard Gaussians through their ranks, whose covariance and
+//      spectrum the sample and the kriging use (a quantised map's terraces first undone);
+//   2. the large scales are made periodic by Moisan's smooth field of a low-pass of the heights (heights
+//      only: the offsets it removes are larger than the band could bridge), and that map Gaussianised;
 //   3. a band across the left/right wrap line is replaced by a sample of the stationary Gaussian field with
 //      the map's own covariance conditioned on the texels beside the band: an unconditional sample (the
 //      map's spectrum times white noise) plus the kriged difference between the map and that sample. The
 //      conditioning texels are whole columns, so in the Fourier domain along the band each vertical
 //      frequency is its own small system, solved exactly (Cholesky);
 //   4. the same across the top/bottom wrap line, now conditioned on a map that already wraps left/right;
-//   5. back through the ranks.
-// Texels beyond the bands change only by the large-scale field of step 2. Deterministic for a seed,
+//   5. back through the corrected map's sorted values in the bands; beyond them the map itself less the
+//      smooth field of step 2, so its own fine detail (terraces and all) stays exactly. Deterministic for a seed,
 // whatever the thread count. Maps smaller than 16 texels on a side get Moisan's periodic component.
 ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& options = {});
 

@@ -110,13 +110,15 @@ enum class PeriodicContinuity {
 Image periodicComponent(const Image& map, PeriodicContinuity continuity = PeriodicContinuity::HeightsAndSlopes);
 
 enum class CrossfadeBlend {
-    HistogramPreserving,  // Heitz & Neyret 2018: blend Gaussianised values with variance-preserving weights
-    Linear,               // the classic blend; washes out contrast in the band (for comparison)
+    HistogramPreserving,  // Heitz & Neyret 2018 in the Gaussianised domain, four copies, the low-pass blended
+                          // linearly and the high-pass with variance-preserving weights
+    Linear,               // the classic blend of two copies; washes out contrast in the band (for comparison)
 };
 
-// Offset-and-blend: the map blended with itself shifted by half a tile, the shifted copy near the tile
-// edges (where it is continuous) and the original in the middle, over a band of `width` of the tile
-// (0 < width <= 0.5) with a smoothstep ramp.
+// Offset-and-blend: the map blended with itself shifted by half a tile, the shifted copies near the tile
+// edges (where they are continuous) and the original in the middle, over a band of `width` of the tile
+// (0 < width <= 0.5) with a smoothstep ramp. Every offset-and-blend shows the map's middle twice in a tile
+// (an echo that check reports).
 Image crossfadeTile(const Image& map, double width, CrossfadeBlend blend = CrossfadeBlend::HistogramPreserving);
 
 // The weight of the original map at texel (x, y) in crossfadeTile: 0 at the tile edges, 1 beyond the band.

@@ -109,6 +109,7 @@ inline constexpr AttributeKey<std::string> tileMethod{"heightpack:tileMethod"};
 inline constexpr AttributeKey<std::string> seamsBefore{"heightpack:seamsBefore"};
 inline constexpr AttributeKey<std::string> seamsAfter{"heightpack:seamsAfter"};
 inline constexpr AttributeKey<float> crossfadeWidth{"heightpack:crossfadeWidth"};
+inline constexpr AttributeKey<std::string> tileBand{"heightpack:tileBand"};  // "BXxBY": texels re-synthesised
 // Seam previews.
 inline constexpr AttributeKey<float> threshold{"heightpack:threshold"};
 }  // namespace attr
