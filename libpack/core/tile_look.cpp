@@ -9,20 +9,15 @@
 
 #include "heightpack/core/tileable.hpp"
 
+#include "field.hpp"
+
 namespace heightpack {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A row-major w x h field of doubles.
-struct Grid {
-    int w = 0, h = 0;
-    std::vector<double> v;
-    Grid(int width, int height) : w(width), h(height), v(size_t(width) * height, 0.0) {}
-    double& at(int x, int y) { return v[size_t(y) * w + x]; }
-    double at(int x, int y) const { return v[size_t(y) * w + x]; }
-};
+using Grid = detail::Field;
 
 cv::Mat spectrumOf(const Image& map) {
     cv::Mat m(map.height, map.width, CV_64F);

@@ -11,6 +11,7 @@
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/core/tileable.hpp"
 
+#include "field.hpp"
 #include "gaussianise.hpp"
 
 namespace heightpack {
@@ -20,15 +21,7 @@ namespace {
 using Complex = std::complex<double>;
 constexpr double kPi = 3.14159265358979323846;
 
-// A row-major w x h field of doubles.
-struct Field {
-    int w = 0, h = 0;
-    std::vector<double> v;
-    Field(int width, int height) : w(width), h(height), v(size_t(width) * height, 0.0) {}
-    double& at(int x, int y) { return v[size_t(y) * w + x]; }
-    double at(int x, int y) const { return v[size_t(y) * w + x]; }
-    cv::Mat mat() { return cv::Mat(h, w, CV_64F, v.data()); }
-};
+using detail::Field;
 
 Field transposedField(const Field& f) {
     Field t(f.h, f.w);
