@@ -43,23 +43,18 @@ double inverseNormalCdf(double p) {
     return x - u / (1 + x * u / 2);
 }
 
-Gaussianiser::Gaussianiser(const std::vector<float>& values, int threads) : Gaussianiser(values, values, threads) {}
-
-Gaussianiser::Gaussianiser(const std::vector<float>& values, const std::vector<float>& tieBreak, int threads)
-    : sorted(values.size()), gaussian(values.size()) {
+Gaussianiser::Gaussianiser(const std::vector<float>& values, int threads) : sorted(values.size()), gaussian(values.size()) {
     const size_t n = values.size();
     if (n == 0) return;
-    // (value, tie-break, index) triples are all distinct, so any sort of them gives the same order: chunks
-    // sorted on their own threads, then merged pairwise.
+    // (value, index) pairs are all distinct, so any sort of them gives the same order: chunks sorted on
+    // their own threads, then merged pairwise.
     struct Key {
-        float value, tie;
+        float value;
         uint32_t index;
-        bool operator<(const Key& o) const {
-            return value != o.value ? value < o.value : tie != o.tie ? tie < o.tie : index < o.index;
-        }
+        bool operator<(const Key& o) const { return value != o.value ? value < o.value : index < o.index; }
     };
     std::vector<Key> order(n);
-    for (size_t i = 0; i < n; ++i) order[i] = {values[i], tieBreak[i], static_cast<uint32_t>(i)};
+    for (size_t i = 0; i < n; ++i) order[i] = {values[i], static_cast<uint32_t>(i)};
     const int chunks = std::max(1, std::min<int>(resolveThreadCount(threads), static_cast<int>(n / 65536)));
     std::vector<size_t> bounds(chunks + 1);
     for (int c = 0; c <= chunks; ++c) bounds[c] = n * c / chunks;
@@ -70,13 +65,12 @@ Gaussianiser::Gaussianiser(const std::vector<float>& values, const std::vector<f
         for (size_t c = 0; c + width < size_t(chunks); c += 2 * width)
             std::inplace_merge(order.begin() + bounds[c], order.begin() + bounds[c + width],
                                order.begin() + bounds[std::min(c + 2 * width, size_t(chunks))]);
-    this->order.resize(n);
-    for (size_t i = 0; i < n; ++i) sorted[i] = order[i].value, this->order[i] = order[i].index;
+    for (size_t i = 0; i < n; ++i) sorted[i] = order[i].value;
     // Runs of equal values share their mid-rank's quantile; the quantiles are computed on all threads.
     std::vector<std::pair<size_t, size_t>> runs;
     for (size_t start = 0; start < n;) {
         size_t end = start + 1;
-        while (end < n && sorted[end] == sorted[start] && order[end].tie == order[start].tie) ++end;
+        while (end < n && sorted[end] == sorted[start]) ++end;
         runs.emplace_back(start, end);
         start = end;
     }
@@ -89,11 +83,11 @@ Gaussianiser::Gaussianiser(const std::vector<float>& values, const std::vector<f
     });
 }
 
-float Gaussianiser::backThrough(const std::vector<float>& increasing, double g) {
-    const double pos = std::clamp(normalCdf(g) * increasing.size() - 0.5, 0.0, double(increasing.size() - 1));
+float Gaussianiser::back(double g) const {
+    const double pos = std::clamp(normalCdf(g) * sorted.size() - 0.5, 0.0, double(sorted.size() - 1));
     const size_t i = static_cast<size_t>(pos);
-    const size_t j = std::min(i + 1, increasing.size() - 1);
-    return static_cast<float>(increasing[i] + (double(increasing[j]) - increasing[i]) * (pos - i));
+    const size_t j = std::min(i + 1, sorted.size() - 1);
+    return static_cast<float>(sorted[i] + (double(sorted[j]) - sorted[i]) * (pos - i));
 }
 
 }  // namespace heightpack::detail

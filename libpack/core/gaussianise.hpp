@@ -2,7 +2,6 @@
 // re-synthesis of tile_fix.cpp and tile_resynthesis.cpp.
 #pragma once
 
-#include <cstdint>
 #include <vector>
 
 namespace heightpack::detail {
@@ -16,17 +15,11 @@ double inverseNormalCdf(double p);
 // same result on any number.
 struct Gaussianiser {
     std::vector<float> sorted;     // the values in increasing order
-    std::vector<uint32_t> order;   // order[k]: the index of the k-th smallest value
     std::vector<double> gaussian;  // per value of the input, its Gaussian
 
     Gaussianiser(const std::vector<float>& values, int threads);
-    // Ties of values (quantised input: an 8-bit painting has plateaus) broken by `order`, e.g. a smoothed
-    // copy of the map, so a smooth field stays smooth in the Gaussian domain instead of becoming steps.
-    Gaussianiser(const std::vector<float>& values, const std::vector<float>& order, int threads);
     // The value whose rank's quantile is g, interpolated between neighbouring sorted values.
-    float back(double g) const { return backThrough(sorted, g); }
-    // The same through another increasing list of as many values.
-    static float backThrough(const std::vector<float>& increasing, double g);
+    float back(double g) const;
 };
 
 }  // namespace heightpack::detail
