@@ -76,12 +76,14 @@ Status stripJpegMetadata(const std::string& path, std::vector<unsigned char>& by
         return badInput(path, "is a damaged JPEG: " + what, "export it again");
     };
     while (true) {
-        // Bytes before a marker are skipped, as libjpeg skips them (with a warning): a file that decodes
-        // elsewhere decodes here.
+        // Markers are found exactly as libjpeg's next_marker finds them, so that the segments dropped here
+        // are the ones it would have read: bytes before a 0xFF are skipped (a file that decodes elsewhere
+        // decodes here), then fill bytes, and a 0xFF 0x00 is no marker at all: the search goes on.
         while (at < n && bytes[at] != 0xFF) ++at;
         while (at < n && bytes[at] == 0xFF) ++at;  // fill bytes
         if (at >= n) return damaged("it ends before its first scan");
         const unsigned marker = bytes[at++];
+        if (marker == 0x00) continue;
         const bool standalone = marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8);
         if (standalone) {
             out.push_back(0xFF), out.push_back(static_cast<unsigned char>(marker));

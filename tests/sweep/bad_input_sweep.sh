@@ -80,8 +80,8 @@ b64 iVBORw0KGgoAAAANSUhEUgAAABAAAAAQCAAAAAA6mKC9AAAAt0lEQat4nGNgYOcTlVHWMrSwd/MN
   for i in $(seq 0 255); do printf "\\$(printf %03o "$i")\\$(printf %03o "$i")\\$(printf %03o "$i")\\0"; done
   printf '\004\012\0\0\004\310\0\001'; } > rle.bmp
 head -c 100 rle.bmp > cutrle.bmp
-cp "$HOSTILE"/load_image-oom-* "$HOSTILE"/tiff_huge_alloc.tif "$HOSTILE"/png_text_chunk_oom.png "$HOSTILE"/exr_negative_seek.exr .
-HOSTILE_MAPS=(load_image-oom-*.dpx load_image-oom-*.exr load_image-oom-*.png tiff_huge_alloc.tif png_text_chunk_oom.png exr_negative_seek.exr)
+cp "$HOSTILE"/load_image-oom-* "$HOSTILE"/tiff_huge_alloc.tif "$HOSTILE"/png_text_chunk_oom.png "$HOSTILE"/exr_negative_seek.exr "$HOSTILE"/jpeg_stuffed_zero_iptc.jpg .
+HOSTILE_MAPS=(load_image-oom-*.dpx load_image-oom-*.exr load_image-oom-*.png tiff_huge_alloc.tif png_text_chunk_oom.png exr_negative_seek.exr jpeg_stuffed_zero_iptc.jpg)
 printf 'GIF89a\001\000\001\000\000\000\000;' > a.gif   # a format heightpack does not read
 # A map whose sides are not powers of two: the first 3 rows of good.png are not a PNG, so crop via tile's
 # mirror of a 1-row... simplest: synth refuses non-powers of two, so use a PFM 3x3.
