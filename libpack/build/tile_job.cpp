@@ -43,6 +43,11 @@ bool exactIn(const Image& map, int bits) {
     });
 }
 
+double span(const Image& map) {
+    const auto [low, high] = std::minmax_element(map.pixels.begin(), map.pixels.end());
+    return double(*high) - *low;
+}
+
 // How a result will be stored: the type asked for, else the input's (a PNG holds no floats: 16 bits there),
 // widened to float where an integer type would clip (or round a map that should stay unchanged) and the
 // format holds floats; `storable` is false where it cannot be stored faithfully at all.
@@ -80,11 +85,12 @@ struct Storage {
 // with the next seed, the last two with a band half as wide again and then twice the first; then, for maps
 // a Gaussian field does not describe (a few pure waves whose periods do not divide the tile), Moisan's
 // periodic component with the edge slopes bent together, then Moisan's component and the map crossfaded over
-// the crossfade width and over a fifth of the tile, judged by their seams alone (the shell warns when their look does not pass). The last is returned when none passes, and
-// the caller writes nothing. `judged` is the verdict on the returned
-// candidate as stored.
+// the crossfade width and over a fifth of the tile, judged by their seams alone (the shell warns when their
+// look does not pass). No candidate may stretch the height span past 1.5x the input's. The last is returned
+// when none passes, and the caller writes nothing. `judged` (and `looked`, when the look was judged) is the
+// verdict on the returned candidate as stored, so the caller need not judge it again.
 Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, const Storage& storage,
-                  TileReport& report, std::optional<ChainSeams>& judged) {
+                  TileReport& report, std::optional<ChainSeams>& judged, std::optional<TileLook>& looked) {
     report.methodUsed = tileMethodName(options.method);
     report.crossfadeWidth = options.width;
     switch (options.method) {
@@ -93,17 +99,20 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         case TileMethod::Mirror: return mirrorTile(map);
         case TileMethod::Periodic: break;
     }
+    const double maxSpan = 1.5 * span(map);
     bool lookRequired = true;
     auto acceptable = [&](const Image& candidate) {
         judged.reset();
+        looked.reset();
         const Storage::Choice c = storage.choose(candidate, false);
-        if (!c.storable) return false;
+        if (!c.storable || span(candidate) > maxSpan) return false;
         SeamOptions stored = seamOptions;
         stored.quantum = Storage::quantum(c.bits);
         const Image asStored = Storage::rounded(candidate, c.bits);
         judged = measureChainSeams(seamChain(asStored, options.mip), options.threshold, stored);
-        return judged->tiles() &&
-               (!lookRequired || measureTileLook(asStored, {&map, options.mip.threads}).passes(options.look));
+        if (!judged->tiles() || !lookRequired) return judged->tiles();
+        looked = measureTileLook(asStored, {&map, options.mip.threads});
+        return looked->passes(options.look);
     };
     ResynthesisOptions resynthesis;
     resynthesis.quantum = seamOptions.quantum;
@@ -191,7 +200,8 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     storage.floatFormat = holdsFloat(ext);
     if (storage.bits == 32 && !storage.floatFormat) storage.bits = 16;
     std::optional<ChainSeams> judged;
-    Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, storage, report, judged);
+    std::optional<TileLook> looked;
+    Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, storage, report, judged, looked);
     if (report.alreadyTiled) report.methodUsed = "none";
     progress("tile", 1.0);
     report.width = result.width;
@@ -226,7 +236,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
         report.after = measureChainSeams(seamChain(result, options.mip), options.threshold, afterOptions);
     }
     report.lookThresholds = options.look;
-    report.look = measureTileLook(result, {&map, options.mip.threads});
+    report.look = looked ? *looked : measureTileLook(result, {&map, options.mip.threads});
     const bool lookCounts = options.method == TileMethod::Periodic && !report.alreadyTiled && report.seed != 0;
     // Mirror tiling breaks slopes at its mirror lines by design (the help says so): it is written when its
     // heights meet, and the report still shows the kinks.
