@@ -45,7 +45,7 @@ void scoreChain(const std::vector<Image>& chain, const SeamOptions& seamOptions,
     report.worst.width = chain[0].width;
     report.worst.height = chain[0].height;
     if (report.packing && !report.packing->consistent) report.tiles = false;
-    report.look = measureTileLook(chain[0], {nullptr, seamOptions.threads});
+    report.look = measureTileLook(chain[0], {nullptr, seamOptions.threads, std::nullopt});
     report.lookThresholds = options.look;
     report.lookFails = options.lookFails;
 }

@@ -101,6 +101,7 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
     }
     const double maxSpan = 1.5 * span(map);
     bool lookRequired = true;
+    LookOptions lookOptions{&map, options.mip.threads, std::nullopt};
     auto acceptable = [&](const Image& candidate) {
         judged.reset();
         looked.reset();
@@ -111,7 +112,8 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         const Image asStored = Storage::rounded(candidate, c.bits);
         judged = measureChainSeams(seamChain(asStored, options.mip), options.threshold, stored);
         if (!judged->tiles() || !lookRequired) return judged->tiles();
-        looked = measureTileLook(asStored, {&map, options.mip.threads});
+        if (!lookOptions.sourceEcho) lookOptions.sourceEcho = sourceEchoOf(map, options.mip.threads);
+        looked = measureTileLook(asStored, lookOptions);
         return looked->passes(options.look);
     };
     ResynthesisOptions resynthesis;
@@ -236,7 +238,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
         report.after = measureChainSeams(seamChain(result, options.mip), options.threshold, afterOptions);
     }
     report.lookThresholds = options.look;
-    report.look = looked ? *looked : measureTileLook(result, {&map, options.mip.threads});
+    report.look = looked ? *looked : measureTileLook(result, {&map, options.mip.threads, std::nullopt});
     const bool lookCounts = options.method == TileMethod::Periodic && !report.alreadyTiled && report.seed != 0;
     // Mirror tiling breaks slopes at its mirror lines by design (the help says so): it is written when its
     // heights meet, and the report still shows the kinks.

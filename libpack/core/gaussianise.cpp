@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "heightpack/core/parallel.hpp"
 
@@ -10,6 +11,32 @@ namespace heightpack::detail {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+}
+
+std::vector<uint32_t> stableOrder(const std::vector<float>& values) {
+    const size_t n = values.size();
+    // A float's bits as an unsigned key that sorts as the float does (negatives flipped, positives with
+    // the sign bit set); -0 counts as +0, as comparison has it.
+    auto key = [](float v) {
+        uint32_t u;
+        const float canonical = v == 0.0f ? 0.0f : v;
+        std::memcpy(&u, &canonical, sizeof u);
+        return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+    };
+    std::vector<uint64_t> items(n), scratch(n);  // key << 32 | index
+    for (size_t i = 0; i < n; ++i) items[i] = uint64_t(key(values[i])) << 32 | i;
+    constexpr int kBits = 11, kBuckets = 1 << kBits;
+    for (int shift = 32; shift < 64; shift += kBits) {
+        std::vector<size_t> start(kBuckets + 1, 0);
+        for (uint64_t item : items) ++start[((item >> shift) & (kBuckets - 1)) + 1];
+        if (std::find(start.begin() + 1, start.end(), n) != start.end()) continue;  // one bucket: no change
+        for (int b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
+        for (uint64_t item : items) scratch[start[(item >> shift) & (kBuckets - 1)]++] = item;
+        items.swap(scratch);
+    }
+    std::vector<uint32_t> order(n);
+    for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(items[i]);
+    return order;
 }
 
 double normalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
@@ -46,26 +73,10 @@ double inverseNormalCdf(double p) {
 Gaussianiser::Gaussianiser(const std::vector<float>& values, int threads) : sorted(values.size()), gaussian(values.size()) {
     const size_t n = values.size();
     if (n == 0) return;
-    // (value, index) pairs are all distinct, so any sort of them gives the same order: chunks sorted on
-    // their own threads, then merged pairwise.
-    struct Key {
-        float value;
-        uint32_t index;
-        bool operator<(const Key& o) const { return value != o.value ? value < o.value : index < o.index; }
-    };
-    std::vector<Key> order(n);
-    for (size_t i = 0; i < n; ++i) order[i] = {values[i], static_cast<uint32_t>(i)};
-    const int chunks = std::max(1, std::min<int>(resolveThreadCount(threads), static_cast<int>(n / 65536)));
-    std::vector<size_t> bounds(chunks + 1);
-    for (int c = 0; c <= chunks; ++c) bounds[c] = n * c / chunks;
-    parallelFor(chunks, threads, [&](int begin, int end) {
-        for (int c = begin; c < end; ++c) std::sort(order.begin() + bounds[c], order.begin() + bounds[c + 1]);
-    });
-    for (size_t width = 1; width < size_t(chunks); width *= 2)
-        for (size_t c = 0; c + width < size_t(chunks); c += 2 * width)
-            std::inplace_merge(order.begin() + bounds[c], order.begin() + bounds[c + width],
-                               order.begin() + bounds[std::min(c + 2 * width, size_t(chunks))]);
-    for (size_t i = 0; i < n; ++i) sorted[i] = order[i].value;
+    // The order of (value, index) pairs, by value then index: a stable radix sort of the values' bits,
+    // which keeps the index order of equal values (and is ~10x std::sort's time on millions of texels).
+    const std::vector<uint32_t> order = stableOrder(values);
+    for (size_t i = 0; i < n; ++i) sorted[i] = values[order[i]];
     // Runs of equal values share their mid-rank's quantile; the quantiles are computed on all threads.
     std::vector<std::pair<size_t, size_t>> runs;
     for (size_t start = 0; start < n;) {
@@ -78,7 +89,7 @@ Gaussianiser::Gaussianiser(const std::vector<float>& values, int threads) : sort
         for (int r = begin; r < end; ++r) {
             const auto [start, stop] = runs[r];
             const double g = inverseNormalCdf((0.5 * double(start + stop - 1) + 0.5) / double(n));
-            for (size_t k = start; k < stop; ++k) gaussian[order[k].index] = g;
+            for (size_t k = start; k < stop; ++k) gaussian[order[k]] = g;
         }
     });
 }

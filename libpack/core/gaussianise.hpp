@@ -2,17 +2,21 @@
 // re-synthesis of tile_fix.cpp and tile_resynthesis.cpp.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 namespace heightpack::detail {
+
+// The permutation that sorts values (finite, fewer than 2^32) by value, equal values in index order.
+std::vector<uint32_t> stableOrder(const std::vector<float>& values);
 
 // The standard normal CDF and its inverse (Acklam's approximation refined by a Halley step, ~1e-15).
 double normalCdf(double x);
 double inverseNormalCdf(double p);
 
 // Each value to the standard normal quantile of its (mid-)rank, so equal values map to equal Gaussians;
-// and back through the sorted values. The sort runs on `threads` threads (0 = all cores) and gives the
-// same result on any number.
+// and back through the sorted values. The quantiles are computed on `threads` threads (0 = all cores),
+// with the same result on any number.
 struct Gaussianiser {
     std::vector<float> sorted;     // the values in increasing order
     std::vector<double> gaussian;  // per value of the input, its Gaussian

@@ -1,12 +1,18 @@
 #include "heightpack/core/image.hpp"
 
+#include <algorithm>
+
 namespace heightpack {
 
 Image transposed(const Image& image) {
     assert(image.channels == 1);
     Image out(image.height, image.width, 1);
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) out.at(y, x) = image.at(x, y);
+    // In 64 x 64 blocks: a plain loop writes every texel of a column to another cache line.
+    constexpr int kBlock = 64;
+    for (int by = 0; by < image.height; by += kBlock)
+        for (int bx = 0; bx < image.width; bx += kBlock)
+            for (int y = by; y < std::min(by + kBlock, image.height); ++y)
+                for (int x = bx; x < std::min(bx + kBlock, image.width); ++x) out.at(y, x) = image.at(x, y);
     return out;
 }
 

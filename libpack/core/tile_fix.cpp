@@ -10,6 +10,7 @@
 
 #include "heightpack/core/tileable.hpp"
 
+#include "dft.hpp"
 #include "gaussianise.hpp"
 
 namespace heightpack {
@@ -50,8 +51,7 @@ Image moisanPeriodic(const Image& map, bool relativeToSlope) {
     }
     // The smooth field s solves the periodic Poisson equation laplacian(s) = v with zero mean; the map
     // minus s has, everywhere, the Laplacian of the map's interior: no seam, and its mean kept.
-    cv::Mat spectrum;
-    cv::dft(v, spectrum, cv::DFT_COMPLEX_OUTPUT);
+    cv::Mat spectrum = detail::forwardDft(v, 0);
     for (int r = 0; r < h; ++r) {
         for (int q = 0; q < w; ++q) {
             auto& z = spectrum.at<cv::Vec2d>(r, q);
@@ -65,7 +65,7 @@ Image moisanPeriodic(const Image& map, bool relativeToSlope) {
         }
     }
     cv::Mat smooth;
-    cv::dft(spectrum, smooth, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    detail::inverseDft(spectrum, smooth, 0);
     Image out(w, h, 1);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) out.at(x, y) = static_cast<float>(map.at(x, y) - smooth.at<double>(y, x));
@@ -160,17 +160,17 @@ Image crossfadeTile(const Image& map, double width, CrossfadeBlend blend) {
     // weights whose squares sum to one, so fine contrast is kept in the band (Heitz & Neyret) without the
     // lows swelling by up to sqrt(2).
     const detail::Gaussianiser g(map.pixels, 0);
-    cv::Mat field(h, w, CV_64F), spectrum, low;
+    cv::Mat field(h, w, CV_64F), low;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) field.at<double>(y, x) = g.gaussian[size_t(y) * w + x];
-    cv::dft(field, spectrum, cv::DFT_COMPLEX_OUTPUT);
+    cv::Mat spectrum = detail::forwardDft(field, 0);
     const double sigma = std::max(1.0, width * std::min(w, h) / 3.0);
     for (int r = 0; r < h; ++r)
         for (int q = 0; q < w; ++q) {
             const double fx = double(std::min(q, w - q)) / w, fy = double(std::min(r, h - r)) / h;
             spectrum.at<cv::Vec2d>(r, q) *= std::exp(-2 * kPi * kPi * sigma * sigma * (fx * fx + fy * fy));
         }
-    cv::dft(spectrum, low, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    detail::inverseDft(spectrum, low, 0);
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const double ax = smoothstep(width, double(std::min(x, w - 1 - x)) / w);

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <vector>
 
+#include "heightpack/core/parallel.hpp"
 #include "heightpack/core/tileable.hpp"
 
+#include "dft.hpp"
 #include "field.hpp"
 
 namespace heightpack {
@@ -19,32 +21,36 @@ constexpr double kPi = 3.14159265358979323846;
 
 using Grid = detail::Field;
 
-cv::Mat spectrumOf(const Image& map) {
+cv::Mat spectrumOf(const Image& map, int threads) {
     cv::Mat m(map.height, map.width, CV_64F);
     for (int y = 0; y < map.height; ++y)
         for (int x = 0; x < map.width; ++x) m.at<double>(y, x) = map.at(x, y);
-    cv::Mat spectrum;
-    cv::dft(m, spectrum, cv::DFT_COMPLEX_OUTPUT);
-    return spectrum;
-}
-
-// The map filtered periodically with a radial gain g(f), f in cycles per texel.
-template <class Gain>
-Grid filtered(const cv::Mat& spectrum, Gain gain) {
-    const int h = spectrum.rows, w = spectrum.cols;
-    cv::Mat s = spectrum.clone();
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const double fx = double(std::min(x, w - x)) / w, fy = double(std::min(y, h - y)) / h;
-            s.at<cv::Vec2d>(y, x) *= gain(std::sqrt(fx * fx + fy * fy));
-        }
-    Grid out(w, h);
-    cv::Mat m(h, w, CV_64F, out.v.data());
-    cv::dft(s, m, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
-    return out;
+    return detail::forwardDft(m, threads);
 }
 
 double gaussianGain(double f, double sigma) { return std::exp(-2 * kPi * kPi * sigma * sigma * f * f); }
+
+// The map filtered periodically with a difference of Gaussians of sigmas fine < coarse (texels): a band
+// pass. Each Gaussian's gain is the product of its gains along x and y, so no exponential per texel.
+Grid bandPassed(const cv::Mat& spectrum, double fine, double coarse, int threads) {
+    const int h = spectrum.rows, w = spectrum.cols;
+    auto gains = [](int n, double sigma) {
+        std::vector<double> g(n);
+        for (int i = 0; i < n; ++i) g[i] = gaussianGain(double(std::min(i, n - i)) / n, sigma);
+        return g;
+    };
+    const std::vector<double> fineX = gains(w, fine), fineY = gains(h, fine), coarseX = gains(w, coarse), coarseY = gains(h, coarse);
+    cv::Mat s(h, w, CV_64FC2);
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y)
+            for (int x = 0; x < w; ++x)
+                s.at<cv::Vec2d>(y, x) = spectrum.at<cv::Vec2d>(y, x) * (fineX[x] * fineY[y] - coarseX[x] * coarseY[y]);
+    });
+    Grid out(w, h);
+    cv::Mat m(h, w, CV_64F, out.v.data());
+    detail::inverseDft(s, m, threads);
+    return out;
+}
 
 // Torus distance between offsets a and b on a circle of n.
 int circularDistance(int a, int n) {
@@ -115,18 +121,30 @@ std::vector<double> rowMeans(const Grid& g) {
     return r;
 }
 
+// A summed-area table of q tiled 2x2, so that the sum over any circular square is four lookups.
+struct TiledSums {
+    int w, h;
+    std::vector<double> sat;
+    explicit TiledSums(const Grid& q) : w(q.w), h(q.h), sat(size_t(2 * q.w + 1) * (2 * q.h + 1), 0.0) {
+        for (int y = 0; y < 2 * h; ++y)
+            for (int x = 0; x < 2 * w; ++x) at(x + 1, y + 1) = q.at(x % w, y % h) + at(x, y + 1) + at(x + 1, y) - at(x, y);
+    }
+    double& at(int x, int y) { return sat[size_t(y) * (2 * w + 1) + x]; }
+    double at(int x, int y) const { return sat[size_t(y) * (2 * w + 1) + x]; }
+    // The sum over the side x side square whose corner is (x0, y0), both taken modulo the tile.
+    double square(int x0, int y0, int side) const {
+        x0 = (x0 % w + w) % w;
+        y0 = (y0 % h + h) % h;
+        return at(x0 + side, y0 + side) - at(x0, y0 + side) - at(x0 + side, y0) + at(x0, y0);
+    }
+};
+
 // The largest |z| of the mean of q over squares of half-side s centred on the tile corner (0, 0), against
 // squares centred on every point at least an eighth of the tile from both grid lines.
-double cornerScore(const Grid& q, int half) {
-    const int w = q.w, h = q.h;
-    // A summed-area table of q tiled 2x2, so any circular square is one lookup.
-    std::vector<double> sat(size_t(2 * w + 1) * (2 * h + 1), 0.0);
-    auto s = [&](int x, int y) -> double& { return sat[size_t(y) * (2 * w + 1) + x]; };
-    for (int y = 0; y < 2 * h; ++y)
-        for (int x = 0; x < 2 * w; ++x) s(x + 1, y + 1) = q.at(x % w, y % h) + s(x, y + 1) + s(x + 1, y) - s(x, y);
+double cornerScore(const TiledSums& sums, int half) {
+    const int w = sums.w, h = sums.h, side = 2 * half;
     auto square = [&](int cx, int cy) {
-        const int x0 = ((cx - half) % w + w) % w, y0 = ((cy - half) % h + h) % h, side = 2 * half;
-        return std::sqrt(std::max(0.0, (s(x0 + side, y0 + side) - s(x0, y0 + side) - s(x0 + side, y0) + s(x0, y0)) / (double(side) * side)));
+        return std::sqrt(std::max(0.0, sums.square(cx - half, cy - half, side) / (double(side) * side)));
     };
     std::vector<double> null;
     const int step = std::max(1, half / 4);
@@ -152,7 +170,7 @@ struct Spectra {
     Spectra(int w, int h) : power(w, h), smooth(w, h) {}
 };
 
-Spectra spectraOf(const cv::Mat& spectrum) {
+Spectra spectraOf(const cv::Mat& spectrum, int threads) {
     const int h = spectrum.rows, w = spectrum.cols;
     Spectra out(w, h);
     Grid& power = out.power;
@@ -164,41 +182,45 @@ Spectra spectraOf(const cv::Mat& spectrum) {
         }
     // Smoothed over 5x5 frequency bins (a box, three times each way, circular).
     smooth = power;
+    Grid next(w, h);
     for (int pass = 0; pass < 3; ++pass) {
-        Grid next(w, h);
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                double sum = 0;
-                for (int d = -2; d <= 2; ++d) sum += smooth.at((x + d + w) % w, y);
-                next.at(x, y) = sum / 5;
-            }
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                double sum = 0;
-                for (int d = -2; d <= 2; ++d) sum += next.at(x, (y + d + h) % h);
-                smooth.at(x, y) = sum / 5;
-            }
+        parallelFor(h, threads, [&](int begin, int end) {
+            for (int y = begin; y < end; ++y)
+                for (int x = 0; x < w; ++x) {
+                    double sum = 0;
+                    for (int d = -2; d <= 2; ++d) sum += smooth.at((x + d + w) % w, y);
+                    next.at(x, y) = sum / 5;
+                }
+        });
+        parallelFor(h, threads, [&](int begin, int end) {
+            for (int y = begin; y < end; ++y)
+                for (int x = 0; x < w; ++x) {
+                    double sum = 0;
+                    for (int d = -2; d <= 2; ++d) sum += next.at(x, (y + d + h) % h);
+                    smooth.at(x, y) = sum / 5;
+                }
+        });
     }
     return out;
 }
 
 }  // namespace
 
-double echoOf(const Image& map) {
+double echoOf(const Image& map, int threads) {
     const int w = map.width, h = map.height;
     if (w < 64 || h < 64) return 0.0;
     // The autocorrelation of the map whitened by its own smoothed spectrum: a stationary field's structure
     // (smooth, directional, large or small scaled) divides out, leaving a spike at lag 0 and noise of about
     // 1/sqrt(texels); a feature repeated at lag L multiplies the spectrum by 1 + cos(k.L), an oscillation
     // finer than the smoothing, which stays and becomes a peak at L.
-    const Spectra s = spectraOf(spectrumOf(map));
+    const Spectra s = spectraOf(spectrumOf(map, threads), threads);
     cv::Mat whitened(h, w, CV_64FC2);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             whitened.at<cv::Vec2d>(y, x) =
                 cv::Vec2d(s.smooth.at(x, y) > 0 ? s.power.at(x, y) / s.smooth.at(x, y) : 0.0, 0.0);
     cv::Mat correlation;
-    cv::dft(whitened, correlation, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    detail::inverseDft(whitened, correlation, threads);
     const double zero = correlation.at<double>(0, 0);
     if (!(zero > 0)) return 0.0;
     double worst = -1.0;
@@ -209,6 +231,13 @@ double echoOf(const Image& map) {
     return worst;
 }
 
+double sourceEchoOf(const Image& input, int threads) {
+    if (input.width < 64 || input.height < 64) return 0.0;
+    Image source = input.channels == 1 ? input : selectChannels(input, {0});
+    while (source.width > 2048 || source.height > 2048) source = halved(source);
+    return std::max(0.0, echoOf(periodicComponent(source, PeriodicContinuity::Heights), threads));
+}
+
 TileLook measureTileLook(const Image& input, const LookOptions& options) {
     TileLook look;
     Image map = input.channels == 1 ? input : selectChannels(input, {0});
@@ -216,14 +245,14 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
     const int w = map.width, h = map.height;
     if (w < 64 || h < 64) return look;
     look.measured = true;
-    const cv::Mat spectrum = spectrumOf(map);
+    const cv::Mat spectrum = spectrumOf(map, options.threads);
     const int reachX = std::max(4, w / 8), reachY = std::max(4, h / 8);
 
     // Frame: band-pass energy in octaves, from 1-2 texels up to 1/64-1/32 of the tile (a smooth painting's
     //        detail is far coarser than a texel, and a frame is a loss or excess of its contrast).
     for (double fine = 1.0; fine == 1.0 || 2 * fine <= std::max(w, h) / 32.0; fine *= 2) {
         const double coarse = 2 * fine;
-        Grid energy = filtered(spectrum, [&](double f) { return gaussianGain(f, fine) - gaussianGain(f, coarse); });
+        Grid energy = bandPassed(spectrum, fine, coarse, options.threads);
         for (double& v : energy.v) v *= v;
         look.frame = std::max({look.frame, ringScore(columnMeans(energy), reachX, 0.0),
                                ringScore(rowMeans(energy), reachY, 0.0)});
@@ -232,24 +261,20 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
     //        low-pass of the detail: a red-noise map's swell, far larger, would make every place unlike
     //        every other).
     const double large = std::max(w, h) / 32.0, small = std::max(1.0, std::max(w, h) / 128.0);
-    Grid q = filtered(spectrum, [&](double f) { return gaussianGain(f, small) - gaussianGain(f, large); });
+    Grid q = bandPassed(spectrum, small, large, options.threads);
     double mean = 0, var = 0;
     for (double v : q.v) mean += v;
     mean /= double(q.v.size());
     for (double v : q.v) var += (v - mean) * (v - mean);
     const double sd = std::sqrt(var / double(q.v.size()));
     for (double& v : q.v) v = sd > 1e-12 ? ((v - mean) / sd) * ((v - mean) / sd) : 0.0;
+    const TiledSums sums(q);
     look.blobs = std::max({ringScore(columnMeans(q), reachX, 0.05), ringScore(rowMeans(q), reachY, 0.05),
-                           cornerScore(q, std::max(2, std::min(w, h) / 32)), cornerScore(q, std::max(2, std::min(w, h) / 16))});
+                           cornerScore(sums, std::max(2, std::min(w, h) / 32)), cornerScore(sums, std::max(2, std::min(w, h) / 16))});
     // Echo, less the source's own (of its periodic component: its seams would echo along their lines).
-    look.echo = echoOf(map);
-    if (options.source && options.source->width >= 64 && options.source->height >= 64) {
-        Image source = options.source->channels == 1 ? *options.source : selectChannels(*options.source, {0});
-        while (source.width > 2048 || source.height > 2048) source = halved(source);
-        look.echoBaseline = std::max(0.0, echoOf(periodicComponent(source, PeriodicContinuity::Heights)));
-        look.echo -= look.echoBaseline;
-    }
-    (void)options.threads;
+    look.echo = echoOf(map, options.threads);
+    look.echoBaseline = options.sourceEcho ? *options.sourceEcho : options.source ? sourceEchoOf(*options.source, options.threads) : 0.0;
+    look.echo -= look.echoBaseline;
     return look;
 }
 

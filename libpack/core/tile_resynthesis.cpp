@@ -11,8 +11,10 @@
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/core/tileable.hpp"
 
+#include "dft.hpp"
 #include "field.hpp"
 #include "gaussianise.hpp"
+#include "smoothing.hpp"
 
 namespace heightpack {
 
@@ -23,12 +25,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 using detail::Field;
 
-Field transposedField(const Field& f) {
-    Field t(f.h, f.w);
-    for (int y = 0; y < f.h; ++y)
-        for (int x = 0; x < f.w; ++x) t.at(y, x) = f.at(x, y);
-    return t;
-}
+enum class Axis { X, Y };
 
 // A standard normal value for (seed, index) alone (SplitMix64, Box-Muller): the same noise on any thread.
 double whiteNoise(uint64_t seed, uint64_t index) {
@@ -53,7 +50,7 @@ struct GaussianModel {
 // noise: the variance of the input's quantisation, in the Gaussian domain: white noise that the map holds
 // as terraces and a sample would show as grain. Its level is taken off the power spectrum, so the model is
 // of the field the quantised map samples, and the kriging treats it as measurement noise (a nugget).
-GaussianModel modelOf(Field p, double noise, uint64_t seed) {
+GaussianModel modelOf(Field p, double noise, uint64_t seed, int threads) {
     const int w = p.w, h = p.h;
     const double n = double(w) * h;
     double mean = 0;
@@ -61,29 +58,29 @@ GaussianModel modelOf(Field p, double noise, uint64_t seed) {
     mean /= n;
     for (double& x : p.v) x -= mean;
     GaussianModel model(w, h);
-    cv::Mat spectrum, power, noiseSpectrum;
-    cv::dft(p.mat(), spectrum, cv::DFT_COMPLEX_OUTPUT);
-    power = spectrum.clone();
+    cv::Mat spectrum = detail::forwardDft(p.mat(), threads), noiseSpectrum;
+    cv::Mat power(h, w, CV_64FC2);
     const double floor = n * noise;  // the expected |A(k)|^2 of white noise of that variance
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            auto& z = power.at<cv::Vec2d>(y, x);
             auto& a = spectrum.at<cv::Vec2d>(y, x);
-            const double raw = z[0] * z[0] + z[1] * z[1], clean = std::max(raw - floor, 0.0);
-            z = cv::Vec2d(clean, 0.0);
+            const double raw = a[0] * a[0] + a[1] * a[1], clean = std::max(raw - floor, 0.0);
+            power.at<cv::Vec2d>(y, x) = cv::Vec2d(clean, 0.0);
             const double gain = raw > 0 ? std::sqrt(clean / raw) : 0.0;
             a = cv::Vec2d(a[0] * gain, a[1] * gain);
         }
     cv::Mat covariance = model.covariance.mat();
-    cv::dft(power, covariance, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    detail::inverseDft(power, covariance, threads);
     model.covariance.mat() /= n;  // covariance is a view of model.covariance.v: dft wrote in place
     power.release();
     Field white(w, h);
-    for (size_t i = 0; i < white.v.size(); ++i) white.v[i] = whiteNoise(seed, i);
-    cv::dft(white.mat(), noiseSpectrum, cv::DFT_COMPLEX_OUTPUT);
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (size_t i = size_t(begin) * w; i < size_t(end) * w; ++i) white.v[i] = whiteNoise(seed, i);
+    });
+    noiseSpectrum = detail::forwardDft(white.mat(), threads);
     cv::mulSpectrums(spectrum, noiseSpectrum, noiseSpectrum, 0);
     cv::Mat sample = model.sample.mat();
-    cv::dft(noiseSpectrum, sample, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    detail::inverseDft(noiseSpectrum, sample, threads);
     model.sample.mat() /= std::sqrt(n);
     return model;
 }
@@ -141,26 +138,31 @@ double quantisationNoise(const std::vector<float>& sorted) {
     return variance;
 }
 
-// Replaces the `band` columns around the wrap line between column w-1 and column 0 of field (which must
-// wrap top to bottom) with the model's sample conditioned on `context` columns on each side.
-void resynthesiseColumns(Field& field, const GaussianModel& model, int band, int context, double noise, int threads) {
-    const int w = field.w, h = field.h, c = context, strip = band + 2 * context;
-    const int first = w - band / 2 - context;  // the strip's first column, modulo w
+// Replaces the `band` columns (Axis::X; rows for Axis::Y) around the wrap line between the last and the
+// first with the model's sample conditioned on `context` lines on each side. The field must wrap along
+// the lines. In the loops below, u runs across the lines and v along them.
+void resynthesiseLines(Field& field, const GaussianModel& model, Axis axis, int band, int context, double noise, int threads) {
+    const bool across = axis == Axis::X;
+    const int w = across ? field.w : field.h, h = across ? field.h : field.w, c = context, strip = band + 2 * context;
+    auto at = [&](const Field& f, int u, int v) { return across ? f.at(u, v) : f.at(v, u); };
+    auto set = [&](int u, int v) -> double& { return across ? field.at(u, v) : field.at(v, u); };
+    const int first = w - band / 2 - context;  // the strip's first line, modulo w
     auto column = [&](int local) { return ((first + local) % w + w) % w; };
     double mean = 0;
-    for (double x : field.v) mean += x;
+    for (int v = 0; v < h; ++v)
+        for (int u = 0; u < w; ++u) mean += at(field, u, v);
     mean /= double(field.v.size());
-    // The covariance between columns dx apart, per vertical frequency: dft of C's column dx along y.
-    const cv::Mat covHat = rowSpectra(strip, h, [&](int dx, int dy) { return model.covariance.at(dx % w, dy); });
+    // The covariance between lines du apart, per frequency along them: dft of C's line du.
+    const cv::Mat covHat = rowSpectra(strip, h, [&](int du, int dv) { return at(model.covariance, du % w, dv); });
     auto cov = [&](int dx, int ky) {
         const cv::Vec2d z = covHat.at<cv::Vec2d>(std::abs(dx), ky);
         return dx >= 0 ? Complex(z[0], z[1]) : Complex(z[0], -z[1]);  // C(-dx, dy) = C(dx, -dy)
     };
     const int conditioning = 2 * c;
-    auto local = [&](int k) { return k < c ? k : band + k; };  // context column k's place in the strip
+    auto local = [&](int k) { return k < c ? k : band + k; };  // context line k's place in the strip
     const cv::Mat residual = rowSpectra(conditioning, h, [&](int k, int y) {
         const int x = column(local(k));
-        return field.at(x, y) - mean - model.sample.at(x, y);
+        return at(field, x, y) - mean - at(model.sample, x, y);
     });
     const double nugget = noise + 1e-7 * std::max(model.covariance.at(0, 0), 1e-12);
     const int half = h / 2;
@@ -187,14 +189,14 @@ void resynthesiseColumns(Field& field, const GaussianModel& model, int band, int
     cv::dft(kriged, values, cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
     for (int m = 0; m < band; ++m) {
         const int x = column(c + m);
-        for (int y = 0; y < h; ++y) field.at(x, y) = mean + model.sample.at(x, y) + values.at<double>(m, y);
+        for (int y = 0; y < h; ++y) set(x, y) = mean + at(model.sample, x, y) + values.at<double>(m, y);
     }
 }
 
 // Moisan's smooth field of the jumps across the top/bottom wrap line alone: periodic in both directions,
 // harmonic but at that line, where it carries the jump. Taking it off makes field wrap top to bottom
 // without touching the left/right wrap line, as the left/right band's Fourier treatment along y needs.
-Field topBottomSmoothField(const Field& f) {
+Field topBottomSmoothField(const Field& f, int threads) {
     const int w = f.w, h = f.h;
     Field v(w, h);
     for (int x = 0; x < w; ++x) {
@@ -202,25 +204,30 @@ Field topBottomSmoothField(const Field& f) {
         v.at(x, 0) += jump;
         v.at(x, h - 1) -= jump;
     }
-    cv::Mat spectrum;
-    cv::dft(v.mat(), spectrum, cv::DFT_COMPLEX_OUTPUT);
+    cv::Mat spectrum = detail::forwardDft(v.mat(), threads);
+    std::vector<double> cosX(w), cosY(h);
+    for (int q = 0; q < w; ++q) cosX[q] = 2 * std::cos(2 * kPi * q / w);
+    for (int r = 0; r < h; ++r) cosY[r] = 2 * std::cos(2 * kPi * r / h);
     for (int r = 0; r < h; ++r)
         for (int q = 0; q < w; ++q) {
             auto& z = spectrum.at<cv::Vec2d>(r, q);
-            const double denominator = 2 * std::cos(2 * kPi * q / w) + 2 * std::cos(2 * kPi * r / h) - 4;
+            const double denominator = cosX[q] + cosY[r] - 4;
             z = (q == 0 && r == 0) ? cv::Vec2d(0, 0) : cv::Vec2d(z[0] / denominator, z[1] / denominator);
         }
     Field s(w, h);
     cv::Mat out = s.mat();
-    cv::dft(spectrum, out, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    detail::inverseDft(spectrum, out, threads);
     return s;
 }
 
-// Where the slopes along x stop resembling themselves: the lag at which the autocorrelation of the
-// x-difference field falls below 1/e, from the covariance C of the heights.
-double slopeCorrelationLength(const Field& covariance) {
-    const int w = covariance.w;
-    auto c = [&](int dx) { return covariance.at(((dx % w) + w) % w, 0); };
+// Where the slopes along x (or y) stop resembling themselves: the lag at which the autocorrelation of the
+// difference field falls below 1/e, from the covariance C of the heights.
+double slopeCorrelationLength(const Field& covariance, Axis axis) {
+    const int w = axis == Axis::X ? covariance.w : covariance.h;
+    auto c = [&](int d) {
+        const int lag = ((d % w) + w) % w;
+        return axis == Axis::X ? covariance.at(lag, 0) : covariance.at(0, lag);
+    };
     auto d = [&](int dx) { return 2 * c(dx) - c(dx + 1) - c(dx - 1); };
     const double d0 = d(0);
     if (!(d0 > 0)) return 1.0;
@@ -231,47 +238,6 @@ double slopeCorrelationLength(const Field& covariance) {
         previous = r;
     }
     return w / 2.0;
-}
-
-// A Gaussian blur of sigma texels by three box passes each way (O(1) per texel whatever sigma), the map
-// mirrored at its edges: the low-pass whose wrap-line jumps are the large-scale part of the map's.
-Field blurred(const Field& f, double sigma) {
-    const int radius = std::max(1, static_cast<int>(std::lround(std::sqrt(sigma * sigma + 0.25) - 0.5)));
-    auto pass = [&](const Field& in) {
-        Field out(in.w, in.h);
-        const int n = in.w;
-        auto mirror = [&](long i) {
-            while (i < 0 || i >= n) i = i < 0 ? -1 - i : 2L * n - 1 - i;
-            return static_cast<int>(i);
-        };
-        for (int y = 0; y < in.h; ++y) {
-            double sum = 0;
-            for (long i = -radius - 1; i < radius; ++i) sum += in.at(mirror(i), y);
-            for (int x = 0; x < n; ++x) {
-                sum += in.at(mirror(x + radius), y) - in.at(mirror(long(x) - radius - 1), y);
-                out.at(x, y) = sum / (2 * radius + 1);
-            }
-        }
-        return out;
-    };
-    Field x = pass(pass(pass(f)));
-    Field t = transposedField(x);
-    return transposedField(pass(pass(pass(t))));
-}
-
-// A smooth map that rounds back to map: starting from the map, blurred and projected back into each
-// texel's rounding interval [v - q/2, v + q/2], a few times (projections onto convex sets). The plateaus of
-// a quantised gradient become the ramp they were rounded from; no texel leaves its interval.
-std::vector<float> dequantised(const Image& map, double quantum) {
-    Field x(map.width, map.height);
-    x.v.assign(map.pixels.begin(), map.pixels.end());
-    const double half = 0.4999 * quantum;
-    for (int iteration = 0; iteration < 8; ++iteration) {
-        x = blurred(x, 1.5);
-        for (size_t i = 0; i < x.v.size(); ++i)
-            x.v[i] = std::clamp(x.v[i], double(map.pixels[i]) - half, double(map.pixels[i]) + half);
-    }
-    return std::vector<float>(x.v.begin(), x.v.end());
 }
 
 // Beyond the bands the map less a smooth field can pass the map's own extremes (a crop that spans [0,1]
@@ -307,7 +273,7 @@ ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& o
     }
     // 1. Ranks to Gaussians, of the map with its quantisation undone: otherwise a smooth 8-bit painting is a
     //    staircase whose steps the model takes for fine detail, and a sample shows them as grain.
-    const std::vector<float> values = options.quantum > 0 ? dequantised(map, options.quantum) : map.pixels;
+    const std::vector<float> values = options.quantum > 0 ? detail::dequantised(map, options.quantum, options.threads) : map.pixels;
     GaussianModel model(w, h);
     double noise = 0;
     {
@@ -320,10 +286,10 @@ ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& o
         const Image periodic = periodicComponent(gImage, PeriodicContinuity::Heights);
         for (size_t i = 0; i < p.v.size(); ++i) p.v[i] = periodic.pixels[i];
         noise = quantisationNoise(ranks.sorted);
-        model = modelOf(std::move(p), noise, options.seed);
+        model = modelOf(std::move(p), noise, options.seed, options.threads);
     }
-    result.bandX = chooseBand(options.band, slopeCorrelationLength(model.covariance), w);
-    result.bandY = chooseBand(options.band, slopeCorrelationLength(transposedField(model.covariance)), h);
+    result.bandX = chooseBand(options.band, slopeCorrelationLength(model.covariance, Axis::X), w);
+    result.bandY = chooseBand(options.band, slopeCorrelationLength(model.covariance, Axis::Y), h);
     // 2. Large scales, in heights: Moisan's smooth field of a low-pass of the map at the band's scale (at
     //    least 1/16 of the tile: only scales the eye reads as the map's swell; each side of a wrap line
     //    blurred apart, mirrored). Beyond the bands this is the whole change.
@@ -332,9 +298,12 @@ ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& o
         Field heights(w, h);
         heights.v.assign(values.begin(), values.end());
         const double sigma = std::max(0.5 * std::max(result.bandX, result.bandY), std::min(w, h) / 16.0);
-        const Field low = blurred(heights, sigma);
+        {
+            Field scratch(w, h);
+            detail::blur(heights, scratch, sigma, options.threads);
+        }
         Image lowImage(w, h, 1);
-        for (size_t i = 0; i < low.v.size(); ++i) lowImage.pixels[i] = static_cast<float>(low.v[i]);
+        for (size_t i = 0; i < heights.v.size(); ++i) lowImage.pixels[i] = static_cast<float>(heights.v[i]);
         const Image lowPeriodic = periodicComponent(lowImage, PeriodicContinuity::Heights);
         for (size_t i = 0; i < values.size(); ++i) {
             smooth[i] = lowImage.pixels[i] - lowPeriodic.pixels[i];
@@ -344,22 +313,17 @@ ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& o
     const detail::Gaussianiser ranks(corrected, options.threads);
     Field g(w, h);
     g.v = ranks.gaussian;
-    // 3. and 4. The bands, left/right first, then top/bottom on the transposed field.
+    // 3. and 4. The bands, left/right first, then top/bottom.
     const int contextX = std::clamp(result.bandX / 2, 4, 32), contextY = std::clamp(result.bandY / 2, 4, 32);
     if (result.bandX + 2 * contextX <= w) {
         // The left/right band is solved per frequency along y, so its field must wrap top to bottom: the
         // top/bottom jump is set aside meanwhile (the top/bottom band replaces what it touches later).
-        const Field aside = topBottomSmoothField(g);
+        const Field aside = topBottomSmoothField(g, options.threads);
         for (size_t i = 0; i < g.v.size(); ++i) g.v[i] -= aside.v[i];
-        resynthesiseColumns(g, model, result.bandX, contextX, noise, options.threads);
+        resynthesiseLines(g, model, Axis::X, result.bandX, contextX, noise, options.threads);
         for (size_t i = 0; i < g.v.size(); ++i) g.v[i] += aside.v[i];
     }
-    Field gt = transposedField(g);
-    GaussianModel modelT(h, w);
-    modelT.covariance = transposedField(model.covariance);
-    modelT.sample = transposedField(model.sample);
-    if (result.bandY + 2 * contextY <= h) resynthesiseColumns(gt, modelT, result.bandY, contextY, noise, options.threads);
-    g = transposedField(gt);
+    if (result.bandY + 2 * contextY <= h) resynthesiseLines(g, model, Axis::Y, result.bandY, contextY, noise, options.threads);
     // 5. Back to heights through the sorted values. Beyond the bands, the map itself plus the large-scale
     //    change there (so its own fine detail, terraces and all, stays exactly); in the bands, the new
     //    content, which a quantised output rounds to its levels.

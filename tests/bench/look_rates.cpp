@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
         std::vector<TileLook> looks(static_cast<size_t>(count));
         parallelFor(count, [&](int i) {
             const MapSpec spec = drawMap(Family::Periodic, i);
-            looks[i] = measureTileLook(rounded(makeMap(spec), quantumOf(spec.format)), {nullptr, 1});
+            looks[i] = measureTileLook(rounded(makeMap(spec), quantumOf(spec.format)), {nullptr, 1, std::nullopt});
             if (getenv("LOOK_VERBOSE") && (looks[i].frame > 5 || looks[i].blobs > 5))
                 std::printf("  periodic fails: %s frame %.2f blobs %.2f echo %.2f\n", describe(spec).c_str(), looks[i].frame,
                             looks[i].blobs, looks[i].echo);
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
             const double q = quantumOf(spec.format);
             const Image crop = rounded(makeMap(spec), q);
             const Image tiled = method.apply(crop, q);
-            looks[i] = measureTileLook(rounded(tiled, q), {&crop, 1});
+            looks[i] = measureTileLook(rounded(tiled, q), {&crop, 1, std::nullopt});
         });
         row("crop", method.name, looks);
     }

@@ -100,14 +100,14 @@ TEST(TileLook, AFeatureShownTwiceIsAnEchoAndTheSourcesOwnIsNot) {
         EXPECT_LT(plain.echo, kDefaultEchoThreshold) << seed;
         EXPECT_GT(look.echo, kDefaultEchoThreshold) << seed;
         // Judged against itself as the source, the same map has no echo of its own making.
-        EXPECT_LT(measureTileLook(echoed, {&echoed, 0}).echo, 0.02) << seed;
+        EXPECT_LT(measureTileLook(echoed, {&echoed, 0, std::nullopt}).echo, 0.02) << seed;
     }
 }
 
 TEST(TileLook, TheOffsetAndBlendCrossfadeLeavesTheEchoItIsDocumentedToLeave) {
     const MapSpec spec = drawMap(Family::Crop, 3);
     const Image crop = makeMap(spec);
-    const TileLook look = measureTileLook(crossfadeTile(crop, 0.1), {&crop, 0});
+    const TileLook look = measureTileLook(crossfadeTile(crop, 0.1), {&crop, 0, std::nullopt});
     EXPECT_GT(look.echo, kDefaultEchoThreshold) << describe(spec);
 }
 

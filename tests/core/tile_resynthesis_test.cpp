@@ -48,7 +48,7 @@ TEST(Resynthesis, CropsTileAndLookRightAtTheMeasuredRate) {
         const bool ok = levelTiles(measureSeams(tiled, seams));
         tiles += ok;
         EXPECT_TRUE(ok) << describe(spec);
-        const TileLook look = measureTileLook(tiled, {&crop, 0});
+        const TileLook look = measureTileLook(tiled, {&crop, 0, std::nullopt});
         if (!look.measured) continue;
         ++measured;
         looks += look.passes();

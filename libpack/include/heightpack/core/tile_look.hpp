@@ -4,6 +4,8 @@
 // map, so that a map whose tile edges are like any other cut scores like any cut.
 #pragma once
 
+#include <optional>
+
 #include "heightpack/core/image.hpp"
 
 namespace heightpack {
@@ -50,6 +52,8 @@ struct LookOptions {
     // The map a tile was made from: its own echo is subtracted (a map with a repeated feature keeps it).
     const Image* source = nullptr;
     int threads = 0;  // 0 = all cores; the result does not depend on it
+    // sourceEchoOf(*source), when the caller judges several tiles of one source and has measured it once.
+    std::optional<double> sourceEcho;
 };
 
 // The statistics of one level (channel 0), as a tile (periodic). Maps larger than 2048 texels on a side
@@ -57,6 +61,10 @@ struct LookOptions {
 TileLook measureTileLook(const Image& map, const LookOptions& options = {});
 
 // The largest autocorrelation of the whitened map at lags beyond 1/16 of its size (circular).
-double echoOf(const Image& map);
+double echoOf(const Image& map, int threads = 0);
+
+// The echo a tile made from source inherits from it (of its periodic component, at most 2048 texels a
+// side, never below 0): what measureTileLook subtracts as echoBaseline.
+double sourceEchoOf(const Image& source, int threads = 0);
 
 }  // namespace heightpack

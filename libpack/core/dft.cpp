@@ -1,0 +1,66 @@
+#include "dft.hpp"
+
+#include <algorithm>
+
+#include "heightpack/core/parallel.hpp"
+
+namespace heightpack::detail {
+
+namespace {
+
+// Lines per task: a column block is gathered into a small row-major matrix, so 16 columns (256 bytes of
+// complex doubles per row) are read and written a cache line at a time.
+constexpr int kBlock = 16;
+
+// The 1-D complex transform of every column of in (CV_64FC2), with the row flags given, into out (of
+// in's size and type; may be in).
+void transformColumns(const cv::Mat& in, cv::Mat& out, int flags, int threads) {
+    const int h = in.rows, w = in.cols;
+    parallelFor((w + kBlock - 1) / kBlock, threads, [&](int begin, int end) {
+        cv::Mat lines(kBlock, h, CV_64FC2);
+        for (int block = begin; block < end; ++block) {
+            const int x0 = block * kBlock, count = std::min(kBlock, w - x0);
+            cv::Mat gathered = lines.rowRange(0, count);
+            for (int y = 0; y < h; ++y) {
+                const cv::Vec2d* row = in.ptr<cv::Vec2d>(y) + x0;
+                for (int i = 0; i < count; ++i) gathered.ptr<cv::Vec2d>(i)[y] = row[i];
+            }
+            cv::dft(gathered, gathered, flags | cv::DFT_ROWS);
+            for (int y = 0; y < h; ++y) {
+                cv::Vec2d* row = out.ptr<cv::Vec2d>(y) + x0;
+                for (int i = 0; i < count; ++i) row[i] = gathered.ptr<cv::Vec2d>(i)[y];
+            }
+        }
+    });
+}
+
+// The rows of in, transformed with flags in blocks, written to out (already of the result's size and type).
+void transformRows(const cv::Mat& in, cv::Mat& out, int flags, int threads) {
+    parallelFor((in.rows + kBlock - 1) / kBlock, threads, [&](int begin, int end) {
+        for (int block = begin; block < end; ++block) {
+            const int y0 = block * kBlock, y1 = std::min(in.rows, y0 + kBlock);
+            cv::Mat target = out.rowRange(y0, y1);
+            cv::dft(in.rowRange(y0, y1), target, flags | cv::DFT_ROWS);
+        }
+    });
+}
+
+}  // namespace
+
+cv::Mat forwardDft(const cv::Mat& field, int threads) {
+    CV_Assert(field.type() == CV_64F);
+    cv::Mat spectrum(field.rows, field.cols, CV_64FC2);
+    transformRows(field, spectrum, cv::DFT_COMPLEX_OUTPUT, threads);
+    transformColumns(spectrum, spectrum, 0, threads);
+    return spectrum;
+}
+
+void inverseDft(const cv::Mat& spectrum, cv::Mat& out, int threads) {
+    CV_Assert(spectrum.type() == CV_64FC2);
+    cv::Mat columns(spectrum.rows, spectrum.cols, CV_64FC2);
+    transformColumns(spectrum, columns, cv::DFT_INVERSE | cv::DFT_SCALE, threads);
+    out.create(spectrum.rows, spectrum.cols, CV_64F);
+    transformRows(columns, out, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT, threads);
+}
+
+}  // namespace heightpack::detail

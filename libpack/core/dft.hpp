@@ -1,0 +1,18 @@
+// Internal: 2-D DFTs of double fields on all threads. OpenCV's cv::dft runs a 2-D transform on one thread;
+// these run its 1-D row transforms in fixed blocks of rows, then of columns, each block on any thread, so
+// the result does not depend on the thread count.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace heightpack::detail {
+
+// The complex spectrum (CV_64FC2, h x w) of a real CV_64F field: cv::dft(field, out, DFT_COMPLEX_OUTPUT).
+cv::Mat forwardDft(const cv::Mat& field, int threads);
+
+// The real field (CV_64F) of a Hermitian spectrum, scaled by 1/(w h):
+// cv::dft(spectrum, out, DFT_INVERSE | DFT_SCALE | DFT_REAL_OUTPUT). out may be a view of existing storage
+// of that size and type (it is written in place).
+void inverseDft(const cv::Mat& spectrum, cv::Mat& out, int threads);
+
+}  // namespace heightpack::detail
