@@ -15,8 +15,8 @@
 #include <map>
 #include <sstream>
 
-#include "heightpack/build/check_job.hpp"
-#include "heightpack/build/tile_job.hpp"
+#include "heightpack/bake/check_job.hpp"
+#include "heightpack/bake/tile_job.hpp"
 #include "heightpack/io/read.hpp"
 
 #include "support/seam_families.hpp"

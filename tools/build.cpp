@@ -6,7 +6,7 @@
 #include <iostream>
 #include <map>
 
-#include "heightpack/build/build_materials.hpp"
+#include "heightpack/bake/build_materials.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/threads.hpp"

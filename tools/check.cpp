@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "heightpack/build/check_job.hpp"
+#include "heightpack/bake/check_job.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/threads.hpp"

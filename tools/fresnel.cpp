@@ -2,7 +2,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "heightpack/build/fresnel_job.hpp"
+#include "heightpack/bake/fresnel_job.hpp"
 #include "heightpack/version.hpp"
 
 #include "command.hpp"

@@ -3,7 +3,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "heightpack/build/normal_job.hpp"
+#include "heightpack/bake/normal_job.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"

@@ -4,7 +4,7 @@
 #include <map>
 #include <sstream>
 
-#include "heightpack/build/pack_job.hpp"
+#include "heightpack/bake/pack_job.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"

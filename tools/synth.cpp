@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "heightpack/build/synth_job.hpp"
+#include "heightpack/bake/synth_job.hpp"
 #include "heightpack/core/cascades.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/io/files.hpp"

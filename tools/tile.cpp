@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "heightpack/build/tile_job.hpp"
+#include "heightpack/bake/tile_job.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/threads.hpp"
 #include "heightpack/version.hpp"

@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "heightpack/build/material.hpp"
+#include "heightpack/bake/material.hpp"
 
 namespace heightpack::view {
 

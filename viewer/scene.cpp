@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "heightpack/build/pack_job.hpp"
+#include "heightpack/bake/pack_job.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/read.hpp"

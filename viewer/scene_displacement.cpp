@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "heightpack/build/pack_displacement.hpp"
+#include "heightpack/bake/pack_displacement.hpp"
 #include "heightpack/core/pack.hpp"
 #include "heightpack/io/displacement_read.hpp"
 

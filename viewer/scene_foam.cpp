@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "heightpack/build/pack_foam.hpp"
+#include "heightpack/bake/pack_foam.hpp"
 #include "heightpack/io/foam_read.hpp"
 
 namespace heightpack::view {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "heightpack/build/pack_job.hpp"
+#include "heightpack/bake/pack_job.hpp"
 #include "scene.hpp"
 #include "texture_reader.hpp"
 

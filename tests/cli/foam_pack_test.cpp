@@ -9,7 +9,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "heightpack/build/material_sampler.hpp"
+#include "heightpack/bake/material_sampler.hpp"
 #include "support/exr_levels.hpp"
 #include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"

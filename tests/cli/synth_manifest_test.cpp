@@ -161,7 +161,7 @@ cascades = 3
 }
 
 // A bad value of a new key is the manifest's error: one line naming FILE:LINE and the key, exit 3, and
-// the outputs of the previous build untouched (tests/build/manifest_synth_test.cpp has every bad value).
+// the outputs of the previous build untouched (tests/bake/manifest_synth_test.cpp has every bad value).
 TEST(SynthManifest, BadValuesNameTheKeyAndTouchNothing) {
     ScratchDir dir;
     writeText(dir.file("choppy.toml"), kChoppy);

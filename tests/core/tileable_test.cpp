@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "heightpack/build/check_job.hpp"
+#include "heightpack/bake/check_job.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/pack.hpp"
 #include "heightpack/core/tileable.hpp"

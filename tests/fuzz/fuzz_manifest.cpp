@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <set>
 
-#include "heightpack/build/manifest.hpp"
+#include "heightpack/bake/manifest.hpp"
 #include "heightpack/io/files.hpp"
 
 #include "fuzz_support.hpp"

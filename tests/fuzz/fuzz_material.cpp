@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "fuzz_support.hpp"
-#include "heightpack/build/material.hpp"
+#include "heightpack/bake/material.hpp"
 #ifdef HEIGHTPACK_FUZZ_VIEWER
 #include "material_settings.hpp"
 #endif

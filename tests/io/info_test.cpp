@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "heightpack/build/pack_job.hpp"
+#include "heightpack/bake/pack_job.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/io/info.hpp"
 

@@ -18,7 +18,7 @@
 #include <iterator>
 #include <limits>
 
-#include "heightpack/build/pack_job.hpp"
+#include "heightpack/bake/pack_job.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/pack.hpp"
 #include "heightpack/io/exr_write.hpp"

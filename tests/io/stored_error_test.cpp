@@ -14,8 +14,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "heightpack/build/normal_job.hpp"
-#include "heightpack/build/pack_job.hpp"
+#include "heightpack/bake/normal_job.hpp"
+#include "heightpack/bake/pack_job.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
 #include "heightpack/io/gpu_texture.hpp"

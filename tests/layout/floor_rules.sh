@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The rules of the three floors (issue 13), checked on the source tree:
-#   1. each floor only looks down: core includes no io or build header and no image, EXR, TOML or JSON
-#      library; io includes no build header and no TOML or JSON library;
+#   1. each floor only looks down: core includes no io or bake header and no image, EXR, TOML or JSON
+#      library; io includes no bake header and no TOML or JSON library;
 #   2. the library never names a command-line flag in what it says (its errors carry a reason that each
 #      shell words in its own flags or manifest keys);
 #   3. no source file outside tests/ is over 400 lines.
@@ -15,14 +15,14 @@ breach() { echo "floor_rules: $*"; breaches=$((breaches + 1)); }
 # files_of FLOOR: the sources and public headers of one floor.
 files_of() { find "libpack/$1" "libpack/include/heightpack/$1" -name '*.cpp' -o -name '*.hpp' | sort; }
 
-forbidden_core='#include *[<"](heightpack/(io|build)/|OpenImageIO/|OpenEXR/|Imath/|toml\+\+/|nlohmann/|libdeflate|xxhash)'
-forbidden_io='#include *[<"](heightpack/build/|toml\+\+/|nlohmann/)'
+forbidden_core='#include *[<"](heightpack/(io|bake)/|OpenImageIO/|OpenEXR/|Imath/|toml\+\+/|nlohmann/|libdeflate|xxhash)'
+forbidden_io='#include *[<"](heightpack/bake/|toml\+\+/|nlohmann/)'
 for f in $(files_of core); do
   grep -nE "$forbidden_core" "$f" | while IFS= read -r line; do echo "floor_rules: $f:$line: core includes a floor above or a file library"; done
   grep -qE "$forbidden_core" "$f" && breaches=$((breaches + 1))
 done
 for f in $(files_of io); do
-  grep -nE "$forbidden_io" "$f" | while IFS= read -r line; do echo "floor_rules: $f:$line: io includes the build floor or a manifest library"; done
+  grep -nE "$forbidden_io" "$f" | while IFS= read -r line; do echo "floor_rules: $f:$line: io includes the bake floor or a manifest library"; done
   grep -qE "$forbidden_io" "$f" && breaches=$((breaches + 1))
 done
 

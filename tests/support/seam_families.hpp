@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/build/check_job.hpp"
+#include "heightpack/bake/check_job.hpp"
 #include "heightpack/core/image.hpp"
 
 namespace heightpack::test {

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "heightpack/build/material_sampler.hpp"
+#include "heightpack/bake/material_sampler.hpp"
 #include "support/test_support.hpp"
 #include "viewer_support.hpp"
 

@@ -1,0 +1,36 @@
+// Internal: the build's plan, one Step per output file, translated from the manifest into the option
+// structs of the jobs that make them.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "heightpack/bake/build_report.hpp"
+#include "heightpack/bake/check_job.hpp"
+#include "heightpack/bake/manifest.hpp"
+
+#include "build_common.hpp"
+
+namespace heightpack::detail {
+
+// One output file and how to make it.
+struct Step {
+    AssetReport report;
+    bool mustTile = false;
+    std::string optionsText;  // key text of every option that shapes the output
+    std::string checkText;    // key text of every option that shapes the check
+    CheckOptions check;
+    std::function<Status(const std::string& output, int threads, const ProgressFn& progress)> make;
+    // Worked out while building:
+    std::string checkKey;
+    bool needBuild = false, needCheck = false;
+    std::optional<Error> error;
+};
+
+// The steps of manifest m, in manifest order (a sequence gives one per frame); version is recorded in
+// every output.
+std::vector<Step> planSteps(const Manifest& m, const std::string& version);
+
+}  // namespace heightpack::detail

@@ -1,0 +1,131 @@
+#include "heightpack/bake/check_job.hpp"
+
+#include <algorithm>
+
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
+#include "heightpack/io/info.hpp"
+#include "heightpack/io/read.hpp"
+
+#include "job_steps.hpp"
+
+namespace heightpack {
+
+namespace {
+
+Image channelZero(const Image& image) {
+    if (image.channels == 1) return image;
+    Image out(image.width, image.height, 1);
+    for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = image.pixels[i * image.channels];
+    return out;
+}
+
+void keepWorst(SeamScore& worst, const SeamScore& s) {
+    if (!s.measured) return;
+    if (!worst.measured) {
+        worst = s;
+        return;
+    }
+    worst.value = std::max(worst.value, s.value);
+    worst.slope = std::max(worst.slope, s.slope);
+}
+
+// Scores chain level by level into report: levels, worst, failure and the verdict.
+void scoreChain(const std::vector<Image>& chain, const SeamOptions& seamOptions, const CheckOptions& options,
+                CheckReport& report) {
+    if (options.progress) options.progress("check", 0.0);
+    ChainSeams seams = measureChainSeams(chain, options.threshold, seamOptions);
+    report.tiles = seams.tiles();
+    report.failure = seams.failure;
+    report.levels = std::move(seams.levels);
+    for (const LevelSeams& s : report.levels) {
+        keepWorst(report.worst.leftRight, s.leftRight);
+        keepWorst(report.worst.topBottom, s.topBottom);
+    }
+    report.worst.width = chain[0].width;
+    report.worst.height = chain[0].height;
+    if (report.packing && !report.packing->consistent) report.tiles = false;
+    report.look = measureTileLook(chain[0], {nullptr, seamOptions.threads, std::nullopt});
+    report.lookThresholds = options.look;
+    report.lookFails = options.lookFails;
+}
+
+}  // namespace
+
+double sampleQuantum(const SourceInfo& source) {
+    return source.pixelType == "uint8" ? 1.0 / 255 : source.pixelType == "uint16" ? 1.0 / 65535 : 0.0;
+}
+
+std::vector<Image> seamChain(const Image& heights, const MipOptions& mip, std::string* note) {
+    if (isPowerOfTwo(heights.width) && isPowerOfTwo(heights.height)) return generateMipChain(heights, mip);
+    if (note) *note = "sides are not powers of two: level 0 only";
+    return {heights};
+}
+
+CheckReport checkHeights(const Image& heights, const SourceInfo& source, const CheckOptions& options) {
+    CheckReport report;
+    report.input = source.path;
+    report.kind = "image";
+    report.source = source;
+    report.threshold = options.threshold;
+    if (options.progress) options.progress("mip", 0.0);
+    SeamOptions seamOptions;
+    seamOptions.threads = options.mip.threads;
+    seamOptions.quantum = sampleQuantum(source);
+    scoreChain(seamChain(heights, options.mip, &report.note), seamOptions, options, report);
+    if (!report.note.empty()) report.noteFix = Fix::ResizeToPowerOfTwo;  // pack would have to resize
+    return report;
+}
+
+Result<CheckReport> checkFile(const std::string& path, const CheckOptions& options) {
+    if (!options.previewPath.empty())
+        if (Status s = checkWritable(options.previewPath); !s) return s.error();
+    CheckReport report;
+    report.input = path;
+    report.threshold = options.threshold;
+
+    // A texture with mip levels is checked as stored; anything else gets the chain pack would make.
+    auto progress = [&](std::string_view stage, double f) {
+        if (options.progress) options.progress(stage, f);
+    };
+    progress("load", 0.0);
+    std::vector<Image> chain;
+    SeamOptions seamOptions;
+    seamOptions.threads = options.mip.threads;
+    auto texture = readTextureFile(path, options.load.silenceDecoderMessages);
+    if (!texture) return texture.error();  // unreadable or damaged at any level: no verdict on part of it
+    if (texture->levels.size() > 1) {
+        const std::string layout = findAttribute(texture->attributes, attr::layout);
+        report.kind = layout.empty() ? "texture" : layout;
+        if (layout == "neighbour4" && texture->levels[0].channels == 4) {
+            const Wrap wrap = findAttribute(texture->attributes, attr::wrap).value_or(Wrap::Periodic);
+            report.packing = checkPacking(texture->levels, wrap);
+        }
+        for (const Image& level : texture->levels) {
+            chain.push_back(channelZero(level));
+            // A NaN is bad input, not a seam: the verdict would be meaningless.
+            if (Status s = checkFinite(chain.back(), path, 0, "level " + std::to_string(chain.size() - 1)); !s)
+                return s.error();
+        }
+        scoreChain(chain, seamOptions, options, report);
+    } else {
+        auto loaded = detail::loadInput(path, options.load, options.mip.threads);
+        if (!loaded) return loaded.error();
+        report = checkHeights(loaded->heights, loaded->source, options);
+        report.input = path;
+        chain = {std::move(loaded->heights)};  // level 0, for the preview
+    }
+
+    if (!options.previewPath.empty()) {
+        FlatImageOptions flat;
+        flat.bits = 8;
+        flat.attributes = {attribute(attr::layout, "seamPreview"), attribute(attr::source, path),
+                           attribute(attr::threshold, static_cast<float>(options.threshold))};
+        if (Status s = writeFlatImage(options.previewPath, seamPreview(chain[0], report.worst, options.threshold), flat);
+            !s)
+            return s.error();
+    }
+    return report;
+}
+
+}  // namespace heightpack

@@ -1,0 +1,214 @@
+#include "heightpack/bake/pack_job.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+
+#include "heightpack/bake/pack_displacement.hpp"
+#include "heightpack/bake/pack_foam.hpp"
+#include "heightpack/core/pack.hpp"
+#include "heightpack/core/parallel.hpp"
+#include "heightpack/io/displacement_read.hpp"
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/foam_read.hpp"
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/read.hpp"
+#include "heightpack/io/texture_write.hpp"
+
+#include "job_steps.hpp"
+#include "stored_chain.hpp"
+
+namespace heightpack {
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// packHeights' first half, which packHeightMap shares: resize, scale, mip. Leaves maps.packed empty.
+Result<PackedMaps> plainChain(Image heights, const SourceInfo& source, const PackOptions& options) {
+    if (options.progress) options.progress("mip", 0.0);
+    PackedMaps maps;
+    auto resized = detail::ensurePowerOfTwo(heights, source.path, options.resizeToPowerOfTwo, options.mip);
+    if (!resized) return resized.error();
+    maps.resized = *resized;
+    if (options.scale != 1.0f || options.offset != 0.0f)
+        for (float& v : heights.pixels) v = options.offset + options.scale * v;
+    maps.plain = generateMipChain(heights, options.mip);
+    if (options.progress) options.progress("mip", 1.0);
+    return maps;
+}
+
+// The writer packs bands itself: the displacement's chains are made plain, as the heights' are.
+PackOptions withoutPacking(PackOptions options) {
+    options.layout = Layout::Plain;
+    return options;
+}
+
+}  // namespace
+
+Result<PackedMaps> packHeights(Image heights, const SourceInfo& source, const PackOptions& options) {
+    auto maps = plainChain(std::move(heights), source, options);
+    if (maps && options.layout == Layout::Neighbour4) maps->packed = packMipChain(maps->plain, options.mip.wrap);
+    return maps;
+}
+
+std::vector<ExrAttribute> heightAttributes(Layout layout, const PackOptions& options, const SourceInfo& source,
+                                           const std::string& sourceHash) {
+    auto attributes = detail::commonAttributes(attributeText(layout), options.mip.wrap, options.mip.filter, source,
+                                               sourceHash, options.version);
+    attributes.push_back(attribute(attr::heightScale, options.scale));
+    attributes.push_back(attribute(attr::heightOffset, options.offset));
+    if (options.heightRange > 0.0) attributes.push_back(attribute(attr::heightRange, float(options.heightRange)));
+    if (!source.loopPeriod.empty()) {
+        attributes.push_back(attribute(attr::loopPeriod, std::stof(source.loopPeriod)));
+        attributes.push_back(attribute(attr::time, source.time.empty() ? 0.0f : std::stof(source.time)));
+    }
+    return attributes;
+}
+
+Result<PackReport> packHeightMap(const std::string& input, const std::string& output, const PackOptions& options) {
+    auto progress = [&](std::string_view stage, double fraction) {
+        if (options.progress) options.progress(stage, fraction);
+    };
+    if (!isHeightLayout(options.layout))
+        return Error{ErrorKind::Internal, output, std::string("pack writes heights, not the '") + nameOf(options.layout) +
+                                                      "' layout of normal maps", "please report this"};
+    const bool packed = options.layout == Layout::Neighbour4;
+    // Fail on an unwritable output before spending any time on the input.
+    if (Status s = checkWritable(output); !s) return s.error();
+    if (!packed && !options.plainOutput.empty())
+        return cannotWrite(options.plainOutput, "would be a second plain chain beside the plain output",
+                           "write the plain chain once");
+    if (packed && !options.plainOutput.empty()) {
+        if (std::filesystem::path(options.plainOutput).lexically_normal() ==
+            std::filesystem::path(output).lexically_normal())
+            return withFix(cannotWrite(options.plainOutput, "is also the packed output", "give the plain output another name"),
+                           Fix::RenamePlainOutput);
+        if (Status s = checkWritable(options.plainOutput); !s) return s.error();
+    }
+
+    PackReport report;
+    report.input = input;
+    report.output = output;
+    report.plainOutput = packed ? options.plainOutput : output;
+    report.layout = options.layout;
+
+    auto start = std::chrono::steady_clock::now();
+    progress("load", 0.0);
+    auto loaded = detail::loadInput(input, options.load, options.mip.threads);
+    if (!loaded) return loaded.error();
+    report.source = loaded->source;
+    report.sourceHash = loaded->hash;
+    Image heights = std::move(loaded->heights);
+    progress("load", 1.0);
+    report.loadSeconds = secondsSince(start);
+    const auto gpu = [](const std::string& path) {
+        return !path.empty() && containerForPath(path).value_or(Container::Exr) != Container::Exr;
+    };
+    std::optional<DisplacementMaps> displacement;
+    if (options.displacement) {
+        if (gpu(output) || gpu(options.plainOutput))
+            return cannotWrite(gpu(output) ? output : options.plainOutput,
+                               "a KTX2 or DDS texture holds at most four channels; heights with Dx, Dy need twelve",
+                               "write the displacement to an .exr");
+        auto d = loadDisplacement(input, options.load);
+        if (!d) return d.error();
+        auto maps = packDisplacement(std::move(*d), report.source, withoutPacking(options));
+        if (!maps) return maps.error();
+        displacement = std::move(*maps);
+    }
+    std::optional<std::vector<Image>> foam;
+    if (options.foam) {
+        if (gpu(output) || gpu(options.plainOutput))
+            return cannotWrite(gpu(output) ? output : options.plainOutput,
+                               "a KTX2 or DDS texture holds at most four channels; heights with foam need eight",
+                               "write the foam to an .exr");
+        auto f = loadFoam(input, options.load);
+        if (!f) return f.error();
+        auto chain = foamChain(std::move(*f), report.source, options);
+        if (!chain) return chain.error();
+        foam = std::move(*chain);
+    }
+    const std::vector<CompanionChain> companions = companionsOf(displacement ? &*displacement : nullptr, foam ? &*foam : nullptr);
+
+    start = std::chrono::steady_clock::now();
+    // The plain chain only: the writer packs it a band at a time, so the packed chain is never held whole.
+    auto maps = plainChain(std::move(heights), report.source, options);
+    if (!maps) return maps.error();
+    const std::vector<Image>& chain = maps->plain;
+    report.resized = maps->resized;
+    for (const Image& level : chain) report.levelSizes.emplace_back(level.width, level.height);
+    report.mipSeconds = secondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    TextureWriteOptions writeOptions;
+    writeOptions.pixelType = options.pixelType;
+    writeOptions.exrCompression = options.compression;
+    writeOptions.supercompression = options.supercompression;
+    writeOptions.threads = options.mip.threads;
+    writeOptions.writer = "heightpack " + options.version;
+    // A painted 8- or 16-bit map lies on a 16-bit grid (8-bit k/255 = 257k/65535): uint16 keeps it.
+    if (!report.resized && (report.source.pixelType == "uint8" || report.source.pixelType == "uint16")) {
+        writeOptions.gridOrigin = options.offset;
+        writeOptions.gridSpan = options.scale;
+    }
+    // The plain chain goes to plainOutput beside the packed one, or alone to output.
+    const std::string plainPath = packed ? options.plainOutput : output;
+    const bool both = packed && !plainPath.empty();
+    writeOptions.progress = [&](double f) { progress("write", both ? f * 0.8 : f); };
+
+    const Wrap wrap = options.mip.wrap;
+    TiledExrContent content;
+    content.width = chain[0].width;
+    content.height = chain[0].height;
+    const auto fillPacked = [&](int level, int y0, int rows, float* dst) {
+        packNeighbour4Rows(chain[level], wrap, y0, rows, dst);
+    };
+    const auto fillPlain = [&](int level, int y0, int rows, float* dst) {
+        const Image& l = chain[level];
+        std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width, dst);
+    };
+    content.channelNames = packed ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"Y"};
+    content.fillRows = packed ? decltype(content.fillRows)(fillPacked) : decltype(content.fillRows)(fillPlain);
+    content.attributes = heightAttributes(options.layout, options, report.source, report.sourceHash);
+
+    // The pixel type, given or chosen, and its lookup error: the same for both outputs, since a packed
+    // texel holds copies of the plain chain's values.
+    std::vector<std::string> paths = {output};
+    if (both) paths.push_back(plainPath);
+    auto stored = detail::chooseStorage(paths, content, chain, wrap, writeOptions, options.tolerance);
+    if (!stored) return stored.error();
+    writeOptions.pixelType = stored->pixelType;
+    report.pixelType = stored->pixelType;
+    report.lookupError = stored->lookupError;
+    const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*stored);
+    content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
+    // Dx, Dy and foam join after the storage is chosen: the choice and its error are the heights'.
+    if (!companions.empty()) {
+        if (packed)
+            detail::fillPackedWithCompanions(content, chain, companions, wrap);
+        else
+            detail::fillPlainWithCompanions(content, chain, companions);
+    }
+    if (displacement) content.attributes.push_back(attribute(attr::displacement, packed ? "neighbour4" : "plain"));
+    if (foam) content.attributes.push_back(attribute(attr::foam, packed ? "neighbour4" : "plain"));
+    if (Status s = writeTexture(output, content, writeOptions); !s) return s.error();
+    if (both) {
+        content.channelNames = {"Y"};
+        content.fillRows = fillPlain;
+        content.attributes = heightAttributes(Layout::Plain, options, report.source, report.sourceHash);
+        content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
+        if (!companions.empty()) detail::fillPlainWithCompanions(content, chain, companions);
+        if (displacement) content.attributes.push_back(attribute(attr::displacement, "plain"));
+        if (foam) content.attributes.push_back(attribute(attr::foam, "plain"));
+        writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
+        if (Status s = writeTexture(plainPath, content, writeOptions); !s) return s.error();
+    }
+    progress("write", 1.0);
+    report.writeSeconds = secondsSince(start);
+    return report;
+}
+
+}  // namespace heightpack

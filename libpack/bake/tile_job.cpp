@@ -1,0 +1,278 @@
+#include "heightpack/bake/tile_job.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "heightpack/bake/check_job.hpp"
+#include "heightpack/core/mip.hpp"
+#include "heightpack/core/tile_resynthesis.hpp"
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
+
+#include "job_steps.hpp"
+
+namespace heightpack {
+
+const char* tileMethodName(TileMethod method) {
+    switch (method) {
+        case TileMethod::Periodic: return "periodic";
+        case TileMethod::Moisan: return "moisan";
+        case TileMethod::Crossfade: return "crossfade";
+        case TileMethod::Mirror: return "mirror";
+    }
+    return "?";
+}
+
+namespace {
+
+bool holdsFloat(const std::string& ext) { return ext == ".exr" || ext == ".tif" || ext == ".tiff"; }
+
+std::string verdictText(const ChainSeams& seams) {
+    return seams.tiles() ? "tiles at every level" : describeSeamFailure(*seams.failure, seams.threshold);
+}
+
+// Whether every height is a whole number of steps of a bits-bit type, inside [0,1].
+bool exactIn(const Image& map, int bits) {
+    const double steps = bits == 8 ? 255.0 : 65535.0;
+    return std::all_of(map.pixels.begin(), map.pixels.end(), [&](float v) {
+        const double s = double(v) * steps;
+        return v >= 0.0f && v <= 1.0f && std::abs(s - std::round(s)) < 1e-3;
+    });
+}
+
+double span(const Image& map) {
+    const auto [low, high] = std::minmax_element(map.pixels.begin(), map.pixels.end());
+    return double(*high) - *low;
+}
+
+// How a result will be stored: the type asked for, else the input's (a PNG holds no floats: 16 bits there),
+// widened to float where an integer type would clip (or round a map that should stay unchanged) and the
+// format holds floats; `storable` is false where it cannot be stored faithfully at all.
+struct Storage {
+    int bits = 32;          // the type before widening
+    bool explicitBits = false;  // --depth asked for it: never widened
+    bool floatFormat = true;    // the output's format holds floats
+
+    struct Choice {
+        int bits = 32;
+        bool widened = false;
+        bool storable = true;
+    };
+    Choice choose(const Image& result, bool unchanged) const {
+        Choice c{bits, false, true};
+        if (bits == 32) return c;
+        const auto [low, high] = std::minmax_element(result.pixels.begin(), result.pixels.end());
+        const bool inRange = *low >= 0.0f && *high <= 1.0f;
+        if (inRange && !(unchanged && !exactIn(result, bits))) return c;
+        if (!floatFormat || explicitBits) return Choice{bits, false, false};
+        return Choice{32, true, true};
+    }
+    // The heights as that type stores them.
+    static Image rounded(Image result, int bits) {
+        if (bits == 32) return result;
+        const double steps = bits == 8 ? 255.0 : 65535.0;
+        for (float& v : result.pixels) v = static_cast<float>(std::round(double(v) * steps) / steps);
+        return result;
+    }
+    static double quantum(int bits) { return bits == 8 ? 1.0 / 255 : bits == 16 ? 1.0 / 65535 : 0.0; }
+};
+
+// The method's result. For Periodic, candidates judged as they will be stored, at every level pack would
+// make (seams) and as the eye sees it (look), the first that passes both: the re-synthesis four times, each
+// with the next seed, the last two with a band half as wide again and then twice the first; then, for maps
+// a Gaussian field does not describe (a few pure waves whose periods do not divide the tile), Moisan's
+// periodic component with the edge slopes bent together, then Moisan's component and the map crossfaded over
+// the crossfade width and over a fifth of the tile, judged by their seams alone (the shell warns when their
+// look does not pass). No candidate may stretch the height span past 1.5x the input's. The last is returned
+// when none passes, and the caller writes nothing. `judged` (and `looked`, when the look was judged) is the
+// verdict on the returned candidate as stored, so the caller need not judge it again.
+Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, const Storage& storage,
+                  TileReport& report, std::optional<ChainSeams>& judged, std::optional<TileLook>& looked) {
+    report.methodUsed = tileMethodName(options.method);
+    report.crossfadeWidth = options.width;
+    switch (options.method) {
+        case TileMethod::Moisan: return periodicComponent(map, PeriodicContinuity::Heights);
+        case TileMethod::Crossfade: return crossfadeTile(map, options.width);
+        case TileMethod::Mirror: return mirrorTile(map);
+        case TileMethod::Periodic: break;
+    }
+    const double maxSpan = 1.5 * span(map);
+    bool lookRequired = true;
+    LookOptions lookOptions{&map, options.mip.threads, std::nullopt};
+    auto acceptable = [&](const Image& candidate) {
+        judged.reset();
+        looked.reset();
+        const Storage::Choice c = storage.choose(candidate, false);
+        if (!c.storable || span(candidate) > maxSpan) return false;
+        SeamOptions stored = seamOptions;
+        stored.quantum = Storage::quantum(c.bits);
+        const Image asStored = Storage::rounded(candidate, c.bits);
+        judged = measureChainSeams(seamChain(asStored, options.mip), options.threshold, stored);
+        if (!judged->tiles() || !lookRequired) return judged->tiles();
+        if (!lookOptions.sourceEcho) lookOptions.sourceEcho = sourceEchoOf(map, options.mip.threads);
+        looked = measureTileLook(asStored, lookOptions);
+        return looked->passes(options.look);
+    };
+    ResynthesisOptions resynthesis;
+    resynthesis.quantum = seamOptions.quantum;
+    resynthesis.threads = options.mip.threads;
+    double firstBand = 0;
+    for (int attempt = 0; attempt < 4; ++attempt) {
+        resynthesis.seed = options.seed + uint64_t(attempt);
+        resynthesis.band = attempt < 2 ? 0.0 : std::min(0.25, firstBand * (attempt == 2 ? 1.5 : 2.0));
+        ResynthesisResult r = resynthesiseTile(map, resynthesis);
+        if (attempt == 0) firstBand = double(std::max(r.bandX, 1)) / map.width;
+        report.bandX = r.bandX;
+        report.bandY = r.bandY;
+        report.seed = resynthesis.seed;
+        if (acceptable(r.map)) return std::move(r.map);
+    }
+    // The fallbacks are judged by their seams alone (as before the look existed); their look is reported.
+    lookRequired = false;
+    report.bandX = report.bandY = 0;
+    report.seed = 0;
+    Image result = periodicComponent(map, PeriodicContinuity::HeightsAndSlopes);
+    report.methodUsed = "moisan+bend";
+    if (acceptable(result)) return result;
+    const Image moisan = periodicComponent(map, PeriodicContinuity::Heights);
+    for (double width : {options.width, 0.2}) {
+        char text[64];
+        std::snprintf(text, sizeof text, " over %g of the tile", width);
+        for (const Image* base : {&moisan, &map}) {
+            result = crossfadeTile(*base, width);
+            report.methodUsed = std::string(base == &moisan ? "moisan+crossfade" : "crossfade") + text;
+            report.crossfadeWidth = width;
+            if (acceptable(result)) return result;
+        }
+    }
+    return result;
+}
+
+}  // namespace
+
+Result<TileReport> tileFile(const std::string& input, const std::string& output, const TileOptions& options) {
+    if (Status s = checkWritable(output); !s) return s.error();
+    auto progress = [&](std::string_view stage, double f) {
+        if (options.progress) options.progress(stage, f);
+    };
+    progress("load", 0.0);
+    auto loaded = detail::loadInput(input, options.load, options.mip.threads);
+    if (!loaded) return loaded.error();
+    TileReport report;
+    report.input = input;
+    report.output = output;
+    report.source = loaded->source;
+    const Image& map = loaded->heights;
+    progress("check", 0.0);
+    const auto [inLow, inHigh] = std::minmax_element(map.pixels.begin(), map.pixels.end());
+    report.inputLow = *inLow;
+    report.inputHigh = *inHigh;
+    SeamOptions seamOptions;
+    seamOptions.threads = options.mip.threads;
+    seamOptions.quantum = sampleQuantum(loaded->source);
+    report.before = measureChainSeams(seamChain(map, options.mip), options.threshold, seamOptions);
+    report.alreadyTiled = report.before.tiles() && !options.force;
+    progress("tile", 0.0);
+
+    const std::string ext = lowerExtension(output);
+    const std::string& type = loaded->source.pixelType;
+    const int inputBits = type == "uint8" ? 8 : type == "uint16" ? 16 : 32;
+    if (report.alreadyTiled && loaded->source.channels == 1 && lowerExtension(input) == ext) {
+        // The file itself: bit-exact, metadata and all.
+        report.after = report.before;
+        report.methodUsed = "none";
+        report.bits = inputBits;
+        report.low = report.inputLow;
+        report.high = report.inputHigh;
+        report.width = map.width;
+        report.height = map.height;
+        std::error_code same;  // set when output does not exist yet: then it is not the input either
+        if (!std::filesystem::equivalent(input, output, same))
+            if (Status s = copyFile(input, output); !s) return s.error();
+        report.written = true;
+        return report;
+    }
+
+    Storage storage;
+    storage.bits = options.bits ? options.bits : inputBits;
+    storage.explicitBits = options.bits != 0;
+    storage.floatFormat = holdsFloat(ext);
+    if (storage.bits == 32 && !storage.floatFormat) storage.bits = 16;
+    std::optional<ChainSeams> judged;
+    std::optional<TileLook> looked;
+    Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, storage, report, judged, looked);
+    if (report.alreadyTiled) report.methodUsed = "none";
+    progress("tile", 1.0);
+    report.width = result.width;
+    report.height = result.height;
+    const auto [low, high] = std::minmax_element(result.pixels.begin(), result.pixels.end());
+    report.low = *low;
+    report.high = *high;
+
+    const Storage::Choice stored = storage.choose(result, report.alreadyTiled);
+    report.bits = stored.bits;
+    report.widened = stored.widened;
+    if (!stored.storable) {
+        char what[200];
+        if (*low >= 0.0f && *high <= 1.0f)
+            std::snprintf(what, sizeof what, "the heights are not whole %d-bit steps: writing them so would round them",
+                          stored.bits);
+        else
+            std::snprintf(what, sizeof what, "the tiled heights reach [%.4g, %.4g], outside the [0,1] of %d-bit samples",
+                          double(*low), double(*high), stored.bits);
+        return withFix(cannotWrite(output, what,
+                                   "write float samples (an .exr or .tif output); heightpack never clips or rescales heights"),
+                       Fix::WriteFloat);
+    }
+    // Judge what will be stored: rounded to the type (Periodic's candidates were judged so already, with
+    // the same type: the same rounding and quantum).
+    result = Storage::rounded(std::move(result), report.bits);
+    if (judged) {
+        report.after = std::move(*judged);
+    } else {
+        SeamOptions afterOptions = seamOptions;
+        afterOptions.quantum = Storage::quantum(report.bits);
+        report.after = measureChainSeams(seamChain(result, options.mip), options.threshold, afterOptions);
+    }
+    report.lookThresholds = options.look;
+    report.look = looked ? *looked : measureTileLook(result, {&map, options.mip.threads, std::nullopt});
+    const bool lookCounts = options.method == TileMethod::Periodic && !report.alreadyTiled && report.seed != 0;
+    // Mirror tiling breaks slopes at its mirror lines by design (the help says so): it is written when its
+    // heights meet, and the report still shows the kinks.
+    const bool onlyDesignedKinks =
+        options.method == TileMethod::Mirror &&
+        std::none_of(report.after.levels.begin(), report.after.levels.end(), [&](const LevelSeams& l) {
+            return (l.leftRight.measured && l.leftRight.value > options.threshold) ||
+                   (l.topBottom.measured && l.topBottom.value > options.threshold);
+        });
+    if (!report.after.tiles() && !report.alreadyTiled && !onlyDesignedKinks)
+        return report;  // nothing written: the caller says why
+    if (lookCounts && !report.look.passes(options.look)) return report;  // likewise
+
+    FlatImageOptions flat;
+    flat.bits = report.bits;
+    flat.threads = options.mip.threads;
+    flat.attributes = {
+        attribute(attr::tileMethod, report.methodUsed),
+        attribute(attr::source, std::filesystem::path(input).filename().string()),
+        attribute(attr::sourceHash, loaded->hash),
+        attribute(attr::seamsBefore, verdictText(report.before)),
+        attribute(attr::seamsAfter, verdictText(report.after)),
+        attribute(attr::version, options.version),
+    };
+    if (report.methodUsed.find("crossfade") != std::string::npos)
+        flat.attributes.push_back(attribute(attr::crossfadeWidth, static_cast<float>(report.crossfadeWidth)));
+    if (report.seed != 0) {
+        flat.attributes.push_back(attribute(attr::tileBand, std::to_string(report.bandX) + "x" + std::to_string(report.bandY)));
+        flat.attributes.push_back(attribute(attr::seed, std::to_string(report.seed)));
+    }
+    progress("write", 0.0);
+    if (Status s = writeFlatImage(output, result, flat); !s) return s.error();
+    report.written = true;
+    return report;
+}
+
+}  // namespace heightpack
