@@ -1,16 +1,16 @@
 #include "heightpack/core/cascades.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace heightpack {
 
 std::vector<CascadeBand> cascadeBands(double tileSize, int size, int count, uint64_t seed) {
-    constexpr double kPi = 3.14159265358979323846;
-    std::vector<CascadeBand> bands(count);
+        std::vector<CascadeBand> bands(count);
     for (int c = 0; c < count; ++c) {
         CascadeBand& b = bands[c];
         b.tileSize = tileSize * std::pow(kCascadeRatio, c);
-        const double nyquist = kPi * size / b.tileSize;
+        const double nyquist = std::numbers::pi * size / b.tileSize;
         b.low = c == 0 ? 0.0 : bands[c - 1].high;
         b.high = c + 1 == count ? nyquist : 0.5 * nyquist;
         // A fixed odd constant (2^64 / golden ratio) apart: the streams of seed s and s + 1 never coincide

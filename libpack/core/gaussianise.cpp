@@ -4,14 +4,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <numbers>
 
 #include "heightpack/core/parallel.hpp"
 
 namespace heightpack::detail {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 std::vector<uint32_t> stableOrder(const std::vector<float>& values) {
     const size_t n = values.size();
@@ -66,7 +63,7 @@ double inverseNormalCdf(double p) {
             (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
     }
     const double e = normalCdf(x) - p;
-    const double u = e * std::sqrt(2 * kPi) * std::exp(x * x / 2);
+    const double u = e * std::sqrt(2 * std::numbers::pi) * std::exp(x * x / 2);
     return x - u / (1 + x * u / 2);
 }
 

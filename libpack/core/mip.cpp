@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "heightpack/core/parallel.hpp"
 
@@ -9,12 +10,11 @@ namespace heightpack {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kKaiserAlpha = 4.0;
 
 double sinc(double x) {
     if (std::abs(x) < 1e-9) return 1.0;
-    const double px = kPi * x;
+    const double px = std::numbers::pi * x;
     return std::sin(px) / px;
 }
 

@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <random>
 
 #include "heightpack/core/mip.hpp"
@@ -14,8 +15,6 @@
 namespace heightpack {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Standard normal deviates from a generator the C++ standard pins down bit for bit (mt19937_64), by
 // Box-Muller, so a seed gives the same map with any standard library: deviate 2i is r cos(2 pi u2) and
@@ -35,7 +34,7 @@ std::vector<double> gaussianDeviates(uint64_t seed, size_t count, int threads) {
     const int pairs = static_cast<int>(out.size() / 2);
     parallelFor(pairs, threads, [&](int begin, int end) {
         for (size_t i = size_t(begin) * 2; i < size_t(end) * 2; i += 2) {
-            const double r = std::sqrt(-2.0 * std::log(out[i])), a = 2 * kPi * out[i + 1];
+            const double r = std::sqrt(-2.0 * std::log(out[i])), a = 2 * std::numbers::pi * out[i + 1];
             out[i] = r * std::cos(a);
             out[i + 1] = r * std::sin(a);
         }
@@ -45,7 +44,7 @@ std::vector<double> gaussianDeviates(uint64_t seed, size_t count, int threads) {
 }
 
 // The real fields a frame can need, each the evolved spectrum times a multiplier that keeps it Hermitian.
-enum Field { Height, DispX, DispY, DispXX, DispYY, DispXY, FieldCount };
+enum OceanField { Height, DispX, DispY, DispXX, DispYY, DispXY, FieldCount };
 
 // The signed index of DFT bin q of n: 0, 1, ..., n/2 - 1, -n/2, ..., -1.
 int signedBin(int q, int n) { return q < n / 2 ? q : q - n; }
@@ -56,7 +55,7 @@ Ocean::Ocean(const SpectrumOptions& options, int threads) : options_(options) {
     assert(isPowerOfTwo(options.size) && options.tileSize > 0);
     const int n = options.size;
     const size_t cells = size_t(n) * n;
-    const double dk = 2 * kPi / options.tileSize;
+    const double dk = 2 * std::numbers::pi / options.tileSize;
     // Drawn for every cell in the same order, used or not, so a seed means the same sea at any setting
     // (and whatever the band a cascade keeps).
     const std::vector<double> draws = gaussianDeviates(options.seed, 2 * cells, threads);
@@ -96,7 +95,7 @@ Ocean::Ocean(const SpectrumOptions& options, int threads) : options_(options) {
 SeaFields Ocean::fields(double t, const SeaFieldSet& which, double choppiness, int threads) const {
     const int n = options_.size;
     const size_t cells = size_t(n) * n;
-    const double dk = 2 * kPi / options_.tileSize;
+    const double dk = 2 * std::numbers::pi / options_.tileSize;
     // h(k, t) = h0(k) e^{-i w t} + conj(h0(-k)) e^{i w t}: Hermitian in k, so the sea is real, and the
     // energy that the spectrum puts at k (along the wind) runs toward +k, with the wind.
     std::vector<double> evolvedRe(cells), evolvedIm(cells);
@@ -113,7 +112,7 @@ SeaFields Ocean::fields(double t, const SeaFieldSet& which, double choppiness, i
         }
     });
 
-    std::vector<Field> wanted;
+    std::vector<OceanField> wanted;
     if (which.heights) wanted.push_back(Height);
     if (which.displacement) wanted.insert(wanted.end(), {DispX, DispY});
     if (which.jacobian) wanted.insert(wanted.end(), {DispXX, DispYY, DispXY});
@@ -123,7 +122,7 @@ SeaFields Ocean::fields(double t, const SeaFieldSet& which, double choppiness, i
     parallelFor(int(wanted.size()), threads, [&](int begin, int end) {
         cv::Mat spectrum(n, n, CV_64FC2);  // one a thread, refilled for each field: 256 MB fewer to fault in at 4096^2
         for (int w = begin; w < end; ++w) {
-            const Field field = wanted[w];
+            const OceanField field = wanted[w];
             for (int r = 0; r < n; ++r) {
                 cv::Vec2d* row = spectrum.ptr<cv::Vec2d>(r);
                 const double ky = signedBin(r, n) * dk;

@@ -2,20 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace heightpack {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 SeaStateSummary summariseSeaState(const SpectrumOptions& options, double resolvedVariance) {
     SeaStateSummary s;
     s.significantWaveHeight = 4.0 * std::sqrt(std::max(0.0, resolvedVariance));
     const double peak = spectrumPeakOmega(options);
     if (peak > 0.0) {
-        s.peakPeriod = 2 * kPi / peak;
-        s.peakWavelength = 2 * kPi / dispersionWavenumber(peak, options.depth);
+        s.peakPeriod = 2 * std::numbers::pi / peak;
+        s.peakWavelength = 2 * std::numbers::pi / dispersionWavenumber(peak, options.depth);
         s.steepness = s.significantWaveHeight / s.peakWavelength;
     }
     return s;

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace heightpack {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kPmBeta = 0.74;        // Pierson-Moskowitz: exp(-beta (g / (U19.5 w))^4)
 constexpr double kU195PerU10 = 1.026;   // the wind at 19.5 m over the wind at 10 m (Stewart's ocean text)
 
@@ -20,7 +20,7 @@ double enhancementExponent(double omega, double peak) {
 // The Pierson-Moskowitz shape in x = w / wp: x^-5 exp(-5/4 x^-4); its integral over x > 0 is 1/5.
 double pmShape(double x) { return std::pow(x, -5.0) * std::exp(-1.25 * std::pow(x, -4.0)); }
 
-double radians(double degrees) { return degrees * kPi / 180.0; }
+double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 
 // w^-5 exp(-c (p / w)^4) gamma^r(w), the shape JONSWAP, Pierson-Moskowitz (gamma 1) and the swell share.
 // Evaluated for every wave vector of a grid (16 million at 4096), so the powers are products, the
@@ -79,7 +79,7 @@ SeaSpectrum::SeaSpectrum(const SpectrumOptions& o)
             break;
     }
     if (o.swell.significantHeight > 0.0) {
-        swellPeak_ = 2 * kPi / o.swell.peakPeriod;
+        swellPeak_ = 2 * std::numbers::pi / o.swell.peakPeriod;
         // E(w) = Hs^2/16 * 5 wp^4 w^-5 exp(-5/4 (wp/w)^4) gamma^r / I(gamma): the unenhanced part alone
         // integrates to Hs^2 / 16, and I(gamma) takes the enhancement's share back out.
         const double h = o.swell.significantHeight;
@@ -146,7 +146,7 @@ double SeaSpectrum::directional(double kx, double ky) const {
         if (o.spreading == Spreading::Cos2) {
             // The common case without an arc tangent: cos(theta - wind) from the dot product.
             const double c = (kx * windX_ + ky * windY_) / k;
-            spread = c > 0.0 ? (2.0 / kPi) * c * c : 0.0;
+            spread = c > 0.0 ? (2.0 / std::numbers::pi) * c * c : 0.0;
         } else {
             spread = spreadingFunction({o.spreading, o.spreadingExponent, windPeak_, o.windSpeed},
                                        std::atan2(ky, kx) - wind, w);
@@ -202,7 +202,7 @@ double spectrumPeakOmega(const SpectrumOptions& o) {
 double angularFrequency(const SpectrumOptions& o, double k) {
     const double w = dispersionFrequency(k, o.depth);
     if (o.loopPeriod <= 0.0) return w;
-    const double w0 = 2 * kPi / o.loopPeriod;
+    const double w0 = 2 * std::numbers::pi / o.loopPeriod;
     return std::floor(w / w0) * w0;
 }
 

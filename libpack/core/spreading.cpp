@@ -1,19 +1,19 @@
 #include "heightpack/core/spreading.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace heightpack {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 // The angle brought into [-pi, pi].
-double wrapAngle(double theta) { return std::remainder(theta, 2 * kPi); }
+double wrapAngle(double theta) { return std::remainder(theta, 2 * std::numbers::pi); }
 }  // namespace
 
 double cos2sNormalisation(double s) {
     // Through log-gamma: s reaches the hundreds for swell, where Gamma(2s + 1) overflows.
-    return std::exp((2 * s - 1) * std::log(2.0) + 2 * std::lgamma(s + 1) - std::lgamma(2 * s + 1)) / kPi;
+    return std::exp((2 * s - 1) * std::log(2.0) + 2 * std::lgamma(s + 1) - std::lgamma(2 * s + 1)) / std::numbers::pi;
 }
 
 double mitsuyasuExponent(double omega, double peakOmega, double windSpeed) {
@@ -34,7 +34,7 @@ double spreadingFunction(const SpreadingOptions& o, double theta, double omega) 
     switch (o.kind) {
         case Spreading::Cos2: {
             const double c = std::cos(theta);
-            return c > 0.0 ? (2.0 / kPi) * c * c : 0.0;
+            return c > 0.0 ? (2.0 / std::numbers::pi) * c * c : 0.0;
         }
         case Spreading::Cos2s: {
             const double s = o.exponent > 0.0 ? o.exponent : mitsuyasuExponent(omega, o.peakOmega, o.windSpeed);
@@ -46,7 +46,7 @@ double spreadingFunction(const SpreadingOptions& o, double theta, double omega) 
             const double c = std::cosh(beta * theta);
             // (beta/2) sech^2 integrates to tanh(beta pi) over [-pi, pi], not quite 1 for the broad
             // spreading far above the peak: divided by it, so no energy is lost behind the circle.
-            return 0.5 * beta / (c * c) / std::tanh(beta * kPi);
+            return 0.5 * beta / (c * c) / std::tanh(beta * std::numbers::pi);
         }
     }
     return 0.0;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <vector>
 
@@ -16,8 +17,6 @@
 namespace heightpack {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double smoothstep(double edge, double x) {
     const double t = std::clamp(x / edge, 0.0, 1.0);
@@ -55,7 +54,7 @@ Image moisanPeriodic(const Image& map, bool relativeToSlope) {
     for (int r = 0; r < h; ++r) {
         for (int q = 0; q < w; ++q) {
             auto& z = spectrum.at<cv::Vec2d>(r, q);
-            const double denominator = 2 * std::cos(2 * kPi * q / w) + 2 * std::cos(2 * kPi * r / h) - 4;
+            const double denominator = 2 * std::cos(2 * std::numbers::pi * q / w) + 2 * std::cos(2 * std::numbers::pi * r / h) - 4;
             if (q == 0 && r == 0) {
                 z = cv::Vec2d(0, 0);
             } else {
@@ -168,7 +167,7 @@ Image crossfadeTile(const Image& map, double width, CrossfadeBlend blend) {
     for (int r = 0; r < h; ++r)
         for (int q = 0; q < w; ++q) {
             const double fx = double(std::min(q, w - q)) / w, fy = double(std::min(r, h - r)) / h;
-            spectrum.at<cv::Vec2d>(r, q) *= std::exp(-2 * kPi * kPi * sigma * sigma * (fx * fx + fy * fy));
+            spectrum.at<cv::Vec2d>(r, q) *= std::exp(-2 * std::numbers::pi * std::numbers::pi * sigma * sigma * (fx * fx + fy * fy));
         }
     detail::inverseDft(spectrum, low, 0);
     for (int y = 0; y < h; ++y) {

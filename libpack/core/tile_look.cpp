@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "heightpack/core/parallel.hpp"
@@ -17,8 +18,6 @@ namespace heightpack {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 using Grid = detail::Field;
 
 cv::Mat spectrumOf(const Image& map, int threads) {
@@ -28,7 +27,7 @@ cv::Mat spectrumOf(const Image& map, int threads) {
     return detail::forwardDft(m, threads);
 }
 
-double gaussianGain(double f, double sigma) { return std::exp(-2 * kPi * kPi * sigma * sigma * f * f); }
+double gaussianGain(double f, double sigma) { return std::exp(-2 * std::numbers::pi * std::numbers::pi * sigma * sigma * f * f); }
 
 // The map filtered periodically with a difference of Gaussians of sigmas fine < coarse (texels): a band
 // pass. Each Gaussian's gain is the product of its gains along x and y, so no exponential per texel.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <numbers>
 #include <vector>
 
 #include "heightpack/core/parallel.hpp"
@@ -21,7 +22,6 @@ namespace heightpack {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = 3.14159265358979323846;
 
 using detail::Field;
 
@@ -37,7 +37,7 @@ double whiteNoise(uint64_t seed, uint64_t index) {
     };
     const uint64_t a = mix(seed * 0x632BE59BD9B4E019ull + 2 * index), b = mix(seed * 0x632BE59BD9B4E019ull + 2 * index + 1);
     const double u1 = (double(a >> 11) + 0.5) / 9007199254740992.0, u2 = double(b >> 11) / 9007199254740992.0;
-    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * kPi * u2);
+    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * std::numbers::pi * u2);
 }
 
 // The stationary Gaussian model of a periodic field p: its circular autocovariance and one sample of the
@@ -206,8 +206,8 @@ Field topBottomSmoothField(const Field& f, int threads) {
     }
     cv::Mat spectrum = detail::forwardDft(v.mat(), threads);
     std::vector<double> cosX(w), cosY(h);
-    for (int q = 0; q < w; ++q) cosX[q] = 2 * std::cos(2 * kPi * q / w);
-    for (int r = 0; r < h; ++r) cosY[r] = 2 * std::cos(2 * kPi * r / h);
+    for (int q = 0; q < w; ++q) cosX[q] = 2 * std::cos(2 * std::numbers::pi * q / w);
+    for (int r = 0; r < h; ++r) cosY[r] = 2 * std::cos(2 * std::numbers::pi * r / h);
     for (int r = 0; r < h; ++r)
         for (int q = 0; q < w; ++q) {
             auto& z = spectrum.at<cv::Vec2d>(r, q);

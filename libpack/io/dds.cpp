@@ -24,6 +24,10 @@
 
 namespace heightpack {
 
+using detail::FileCloser;
+using detail::kBandRows;
+using detail::readLe32;
+
 namespace {
 
 constexpr std::uint32_t fourCC(char a, char b, char c, char d) {
@@ -34,7 +38,6 @@ constexpr std::uint32_t kMagic = fourCC('D', 'D', 'S', ' ');
 constexpr std::uint32_t kDx10 = fourCC('D', 'X', '1', '0');
 constexpr std::uint32_t kRecord = fourCC('H', 'P', 'C', 'K');
 constexpr size_t kDataStart = 4 + 124 + 20;
-constexpr int kBandRows = 64;
 
 // dwFlags, ddspf.dwFlags, dwCaps and the DX10 resource dimension.
 constexpr std::uint32_t kCaps = 0x1, kHeight = 0x2, kWidth = 0x4, kPitch = 0x8, kPixelFormat = 0x1000,
@@ -64,13 +67,6 @@ std::uint32_t codeOf(const std::array<const char*, N>& names, const std::string&
         if (name == names[i]) return std::uint32_t(i + 1);
     return 0;
 }
-std::uint32_t get32(const std::uint8_t* p) {
-    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
-}
-
-struct FileCloser {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-};
 
 }  // namespace
 
@@ -158,9 +154,9 @@ Result<GpuTexture> readDds(const std::string& path) {
         return badInput(path, "is not a DDS file heightpack can read: " + what,
                         "write it again with heightpack, or check that it was copied whole");
     };
-    if (b.size() < kDataStart || get32(b.data()) != kMagic) return corrupt("no DDS magic");
+    if (b.size() < kDataStart || readLe32(b.data()) != kMagic) return corrupt("no DDS magic");
     const std::uint8_t* header = b.data() + 4;
-    auto word = [&](int i) { return get32(header + 4 * i); };
+    auto word = [&](int i) { return readLe32(header + 4 * i); };
     if (word(0) != 124 || word(18) != 32) return corrupt("its header sizes are wrong");
     if (!(word(19) & kFourCCFlag) || word(20) != kDx10) return corrupt("it has no DX10 extended header");
     GpuTexture t;

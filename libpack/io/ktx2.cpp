@@ -21,12 +21,15 @@
 
 namespace heightpack {
 
+using detail::FileCloser;
+using detail::kBandRows;
+using detail::readLe32;
+
 namespace {
 
 constexpr std::uint8_t kIdentifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
 constexpr std::uint32_t kSupercompressionZstd = 2;
 constexpr size_t kHeaderBytes = 80;  // identifier + header + index
-constexpr int kBandRows = 64;
 constexpr const char* kOffsetKey = attr::normalisedOffset.name;
 constexpr const char* kScaleKey = attr::normalisedScale.name;
 
@@ -36,10 +39,9 @@ void put32(std::vector<std::uint8_t>& out, std::uint32_t v) {
 void put64(std::vector<std::uint8_t>& out, std::uint64_t v) {
     for (int i = 0; i < 8; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
 }
-std::uint32_t get32(const std::uint8_t* p) {
-    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+std::uint64_t get64(const std::uint8_t* p) {
+    return std::uint64_t(readLe32(p)) | std::uint64_t(readLe32(p + 4)) << 32;
 }
-std::uint64_t get64(const std::uint8_t* p) { return std::uint64_t(get32(p)) | std::uint64_t(get32(p + 4)) << 32; }
 size_t alignUp(size_t v, size_t a) { return (v + a - 1) / a * a; }
 
 // The Data Format Descriptor: dfdTotalSize, then one Khronos basic descriptor block (model RGBSDA, BT.709
@@ -95,10 +97,6 @@ std::vector<std::uint8_t> keyValueData(Attributes keyValues) {
     }
     return out;
 }
-
-struct FileCloser {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-};
 
 struct ZstdFree {
     void operator()(ZSTD_CCtx* c) const { ZSTD_freeCCtx(c); }
@@ -252,10 +250,10 @@ Result<GpuTexture> readKtx2(const std::string& path) {
     if (b.size() < kHeaderBytes || std::memcmp(b.data(), kIdentifier, 12) != 0)
         return corrupt("no KTX 2.0 identifier");
     const std::uint8_t* p = b.data() + 12;
-    const std::uint32_t vkFormat = get32(p), width = get32(p + 8), height = get32(p + 12), depth = get32(p + 16),
-                        layers = get32(p + 20), faces = get32(p + 24), levelCount = get32(p + 28),
-                        scheme = get32(p + 32), dfdOffset = get32(p + 36), dfdLength = get32(p + 40),
-                        kvdOffset = get32(p + 44), kvdLength = get32(p + 48);
+    const std::uint32_t vkFormat = readLe32(p), width = readLe32(p + 8), height = readLe32(p + 12), depth = readLe32(p + 16),
+                        layers = readLe32(p + 20), faces = readLe32(p + 24), levelCount = readLe32(p + 28),
+                        scheme = readLe32(p + 32), dfdOffset = readLe32(p + 36), dfdLength = readLe32(p + 40),
+                        kvdOffset = readLe32(p + 44), kvdLength = readLe32(p + 48);
     GpuTexture t;
     t.container = Container::Ktx2;
     const auto format = texelFormatFromVk(vkFormat);
@@ -278,7 +276,7 @@ Result<GpuTexture> readKtx2(const std::string& path) {
 
     // Key/value data.
     for (size_t at = kvdOffset, end = size_t(kvdOffset) + kvdLength; at + 4 <= end;) {
-        const std::uint32_t n = get32(b.data() + at);
+        const std::uint32_t n = readLe32(b.data() + at);
         if (n > end - at - 4) return corrupt("a key/value entry runs past the key/value data");
         const char* entry = reinterpret_cast<const char*>(b.data() + at + 4);
         const std::string_view kv(entry, n);

@@ -13,8 +13,6 @@ namespace heightpack::detail {
 
 namespace {
 
-constexpr int kBandRows = 64;
-
 template <class T>
 void putLe(std::uint8_t* dst, T value) {
     std::memcpy(dst, &value, sizeof value);  // every target heightpack builds for is little-endian

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,6 +11,19 @@
 #include "heightpack/io/gpu_texture.hpp"
 
 namespace heightpack::detail {
+
+// Rows encoded (and written) at a time: a band of a level stays in cache between encoding and writing.
+inline constexpr int kBandRows = 64;
+
+// A little-endian 32-bit word of a container's header.
+inline std::uint32_t readLe32(const std::uint8_t* p) {
+    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+}
+
+// Closes a stdio file a writer holds in a std::unique_ptr.
+struct FileCloser {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+};
 
 inline int levelSide(int size, int level) { return size >> level > 0 ? size >> level : 1; }
 // Levels of a full chain down to 1x1 (ROUND_DOWN, as the EXR writer).

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "heightpack/bake/check_job.hpp"
 #include "heightpack/bake/normal_job.hpp"
@@ -17,13 +18,11 @@ using namespace heightpack::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Smooth and periodic over a w x h tile: whole waves along x, y and the diagonal.
 Image analyticMap(int w, int h) {
     return makeImage(w, h, [&](int x, int y) {
         const double u = double(x) / w, v = double(y) / h;
-        return float(0.5 + 0.25 * std::sin(2 * kPi * u) * std::cos(4 * kPi * v) + 0.1 * std::sin(2 * kPi * (3 * u + v)));
+        return float(0.5 + 0.25 * std::sin(2 * std::numbers::pi * u) * std::cos(4 * std::numbers::pi * v) + 0.1 * std::sin(2 * std::numbers::pi * (3 * u + v)));
     });
 }
 

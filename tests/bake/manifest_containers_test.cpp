@@ -17,9 +17,9 @@
 namespace heightpack {
 namespace {
 
-struct ManifestDir {
+struct ContainerManifestDir {
     test::ScratchDir dir;
-    ManifestDir() {
+    ContainerManifestDir() {
         test::writeImage(dir.file("a.png"), test::makeImage(16, 16, [](int x, int y) {
                              return float(0.5 + 0.3 * std::sin(x * 0.3927) * std::cos(y * 0.3927));
                          }),
@@ -36,7 +36,7 @@ const std::string kHead = "format = 1\nname = \"sea\"\n";
 const std::string kSwell = "[[displacement]]\nname = \"swell\"\nsource = \"a.png\"\ntile_size = 64.0\n";
 
 TEST(ManifestContainers, DefaultsAndOwnTablesChooseContainerAndPixelType) {
-    ManifestDir d;
+    ContainerManifestDir d;
     auto m = d.parse(kHead + "[defaults]\ncontainer = \"ktx2\"\npixel_type = \"auto\"\ntolerance = 0.001\n" + kSwell +
                      "[[displacement]]\nname = \"chop\"\nsource = \"a.png\"\ntile_size = 8.0\ncontainer = \"dds\"\n"
                      "pixel_type = \"half\"\n"
@@ -60,7 +60,7 @@ TEST(ManifestContainers, DefaultsAndOwnTablesChooseContainerAndPixelType) {
 }
 
 TEST(ManifestContainers, UnknownValuesAndContradictionsAreManifestErrors) {
-    ManifestDir d;
+    ContainerManifestDir d;
     struct Case {
         std::string text;
         std::string words;  // the message and hint name them
@@ -88,7 +88,7 @@ TEST(ManifestContainers, UnknownValuesAndContradictionsAreManifestErrors) {
 }
 
 TEST(ManifestContainers, MaterialJsonNamesTheFilesWrittenAndAPixelTypeChangeRebuilds) {
-    ManifestDir d;
+    ContainerManifestDir d;
     auto build = [&](const std::string& pixelType) {
         auto m = d.parse(kHead + "[defaults]\ncontainer = \"ktx2\"\n" + kSwell + "pixel_type = \"" + pixelType + "\"\n" +
                          "[fresnel]\ncontainer = \"dds\"\npixel_type = \"half\"\n");

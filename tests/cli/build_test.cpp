@@ -18,7 +18,9 @@
 #include <map>
 #include <sstream>
 #include <thread>
+#include <numbers>
 
+#include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -27,13 +29,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-ProcessResult heightpackRun(const std::vector<std::string>& args) {
-    std::vector<std::string> argv = {HEIGHTPACK_EXE};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return runProcess(argv);
-}
 
 // A periodic sea: whole numbers of waves across the tile, so every level tiles.
 Image periodicMap(int size, double amplitude, int seed) {
@@ -41,7 +36,7 @@ Image periodicMap(int size, double amplitude, int seed) {
         const double u = double(x) / size, v = double(y) / size;
         double h = 0.5;
         for (int k = 1; k <= 5; ++k)
-            h += amplitude / k * std::sin(2 * kPi * (k * u + ((k + seed) % 3) * v) + 0.7 * k + seed);
+            h += amplitude / k * std::sin(2 * std::numbers::pi * (k * u + ((k + seed) % 3) * v) + 0.7 * k + seed);
         return static_cast<float>(h);
     });
 }

@@ -17,6 +17,7 @@
 #include "heightpack/core/normal.hpp"
 #include "heightpack/io/read.hpp"
 
+#include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -26,32 +27,11 @@ namespace {
 
 using CliRun = ProcessResult;
 
-// Runs heightpack with args.
-CliRun heightpackRun(const std::vector<std::string>& args) {
-    std::vector<std::string> argv = {HEIGHTPACK_EXE};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return runProcess(argv);
-}
-
-// The error contract: exactly one line, prefixed, naming the file.
-void expectOneLineError(const CliRun& run, const std::string& path) {
-    EXPECT_EQ(run.err.rfind("heightpack: error: ", 0), 0u) << run.err;
-    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-    if (!path.empty()) {
-        EXPECT_NE(run.err.find(path), std::string::npos) << run.err;
-    }
-    EXPECT_TRUE(run.out.empty()) << run.out;
-}
-
-float smooth(int x, int y) {
-    return static_cast<float>(0.5 + 0.4 * std::sin(x * 0.19) * std::cos(y * 0.13));
-}
-
 }  // namespace
 
 TEST(Cli, PacksAndInfoReportsWhatWasWritten) {
     ScratchDir dir;
-    const Image map = makeImage(64, 32, smooth);
+    const Image map = makeImage(64, 32, smoothWave);
     writeImage(dir.file("map.png"), map, OIIO::TypeDesc::UINT16);
     const CliRun pack = heightpackRun({"pack", dir.file("map.png"), "--filter", "triangle", "-o", dir.file("map.exr")});
     ASSERT_EQ(pack.code, 0) << pack.err;
@@ -88,7 +68,7 @@ TEST(Cli, PacksAndInfoReportsWhatWasWritten) {
 
 TEST(Cli, JsonReportIsOneObjectOnStdout) {
     ScratchDir dir;
-    writeImage(dir.file("map.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("map.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
     const CliRun run = heightpackRun({"pack", dir.file("map.png"), "--json", "-o", dir.file("map.exr")});
     ASSERT_EQ(run.code, 0) << run.err;
     const auto j = nlohmann::json::parse(run.out);
@@ -127,10 +107,10 @@ TEST(Cli, BadInputsExitThreeWithOneLineAndNoOutput) {
     writeBytes(dir.file("truncated.png"), bytes);
     std::vector<float> rgb(16 * 16 * 3, 0.5f);
     writeImage(dir.file("colour.png"), 16, 16, 3, rgb, OIIO::TypeDesc::UINT8);
-    Image nan = makeImage(16, 16, smooth);
+    Image nan = makeImage(16, 16, smoothWave);
     nan.at(2, 3) = std::numeric_limits<float>::quiet_NaN();
     writeImage(dir.file("nan.exr"), nan, OIIO::TypeDesc::FLOAT);
-    writeImage(dir.file("odd.png"), makeImage(1000, 600, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("odd.png"), makeImage(1000, 600, smoothWave), OIIO::TypeDesc::UINT8);
     writeBytes(dir.file("huge.png"), pngWithClaimedSize(100000, 100000));
 
     const std::pair<const char*, const char*> cases[] = {
@@ -151,7 +131,7 @@ TEST(Cli, BadInputsExitThreeWithOneLineAndNoOutput) {
 
 TEST(Cli, UnwritableOutputsExitFourAndAreLeftAlone) {
     ScratchDir dir;
-    writeImage(dir.file("map.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("map.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
 
     const CliRun noFolder = heightpackRun({"pack", dir.file("map.png"), "-o", dir.file("missing/out.exr")});
     EXPECT_EQ(noFolder.code, 4);
@@ -201,7 +181,7 @@ TEST(Cli, FlatOutputsCarryNoTimestamp) {
     // Written a second apart, the same ramp and the same small map must be the same bytes: a writer
     // that stamps the time (OpenImageIO's EXR writer does, unless told otherwise) breaks that.
     ScratchDir dir;
-    writeImage(dir.file("map.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT16);
+    writeImage(dir.file("map.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT16);
     for (const char* name : {"a", "b"}) {
         ASSERT_EQ(heightpackRun({"fresnel", "-q", "-o", dir.file(std::string(name) + "_ramp.exr")}).code, 0);
         ASSERT_EQ(heightpackRun({"tile", dir.file("map.png"), "--force", "--depth", "float", "-q", "-o",
@@ -224,7 +204,7 @@ TEST(Cli, ExampleMapsPack) {
 
 TEST(Cli, NormalWritesTheNormalsOfEveryLevel) {
     ScratchDir dir;
-    writeImage(dir.file("map.png"), makeImage(64, 32, smooth), OIIO::TypeDesc::UINT16);
+    writeImage(dir.file("map.png"), makeImage(64, 32, smoothWave), OIIO::TypeDesc::UINT16);
     const CliRun run = heightpackRun({"normal", dir.file("map.png"), "--tile-size", "8m", "--height", "15cm",
                                       "--kernel", "sobel3", "-o", dir.file("n.exr")});
     ASSERT_EQ(run.code, 0) << run.err;
@@ -254,7 +234,7 @@ TEST(Cli, NormalWritesTheNormalsOfEveryLevel) {
 
 TEST(Cli, NormalPngDirectXFlipsOnlyGreen) {
     ScratchDir dir;
-    writeImage(dir.file("map.png"), makeImage(64, 64, smooth), OIIO::TypeDesc::UINT16);
+    writeImage(dir.file("map.png"), makeImage(64, 64, smoothWave), OIIO::TypeDesc::UINT16);
     for (const char* convention : {"opengl", "directx"}) {
         const CliRun run = heightpackRun({"normal", dir.file("map.png"), "--tile-size", "4m", "--height", "0.5m",
                                           "--convention", convention, "-o", dir.file(std::string(convention) + ".png")});
@@ -303,7 +283,7 @@ TEST(Cli, FresnelPngHasSrgbColoursAndLinearReflectance) {
 
 TEST(Cli, NormalAndFresnelRefuseBadValues) {
     ScratchDir dir;
-    writeImage(dir.file("map.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("map.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
     const std::string map = dir.file("map.png"), out = dir.file("out.exr");
     const std::vector<std::vector<std::string>> usage = {
         {"normal", map, "--height", "1m", "-o", out},                         // no tile size
@@ -326,7 +306,7 @@ TEST(Cli, NormalAndFresnelRefuseBadValues) {
         EXPECT_EQ(run.code, 2) << args[0] << " " << args[2] << ": " << run.err;
         expectOneLineError(run, "");
     }
-    Image nan = makeImage(16, 16, smooth);
+    Image nan = makeImage(16, 16, smoothWave);
     nan.at(1, 1) = std::numeric_limits<float>::quiet_NaN();
     writeImage(dir.file("nan.exr"), nan, OIIO::TypeDesc::FLOAT);
     const CliRun bad = heightpackRun({"normal", dir.file("nan.exr"), "--tile-size", "8m", "--height", "1m", "-o", out});
@@ -419,7 +399,7 @@ TEST(Cli, TileMakesThePaintingTileAndLeavesATilingMapAlone) {
 
 TEST(Cli, CheckAndTileRefuseBadInput) {
     ScratchDir dir;
-    writeImage(dir.file("map.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("map.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
     const std::string map = dir.file("map.png");
     for (const char* width : {"0", "0.7", "-0.1", "wide"}) {
         const CliRun run = heightpackRun({"tile", map, "--method", "crossfade", "--width", width, "-o", dir.file("o.png")});

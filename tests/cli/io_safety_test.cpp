@@ -18,6 +18,7 @@
 #include <map>
 #include <sstream>
 
+#include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -33,15 +34,6 @@ ProcessResult hp(const std::vector<std::string>& args) {
     return runProcess(argv);
 }
 
-void expectOneLineError(const ProcessResult& run, const std::string& path) {
-    EXPECT_EQ(run.err.rfind("heightpack: error: ", 0), 0u) << run.err;
-    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-    if (!path.empty()) {
-        EXPECT_NE(run.err.find(path), std::string::npos) << run.err;
-    }
-}
-
-float smooth(int x, int y) { return static_cast<float>(0.5 + 0.4 * std::sin(x * 0.19) * std::cos(y * 0.13)); }
 
 ino_t inodeOf(const std::string& path) {
     struct stat st {};
@@ -122,8 +114,8 @@ void writeMipExr(const std::string& path, int size, const std::function<float(in
 // Item 1: an output that is an input (by any name) is refused with exit 2 and the input is untouched.
 TEST(IoSafety, OutputOverAnInputIsRefusedWhateverItsName) {
     ScratchDir dir;
-    writeImage(dir.file("in.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
-    writeImage(dir.file("in.exr"), makeImage(32, 32, smooth), OIIO::TypeDesc::FLOAT);
+    writeImage(dir.file("in.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("in.exr"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::FLOAT);
     ASSERT_EQ(::link(dir.file("in.exr").c_str(), dir.file("hard.exr").c_str()), 0);
     const auto png = readBytes(dir.file("in.png")), exr = readBytes(dir.file("in.exr"));
     const ino_t pngInode = inodeOf(dir.file("in.png")), exrInode = inodeOf(dir.file("in.exr"));
@@ -157,7 +149,7 @@ TEST(IoSafety, OutputOverAnInputIsRefusedWhateverItsName) {
 // Item 2: a name whose format a command does not write is refused, naming what it writes.
 TEST(IoSafety, OutputNamesMustSayTheFormatWritten) {
     ScratchDir dir;
-    writeImage(dir.file("in.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("in.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
         {{"pack", dir.file("in.png"), "-o", dir.file("x.png")}, ".exr"},
         {{"pack", dir.file("in.png"), "-o", dir.file("x.tif")}, ".exr"},
@@ -206,7 +198,7 @@ TEST(IoSafety, TruncatedTiffIsBadInputEverywhere) {
 // Item 4: numbers that are not finite, or absurd, are usage errors; nothing is written.
 TEST(IoSafety, NonFiniteAndAbsurdOptionValuesAreUsageErrors) {
     ScratchDir dir;
-    writeImage(dir.file("in.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("in.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
     const std::string in = dir.file("in.png"), out = dir.file("o.exr");
     const std::vector<std::string> synth = {"synth", "--tile-size", "64m", "--size", "16", "-o", out};
     auto with = [](std::vector<std::string> base, std::initializer_list<std::string> more) {
@@ -241,7 +233,7 @@ TEST(IoSafety, NonFiniteAndAbsurdOptionValuesAreUsageErrors) {
 // Item 4, manifests: a value out of range is bad input at FILE:LINE.
 TEST(IoSafety, ManifestValuesMustBeSane) {
     ScratchDir dir;
-    writeImage(dir.file("a.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("a.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
     const std::string head = "format = 1\nname = \"sea\"\n\n[[displacement]]\nsource = \"a.png\"\n";
     const std::vector<std::pair<std::string, std::string>> cases = {
         {head + "name = \"a\"\ntile_size = 64.0\n\n[normals]\nsource = \"a.png\"\ntile_size = 8.0\nheight = 1e300\n",
@@ -327,7 +319,7 @@ TEST(IoSafety, HugeHeadersAreBadInputInEveryReader) {
     writeBytes(dir.file("huge.png"), pngWithClaimedSize(100000, 100000));
     writeBytes(dir.file("big.png"), pngWithClaimedSize(32768, 32768));
     // A small TIFF whose header is patched to claim 60000 x 60000 texels.
-    writeImage(dir.file("small.tif"), makeImage(8, 8, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("small.tif"), makeImage(8, 8, smoothWave), OIIO::TypeDesc::UINT8);
     auto tif = readBytes(dir.file("small.tif"));
     ASSERT_EQ(tif[0], 'I');  // little-endian, as OpenImageIO writes on x86
     auto le16 = [&](size_t at) { return unsigned(tif[at]) | unsigned(tif[at + 1]) << 8; };
@@ -355,7 +347,7 @@ TEST(IoSafety, HugeHeadersAreBadInputInEveryReader) {
 // Item 8: an output that exists and is not a regular file, or is a link, is refused (exit 4).
 TEST(IoSafety, OutputsThatAreNotRegularFilesAreRefused) {
     ScratchDir dir;
-    writeImage(dir.file("in.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("in.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
     ASSERT_EQ(::mkfifo(dir.file("node.exr").c_str(), 0644), 0);
     writeBytes(dir.file("target.exr"), {'o', 'l', 'd'});
     ASSERT_EQ(::symlink("target.exr", dir.file("link.exr").c_str()), 0);
@@ -416,7 +408,7 @@ TEST(IoSafety, FastPngDecoderFollowsChunkOrder) {
 // Item 10: a writer's temporaries left by a killed run (dead pid) are removed by the next write.
 TEST(IoSafety, StaleTemporariesOfAnOutputAreRemovedByTheNextWrite) {
     ScratchDir dir;
-    writeImage(dir.file("in.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("in.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
     const std::string pid = std::to_string(deadPid());
     const std::string mine = ".out.hptmp-" + pid + "-0.exr", other = ".other.hptmp-" + pid + "-0.exr";
     const std::string live = ".out.hptmp-" + std::to_string(::getpid()) + "-0.exr";  // a writer still running
@@ -440,7 +432,7 @@ TEST(IoSafety, StaleTemporariesOfAnOutputAreRemovedByTheNextWrite) {
 TEST(IoSafety, OutputsAreFlushedBeforeAndAfterTheRename) {
     if (std::system("strace -V > /dev/null 2>&1") != 0) GTEST_SKIP() << "strace is not installed";
     ScratchDir dir;
-    writeImage(dir.file("in.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("in.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
     const ProcessResult run = runProcess({"strace", "-f", "-e", "trace=fsync,rename,renameat,renameat2", "-o",
                                           dir.file("trace"), HEIGHTPACK_EXE, "pack", dir.file("in.png"), "-o",
                                           dir.file("out.exr")});
@@ -458,7 +450,7 @@ TEST(IoSafety, OutputsAreFlushedBeforeAndAfterTheRename) {
 TEST(IoSafety, CheckOnAMipMappedExrHoldingNanIsBadInput) {
     ScratchDir dir;
     writeMipExr(dir.file("nan.exr"), 64, [](int level, int x, int y) {
-        return level == 1 && x == 3 && y == 5 ? std::numeric_limits<float>::quiet_NaN() : smooth(x, y);
+        return level == 1 && x == 3 && y == 5 ? std::numeric_limits<float>::quiet_NaN() : smoothWave(x, y);
     });
     const ProcessResult run = hp({"check", dir.file("nan.exr")});
     EXPECT_EQ(run.code, 3) << run.out << run.err;
@@ -466,7 +458,7 @@ TEST(IoSafety, CheckOnAMipMappedExrHoldingNanIsBadInput) {
     EXPECT_NE(run.err.find("level 1 holds NaN at texel 3,5"), std::string::npos) << run.err;
 
     // A mip-mapped EXR missing its last level is damaged, not judged on level 0 alone.
-    writeMipExr(dir.file("good.exr"), 64, [](int, int x, int y) { return smooth(x, y); });
+    writeMipExr(dir.file("good.exr"), 64, [](int, int x, int y) { return smoothWave(x, y); });
     auto bytes = readBytes(dir.file("good.exr"));
     bytes.resize(bytes.size() - 8);
     writeBytes(dir.file("cut.exr"), bytes);
@@ -479,14 +471,14 @@ TEST(IoSafety, CheckOnAMipMappedExrHoldingNanIsBadInput) {
 // Item 13: the rough messages: permission denied, empty output path.
 TEST(IoSafety, MessagesSayWhatIsWrong) {
     ScratchDir dir;
-    writeImage(dir.file("in.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+    writeImage(dir.file("in.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
 
     const ProcessResult empty = hp({"pack", dir.file("in.png"), "-o", ""});
     EXPECT_EQ(empty.code, 2) << empty.err;
     expectOneLineError(empty, "-o ''");
 
     if (::geteuid() == 0 && std::system("setpriv --help > /dev/null 2>&1") == 0) {
-        writeImage(dir.file("secret.png"), makeImage(32, 32, smooth), OIIO::TypeDesc::UINT8);
+        writeImage(dir.file("secret.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);
         ::chmod(dir.file("secret.png").c_str(), 0600);
         ::chmod(dir.path().c_str(), 0755);
         const ProcessResult run = runProcess({"setpriv", "--reuid=65534", "--regid=65534", "--clear-groups",

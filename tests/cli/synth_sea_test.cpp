@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 
 #include "support/spectral_derivative.hpp"
+#include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -18,13 +20,6 @@ using namespace heightpack::test;
 namespace {
 
 using CliRun = ProcessResult;
-constexpr double kPi = 3.14159265358979323846;
-
-CliRun heightpackRun(const std::vector<std::string>& args) {
-    std::vector<std::string> argv = {HEIGHTPACK_EXE};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return runProcess(argv);
-}
 
 struct Channels {
     int size = 0;
@@ -114,10 +109,10 @@ TEST(SynthSea, TheReportIsWhatTheFilesHold) {
     EXPECT_NEAR(report["maxDisplacement"].get<double>(), moved, 1e-4 * moved);
     EXPECT_GE(report["displacementBound"].get<double>(), moved);
     // Steepness is Hs over the peak wavelength at this depth (40 m: w^2 = g k tanh(k d)).
-    const double tp = report["peakPeriod"].get<double>(), w = 2 * kPi / tp;
+    const double tp = report["peakPeriod"].get<double>(), w = 2 * std::numbers::pi / tp;
     double k = w * w / 9.81;
     for (int i = 0; i < 100; ++i) k = w * w / (9.81 * std::tanh(k * 40.0));
-    EXPECT_NEAR(report["peakWavelength"].get<double>(), 2 * kPi / k, 1e-3 * 2 * kPi / k);
+    EXPECT_NEAR(report["peakWavelength"].get<double>(), 2 * std::numbers::pi / k, 1e-3 * 2 * std::numbers::pi / k);
     EXPECT_NEAR(report["steepness"].get<double>(),
                 report["expectedSignificantWaveHeight"].get<double>() / report["peakWavelength"].get<double>(), 1e-9);
 }

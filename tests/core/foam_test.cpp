@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "heightpack/core/foam.hpp"
 #include "heightpack/core/sea_report.hpp"
@@ -13,8 +14,6 @@
 using namespace heightpack;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 SpectrumOptions choppySea() {
     SpectrumOptions o;
@@ -135,8 +134,8 @@ TEST(SeaReport, TheBoundHoldsAndTheNumbersAreTheDirectOnes) {
     EXPECT_LT(ocean.displacementBound(), 100 * largest);  // a bound, but not a vacuous one
     // Steepness: Hs over the deep-water peak wavelength g Tp^2 / 2 pi.
     const SeaStateSummary summary = summariseSeaState(o, ocean.resolvedVariance());
-    EXPECT_NEAR(summary.peakWavelength, kGravity * summary.peakPeriod * summary.peakPeriod / (2 * kPi), 1e-3 * summary.peakWavelength);
+    EXPECT_NEAR(summary.peakWavelength, kGravity * summary.peakPeriod * summary.peakPeriod / (2 * std::numbers::pi), 1e-3 * summary.peakWavelength);
     EXPECT_NEAR(summary.steepness, summary.significantWaveHeight / summary.peakWavelength, 1e-12);
     const double wp = 22.0 * std::pow(kGravity * kGravity / (o.windSpeed * o.fetch), 1.0 / 3.0);
-    EXPECT_NEAR(summary.peakPeriod, 2 * kPi / wp, 0.01 * 2 * kPi / wp);
+    EXPECT_NEAR(summary.peakPeriod, 2 * std::numbers::pi / wp, 0.01 * 2 * std::numbers::pi / wp);
 }

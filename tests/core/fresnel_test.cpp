@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "heightpack/core/fresnel.hpp"
 
@@ -8,12 +9,10 @@ using namespace heightpack;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The Fresnel equations in their angle form (Rs = sin^2(i-t)/sin^2(i+t), Rp = tan^2(i-t)/tan^2(i+t)),
 // an independent formulation of what libpack computes from cosines.
 double referenceFresnel(double thetaDegrees, double n) {
-    const double i = thetaDegrees * kPi / 180.0;
+    const double i = thetaDegrees * std::numbers::pi / 180.0;
     if (i == 0.0) return std::pow((n - 1) / (n + 1), 2);
     const double t = std::asin(std::sin(i) / n);
     const double rs = std::pow(std::sin(i - t) / std::sin(i + t), 2);
@@ -30,7 +29,7 @@ TEST(Fresnel, RampMatchesTheFresnelEquationsForWater) {
     ASSERT_EQ(ramp.channels, 4);
     EXPECT_NEAR(referenceFresnel(0, 1.333), 0.0204, 5e-5);
     for (double degrees : {0.0, 30.0, 60.0, 80.0, 89.0}) {
-        const double u = std::cos(degrees * kPi / 180.0);
+        const double u = std::cos(degrees * std::numbers::pi / 180.0);
         EXPECT_NEAR(sampleRamp(ramp, u)[3], referenceFresnel(degrees, 1.333), 1e-4) << degrees << " degrees";
         EXPECT_NEAR(fresnelReflectance(u, 1.333, FresnelModel::Exact), referenceFresnel(degrees, 1.333), 1e-9);
     }

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "heightpack/core/mip.hpp"
 
@@ -13,7 +14,6 @@ using heightpack::test::referenceBilinear;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const Filter kFilters[] = {Filter::Box, Filter::Triangle, Filter::Lanczos3, Filter::Kaiser};
 const Wrap kWraps[] = {Wrap::Periodic, Wrap::Clamp};
 
@@ -97,7 +97,7 @@ TEST(Mip, LevelsStayAlignedOnASmoothPeriodicField) {
     // level has at least 32 texels a period), bilinear samples of level L and L+1 at the same uv agree.
     const int w = 256, h = 128;
     const Image field = makeImage(w, h, [&](int x, int y) {
-        return static_cast<float>(0.5 + 0.25 * std::sin(2 * kPi * (x + 0.5) / w) + 0.25 * std::cos(2 * kPi * (y + 0.5) / h));
+        return static_cast<float>(0.5 + 0.25 * std::sin(2 * std::numbers::pi * (x + 0.5) / w) + 0.25 * std::cos(2 * std::numbers::pi * (y + 0.5) / h));
     });
     const double amplitude = 1.0;  // peak to peak
     std::mt19937 rng(3);

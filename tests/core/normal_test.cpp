@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
@@ -13,13 +14,11 @@ using heightpack::test::makeImage;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 double angleDegrees(const double a[3], const double b[3]) {
     const double dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     const double na = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
     const double nb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-    return std::acos(std::clamp(dot / (na * nb), -1.0, 1.0)) * 180.0 / kPi;
+    return std::acos(std::clamp(dot / (na * nb), -1.0, 1.0)) * 180.0 / std::numbers::pi;
 }
 
 double median(std::vector<double> v) {
@@ -32,11 +31,11 @@ struct SineField {
     double tile = 8.0, wavelength = 2.0, amplitude = 0.1;
     double heightRange() const { return 2 * amplitude; }  // stored 0..1 spans -a..a
     double stored(double x, double y) const {
-        return 0.5 + 0.5 * std::sin(2 * kPi * x / wavelength) * std::cos(2 * kPi * y / wavelength);
+        return 0.5 + 0.5 * std::sin(2 * std::numbers::pi * x / wavelength) * std::cos(2 * std::numbers::pi * y / wavelength);
     }
     // The analytic OpenGL normal: (-dh/dx, +dh/dy_down, 1), normalised later.
     void normal(double x, double y, double n[3]) const {
-        const double k = 2 * kPi / wavelength;
+        const double k = 2 * std::numbers::pi / wavelength;
         const double hx = amplitude * k * std::cos(k * x) * std::cos(k * y);
         const double hy = -amplitude * k * std::sin(k * x) * std::sin(k * y);
         n[0] = -hx;
@@ -122,8 +121,8 @@ TEST(Normal, PeriodicNormalMapHasNoSeam) {
     const int w = 128, h = 64;
     auto field = [&](int i, int j, int dx, int dy) {
         const double x = double(((i - dx) % w + w) % w) / w, y = double(((j - dy) % h + h) % h) / h;
-        return static_cast<float>(0.5 + 0.2 * std::sin(2 * kPi * (3 * x + 2 * y) + 0.3) +
-                                  0.1 * std::cos(2 * kPi * (5 * x - 4 * y) + 1.1) + 0.05 * std::sin(2 * kPi * 9 * y));
+        return static_cast<float>(0.5 + 0.2 * std::sin(2 * std::numbers::pi * (3 * x + 2 * y) + 0.3) +
+                                  0.1 * std::cos(2 * std::numbers::pi * (5 * x - 4 * y) + 1.1) + 0.05 * std::sin(2 * std::numbers::pi * 9 * y));
     };
     NormalOptions o;
     o.tileWidth = 4.0;
@@ -187,14 +186,14 @@ TEST(Normal, VarianceInAlphaIsTheSlopeVarianceTheFilterRemoved) {
     o.alpha = NormalAlpha::SlopeVariance;
     const Image heights = makeImage(size, size, [&](int i, int) {
         const double x = (i + 0.5) * tile / size;
-        return static_cast<float>(0.5 + 0.2 * std::sin(2 * kPi * x / tile) + a2 * std::sin(2 * kPi * x / l2));
+        return static_cast<float>(0.5 + 0.2 * std::sin(2 * std::numbers::pi * x / tile) + a2 * std::sin(2 * std::numbers::pi * x / l2));
     });
     const auto heightChain = generateMipChain(heights, Filter::Kaiser);
     const auto moments = generateMipChain(slopeMoment(heights, tile / size, tile / size, o), Filter::Kaiser);
     const auto chain = generateNormalChain(heightChain, o, moments);
     // What level 0's central difference sees of the short wave: its slope a k, scaled by the difference's
     // response sin(k dx) / (k dx) (0.64 at four texels a wavelength), squared and averaged over a period.
-    const double k = 2 * kPi / l2, dx = tile / size;
+    const double k = 2 * std::numbers::pi / l2, dx = tile / size;
     const double lost = std::pow(a2 * k * std::sin(k * dx) / (k * dx), 2) / 2;
     for (size_t i = 0; i < chain[0].texelCount(); ++i) ASSERT_NEAR(chain[0].pixels[4 * i + 3], 0.0f, 1e-6);
     for (size_t level = 3; level < 6; ++level) {

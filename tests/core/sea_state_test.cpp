@@ -3,6 +3,7 @@
 #include <opencv2/core.hpp>
 
 #include <cmath>
+#include <numbers>
 
 #include "heightpack/core/dispersion.hpp"
 #include "heightpack/core/spectrum.hpp"
@@ -12,7 +13,6 @@ using namespace heightpack;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double g = kGravity;
 
 // kd from w_h^2 = kd tanh(kd) by bisection: the test's own root, independent of the library's Newton.
@@ -133,13 +133,13 @@ TEST(Swell, AddsItsOwnHsAtItsOwnPeak) {
     const SeaSpectrum spectrum(o);
     for (double w = 0.2; w < 1.0; w += 1e-4)
         if (spectrum.swellFrequencySpectrum(w) > best) best = spectrum.swellFrequencySpectrum(w), bestOmega = w;
-    EXPECT_NEAR(bestOmega, 2 * kPi / 12.0, 2e-4);
+    EXPECT_NEAR(bestOmega, 2 * std::numbers::pi / 12.0, 2e-4);
     // The normalisation against DNV-RP-C205's A_gamma = 1 - 0.287 ln(gamma), good to a few per cent.
     for (double gamma : {1.0, 2.0, 3.3, 5.0, 7.0})
         EXPECT_NEAR(1.0 / jonswapEnhancementIntegral(gamma), 1 - 0.287 * std::log(gamma), 0.03) << gamma;
     EXPECT_NEAR(jonswapEnhancementIntegral(1.0), 1.0, 1e-12);
     // Its energy travels toward 250 degrees: the directional spectrum at the swell's peak wavenumber.
-    const double kp = std::pow(2 * kPi / 12.0, 2) / g, dir = 250.0 * kPi / 180;
+    const double kp = std::pow(2 * std::numbers::pi / 12.0, 2) / g, dir = 250.0 * std::numbers::pi / 180;
     EXPECT_GT(spectrum.directional(kp * std::cos(dir), kp * std::sin(dir)),
               100 * spectrum.directional(-kp * std::cos(dir), -kp * std::sin(dir)));
 }
@@ -150,13 +150,13 @@ TEST(Spreading, EveryFunctionIntegratesToOneOverDirection) {
             if (exponent > 0 && kind != Spreading::Cos2s) continue;
             const SpreadingOptions o{kind, exponent, 1.0, 12.0};
             for (double ratio : {0.3, 0.8, 1.0, 1.3, 2.5, 6.0}) {
-                const double total = integrate([&](double t) { return spreadingFunction(o, t, ratio); }, -kPi, kPi);
+                const double total = integrate([&](double t) { return spreadingFunction(o, t, ratio); }, -std::numbers::pi, std::numbers::pi);
                 EXPECT_NEAR(total, 1.0, 1e-4) << nameOf(kind) << " s " << exponent << " w/wp " << ratio;
             }
         }
     }
     // The published forms at a few points.
-    EXPECT_NEAR(cos2sNormalisation(1.0), 1.0 / (2 * kPi) * 2, 1e-12);  // G(1) = 1/pi: (1 + cos)/2 integrates to pi
+    EXPECT_NEAR(cos2sNormalisation(1.0), 1.0 / (2 * std::numbers::pi) * 2, 1e-12);  // G(1) = 1/pi: (1 + cos)/2 integrates to pi
     EXPECT_NEAR(mitsuyasuExponent(1.0, 1.0, g), 11.5, 1e-12);          // wp U / g = 1
     EXPECT_NEAR(mitsuyasuExponent(2.0, 1.0, g), 11.5 * std::pow(2.0, -2.5), 1e-12);
     EXPECT_NEAR(donelanBannerBeta(0.9), 2.61 * std::pow(0.9, 1.3), 1e-12);
@@ -177,7 +177,7 @@ TEST(Spreading, TheDirectionalSpectrumKeepsTheOmnidirectionalOne) {
         const SeaSpectrum spectrum(o);
         for (double k : {0.02, 0.06, 0.1, 0.3}) {
             const double around = integrate([&](double t) { return spectrum.directional(k * std::cos(t), k * std::sin(t)) * k; },
-                                            -kPi, kPi);
+                                            -std::numbers::pi, std::numbers::pi);
             EXPECT_NEAR(around, spectrum.omnidirectional(k), 1e-5 * spectrum.omnidirectional(k)) << nameOf(kind) << " " << k;
         }
     }
@@ -199,7 +199,7 @@ TEST(Spectrum, WavesRunWithTheWind) {
         return f;
     };
     const cv::Mat a = spectrumAt(1.0), b = spectrumAt(1.0 + dt);
-    const double dk = 2 * kPi / o.tileSize, wind = 20.0 * kPi / 180;
+    const double dk = 2 * std::numbers::pi / o.tileSize, wind = 20.0 * std::numbers::pi / 180;
     int checked = 0;
     for (int my = -8; my <= 8; ++my)
         for (int mx = 1; mx <= 8; ++mx) {
@@ -209,7 +209,7 @@ TEST(Spectrum, WavesRunWithTheWind) {
             if (std::hypot(za[0], za[1]) < 1e-6) continue;
             const double turned = std::atan2(za[0] * zb[1] - za[1] * zb[0], za[0] * zb[0] + za[1] * zb[1]);
             // To float rounding of the stored heights; running against the wind would be off by 2 w dt.
-            EXPECT_NEAR(turned, std::remainder(-dispersionFrequency(std::hypot(kx, ky), o.depth) * dt, 2 * kPi), 1e-3);
+            EXPECT_NEAR(turned, std::remainder(-dispersionFrequency(std::hypot(kx, ky), o.depth) * dt, 2 * std::numbers::pi), 1e-3);
             ++checked;
         }
     EXPECT_GT(checked, 20);
@@ -224,6 +224,6 @@ TEST(Spectrum, FiniteDepthSeasStillLoop) {
         ASSERT_NEAR(a.heights.pixels[i], b.heights.pixels[i], 1e-5);
         ASSERT_NEAR(a.jacobian.pixels[i], b.jacobian.pixels[i], 1e-5);
     }
-    EXPECT_DOUBLE_EQ(std::fmod(angularFrequency(o, 0.3) / (2 * kPi / 10.0), 1.0), 0.0);
+    EXPECT_DOUBLE_EQ(std::fmod(angularFrequency(o, 0.3) / (2 * std::numbers::pi / 10.0), 1.0), 0.0);
     EXPECT_LE(angularFrequency(o, 0.3), dispersionFrequency(0.3, 6.0));
 }

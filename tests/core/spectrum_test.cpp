@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/spectrum.hpp"
@@ -11,8 +12,6 @@
 using namespace heightpack;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 SpectrumOptions windSea(SpectrumModel model, uint64_t seed = 1) {
     SpectrumOptions o;
@@ -77,7 +76,7 @@ TEST(Spectrum, MeasuredPowerSpectrumFollowsTheRequestedOne) {
             for (int x = 0; x < n; ++x) field.at<double>(y, x) = h.at(x, y);
         cv::Mat f;
         cv::dft(field, f, cv::DFT_COMPLEX_OUTPUT);
-        const double dk = 2 * kPi / o.tileSize;
+        const double dk = 2 * std::numbers::pi / o.tileSize;
         const int rings = n / 2;
         std::vector<double> measured(rings, 0.0), expected(rings, 0.0);
         std::vector<int> modes(rings, 0);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "heightpack/core/tile_look.hpp"
 #include "heightpack/core/tile_resynthesis.hpp"
@@ -17,8 +18,6 @@ using namespace heightpack;
 using namespace heightpack::test;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Image rounded(Image map, double quantum) {
     if (quantum > 0)
@@ -63,7 +62,7 @@ TEST(Resynthesis, AFieldTheContextDeterminesIsReproduced) {
     // Gaussian field with so few frequencies is fixed by the columns beside a band: the band re-synthesised
     // is the map itself.
     Image map(128, 128, 1);
-    auto c = [](int k, int i) { return std::cos(2 * kPi * k * (i + 0.5) / 128.0); };
+    auto c = [](int k, int i) { return std::cos(2 * std::numbers::pi * k * (i + 0.5) / 128.0); };
     for (int y = 0; y < 128; ++y)
         for (int x = 0; x < 128; ++x)
             map.at(x, y) = static_cast<float>(0.5 + 0.2 * c(3, x) * c(2, y) + 0.1 * c(1, x) * c(4, y) + 0.05 * c(5, y));

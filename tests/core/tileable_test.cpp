@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "heightpack/bake/check_job.hpp"
 #include "heightpack/core/mip.hpp"
@@ -15,13 +16,11 @@ using namespace heightpack::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // A smooth random field: a sum of waves with random directions and phases. With whole wave numbers it
 // is periodic over the tile; with fractional ones it is not.
 Image waveField(int w, int h, unsigned seed, bool periodic) {
     std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> k(1.0, 7.0), phase(0, 2 * kPi), sign(-1, 1);
+    std::uniform_real_distribution<double> k(1.0, 7.0), phase(0, 2 * std::numbers::pi), sign(-1, 1);
     struct Wave { double kx, ky, a, p; };
     std::vector<Wave> waves;
     for (int i = 0; i < 12; ++i) {
@@ -34,7 +33,7 @@ Image waveField(int w, int h, unsigned seed, bool periodic) {
     }
     return makeImage(w, h, [&](int x, int y) {
         double v = 0.5;
-        for (const Wave& wave : waves) v += wave.a * std::cos(2 * kPi * (wave.kx * x / w + wave.ky * y / h) + wave.p);
+        for (const Wave& wave : waves) v += wave.a * std::cos(2 * std::numbers::pi * (wave.kx * x / w + wave.ky * y / h) + wave.p);
         return static_cast<float>(v);
     });
 }
@@ -43,8 +42,8 @@ Image waveField(int w, int h, unsigned seed, bool periodic) {
 // at the tile edge instead of wrapping, the stripes survive at the edge texels and a seam appears.
 Image stripedField(int size) {
     return makeImage(size, size, [&](int x, int y) {
-        return static_cast<float>(0.5 + 0.2 * std::sin(2 * kPi * (2.0 * (x + 0.5) / size + double(y) / size)) +
-                                  0.2 * std::sin(2 * kPi * (x + 0.5) / 4 + 0.3));
+        return static_cast<float>(0.5 + 0.2 * std::sin(2 * std::numbers::pi * (2.0 * (x + 0.5) / size + double(y) / size)) +
+                                  0.2 * std::sin(2 * std::numbers::pi * (x + 0.5) / 4 + 0.3));
     });
 }
 
@@ -86,7 +85,7 @@ TEST(Tileable, PeriodicFieldsTileAtEveryLevelAndOthersDoNot) {
 TEST(Tileable, MatchingHeightsWithBrokenSlopesFail) {
     // sin(pi x / W): zero at both ends (heights meet), slope +pi/W at the left, -pi/W at the right.
     const Image kink = makeImage(128, 64, [](int x, int y) {
-        return static_cast<float>(0.5 * std::sin(kPi * (x + 0.5) / 128) + 0.1 * std::cos(2 * kPi * y / 64));
+        return static_cast<float>(0.5 * std::sin(std::numbers::pi * (x + 0.5) / 128) + 0.1 * std::cos(2 * std::numbers::pi * y / 64));
     });
     const LevelSeams s = measureSeams(kink);
     EXPECT_LT(s.leftRight.value, 1.0);  // the edge heights are closer than neighbours' are
@@ -217,7 +216,7 @@ TEST(Tileable, PackingCheckFindsAWrongTexel) {
 TEST(Tileable, PreviewMarksExactlyTheFailingEdges) {
     // A ramp along x (seam at the left/right edges), periodic along y.
     const Image ramp = makeImage(128, 64, [](int x, int y) {
-        return static_cast<float>(x / 128.0 * 0.5 + 0.2 * std::sin(2 * kPi * y / 64));
+        return static_cast<float>(x / 128.0 * 0.5 + 0.2 * std::sin(2 * std::numbers::pi * y / 64));
     });
     const LevelSeams seams = measureSeams(ramp);
     ASSERT_FALSE(seamPasses(seams.leftRight));

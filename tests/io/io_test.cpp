@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <numbers>
 
 #include "heightpack/bake/pack_job.hpp"
 #include "heightpack/core/mip.hpp"
@@ -33,12 +34,10 @@ using namespace heightpack::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // A smooth field in [0.05, 0.95].
 float field(int x, int y) {
-    return static_cast<float>(0.5 + 0.3 * std::sin(2 * kPi * x / 64.0) * std::cos(2 * kPi * y / 32.0) +
-                              0.15 * std::sin(2 * kPi * (x + 2 * y) / 64.0));
+    return static_cast<float>(0.5 + 0.3 * std::sin(2 * std::numbers::pi * x / 64.0) * std::cos(2 * std::numbers::pi * y / 32.0) +
+                              0.15 * std::sin(2 * std::numbers::pi * (x + 2 * y) / 64.0));
 }
 
 Error loadError(const std::string& path, const LoadOptions& options = {}) {

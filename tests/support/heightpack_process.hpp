@@ -3,8 +3,10 @@
 // tests/CMakeLists.txt. Header-only because the path is a per-target definition.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -17,6 +19,16 @@ inline ProcessResult heightpackRun(const std::vector<std::string>& args) {
     std::vector<std::string> argv = {HEIGHTPACK_EXE};
     argv.insert(argv.end(), args.begin(), args.end());
     return runProcess(argv);
+}
+
+// The error contract: exactly one line on stderr, prefixed, naming path (unless empty), nothing on stdout.
+inline void expectOneLineError(const ProcessResult& run, const std::string& path) {
+    EXPECT_EQ(run.err.rfind("heightpack: error: ", 0), 0u) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    if (!path.empty()) {
+        EXPECT_NE(run.err.find(path), std::string::npos) << run.err;
+    }
+    EXPECT_TRUE(run.out.empty()) << run.out;
 }
 
 #ifdef HEIGHTPACK_READER_MJS

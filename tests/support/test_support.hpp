@@ -4,6 +4,7 @@
 
 #include <OpenImageIO/typedesc.h>
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <random>
@@ -32,6 +33,8 @@ private:
 
 // An image whose texel (x, y) is f(x, y).
 Image makeImage(int width, int height, const std::function<float(int x, int y)>& f);
+// A smooth, non-periodic height in [0.1, 0.9] at texel (x, y): the CLI tests' ordinary map.
+inline float smoothWave(int x, int y) { return static_cast<float>(0.5 + 0.4 * std::sin(x * 0.19) * std::cos(y * 0.13)); }
 // Uniform random values in [lo, hi) from a fixed seed.
 Image randomImage(int width, int height, unsigned seed, float lo = 0.0f, float hi = 1.0f);
 

@@ -41,7 +41,7 @@ struct Grey {
     int at(int x, int y) const { return g[size_t(y) * width + x]; }
 };
 
-Grey shot(const ScratchDir& dir, const std::string& name, std::vector<std::string> args) {
+Grey greyShot(const ScratchDir& dir, const std::string& name, std::vector<std::string> args) {
     args.insert(args.end(), {"--screenshot", dir.file(name)});
     const ViewRun run = view(args);
     EXPECT_EQ(run.code, 0) << run.err;
@@ -110,10 +110,10 @@ TEST(ViewerChoppy, CrestsSharpenAndTroughsWidenByTheClosedFormAmount) {
     for (const double c : {0.0, 1.5}) {
         auto args = common;
         args.insert(args.end(), {"--choppiness", std::to_string(c)});
-        std::vector<Bands> bands = {measure(shot(dir, "one.png", args))};
+        std::vector<Bands> bands = {measure(greyShot(dir, "one.png", args))};
         if (c > 0) {  // the two-pass path, where the combine pass stores each vertex's shift
             args.push_back("--two-pass");
-            bands.push_back(measure(shot(dir, "two.png", args)));
+            bands.push_back(measure(greyShot(dir, "two.png", args)));
         }
         // A point at x moves to x + c D = x - c A sin(k x): the band |k x| < pi/3 where h > A/2 shrinks by c A sqrt(3),
         // the trough band grows by as much; as fractions of the wavelength L: 1/3 -+ c A sqrt(3) / L.

@@ -41,7 +41,7 @@ double columnOf(double worldX) {
 }
 
 // The viewer's picture, drawn headless (EGL): no X server to start, so the test stays fast.
-Picture shot(const ScratchDir& dir, const std::string& name, std::vector<std::string> args) {
+Picture foamShot(const ScratchDir& dir, const std::string& name, std::vector<std::string> args) {
     args.insert(args.end(), {"--screenshot", dir.file(name)});
     const ViewRun run = viewWithoutDisplay(args);
     EXPECT_EQ(run.code, 0) << run.err;
@@ -79,7 +79,7 @@ TEST(ViewerFoamCoverage, BakedFoamWhitensWhereTheCoverageIsOne) {
         std::vector<std::string> args = {dir.file(map)};
         args.insert(args.end(), view.begin(), view.end());
         args.insert(args.end(), extra.begin(), extra.end());
-        return shot(dir, "shot.png", args);
+        return foamShot(dir, "shot.png", args);
     };
     // The packed texture, and the sea itself (its Foam channel mip-mapped in memory).
     double packedBare = 0;
