@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
     for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, onSignal);
 
     CLI::App app{"heightpack: water height maps to tileable, mip-chained, 4-neighbour packed RGBA32F textures"};
+    app.name("heightpack");  // the usage lines say heightpack, not the path it was run by
     app.set_version_flag("--version", std::string("heightpack ") + heightpack::kVersion);
     app.require_subcommand(1);
     app.footer(

@@ -171,10 +171,13 @@ TEST(Cli, HelpShowsAnExample) {
         EXPECT_EQ(run.code, 0);
         EXPECT_NE(run.out.find("Example"), std::string::npos) << run.out;
         EXPECT_NE(run.out.find(std::string("heightpack ") + command), std::string::npos) << run.out;
+        // The usage line names the program, not the path it was run by (HEIGHTPACK_EXE is a full path).
+        EXPECT_NE(run.out.find(std::string("Usage: heightpack ") + command + " [OPTIONS]"), std::string::npos) << run.out;
     }
     const CliRun top = heightpackRun({"--help"});
     EXPECT_EQ(top.code, 0);
     EXPECT_NE(top.out.find("Exit codes"), std::string::npos);
+    EXPECT_NE(top.out.find("Usage: heightpack [OPTIONS]"), std::string::npos) << top.out;
 }
 
 TEST(Cli, FlatOutputsCarryNoTimestamp) {

@@ -1,5 +1,6 @@
-# Installs the build at BUILD_DIR into WORK_DIR/prefix, then configures, builds and runs the consumer,
-# and checks that its water material is rebuilt exactly when its map's bytes change (Ninja + depfile).
+# Installs the build at BUILD_DIR, moves the installed folder to WORK_DIR/prefix, then configures, builds
+# and runs the consumers against it, and checks that the water material is rebuilt exactly when its map's
+# bytes change (Ninja + depfile). Then embeds heightpack's source with add_subdirectory.
 file(REMOVE_RECURSE ${WORK_DIR})
 macro(run)
   execute_process(COMMAND ${ARGV} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -13,7 +14,20 @@ set(texture ${build}/water/chop.exr)
 file(COPY ${SOURCE_DIR}/ DESTINATION ${src})
 file(COPY_FILE ${EXAMPLES_DIR}/maps/choppy.png ${src}/water/chop.png)
 
-run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
+# Installed into one folder, then moved to another: the package must hold no path of where it was
+# installed nor of the libraries on the machine that built it (it finds them again where it is used).
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/installed)
+file(RENAME ${WORK_DIR}/installed ${WORK_DIR}/prefix)
+file(GLOB_RECURSE package_files ${WORK_DIR}/prefix/lib/cmake/heightpack/*.cmake)
+foreach(f IN LISTS package_files)
+  file(READ ${f} text)
+  foreach(absolute ${WORK_DIR}/installed ${BUILD_DIR} libopencv_core.so libxxhash.so libdeflate.so libzstd.so)
+    string(FIND "${text}" "${absolute}" at)
+    if(at GREATER_EQUAL 0)
+      message(FATAL_ERROR "${f} names ${absolute}: the installed package cannot move")
+    endif()
+  endforeach()
+endforeach()
 # Every manifest error points at docs/manifest.md: it must be installed with the package.
 if(NOT EXISTS ${WORK_DIR}/prefix/share/doc/heightpack/manifest.md)
   message(FATAL_ERROR "docs/manifest.md was not installed under share/doc/heightpack")
@@ -76,3 +90,10 @@ if(changed STREQUAL first)
   message(FATAL_ERROR "changing the map did not rebuild its texture")
 endif()
 message(STATUS "consumer: installed package, heightpack_add_material and its depfile work")
+
+# heightpack's source embedded with add_subdirectory: only what the engine links is built.
+set(embedded_build ${WORK_DIR}/embedded_build)
+run(${CMAKE_COMMAND} -S ${src}/embedded -B ${embedded_build} -G Ninja -DHEIGHTPACK_SOURCE_DIR=${HEIGHTPACK_SOURCE_DIR})
+run(${CMAKE_COMMAND} --build ${embedded_build} --target embedded_consumer)
+run(${embedded_build}/embedded_consumer)
+message(STATUS "embedded: ${out}")
