@@ -10,6 +10,7 @@
 #include "heightpack/io/threads.hpp"
 
 #include "command.hpp"
+#include "enum_option.hpp"
 #include "hints.hpp"
 #include "look_report.hpp"
 
@@ -39,12 +40,8 @@ public:
         cmd->add_option("--echo-threshold", options_.look.echo, "largest echo (an autocorrelation) that passes")
             ->capture_default_str()
             ->check(finiteRange(0.0, 1.0));
-        cmd->add_option("--wrap", wrap_, "wrap of the mip chain made from a flat image, as pack would")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<Wrap>()));
-        cmd->add_option("--filter", filter_, "filter of that chain")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<Filter>()));
+        addEnumOption(*cmd, "--wrap", options_.mip.wrap, "wrap of the mip chain made from a flat image, as pack would");
+        addEnumOption(*cmd, "--filter", options_.mip.filter, "filter of that chain");
         addChannelOption(*cmd, channel_);
         addCommonOptions(*cmd);
         cmd->footer(
@@ -66,8 +63,6 @@ public:
     ExitCode run() override {
         applyChannel(channel_, options_.load);
         options_.load.silenceDecoderMessages = true;
-        options_.mip.wrap = *parseName<Wrap>(wrap_);
-        options_.mip.filter = *parseName<Filter>(filter_);
         options_.mip.threads = common_.threads;
         setLibraryThreads(common_.threads);
         // A sequence is checked frame by frame; it tiles when every frame does. --json prints one document.
@@ -174,7 +169,7 @@ private:
         if (!shownPreview_.empty()) std::printf("  preview: %s\n", shownPreview_.c_str());
     }
 
-    std::string input_, channel_, wrap_ = nameOf(MipOptions{}.wrap), filter_ = nameOf(MipOptions{}.filter);
+    std::string input_, channel_;
     CheckOptions options_;
     CLI::Option* previewOption_ = nullptr;
     std::string shownPreview_;  // the preview's name as the user gave it (a sequence writes a staged one first)

@@ -6,6 +6,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "enum_option.hpp"
 #include "texture_options.hpp"
 
 namespace heightpack::cli {
@@ -21,12 +22,8 @@ public:
         cmd->add_option("--ior", options_.ior, "index of refraction of the water (air is 1)")
             ->capture_default_str()
             ->check(finiteRange(1.0, 4.0));  // the manifest's range too (docs/manifest.md)
-        cmd->add_option("--model", model_, "exact: unpolarised Fresnel equations; schlick: Schlick's approximation")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<FresnelModel>()));
-        cmd->add_option("--index", index_, "nv: u = N.V; 2nv: u = saturate(2 N.V), as the Isidoro shader indexes it")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<FresnelIndex>()));
+        addEnumOption(*cmd, "--model", options_.model, "exact: unpolarised Fresnel equations; schlick: Schlick's approximation");
+        addEnumOption(*cmd, "--index", options_.index, "nv: u = N.V; 2nv: u = saturate(2 N.V), as the Isidoro shader indexes it");
         cmd->add_option("--deep", deep_, "linear colour seen looking straight down")
             ->capture_default_str()
             ->check(colourValidator());
@@ -60,8 +57,6 @@ public:
         Supercompression none;
         if (const std::string problem = checkContainerChoice({output_}, pixelType, "", false, none); !problem.empty())
             return usage(problem);
-        options_.model = *parseName<FresnelModel>(model_);
-        options_.index = *parseName<FresnelIndex>(index_);
         options_.deep = *parseColour(deep_);
         options_.shallow = *parseColour(shallow_);
         const Status written = writeFresnelRamp(output_, options_, format == "png8" ? RampFormat::Png8 : RampFormat::Exr,
@@ -70,12 +65,12 @@ public:
         const double f0 = fresnelReflectance(1.0, options_.ior, options_.model);
         if (common_.json) {
             printJson({{"command", "fresnel"}, {"output", output_}, {"format", format}, {"ior", options_.ior},
-                       {"model", model_}, {"index", index_}, {"size", options_.size}, {"deep", options_.deep},
+                       {"model", nameOf(options_.model)}, {"index", nameOf(options_.index)}, {"size", options_.size}, {"deep", options_.deep},
                        {"shallow", options_.shallow}, {"reflectanceAtNormalIncidence", f0}});
         } else if (chatty()) {
             std::ostringstream line;
             line << "wrote " << output_ << ": " << options_.size << "x1 " << format << ", ior " << options_.ior << ", "
-                 << model_ << ", index " << index_ << ", F(0 deg) = " << std::setprecision(4) << f0;
+                 << nameOf(options_.model) << ", index " << nameOf(options_.index) << ", F(0 deg) = " << std::setprecision(4) << f0;
             std::cout << line.str() << "\n";
         }
         return ExitCode::Ok;
@@ -84,7 +79,6 @@ public:
 private:
     std::string output_, format_, pixelType_ = "float";
     FresnelOptions options_;
-    std::string model_ = nameOf(options_.model), index_ = nameOf(options_.index);
     std::string deep_ = colourText(options_.deep), shallow_ = colourText(options_.shallow);
 };
 

@@ -11,6 +11,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "enum_option.hpp"
 #include "texture_options.hpp"
 
 namespace heightpack::cli {
@@ -32,18 +33,11 @@ public:
                                              "viewer's displacement amplitude)")
             ->required()
             ->check(lengthValidator(1e3));
-        cmd->add_option("--kernel", kernel_, "slope kernel; each measures a plane's slope exactly")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<SlopeKernel>()));
-        cmd->add_option("--wrap", wrap_, "periodic: no seam at the tile edge; clamp: one-sided at the border")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<Wrap>()));
-        cmd->add_option("--filter", filter_, "filter of the height mip chain each level's normals come from")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<Filter>()));
-        cmd->add_option("--convention", convention_, "opengl: green toward the top of the image; directx: flipped")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<NormalConvention>()));
+        addEnumOption(*cmd, "--kernel", options_.normal.kernel, "slope kernel; each measures a plane's slope exactly");
+        addEnumOption(*cmd, "--wrap", options_.normal.wrap, "periodic: no seam at the tile edge; clamp: one-sided at the border");
+        addEnumOption(*cmd, "--filter", options_.filter, "filter of the height mip chain each level's normals come from");
+        addEnumOption(*cmd, "--convention", options_.normal.convention,
+                      "opengl: green toward the top of the image; directx: flipped");
         CLI::Option* heightAlpha = cmd->add_flag("--height-in-alpha", heightInAlpha_,
                                                  "store the height (stored value) in alpha, as the D3D11 demo does");
         cmd->add_flag("--variance-in-alpha", varianceInAlpha_,
@@ -55,10 +49,10 @@ public:
                                  ->capture_default_str()
                                  ->check(CLI::IsMember(compressionNames()));
         addPixelTypeOption(*cmd, pixelType_, true, &tolerance_);
-        cmd->add_option("--layout", layout_, "rgb: x, y, z; xy: two channels, z rebuilt in the shader as "
-                                             "sqrt(1 - x^2 - y^2) (mip-mapped outputs, no alpha)")
-            ->capture_default_str()
-            ->check(CLI::IsMember(std::vector<std::string>{nameOf(Layout::Rgb), nameOf(Layout::Xy)}));
+        addEnumOption(*cmd, "--layout", options_.layout,
+                      "rgb: x, y, z; xy: two channels, z rebuilt in the shader as sqrt(1 - x^2 - y^2) (mip-mapped "
+                      "outputs, no alpha)",
+                      {Layout::Rgb, Layout::Xy});
         addChannelOption(*cmd, channel_);
         cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two (EXR)")
             ->check(CLI::IsMember({"none", "pow2"}));
@@ -82,20 +76,16 @@ public:
             return code;
         const std::string format = outputFormat(format_, output_);
         if (format.empty()) return usage("the output must end in .exr, .ktx2, .dds or .png, matching --format if given");
-        NormalJobOptions o;
+        NormalJobOptions& o = options_;
         NormalOptions& n = o.normal;
         const auto comma = tileSize_.find(',');
         n.tileWidth = *parseLength(tileSize_.substr(0, comma));
         n.tileHeight = comma == std::string::npos ? 0.0 : *parseLength(tileSize_.substr(comma + 1));
         n.heightRange = *parseLength(height_);
-        n.kernel = *parseName<SlopeKernel>(kernel_);
-        n.wrap = *parseName<Wrap>(wrap_);
-        n.convention = *parseName<NormalConvention>(convention_);
         n.alpha = heightInAlpha_ ? NormalAlpha::Height : varianceInAlpha_ ? NormalAlpha::SlopeVariance : NormalAlpha::None;
         n.threads = common_.threads;
         if (format == "png8" && varianceInAlpha_)
             return usage("--variance-in-alpha describes mip levels, which a PNG does not have; write .exr");
-        o.filter = *parseName<Filter>(filter_);
         o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
         o.compression = parseName<Compression>(compression_).value_or(Compression::Zip);
         o.pixelType = requestedPixelType(pixelType_);
@@ -104,7 +94,6 @@ public:
         // Normal maps' errors are in normal units: --tolerance is a plain number (no --height conversion).
         if (const std::string problem = toleranceInStoredUnits(pixelType_, tolerance_, 0.0, o.tolerance); !problem.empty())
             return usage(problem);
-        o.layout = *parseName<Layout>(layout_);
         if (o.layout == Layout::Xy && format == "png8")
             return usage("--layout xy is for mip-mapped .exr, .ktx2 and .dds outputs; a PNG normal map is rgb");
         if (o.layout == Layout::Xy && n.alpha != NormalAlpha::None)
@@ -170,9 +159,9 @@ private:
                        {"tileHeight", n.tileHeight > 0 ? n.tileHeight : n.tileWidth * r.levelSizes[0].second /
                                                                             r.levelSizes[0].first},
                        {"heightRange", n.heightRange},
-                       {"kernel", kernel_},
-                       {"convention", convention_},
-                       {"wrap", wrap_},
+                       {"kernel", nameOf(n.kernel)},
+                       {"convention", nameOf(n.convention)},
+                       {"wrap", nameOf(n.wrap)},
                        {"sourceHash", r.sourceHash},
                        {"resized", r.resized},
                        {"resize", r.resized ? resizeJson(r.source.width, r.source.height, width, height)
@@ -194,8 +183,8 @@ private:
             std::ostringstream line;
             line << "wrote " << r.output << ": " << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " ("
                  << r.levelSizes.size() << (r.levelSizes.size() == 1 ? " level" : " levels") << "), "
-                 << format << ", tile " << n.tileWidth << " m, height " << n.heightRange << " m, " << kernel_ << ", "
-                 << convention_ << ", steepest " << std::fixed << std::setprecision(1) << r.maxSlopeDegrees
+                 << format << ", tile " << n.tileWidth << " m, height " << n.heightRange << " m, " << nameOf(n.kernel) << ", "
+                 << nameOf(n.convention) << ", steepest " << std::fixed << std::setprecision(1) << r.maxSlopeDegrees
                  << " deg, ";
             if (format != "png8")
                 line << nameOf(r.layout) << " " << storedChainText(r.pixelType, r.lookupError, 0.0) << ", ";
@@ -208,10 +197,9 @@ private:
     }
 
     std::string input_, output_, tileSize_, height_, channel_, format_;
-    std::string kernel_ = nameOf(NormalOptions{}.kernel), wrap_ = nameOf(NormalOptions{}.wrap);
-    std::string filter_ = nameOf(NormalJobOptions{}.filter), convention_ = nameOf(NormalOptions{}.convention);
+    NormalJobOptions options_;
     std::string compression_ = nameOf(NormalJobOptions{}.compression), resize_ = "none", pixelType_ = "float";
-    std::string tolerance_, layout_ = nameOf(Layout::Rgb);
+    std::string tolerance_;
     CLI::Option* compressionOption_ = nullptr;
     bool heightInAlpha_ = false, varianceInAlpha_ = false;
 };

@@ -12,6 +12,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "enum_option.hpp"
 #include "texture_options.hpp"
 
 namespace heightpack::cli {
@@ -31,10 +32,8 @@ public:
             ->capture_default_str()
             ->check(finiteRange(-1e6, 1e6));
         cmd->add_option("--offset", options_.offset, "see --scale")->capture_default_str()->check(finiteRange(-1e6, 1e6));
-        cmd->add_option("--wrap", wrap_, "how filters and neighbours see past the edge")->capture_default_str()
-            ->check(CLI::IsMember(allNames<Wrap>()));
-        cmd->add_option("--filter", filter_, "mip filter")->capture_default_str()
-            ->check(CLI::IsMember(allNames<Filter>()));
+        addEnumOption(*cmd, "--wrap", options_.mip.wrap, "how filters and neighbours see past the edge");
+        addEnumOption(*cmd, "--filter", options_.mip.filter, "mip filter");
         compressionOption_ = cmd->add_option("--compression", compression_,
                                              "EXR compression (lossless only); for .ktx2 none or zstd")
                                  ->capture_default_str()
@@ -43,10 +42,10 @@ public:
         cmd->add_option("--height", height_, "how far a stored 1.0 stands above a stored 0.0, in metres: recorded, and "
                                              "lookup errors and --tolerance are then in metres")
             ->check(lengthValidator(1e3));
-        cmd->add_option("--layout", layout_, "neighbour4: each texel holds its four neighbours (one fetch per lookup); "
-                                             "plain: one channel, the height (textureGather, hardware filtering)")
-            ->capture_default_str()
-            ->check(CLI::IsMember(std::vector<std::string>{nameOf(Layout::Neighbour4), nameOf(Layout::Plain)}));
+        addEnumOption(*cmd, "--layout", options_.layout,
+                      "neighbour4: each texel holds its four neighbours (one fetch per lookup); plain: one channel, "
+                      "the height (textureGather, hardware filtering)",
+                      {Layout::Neighbour4, Layout::Plain});
         cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two up to the "
                                               "next ones, with the mip filter")
             ->check(CLI::IsMember({"none", "pow2"}));
@@ -78,8 +77,6 @@ public:
             return usage("--scale and --offset must be finite numbers");
         options_.load.silenceDecoderMessages = true;  // errors come back in the result, as one line
         applyChannel(channel_, options_.load);
-        options_.mip.wrap = *parseName<Wrap>(wrap_);
-        options_.mip.filter = *parseName<Filter>(filter_);
         options_.mip.threads = common_.threads;
         options_.compression = parseName<Compression>(compression_).value_or(Compression::Zip);
         options_.pixelType = requestedPixelType(pixelType_);
@@ -88,7 +85,6 @@ public:
                 toleranceInStoredUnits(pixelType_, tolerance_, options_.heightRange, options_.tolerance);
             !problem.empty())
             return usage(problem);
-        options_.layout = *parseName<Layout>(layout_);
         if (options_.layout == Layout::Plain && !options_.plainOutput.empty())
             return usage("--emit-plain writes the plain chain beside a packed output; with --layout plain the output "
                          "is that chain already");
@@ -185,8 +181,8 @@ private:
                                  : r.layout == Layout::Neighbour4 ? nlohmann::json("neighbour4") : nlohmann::json("plain")},
                 {"foam", !options_.foam ? nlohmann::json(nullptr)
                          : r.layout == Layout::Neighbour4 ? nlohmann::json("neighbour4") : nlohmann::json("plain")},
-                {"wrap", wrap_},
-                {"filter", filter_},
+                {"wrap", nameOf(options_.mip.wrap)},
+                {"filter", nameOf(options_.mip.filter)},
                 {"compression", compression},
                 {"pixelType", stored["pixelType"]},
                 {"pixelTypeRequested", pixelType_},
@@ -209,7 +205,7 @@ private:
             line << "wrote " << r.output << ": " << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " ("
                  << r.levelSizes.size() << " levels) from " << r.source.width << "x" << r.source.height << " "
                  << r.source.pixelType << " '" << r.source.channelUsed << "'"
-                 << ", " << wrap_ << ", " << filter_ << ", " << nameOf(r.layout) << " "
+                 << ", " << nameOf(options_.mip.wrap) << ", " << nameOf(options_.mip.filter) << ", " << nameOf(r.layout) << " "
                  << storedChainText(r.pixelType, r.lookupError, options_.heightRange) << ", " << compression << ", "
                  << humanBytes(bytes) << ", "
                  << std::fixed << std::setprecision(2) << seconds << " s";
@@ -222,7 +218,6 @@ private:
     }
 
     std::string input_, output_, channel_;
-    std::string wrap_ = nameOf(MipOptions{}.wrap), filter_ = nameOf(MipOptions{}.filter);
     std::string compression_ = nameOf(PackOptions{}.compression), resize_ = "none", pixelType_ = "float";
     std::string tolerance_, height_, layout_ = nameOf(Layout::Neighbour4);
     CLI::Option* compressionOption_ = nullptr;

@@ -12,6 +12,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "enum_option.hpp"
 
 namespace heightpack::cli {
 
@@ -73,9 +74,7 @@ public:
         SpectrumOptions& s = options_.spectrum;
         cmd->add_option("-o,--output", output_, ".exr: heights in metres; .png or .tif: 16-bit, mapped onto [0,1]")
             ->required();
-        cmd->add_option("--spectrum", spectrum_, "phillips, jonswap (fetch-limited) or pierson-moskowitz (fully developed)")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<SpectrumModel>()));
+        addEnumOption(*cmd, "--spectrum", s.model, "phillips, jonswap (fetch-limited) or pierson-moskowitz (fully developed)");
         cmd->add_option("--wind", wind_, "wind speed at 10 m: 12m/s, 20kn, 40km/h")->required()->check(unitValidator(kSpeedUnits, 100.0, "12m/s"));
         cmd->add_option("--direction", s.windDirection, "wind direction in degrees, from +x toward +y")
             ->capture_default_str()
@@ -86,9 +85,7 @@ public:
         gammaOption_ = cmd->add_option("--gamma", s.gamma, "JONSWAP peak enhancement (jonswap only)")
                            ->capture_default_str()
                            ->check(finiteRange(1.0, 10.0));
-        cmd->add_option("--spreading", spreading_, "directional spreading: cos2, cos2s (Mitsuyasu's s) or donelan-banner")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<Spreading>()));
+        addEnumOption(*cmd, "--spreading", s.spreading, "directional spreading: cos2, cos2s (Mitsuyasu's s) or donelan-banner");
         spreadingSOption_ = cmd->add_option("--spreading-s", s.spreadingExponent, "a fixed cos-2s exponent s (cos2s only)")
                                 ->check(finiteRange(0.1, 1000.0));
         cmd->add_option("--depth", depth_, "water depth: 30m (finite-depth dispersion; TMA for jonswap, pierson-moskowitz)")
@@ -149,15 +146,13 @@ public:
         const std::string ext = lowerExtension(output_);
         if (options_.displacement && ext != ".exr") return usage("--displacement needs an .exr output (channels Y, Dx, Dy)");
         if (options_.foam && ext != ".exr") return usage("--foam needs an .exr output (channels Y, Dx, Dy, Foam)");
-        s.model = *parseName<SpectrumModel>(spectrum_);
-        s.spreading = *parseName<Spreading>(spreading_);
         if (spreadingSOption_->count() > 0 && s.spreading != Spreading::Cos2s)
             return usage("--spreading-s sets the cos-2s exponent: give it with --spreading cos2s");
         if (s.model != SpectrumModel::Jonswap && !common_.quiet)
             for (const CLI::Option* o : {fetchOption_, gammaOption_})
                 if (o->count() > 0)
                     std::fprintf(stderr, "heightpack: warning: %s is ignored with --spectrum %s (it shapes jonswap only)\n",
-                                 o->get_name().c_str(), spectrum_.c_str());
+                                 o->get_name().c_str(), nameOf(s.model));
         s.windSpeed = *parseWithUnit(wind_, kSpeedUnits);
         s.tileSize = *parseLength(tileSize_);
         if (!fetch_.empty()) s.fetch = *parseLength(fetch_);
@@ -206,9 +201,9 @@ private:
     void print(const SynthReport& r) const {
         const SpectrumOptions& s = options_.spectrum;
         if (common_.json) {
-            nlohmann::json j = {{"command", "synth"}, {"outputs", r.outputs}, {"spectrum", spectrum_}, {"windSpeed", s.windSpeed},
+            nlohmann::json j = {{"command", "synth"}, {"outputs", r.outputs}, {"spectrum", nameOf(s.model)}, {"windSpeed", s.windSpeed},
                                 {"tileSize", s.tileSize}, {"size", s.size}, {"seed", s.seed}, {"frames", options_.frames},
-                                {"loopPeriod", s.loopPeriod}, {"depth", s.depth}, {"spreading", spreading_},
+                                {"loopPeriod", s.loopPeriod}, {"depth", s.depth}, {"spreading", nameOf(s.spreading)},
                                 {"choppiness", options_.choppiness}, {"significantWaveHeight", r.significantWaveHeight},
                                 {"expectedSignificantWaveHeight", r.expectedSignificantWaveHeight},
                                 {"minHeight", r.minHeight}, {"maxHeight", r.maxHeight}};
@@ -223,7 +218,7 @@ private:
         if (!chatty()) return;
         std::printf("wrote %s%s: %dx%d, %s, wind %.3g m/s, tile %.4g m, Hs %.2f m (spectrum %.2f m), heights %.2f..%.2f m\n",
                     r.outputs.front().c_str(), r.outputs.size() > 1 ? (" .. " + r.outputs.back()).c_str() : "", s.size,
-                    s.size, spectrum_.c_str(), s.windSpeed, s.tileSize, r.significantWaveHeight,
+                    s.size, nameOf(s.model), s.windSpeed, s.tileSize, r.significantWaveHeight,
                     r.expectedSignificantWaveHeight, r.minHeight, r.maxHeight);
         if (!options_.report) return;
         for (size_t c = 0; c < r.tiles.size(); ++c) {
@@ -234,7 +229,7 @@ private:
         }
     }
 
-    std::string output_, spectrum_ = nameOf(SpectrumOptions{}.model), spreading_ = nameOf(SpectrumOptions{}.spreading);
+    std::string output_;
     std::string wind_, fetch_, tileSize_, loop_, depth_, swell_, foamDecay_ = "2s";
     SynthOptions options_;
     CLI::Option* fetchOption_ = nullptr;

@@ -11,6 +11,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "enum_option.hpp"
 #include "look_report.hpp"
 
 namespace heightpack::cli {
@@ -48,9 +49,7 @@ public:
         cmd->add_option("--threshold", options_.threshold, "seam score that counts as tiling (see check)")
             ->capture_default_str()
             ->check(finiteRange(1.0, 1e6));
-        cmd->add_option("--filter", filter_, "mip filter of the chain the map is judged on, as pack would make it")
-            ->capture_default_str()
-            ->check(CLI::IsMember(allNames<Filter>()));
+        addEnumOption(*cmd, "--filter", options_.mip.filter, "mip filter of the chain the map is judged on, as pack would make it");
         cmd->add_option("--depth", depth_, "output sample type; keep = the input's")
             ->capture_default_str()
             ->check(CLI::IsMember({"keep", "uint8", "uint16", "float"}));
@@ -80,7 +79,6 @@ public:
         options_.bits = depth_ == "uint8" ? 8 : depth_ == "uint16" ? 16 : depth_ == "float" ? 32 : 0;
         applyChannel(channel_, options_.load);
         options_.load.silenceDecoderMessages = true;
-        options_.mip.filter = *parseName<Filter>(filter_);
         options_.mip.threads = common_.threads;
         options_.version = kVersion;
         setLibraryThreads(common_.threads);
@@ -144,7 +142,7 @@ public:
 private:
     bool widthGiven() const { return widthOption_ && widthOption_->count() > 0; }
 
-    std::string input_, output_, channel_, method_ = "periodic", depth_ = "keep", filter_ = nameOf(MipOptions{}.filter);
+    std::string input_, output_, channel_, method_ = "periodic", depth_ = "keep";
     TileOptions options_;
     CLI::Option* widthOption_ = nullptr;
 };
