@@ -92,7 +92,6 @@ public:
         options.threads = common_.threads;
         options.checkOnly = checkOnly_;
         options.force = force_;
-        options.version = kVersion;
         options.onEvent = [&tracker](const BuildEvent& e) { tracker.event(e); };
         MaterialsOptions files;
         files.depfile = depfile_;

@@ -105,7 +105,6 @@ public:
         o.resizeToPowerOfTwo = resize_ == "pow2";
         applyChannel(channel_, o.load);
         o.load.silenceDecoderMessages = true;
-        o.version = kVersion;
         setLibraryThreads(common_.threads);
 
         // A sequence gets a normal map per frame, numbered like it; --json prints one document for all.
@@ -198,7 +197,7 @@ private:
 
     std::string input_, output_, tileSize_, height_, channel_, format_;
     NormalJobOptions options_;
-    std::string compression_ = nameOf(NormalJobOptions{}.compression), resize_ = "none", pixelType_ = "float";
+    std::string compression_ = nameOf(options_.compression), resize_ = "none", pixelType_ = "float";
     std::string tolerance_;
     CLI::Option* compressionOption_ = nullptr;
     bool heightInAlpha_ = false, varianceInAlpha_ = false;

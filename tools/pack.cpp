@@ -99,7 +99,6 @@ public:
             return usage("--foam writes an .exr only: a KTX2 or DDS texture holds four channels, heights with their "
                          "foam need eight");
         options_.resizeToPowerOfTwo = resize_ == "pow2";
-        options_.version = kVersion;
         setLibraryThreads(common_.threads);
 
         // A sequence (NAME.0000.EXT ...) packs frame by frame into numbered outputs.
@@ -218,10 +217,10 @@ private:
     }
 
     std::string input_, output_, channel_;
-    std::string compression_ = nameOf(PackOptions{}.compression), resize_ = "none", pixelType_ = "float";
-    std::string tolerance_, height_, layout_ = nameOf(Layout::Neighbour4);
-    CLI::Option* compressionOption_ = nullptr;
     PackOptions options_;
+    std::string compression_ = nameOf(options_.compression), resize_ = "none", pixelType_ = "float";
+    std::string tolerance_, height_;
+    CLI::Option* compressionOption_ = nullptr;
 };
 
 }  // namespace

@@ -165,7 +165,6 @@ public:
         // OpenEXR deflates the frames' blocks on its pool: with four float channels of noise-like data
         // that is most of a 4096 frame's time on one thread.
         setLibraryThreads(common_.threads);
-        options_.version = kVersion;
         Progress progress(!common_.quiet, "synth " + std::filesystem::path(output_).filename().string(),
                           {{"synth", 0.8}, {"write", 0.2}});
         options_.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };

@@ -80,7 +80,6 @@ public:
         applyChannel(channel_, options_.load);
         options_.load.silenceDecoderMessages = true;
         options_.mip.threads = common_.threads;
-        options_.version = kVersion;
         setLibraryThreads(common_.threads);
         if (const ExitCode code = checkOutputs({input_}, {{output_, "-o", {".png", ".tif", ".tiff", ".exr"}}});
             code != ExitCode::Ok)

@@ -35,7 +35,7 @@ Status writeFresnelRamp(const std::string& output, const FresnelOptions& options
     const Image ramp = makeFresnelRamp(options);
     const auto container = containerForPath(output);
     if (container == Container::Ktx2 || container == Container::Dds) {
-        TiledExrContent content;
+        MipChainSource content;
         content.width = ramp.width;
         content.height = ramp.height;
         content.channelNames = {"R", "G", "B", "A"};

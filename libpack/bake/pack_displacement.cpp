@@ -42,7 +42,7 @@ std::vector<std::string> packedCompanionChannels(const std::vector<CompanionChai
 
 namespace detail {
 
-void fillPackedWithCompanions(TiledExrContent& content, const std::vector<Image>& heights,
+void fillPackedWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
                               std::vector<CompanionChain> companions, Wrap wrap) {
     content.channelNames = packedCompanionChannels(companions);
     content.fillRows = [&heights, companions = std::move(companions), wrap](int level, int y0, int rows, float* dst) {
@@ -56,7 +56,7 @@ void fillPackedWithCompanions(TiledExrContent& content, const std::vector<Image>
     };
 }
 
-void fillPlainWithCompanions(TiledExrContent& content, const std::vector<Image>& heights,
+void fillPlainWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
                              std::vector<CompanionChain> companions) {
     content.channelNames = {"Y"};
     for (const CompanionChain& c : companions) content.channelNames.push_back(c.name);

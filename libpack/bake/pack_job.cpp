@@ -160,7 +160,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     writeOptions.progress = [&](double f) { progress("write", both ? f * 0.8 : f); };
 
     const Wrap wrap = options.mip.wrap;
-    TiledExrContent content;
+    MipChainSource content;
     content.width = chain[0].width;
     content.height = chain[0].height;
     const auto fillPacked = [&](int level, int y0, int rows, float* dst) {

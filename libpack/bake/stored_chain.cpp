@@ -14,7 +14,7 @@ double StoredChain::worst() const {
 
 namespace {
 
-Result<StoredChain> measure(const std::vector<std::string>& paths, const TiledExrContent& content,
+Result<StoredChain> measure(const std::vector<std::string>& paths, const MipChainSource& content,
                             const std::vector<Image>& chain, Wrap wrap, TextureWriteOptions options, PixelType type) {
     options.pixelType = type;
     StoredChain stored;
@@ -33,7 +33,7 @@ Result<StoredChain> measure(const std::vector<std::string>& paths, const TiledEx
 
 }  // namespace
 
-Result<StoredChain> chooseStorage(const std::vector<std::string>& paths, const TiledExrContent& content,
+Result<StoredChain> chooseStorage(const std::vector<std::string>& paths, const MipChainSource& content,
                                   const std::vector<Image>& chain, Wrap wrap, const TextureWriteOptions& options,
                                   double tolerance) {
     if (!(tolerance > 0.0)) return measure(paths, content, chain, wrap, options, options.pixelType);

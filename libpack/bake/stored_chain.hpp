@@ -27,7 +27,7 @@ struct StoredChain {
 // container lacks (uint16 in an EXR) or the values do not fit (a half beyond 65504) is passed over.
 // paths are every file the chain goes to (a packed output and its plain twin): a type must suit each
 // one's container; content is what the first one holds.
-Result<StoredChain> chooseStorage(const std::vector<std::string>& paths, const TiledExrContent& content,
+Result<StoredChain> chooseStorage(const std::vector<std::string>& paths, const MipChainSource& content,
                                   const std::vector<Image>& chain, Wrap wrap, const TextureWriteOptions& options,
                                   double tolerance);
 

@@ -70,7 +70,7 @@ std::uint32_t codeOf(const std::array<const char*, N>& names, const std::string&
 
 }  // namespace
 
-Status writeDds(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options) {
+Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
     if (Status s = checkWritable(path); !s) return s;
     if (lowerExtension(path) != ".dds")
         return cannotWrite(path, "is not a .dds name, but the file would be a DDS", "name the output .dds");

@@ -144,7 +144,7 @@ std::vector<int> fileOrder(const std::vector<std::string>& names) {
     return order;
 }
 
-Status writeWithCore(const std::string& finalPath, const std::string& path, const TiledExrContent& content,
+Status writeWithCore(const std::string& finalPath, const std::string& path, const MipChainSource& content,
                      const ExrWriteOptions& options) {
     CoreErrors errors;
     exr_context_t ctxt = nullptr;
@@ -294,7 +294,7 @@ Imf::Compression toImf(Compression compression) {
     return Imf::ZIP_COMPRESSION;
 }
 
-Status writeWithImf(const std::string& finalPath, const std::string& path, const TiledExrContent& content,
+Status writeWithImf(const std::string& finalPath, const std::string& path, const MipChainSource& content,
                     const ExrWriteOptions& options) {
     Imf::Header header(content.width, content.height);
     header.compression() = toImf(options.compression);
@@ -354,7 +354,7 @@ Status writeWithImf(const std::string& finalPath, const std::string& path, const
 
 }  // namespace
 
-Status writeTiledExr(const std::string& path, const TiledExrContent& content, const ExrWriteOptions& options) {
+Status writeTiledExr(const std::string& path, const MipChainSource& content, const ExrWriteOptions& options) {
     assert(content.width > 0 && content.height > 0 && !content.channelNames.empty() && content.fillRows);
     if (Status writable = checkWritable(path); !writable) return writable;
     const std::string ext = lowerExtension(path);

@@ -11,7 +11,7 @@ Result<GpuTexture> readKtx2(const std::string& path);
 Result<GpuTexture> readDds(const std::string& path);
 }  // namespace detail
 
-Status writeGpuTexture(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options) {
+Status writeGpuTexture(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
     const auto container = containerForPath(path);
     if (container == Container::Ktx2) return writeKtx2(path, content, options);
     if (container == Container::Dds) return writeDds(path, content, options);

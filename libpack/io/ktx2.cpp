@@ -104,7 +104,7 @@ struct ZstdFree {
 
 }  // namespace
 
-Status writeKtx2(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options) {
+Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
     if (Status s = checkWritable(path); !s) return s;
     if (lowerExtension(path) != ".ktx2")
         return cannotWrite(path, "is not a .ktx2 name, but the file would be a KTX2", "name the output .ktx2");

@@ -19,7 +19,7 @@ void putLe(std::uint8_t* dst, T value) {
 }
 
 // Fills rows of level into band (sourceChannels floats a texel), in parallel.
-void fillBand(const TiledExrContent& content, int level, int y0, int rows, int width, int channels, int threads,
+void fillBand(const MipChainSource& content, int level, int y0, int rows, int width, int channels, int threads,
               std::vector<float>& band) {
     band.resize(size_t(rows) * width * channels);
     parallelFor(rows, threads, [&](int a, int b) {
@@ -41,8 +41,8 @@ int fullChainLevels(int width, int height) {
     return levels;
 }
 
-Result<EncodePlan> planEncoding(const std::string& path, const TiledExrContent& content,
-                                const GpuTextureOptions& options) {
+Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,
+                                const TextureWriteOptions& options) {
     EncodePlan plan;
     plan.sourceChannels = static_cast<int>(content.channelNames.size());
     plan.format = texelFormatInfo(texelFormatFor(plan.sourceChannels, options.pixelType));
@@ -89,7 +89,7 @@ Result<EncodePlan> planEncoding(const std::string& path, const TiledExrContent& 
     return plan;
 }
 
-Status encodeRows(const std::string& path, const TiledExrContent& content, const EncodePlan& plan, int level, int y0,
+Status encodeRows(const std::string& path, const MipChainSource& content, const EncodePlan& plan, int level, int y0,
                   int rows, int threads, std::vector<std::uint8_t>& dst) {
     const int w = levelSide(content.width, level);
     const int src = plan.sourceChannels, dstChannels = plan.format.channels;

@@ -38,11 +38,11 @@ struct EncodePlan {
 
 // Chooses the format and, for uint16, the normalisation (one pass over the chain); refuses values the
 // pixel type cannot hold. path names the output in errors.
-Result<EncodePlan> planEncoding(const std::string& path, const TiledExrContent& content,
-                                const GpuTextureOptions& options);
+Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,
+                                const TextureWriteOptions& options);
 
 // Fills rows [y0, y0 + rows) of level and encodes them into dst, resized to rows * width * texel bytes.
-Status encodeRows(const std::string& path, const TiledExrContent& content, const EncodePlan& plan, int level, int y0,
+Status encodeRows(const std::string& path, const MipChainSource& content, const EncodePlan& plan, int level, int y0,
                   int rows, int threads, std::vector<std::uint8_t>& dst);
 
 // One value as stored and as read back: the 16-bit codes (nearest code, clamped to the format's range)

@@ -7,19 +7,6 @@ namespace heightpack {
 
 namespace {
 
-GpuTextureOptions gpuOptions(const TextureWriteOptions& options) {
-    GpuTextureOptions gpu;
-    gpu.pixelType = options.pixelType;
-    gpu.supercompression = options.supercompression;
-    gpu.gridOrigin = options.gridOrigin;
-    gpu.gridSpan = options.gridSpan;
-    gpu.levels = options.levels;
-    gpu.threads = options.threads;
-    gpu.writer = options.writer;
-    gpu.progress = options.progress;
-    return gpu;
-}
-
 // What an EXR cannot hold of options: 16-bit normalised channels, Zstandard.
 Status exrTakes(const std::string& path, const TextureWriteOptions& options) {
     if (options.pixelType == PixelType::Uint16)
@@ -31,12 +18,11 @@ Status exrTakes(const std::string& path, const TextureWriteOptions& options) {
 
 }  // namespace
 
-Status writeTexture(const std::string& path, const TiledExrContent& content, const TextureWriteOptions& options) {
+Status writeTexture(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
     const auto container = containerForPath(path);
     if (!container)
         return cannotWrite(path, "names no texture container heightpack writes", "name the output .exr, .ktx2 or .dds");
-    const GpuTextureOptions gpu = gpuOptions(options);
-    if (*container != Container::Exr) return writeGpuTexture(path, content, gpu);
+    if (*container != Container::Exr) return writeGpuTexture(path, content, options);
     if (Status s = exrTakes(path, options); !s) return s;
     ExrWriteOptions exr;
     exr.compression = options.exrCompression;
@@ -45,21 +31,21 @@ Status writeTexture(const std::string& path, const TiledExrContent& content, con
     if (options.pixelType == PixelType::Half) {
         // Refuse what a half cannot hold before anything is written.
         if (Status s = checkWritable(path); !s) return s;
-        auto plan = detail::planEncoding(path, content, gpu);
+        auto plan = detail::planEncoding(path, content, options);
         if (!plan) return plan.error();
         exr.half = true;
     }
     return writeTiledExr(path, content, exr);
 }
 
-Result<TexelStorage> planTexelStorage(const std::string& path, const TiledExrContent& content,
+Result<TexelStorage> planTexelStorage(const std::string& path, const MipChainSource& content,
                                       const TextureWriteOptions& options) {
     const auto container = containerForPath(path);
     if (!container)
         return cannotWrite(path, "names no texture container heightpack writes", "name the output .exr, .ktx2 or .dds");
     if (*container == Container::Exr)
         if (Status s = exrTakes(path, options); !s) return s.error();
-    auto plan = detail::planEncoding(path, content, gpuOptions(options));
+    auto plan = detail::planEncoding(path, content, options);
     if (!plan) return plan.error();
     TexelStorage storage;
     storage.pixelType = options.pixelType;

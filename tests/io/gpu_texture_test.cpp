@@ -23,8 +23,8 @@ double nearestHalf(double v) {  // binary16 nearest to v, ties to even, subnorma
 }
 
 // A two-channel chain: level L's texel (x, y) holds a unit vector's x and y.
-TiledExrContent xyContent(int width, int height) {
-    TiledExrContent c;
+MipChainSource xyContent(int width, int height) {
+    MipChainSource c;
     c.width = width;
     c.height = height;
     c.channelNames = {"X", "Y"};
@@ -60,12 +60,12 @@ TEST(GpuTexture, TwoChannelFormatsRoundTripThroughBothReaders) {
     const bool independent =
         std::filesystem::exists(std::string(HEIGHTPACK_NPM_DIR) + "/node_modules/ktx-parse/package.json");
     ScratchDir dir;
-    const TiledExrContent content = xyContent(32, 16);
+    const MipChainSource content = xyContent(32, 16);
     for (const char* ext : {".ktx2", ".dds"}) {
         for (PixelType type : {PixelType::Float, PixelType::Half, PixelType::Uint16}) {
             const std::string path = dir.file(std::string("xy_") + pixelTypeName(type) + ext);
             SCOPED_TRACE(path);
-            GpuTextureOptions options;
+            TextureWriteOptions options;
             options.pixelType = type;
             ASSERT_TRUE(writeGpuTexture(path, content, options).ok());
             auto t = readGpuTexture(path);
@@ -106,9 +106,9 @@ TEST(GpuTexture, TwoChannelFormatsRoundTripThroughBothReaders) {
 
 TEST(GpuTexture, DamagedFilesAreRefusedAsBadInput) {
     ScratchDir dir;
-    const TiledExrContent content = xyContent(32, 16);
+    const MipChainSource content = xyContent(32, 16);
     for (const char* name : {"d.ktx2", "d.dds", "z.ktx2"}) {
-        GpuTextureOptions options;
+        TextureWriteOptions options;
         options.pixelType = PixelType::Half;
         if (std::string(name) == "z.ktx2") options.supercompression = Supercompression::Zstd;
         ASSERT_TRUE(writeGpuTexture(dir.file(name), content, options).ok());

@@ -183,7 +183,7 @@ TEST(ViewerFormats, NormalMapsAndRampsOfEveryLayoutAndTypeShadeLikeTheFloatExr) 
     // Two-channel normals (x, y; z rebuilt in the shader), written through the library from n.exr's chain.
     auto full = readTextureFile(dir.file("n.exr"));
     ASSERT_TRUE(full) << full.error().what;
-    TiledExrContent xy;
+    MipChainSource xy;
     xy.width = full->levels[0].width;
     xy.height = full->levels[0].height;
     xy.channelNames = {"R", "G"};
@@ -194,7 +194,7 @@ TEST(ViewerFormats, NormalMapsAndRampsOfEveryLayoutAndTypeShadeLikeTheFloatExr) 
             for (int x = 0; x < l.width; ++x, dst += 2) dst[0] = l.at(x, y, 0), dst[1] = l.at(x, y, 1);
     };
     for (const auto& [file, type] : {std::pair{"n_rg16.ktx2", PixelType::Uint16}, std::pair{"n_rg16f.dds", PixelType::Half}}) {
-        GpuTextureOptions o;
+        TextureWriteOptions o;
         o.pixelType = type;
         ASSERT_TRUE(writeGpuTexture(dir.file(file), xy, o));
     }

@@ -14,6 +14,7 @@
 #include "heightpack/bake/manifest.hpp"
 #include "heightpack/bake/material.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/version.hpp"
 
 namespace heightpack {
 
@@ -23,7 +24,7 @@ struct BuildOptions {
     int threads = 0;          // threads per asset; 0 = the cores shared among the jobs
     bool checkOnly = false;   // validate and run the tileability checks; write nothing
     bool force = false;       // rebuild every output whatever its key
-    std::string version;      // recorded in outputs and part of every key
+    std::string version = kVersion;  // this library's (heightpack/version.hpp); recorded in outputs, part of cache keys
     std::function<void(const BuildEvent&)> onEvent;
 };
 

@@ -14,6 +14,7 @@
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/read.hpp"
+#include "heightpack/version.hpp"
 
 namespace heightpack {
 
@@ -37,7 +38,7 @@ struct NormalJobOptions {
     // Rgb: x, y, z (and alpha). Xy: x and y alone, for a shader that rebuilds z; mip-mapped outputs
     // without alpha only.
     Layout layout = Layout::Rgb;
-    std::string version;
+    std::string version = kVersion;  // this library's (heightpack/version.hpp); recorded in outputs, part of cache keys
     std::function<void(std::string_view stage, double fraction)> progress;
 };
 

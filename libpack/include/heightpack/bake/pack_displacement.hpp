@@ -42,10 +42,10 @@ std::vector<std::string> packedCompanionChannels(const std::vector<CompanionChai
 namespace detail {
 
 // Makes content (channels, rows) the packed heights and their companions: the chains must share their sizes.
-void fillPackedWithCompanions(TiledExrContent& content, const std::vector<Image>& heights,
+void fillPackedWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
                               std::vector<CompanionChain> companions, Wrap wrap);
 // Makes content the plain chain with its companions: channels Y, then each companion's NAME.
-void fillPlainWithCompanions(TiledExrContent& content, const std::vector<Image>& heights,
+void fillPlainWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
                              std::vector<CompanionChain> companions);
 
 }  // namespace detail

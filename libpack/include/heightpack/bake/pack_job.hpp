@@ -13,6 +13,7 @@
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/read.hpp"
+#include "heightpack/version.hpp"
 
 namespace heightpack {
 
@@ -41,7 +42,7 @@ struct PackOptions {
     // packed beside the heights (and Dx, Dy) in the same EXR as layer Foam. An input without it is refused
     // (BadInput).
     bool foam = false;
-    std::string version;               // recorded as heightpack:version
+    std::string version = kVersion;  // this library's (heightpack/version.hpp); recorded in outputs, part of cache keys
     // Reports progress: the stage ("load", "mip", "write") and the fraction of it done.
     std::function<void(std::string_view stage, double fraction)> progress;
 };

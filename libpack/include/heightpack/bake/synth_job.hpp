@@ -11,6 +11,7 @@
 #include "heightpack/core/foam.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/core/spectrum.hpp"
+#include "heightpack/version.hpp"
 
 namespace heightpack {
 
@@ -26,7 +27,7 @@ struct SynthOptions {
     bool report = false;  // measure displacement and folds even when they are not written
     int cascades = 1;     // tiles of sizes tileSize * (17/61)^c with disjoint wavenumber bands: NAME_cC.EXT
     int threads = 0;      // 0 = all cores; the bytes are the same for any count
-    std::string version;
+    std::string version = kVersion;  // this library's (heightpack/version.hpp); recorded in outputs, part of cache keys
     // Reports progress: the stage ("synth", "write") and the fraction of it done; may be empty.
     std::function<void(std::string_view stage, double fraction)> progress;
 };

@@ -11,6 +11,7 @@
 #include "heightpack/core/tile_look.hpp"
 #include "heightpack/core/tileable.hpp"
 #include "heightpack/io/read.hpp"
+#include "heightpack/version.hpp"
 
 namespace heightpack {
 
@@ -34,7 +35,7 @@ struct TileOptions {
     LookThresholds look;  // what Periodic's result must pass beyond its seams (frame, blobs, echo)
     uint64_t seed = 1;    // Periodic's re-synthesis noise (the next seeds when a result does not pass)
     int bits = 0;  // 8, 16 or 32 (float); 0 keeps the input's depth (float inputs stay float)
-    std::string version;
+    std::string version = kVersion;  // this library's (heightpack/version.hpp); recorded in outputs, part of cache keys
     // Reports progress: the stage ("load", "check", "tile", "write") and the fraction of it done; may be empty.
     std::function<void(std::string_view stage, double fraction)> progress;
 };

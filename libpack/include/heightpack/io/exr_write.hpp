@@ -29,9 +29,10 @@ struct NameTable<Compression> {
 inline const char* compressionName(Compression compression) { return nameOf(compression); }
 inline std::optional<Compression> parseCompression(std::string_view name) { return parseName<Compression>(name); }
 
-// A tiled, mip-mapped float EXR described by its level-0 size, channel names, and a function that fills
-// any band of rows of any level on demand, so the writer never holds more than a band of output.
-struct TiledExrContent {
+// A mip chain as every mip-mapped writer (tiled EXR, KTX2, DDS) takes it: its level-0 size, channel names,
+// and a function that fills any band of rows of any level on demand, so a writer never holds more than a
+// band of output; and the attributes to record.
+struct MipChainSource {
     int width = 0;
     int height = 0;
     std::vector<std::string> channelNames;  // interleaved in this order in the rows fillRows writes
@@ -52,7 +53,7 @@ struct ExrWriteOptions {
 // Writes content as a tiled (tileSize^2), MIPMAP_LEVELS, ROUND_DOWN EXR of 32-bit float (or half) channels. The
 // file appears at path only once complete: it is written to a temporary file in the same folder and
 // renamed, so a failure or interruption leaves no partial file and any existing file untouched.
-Status writeTiledExr(const std::string& path, const TiledExrContent& content, const ExrWriteOptions& options);
+Status writeTiledExr(const std::string& path, const MipChainSource& content, const ExrWriteOptions& options);
 
 // A flat (one-level) scanline EXR: interleaved float pixels, each channel stored as float or half.
 struct ScanlineExrContent {

@@ -1,5 +1,5 @@
 // GPU containers an engine loads as they are: KTX2 (Khronos KTX 2.0) and DDS (DX10 extended header).
-// Both take the same description as the EXR writer (TiledExrContent: level-0 size, channels, rows on
+// Both take the same description as the EXR writer (MipChainSource: level-0 size, channels, rows on
 // demand, the heightpack:* attributes), write every mip level in the chosen pixel type, and appear
 // atomically. KTX2 carries the attributes as key/values; DDS has no key/value store, so it records only
 // a few of them in its header's reserved words (see dds.cpp).
@@ -27,8 +27,11 @@ struct Normalisation {
 
 enum class Supercompression { None, Zstd };
 
-struct GpuTextureOptions {
+// How a mip chain is stored, by every mip-mapped writer: writeTexture (any container), writeKtx2, writeDds
+// (and writeTiledExr through writeTexture). One struct from the job to the bytes.
+struct TextureWriteOptions {
     PixelType pixelType = PixelType::Float;
+    Compression exrCompression = Compression::Zip;               // EXR only
     Supercompression supercompression = Supercompression::None;  // KTX2 only; DDS must have None
     int zstdLevel = 9;
     // uint16 only. The chain is normalised to its range: value = offset + scale * u / 65535. When its
@@ -46,11 +49,11 @@ struct GpuTextureOptions {
 // Writes content into a KTX2 (path must end in .ktx2) or DDS (.dds) file, every level of the chain
 // that content's size implies (down to 1x1). Fails with BadInput, writing nothing, when a value cannot be
 // stored in the pixel type (a half beyond +-65504); with CannotWrite when the file cannot be written.
-Status writeKtx2(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options);
-Status writeDds(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options);
+Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
+Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
 
 // Either of the two by path's extension.
-Status writeGpuTexture(const std::string& path, const TiledExrContent& content, const GpuTextureOptions& options);
+Status writeGpuTexture(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
 
 // A KTX2 or DDS file as heightpack reads it.
 struct GpuTexture {

@@ -11,22 +11,11 @@
 
 namespace heightpack {
 
-struct TextureWriteOptions {
-    PixelType pixelType = PixelType::Float;
-    Compression exrCompression = Compression::Zip;                // EXR
-    Supercompression supercompression = Supercompression::None;  // KTX2
-    float gridOrigin = 0.0f, gridSpan = 0.0f;                     // uint16: see GpuTextureOptions
-    int levels = 0;                                               // KTX2/DDS: 0 = the full chain
-    int threads = 0;
-    std::string writer;                                           // KTX2's KTXwriter
-    std::function<void(double fraction)> progress;
-};
-
 // Writes content to path in the container its extension names (.exr, .ktx2, .dds). A float EXR is
 // written exactly as writeTiledExr writes it. Fails, writing nothing, with BadInput when a value cannot
 // be stored in the pixel type, and with CannotWrite for an unknown extension or a pixel type or
 // compression the container lacks (an EXR has no 16-bit normalised channels; a DDS no supercompression).
-Status writeTexture(const std::string& path, const TiledExrContent& content, const TextureWriteOptions& options);
+Status writeTexture(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
 
 // What storing content with options does to its values: the format writeTexture would choose and, for
 // uint16, the normalisation it would record (the whole chain's range). Fails as writeTexture would,
@@ -37,7 +26,7 @@ struct TexelStorage {
     std::optional<Normalisation> normalisation;
     std::function<float(float)> storeAndRead;  // what reading back a stored value gives
 };
-Result<TexelStorage> planTexelStorage(const std::string& path, const TiledExrContent& content,
+Result<TexelStorage> planTexelStorage(const std::string& path, const MipChainSource& content,
                                       const TextureWriteOptions& options);
 
 // The bytes a level of width x height texels with `channels` channels takes on the GPU in the format
