@@ -21,6 +21,7 @@ ExitCode exitCodeFor(ErrorKind kind) {
     switch (kind) {
         case ErrorKind::BadInput: return ExitCode::BadInput;
         case ErrorKind::CannotWrite: return ExitCode::CannotWrite;
+        case ErrorKind::InconsistentOptions: return ExitCode::Usage;
         case ErrorKind::Internal: return ExitCode::Internal;
     }
     return ExitCode::Internal;

@@ -21,6 +21,8 @@ std::string cliHint(const Error& error) {
         case Fix::AddDisplacement:
             return "synthesise it with 'heightpack synth --displacement' to an .exr, or leave out --displacement";
         case Fix::AddFoam: return "synthesise it with 'heightpack synth --foam' to an .exr, or leave out --foam";
+        case Fix::OnePlainChain: return "leave out --emit-plain: with --layout plain the output is the plain chain";
+        case Fix::CompanionsNeedExr: return "--" + arg(0) + " writes an .exr only: name the output .exr";
         case Fix::MakeTileable: {
             std::string command = "heightpack tile " + arg(0) + " -o " + arg(1);
             if (!arg(2).empty()) command += " --filter " + arg(2);

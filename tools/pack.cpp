@@ -85,19 +85,10 @@ public:
                 toleranceInStoredUnits(pixelType_, tolerance_, options_.heightRange, options_.tolerance);
             !problem.empty())
             return usage(problem);
-        if (options_.layout == Layout::Plain && !options_.plainOutput.empty())
-            return usage("--emit-plain writes the plain chain beside a packed output; with --layout plain the output "
-                         "is that chain already");
         const std::string containerProblem =
             checkContainerChoice({output_, options_.plainOutput}, options_.pixelType, compression_,
                                  compressionOption_->count() > 0, options_.supercompression);
         if (!containerProblem.empty()) return usage(containerProblem);
-        if (options_.displacement && (isGpuContainer(output_) || isGpuContainer(options_.plainOutput)))
-            return usage("--displacement writes an .exr only: a KTX2 or DDS texture holds four channels, heights "
-                         "with Dx, Dy need twelve");
-        if (options_.foam && (isGpuContainer(output_) || isGpuContainer(options_.plainOutput)))
-            return usage("--foam writes an .exr only: a KTX2 or DDS texture holds four channels, heights with their "
-                         "foam need eight");
         options_.resizeToPowerOfTwo = resize_ == "pow2";
         setLibraryThreads(common_.threads);
 
@@ -143,7 +134,13 @@ private:
                           {{"load", 0.15}, {"mip", 0.35}, {"write", 0.5}});
         options_.progress = [&](std::string_view stage, double f) { progress.update(stage, f); };
         auto report = packHeightMap(input, output, options_);
-        if (!report) return fail(report.error());
+        if (!report) {
+            // An error names the file as the user gave it, not the staged temporary it is written to first.
+            Error error = report.error();
+            if (error.path == output) error.path = shown.output;
+            if (!options_.plainOutput.empty() && error.path == options_.plainOutput) error.path = shown.plain;
+            return fail(error);
+        }
         progress.clear();
         std::error_code ec;
         const auto bytes = std::filesystem::file_size(report->output, ec);

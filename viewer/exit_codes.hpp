@@ -26,6 +26,7 @@ inline ExitCode exitCodeFor(ErrorKind kind) {
     switch (kind) {
         case ErrorKind::BadInput: return ExitCode::BadInput;
         case ErrorKind::CannotWrite: return ExitCode::CannotWrite;
+        case ErrorKind::InconsistentOptions: return ExitCode::Usage;
         case ErrorKind::Internal: return ExitCode::Internal;
     }
     return ExitCode::Internal;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <filesystem>
 #include <optional>
+#include <tuple>
 
 #include "heightpack/bake/pack_displacement.hpp"
 #include "heightpack/bake/pack_foam.hpp"
@@ -79,8 +80,21 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     // Fail on an unwritable output before spending any time on the input.
     if (Status s = checkWritable(output); !s) return s.error();
     if (!packed && !options.plainOutput.empty())
-        return cannotWrite(options.plainOutput, "would be a second plain chain beside the plain output",
-                           "write the plain chain once");
+        return withFix(inconsistentOptions(options.plainOutput, "would be a second plain chain beside the plain output",
+                                           "write the plain chain once"),
+                       Fix::OnePlainChain);
+    // A KTX2 or DDS texture holds four channels: heights with Dx, Dy need twelve, with foam eight (or more).
+    const auto gpu = [](const std::string& path) {
+        return !path.empty() && containerForPath(path).value_or(Container::Exr) != Container::Exr;
+    };
+    for (const auto& [asked, what, channels] : {std::tuple{options.displacement, "displacement", "twelve"},
+                                                std::tuple{options.foam, "foam", "eight"}})
+        if (asked && (gpu(output) || gpu(options.plainOutput)))
+            return withFix(inconsistentOptions(gpu(output) ? output : options.plainOutput,
+                                               std::string("a KTX2 or DDS texture holds at most four channels; heights with ") +
+                                                   (std::string(what) == "foam" ? "foam" : "Dx, Dy") + " need " + channels,
+                                               std::string("write the ") + what + " to an .exr"),
+                           Fix::CompanionsNeedExr, {what});
     if (packed && !options.plainOutput.empty()) {
         if (std::filesystem::path(options.plainOutput).lexically_normal() ==
             std::filesystem::path(output).lexically_normal())
@@ -104,15 +118,8 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     Image heights = std::move(loaded->heights);
     progress("load", 1.0);
     report.loadSeconds = secondsSince(start);
-    const auto gpu = [](const std::string& path) {
-        return !path.empty() && containerForPath(path).value_or(Container::Exr) != Container::Exr;
-    };
     std::optional<DisplacementMaps> displacement;
     if (options.displacement) {
-        if (gpu(output) || gpu(options.plainOutput))
-            return cannotWrite(gpu(output) ? output : options.plainOutput,
-                               "a KTX2 or DDS texture holds at most four channels; heights with Dx, Dy need twelve",
-                               "write the displacement to an .exr");
         auto d = loadDisplacement(input, options.load);
         if (!d) return d.error();
         auto maps = packDisplacement(std::move(*d), report.source, withoutPacking(options));
@@ -121,10 +128,6 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     }
     std::optional<std::vector<Image>> foam;
     if (options.foam) {
-        if (gpu(output) || gpu(options.plainOutput))
-            return cannotWrite(gpu(output) ? output : options.plainOutput,
-                               "a KTX2 or DDS texture holds at most four channels; heights with foam need eight",
-                               "write the foam to an .exr");
         auto f = loadFoam(input, options.load);
         if (!f) return f.error();
         auto chain = foamChain(std::move(*f), report.source, options);

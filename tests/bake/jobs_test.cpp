@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include "heightpack/bake/build_materials.hpp"
@@ -84,6 +85,43 @@ TEST(PackJob, APlainChainHoldsTheHeightsAlone) {
 }
 
 // A plane rising along +x by s metres per metre has the unit normal (-s, 0, 1) / sqrt(1 + s^2).
+TEST(PackJob, OptionsThatCannotGoTogetherAreJudgedByTheLibraryBeforeTheInputIsRead) {
+    // The input does not exist: an options error must come first, as InconsistentOptions (a usage error
+    // in every shell), naming the output the user gave and the remedy for the shell to word.
+    test::ScratchDir dir;
+    const std::string missing = dir.file("missing.png");
+    struct Case {
+        const char* name;
+        std::function<void(PackOptions&)> set;
+        std::string output, named;
+        Fix fix;
+    };
+    const std::vector<Case> cases = {
+        {"displacement into KTX2", [](PackOptions& o) { o.displacement = true; }, dir.file("o.ktx2"), dir.file("o.ktx2"),
+         Fix::CompanionsNeedExr},
+        {"foam into a DDS twin", [&](PackOptions& o) { o.foam = true; o.plainOutput = dir.file("p.dds"); }, dir.file("o.exr"),
+         dir.file("p.dds"), Fix::CompanionsNeedExr},
+        {"a plain twin of a plain layout",
+         [&](PackOptions& o) { o.layout = Layout::Plain; o.plainOutput = dir.file("p.exr"); }, dir.file("o.exr"),
+         dir.file("p.exr"), Fix::OnePlainChain},
+    };
+    for (const Case& c : cases) {
+        PackOptions options;
+        c.set(options);
+        const auto report = packHeightMap(missing, c.output, options);
+        ASSERT_FALSE(report) << c.name;
+        EXPECT_EQ(report.error().kind, ErrorKind::InconsistentOptions) << c.name << ": " << report.error().what;
+        EXPECT_EQ(report.error().path, c.named) << c.name;
+        EXPECT_EQ(report.error().fix, c.fix) << c.name;
+    }
+    // The same options with an .exr output go on to read the input, and fail on it.
+    PackOptions options;
+    options.displacement = true;
+    const auto report = packHeightMap(missing, dir.file("o.exr"), options);
+    ASSERT_FALSE(report);
+    EXPECT_EQ(report.error().kind, ErrorKind::BadInput);
+}
+
 TEST(NormalJob, APlaneGivesTheNormalOfItsSlope) {
     test::ScratchDir dir;
     const int n = 16;

@@ -165,6 +165,23 @@ TEST(Cli, UsageErrorsExitTwoAndPointAtHelp) {
     }
 }
 
+TEST(Cli, OptionsThatCannotGoTogetherAreUsageErrorsNamingTheFileAsGiven) {
+    // The library judges these (ErrorKind::InconsistentOptions); the command line words the remedy in its
+    // flags. A plain twin is staged under a temporary name while it is written: the error names it as given.
+    ScratchDir dir;
+    writeImage(dir.file("map.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT16);
+    const CliRun plain = heightpackRun({"pack", dir.file("map.png"), "--layout", "plain", "--emit-plain",
+                                        dir.file("twin.exr"), "-o", dir.file("out.exr")});
+    EXPECT_EQ(plain.code, 2) << plain.err;
+    expectOneLineError(plain, dir.file("twin.exr"));
+    EXPECT_NE(plain.err.find("--emit-plain"), std::string::npos) << plain.err;
+    const CliRun foam = heightpackRun({"pack", dir.file("map.png"), "--foam", "-o", dir.file("out.ktx2")});
+    EXPECT_EQ(foam.code, 2) << foam.err;
+    expectOneLineError(foam, dir.file("out.ktx2"));
+    EXPECT_NE(foam.err.find("--foam writes an .exr only"), std::string::npos) << foam.err;
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1) << "only map.png";
+}
+
 TEST(Cli, HelpShowsAnExample) {
     for (const char* command : {"pack", "normal", "fresnel", "check", "tile", "synth", "info", "build"}) {
         const CliRun run = heightpackRun({command, "--help"});

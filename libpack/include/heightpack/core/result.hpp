@@ -13,6 +13,9 @@ namespace heightpack {
 enum class ErrorKind {
     BadInput,     // unreadable, unsupported, corrupt, NaN, wrong size: the input must change
     CannotWrite,  // the output cannot be written where asked
+    // Options that cannot go together (or ask of a container what it cannot hold): the command line or
+    // manifest must change, whatever the input. The library is the one judge of these; shells word them.
+    InconsistentOptions,
     Internal,     // a bug or an unexpected library failure
 };
 
@@ -35,6 +38,9 @@ enum class Fix {
                             // channels (a synthesised EXR), or leave the displacement out
     AddFoam,                // foam coverage asked of a map without it: make the map with its Foam channel
                             // (a synthesised EXR with foam), or leave the foam out
+    OnePlainChain,          // a second plain chain asked beside a plain layout's output: ask for it once
+    CompanionsNeedExr,      // displacement or foam asked of a KTX2 or DDS output (four channels at most):
+                            // write an EXR; fixArgs: {"displacement" or "foam"}
 };
 
 struct Error {
@@ -51,6 +57,9 @@ inline Error badInput(std::string path, std::string what, std::string hint = {})
 }
 inline Error cannotWrite(std::string path, std::string what, std::string hint = {}) {
     return {ErrorKind::CannotWrite, std::move(path), std::move(what), std::move(hint)};
+}
+inline Error inconsistentOptions(std::string path, std::string what, std::string hint = {}) {
+    return {ErrorKind::InconsistentOptions, std::move(path), std::move(what), std::move(hint)};
 }
 // The error with a remedy a shell words (hint stays the neutral words).
 inline Error withFix(Error error, Fix fix, std::vector<std::string> fixArgs = {}) {
