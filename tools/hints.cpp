@@ -23,6 +23,11 @@ std::string cliHint(const Error& error) {
         case Fix::AddFoam: return "synthesise it with 'heightpack synth --foam' to an .exr, or leave out --foam";
         case Fix::OnePlainChain: return "leave out --emit-plain: with --layout plain the output is the plain chain";
         case Fix::CompanionsNeedExr: return "--" + arg(0) + " writes an .exr only: name the output .exr";
+        case Fix::RgbNormals:
+            return arg(0) == "png" ? "--layout xy is for mip-mapped .exr, .ktx2 and .dds outputs; a PNG normal map is rgb"
+                                   : "--layout xy stores two channels, leaving no alpha for --height-in-alpha or "
+                                     "--variance-in-alpha";
+        case Fix::VarianceNeedsLevels: return "--variance-in-alpha is for mip-mapped outputs: write .exr";
         case Fix::MakeTileable: {
             std::string command = "heightpack tile " + arg(0) + " -o " + arg(1);
             if (!arg(2).empty()) command += " --filter " + arg(2);

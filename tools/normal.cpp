@@ -84,8 +84,6 @@ public:
         n.heightRange = *parseLength(height_);
         n.alpha = heightInAlpha_ ? NormalAlpha::Height : varianceInAlpha_ ? NormalAlpha::SlopeVariance : NormalAlpha::None;
         n.threads = common_.threads;
-        if (format == "png8" && varianceInAlpha_)
-            return usage("--variance-in-alpha describes mip levels, which a PNG does not have; write .exr");
         o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
         o.compression = parseName<Compression>(compression_).value_or(Compression::Zip);
         o.pixelType = requestedPixelType(pixelType_);
@@ -94,10 +92,6 @@ public:
         // Normal maps' errors are in normal units: --tolerance is a plain number (no --height conversion).
         if (const std::string problem = toleranceInStoredUnits(pixelType_, tolerance_, 0.0, o.tolerance); !problem.empty())
             return usage(problem);
-        if (o.layout == Layout::Xy && format == "png8")
-            return usage("--layout xy is for mip-mapped .exr, .ktx2 and .dds outputs; a PNG normal map is rgb");
-        if (o.layout == Layout::Xy && n.alpha != NormalAlpha::None)
-            return usage("--layout xy stores two channels, leaving no alpha for --height-in-alpha or --variance-in-alpha");
         if (const std::string problem = checkContainerChoice({output_}, o.pixelType, compression_,
                                                              compressionOption_->count() > 0, o.supercompression);
             !problem.empty())

@@ -96,8 +96,13 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
     };
     if (Status s = checkWritable(output); !s) return s.error();
     if (options.layout == Layout::Xy && (options.format == NormalFormat::Png8 || options.normal.alpha != NormalAlpha::None))
-        return cannotWrite(output, "an xy normal map is two channels of a mip-mapped texture: no alpha, no PNG",
-                           "store rgb normals for an alpha channel or an 8-bit PNG");
+        return withFix(inconsistentOptions(output, "an xy normal map is two channels of a mip-mapped texture: no alpha, no PNG",
+                                           "store rgb normals for an alpha channel or an 8-bit PNG"),
+                       Fix::RgbNormals, {options.format == NormalFormat::Png8 ? "png" : "alpha"});
+    if (options.format == NormalFormat::Png8 && options.normal.alpha == NormalAlpha::SlopeVariance)
+        return withFix(inconsistentOptions(output, "the slope variance describes mip levels, which a PNG does not have",
+                                           "write a mip-mapped texture"),
+                       Fix::VarianceNeedsLevels);
     if (options.layout != Layout::Rgb && options.layout != Layout::Xy)
         return Error{ErrorKind::Internal, output, std::string("a normal map has no '") + nameOf(options.layout) + "' layout",
                      "please report this"};

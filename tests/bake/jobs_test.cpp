@@ -122,6 +122,40 @@ TEST(PackJob, OptionsThatCannotGoTogetherAreJudgedByTheLibraryBeforeTheInputIsRe
     EXPECT_EQ(report.error().kind, ErrorKind::BadInput);
 }
 
+TEST(NormalJob, OptionsThatCannotGoTogetherAreJudgedBeforeTheInputIsRead) {
+    test::ScratchDir dir;
+    const std::string missing = dir.file("missing.png");
+    struct Case {
+        const char* name;
+        Layout layout;
+        NormalFormat format;
+        NormalAlpha alpha;
+        std::string output;
+        Fix fix;
+        std::string arg;
+    };
+    const std::vector<Case> cases = {
+        {"xy into a PNG", Layout::Xy, NormalFormat::Png8, NormalAlpha::None, dir.file("n.png"), Fix::RgbNormals, "png"},
+        {"xy with height in alpha", Layout::Xy, NormalFormat::Exr, NormalAlpha::Height, dir.file("n.exr"), Fix::RgbNormals,
+         "alpha"},
+        {"slope variance into a PNG", Layout::Rgb, NormalFormat::Png8, NormalAlpha::SlopeVariance, dir.file("n.png"),
+         Fix::VarianceNeedsLevels, ""},
+    };
+    for (const Case& c : cases) {
+        NormalJobOptions options;
+        options.normal.tileWidth = 8.0;
+        options.normal.heightRange = 1.0;
+        options.layout = c.layout;
+        options.format = c.format;
+        options.normal.alpha = c.alpha;
+        const auto report = makeNormalMap(missing, c.output, options);
+        ASSERT_FALSE(report) << c.name;
+        EXPECT_EQ(report.error().kind, ErrorKind::InconsistentOptions) << c.name << ": " << report.error().what;
+        EXPECT_EQ(report.error().fix, c.fix) << c.name;
+        EXPECT_EQ(report.error().fixArgs.empty() ? "" : report.error().fixArgs[0], c.arg) << c.name;
+    }
+}
+
 TEST(NormalJob, APlaneGivesTheNormalOfItsSlope) {
     test::ScratchDir dir;
     const int n = 16;

@@ -41,6 +41,9 @@ enum class Fix {
     OnePlainChain,          // a second plain chain asked beside a plain layout's output: ask for it once
     CompanionsNeedExr,      // displacement or foam asked of a KTX2 or DDS output (four channels at most):
                             // write an EXR; fixArgs: {"displacement" or "foam"}
+    RgbNormals,             // xy normals asked where only rgb fit; fixArgs: {"png"} (an 8-bit PNG has no mip
+                            // levels) or {"alpha"} (two channels leave no alpha)
+    VarianceNeedsLevels,    // slope variance in alpha asked of a one-level PNG: write a mip-mapped texture
 };
 
 struct Error {
