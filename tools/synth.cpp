@@ -143,9 +143,6 @@ public:
                 outputs.push_back({frameFileName(cascadeFileName(output_, c, count), f, options_.frames), "-o",
                                    {".exr", ".png", ".tif", ".tiff"}});
         if (const ExitCode code = checkOutputs({}, outputs); code != ExitCode::Ok) return code;
-        const std::string ext = lowerExtension(output_);
-        if (options_.displacement && ext != ".exr") return usage("--displacement needs an .exr output (channels Y, Dx, Dy)");
-        if (options_.foam && ext != ".exr") return usage("--foam needs an .exr output (channels Y, Dx, Dy, Foam)");
         if (spreadingSOption_->count() > 0 && s.spreading != Spreading::Cos2s)
             return usage("--spreading-s sets the cos-2s exponent: give it with --spreading cos2s");
         if (s.model != SpectrumModel::Jonswap && !common_.quiet)

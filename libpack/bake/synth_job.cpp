@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <tuple>
 
 #include "heightpack/core/cascades.hpp"
 #include "heightpack/core/parallel.hpp"
@@ -159,6 +160,15 @@ std::string cascadeFileName(const std::string& output, int cascade, int count) {
 }
 
 Result<SynthReport> synthesise(const std::string& output, const SynthOptions& options) {
+    // Displacement and foam are channels beside the heights: only an EXR holds them.
+    // Foam first: it brings the displacement with it, so a foam request names foam.
+    for (const auto& [asked, what, channels] : {std::tuple{options.foam, "foam", "Y, Dx, Dy, Foam"},
+                                                std::tuple{options.displacement, "displacement", "Y, Dx, Dy"}})
+        if (asked && lowerExtension(output) != ".exr")
+            return withFix(inconsistentOptions(output, std::string("the ") + what + " is written as channels " + channels +
+                                                           " of an EXR, and this is not one",
+                                               "name the output .exr"),
+                           Fix::CompanionsNeedExr, {what});
     const int count = std::max(1, options.cascades);
     for (int c = 0; c < count; ++c)
         for (int f = 0; f < options.frames; ++f)

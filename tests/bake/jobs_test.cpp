@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "heightpack/bake/fresnel_job.hpp"
 #include "heightpack/bake/normal_job.hpp"
 #include "heightpack/bake/pack_job.hpp"
+#include "heightpack/bake/synth_job.hpp"
 #include "heightpack/io/info.hpp"
 
 #include "support/test_support.hpp"
@@ -153,6 +155,25 @@ TEST(NormalJob, OptionsThatCannotGoTogetherAreJudgedBeforeTheInputIsRead) {
         EXPECT_EQ(report.error().kind, ErrorKind::InconsistentOptions) << c.name << ": " << report.error().what;
         EXPECT_EQ(report.error().fix, c.fix) << c.name;
         EXPECT_EQ(report.error().fixArgs.empty() ? "" : report.error().fixArgs[0], c.arg) << c.name;
+    }
+}
+
+TEST(SynthJob, DisplacementOrFoamIntoAFileThatIsNoExrIsAnOptionsError) {
+    test::ScratchDir dir;
+    for (const auto& [foam, named] : {std::pair{false, "displacement"}, std::pair{true, "foam"}}) {
+        SynthOptions options;
+        options.spectrum.size = 16;
+        options.spectrum.windSpeed = 9.0;
+        options.spectrum.tileSize = 32.0;
+        options.displacement = true;
+        options.foam = foam;
+        const auto report = synthesise(dir.file("sea.png"), options);
+        ASSERT_FALSE(report) << named;
+        EXPECT_EQ(report.error().kind, ErrorKind::InconsistentOptions) << named;
+        EXPECT_EQ(report.error().fix, Fix::CompanionsNeedExr) << named;
+        ASSERT_EQ(report.error().fixArgs.size(), 1u);
+        EXPECT_EQ(report.error().fixArgs[0], named);
+        EXPECT_FALSE(std::filesystem::exists(dir.file("sea.png")));
     }
 }
 
