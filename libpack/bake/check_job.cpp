@@ -1,6 +1,7 @@
 #include "heightpack/bake/check_job.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
@@ -92,9 +93,23 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     std::vector<Image> chain;
     SeamOptions seamOptions;
     seamOptions.threads = options.mip.threads;
-    auto texture = readTextureFile(path, options.load.silenceDecoderMessages);
-    if (!texture) return texture.error();  // unreadable or damaged at any level: no verdict on part of it
-    if (texture->levels.size() > 1) {
+    // A flat image is decoded once, by loadInput: its headers alone say it has one level. A texture with
+    // levels (or a KTX2 or DDS, whose reader decodes as it reads) is read whole.
+    const auto container = containerForPath(path);
+    const bool gpuContainer = container && *container != Container::Exr;
+    size_t levels = 0;
+    if (!gpuContainer) {
+        auto layout = readTextureLayout(path, options.load.silenceDecoderMessages);
+        if (!layout) return layout.error();
+        levels = layout->levelSizes.size();
+    }
+    std::optional<TextureFile> texture;
+    if (gpuContainer || levels > 1) {
+        auto file = readTextureFile(path, options.load.silenceDecoderMessages);
+        if (!file) return file.error();  // unreadable or damaged at any level: no verdict on part of it
+        texture = std::move(*file);
+    }
+    if (texture && texture->levels.size() > 1) {
         const std::string layout = findAttribute(texture->attributes, attr::layout);
         report.kind = layout.empty() ? "texture" : layout;
         if (layout == "neighbour4" && texture->levels[0].channels == 4) {

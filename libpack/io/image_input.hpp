@@ -43,6 +43,8 @@ public:
 
     OIIO::ImageInput* operator->() const { return input_.get(); }
     OIIO::ImageInput& operator*() const { return *input_; }
+    // The file's bytes, read once: decoders of heightpack's own (png_fast.hpp) take them from here.
+    const std::vector<unsigned char>& bytes() const { return bytes_; }
 
 private:
     friend Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits);

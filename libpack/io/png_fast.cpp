@@ -19,16 +19,6 @@ uint32_t be32(const unsigned char* p) {
     return (uint32_t(p[0]) << 24) | (uint32_t(p[1]) << 16) | (uint32_t(p[2]) << 8) | uint32_t(p[3]);
 }
 
-std::optional<std::vector<unsigned char>> readFile(const std::string& path) {
-    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
-    if (!f || std::fseek(f.get(), 0, SEEK_END) != 0) return std::nullopt;
-    const long size = std::ftell(f.get());
-    if (size < 0 || std::fseek(f.get(), 0, SEEK_SET) != 0) return std::nullopt;
-    std::vector<unsigned char> bytes(static_cast<size_t>(size));
-    if (std::fread(bytes.data(), 1, bytes.size(), f.get()) != bytes.size()) return std::nullopt;
-    return bytes;
-}
-
 // The Paeth predictor (PNG spec 9.4), written so the compiler can use conditional moves: on noisy
 // heights a branchy version mispredicts on most bytes.
 inline int paeth(int a, int b, int c) {
@@ -91,12 +81,12 @@ bool unfilter(unsigned char* rows, int height, size_t rowBytes, int bpp) {
 
 }  // namespace
 
-std::optional<Image> decodeGreyPng(const std::string& path, int width, int height, int channel, int threads) {
+std::optional<Image> decodeGreyPng(const std::vector<unsigned char>& file, int width, int height, int channel,
+                                   int threads) {
     static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    const auto file = readFile(path);
-    if (!file || file->size() < 8 + 25 || std::memcmp(file->data(), kSignature, 8) != 0) return std::nullopt;
-    const unsigned char* data = file->data();
-    const size_t size = file->size();
+    if (file.size() < 8 + 25 || std::memcmp(file.data(), kSignature, 8) != 0) return std::nullopt;
+    const unsigned char* data = file.data();
+    const size_t size = file.size();
 
     // Chunk order as the PNG specification (section 5.6) fixes it: IHDR first and once, the IDAT chunks
     // one unbroken run, IEND last. Anything else unusual (a critical chunk this decoder does not know,

@@ -200,7 +200,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     };
 
     if (!luma && src.format == "png" && spec.nchannels <= 2) {
-        if (auto fast = detail::decodeGreyPng(path, spec.width, spec.height, channel, options.threads)) {
+        if (auto fast = detail::decodeGreyPng(in.bytes(), spec.width, spec.height, channel, options.threads)) {
             out.heights = std::move(*fast);
             unmap(out.heights);
             src.decoder = "heightpack-png";
