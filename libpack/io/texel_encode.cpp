@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -58,15 +59,39 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
         for (int y0 = 0; y0 < h; y0 += kBandRows) {
             const int rows = std::min(kBandRows, h - y0);
             fillBand(content, level, y0, rows, w, plan.sourceChannels, options.threads, band);
-            for (float v : band) {
-                if (!std::isfinite(v)) return notFinite(path, level);
-                if (options.pixelType == PixelType::Half && !halfCanHold(v))
+            // The band's rows scanned on all threads: each its range and its first value that cannot be
+            // stored; the first such value in row order is the one reported, whatever the thread count.
+            struct Scan {
+                double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
+                size_t bad = SIZE_MAX;
+            };
+            std::vector<Scan> scans(static_cast<size_t>(rows));
+            const size_t rowValues = band.size() / size_t(rows);
+            parallelFor(rows, options.threads, [&](int begin, int end) {
+                for (int r = begin; r < end; ++r) {
+                    Scan& scan = scans[size_t(r)];
+                    for (size_t i = size_t(r) * rowValues; i < size_t(r + 1) * rowValues; ++i) {
+                        const float v = band[i];
+                        if (!std::isfinite(v) || (options.pixelType == PixelType::Half && !halfCanHold(v))) {
+                            scan.bad = i;
+                            break;
+                        }
+                        scan.lo = std::min<double>(scan.lo, v);
+                        scan.hi = std::max<double>(scan.hi, v);
+                    }
+                }
+            });
+            for (const Scan& scan : scans) {
+                if (scan.bad != SIZE_MAX) {
+                    const float v = band[scan.bad];
+                    if (!std::isfinite(v)) return notFinite(path, level);
                     return badInput(path,
                                     "level " + std::to_string(level) + " holds " + floatText(v) +
                                         ", beyond the largest half float (65504); nothing was written",
                                     "store float or uint16 pixels, or scale the heights down");
-                lo = std::min<double>(lo, v);
-                hi = std::max<double>(hi, v);
+                }
+                lo = std::min(lo, scan.lo);
+                hi = std::max(hi, scan.hi);
             }
         }
     }
