@@ -157,6 +157,7 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         auto storage = detail::chooseStorage({output}, content, stored, options.normal.wrap, write, options.tolerance);
         if (!storage) return storage.error();
         write.pixelType = storage->pixelType;
+        write.planned = TextureWriteOptions::Planned{storage->pixelType, storage->normalisation};
         report.pixelType = storage->pixelType;
         report.lookupError = storage->lookupError;
         const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*storage);

@@ -184,6 +184,8 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     auto stored = detail::chooseStorage(paths, content, chain, wrap, writeOptions, options.tolerance);
     if (!stored) return stored.error();
     writeOptions.pixelType = stored->pixelType;
+    // Dx, Dy and foam add values the plan did not see: then the writer plans again.
+    if (companions.empty()) writeOptions.planned = TextureWriteOptions::Planned{stored->pixelType, stored->normalisation};
     report.pixelType = stored->pixelType;
     report.lookupError = stored->lookupError;
     const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*stored);

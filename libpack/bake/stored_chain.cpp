@@ -25,7 +25,10 @@ Result<StoredChain> measure(const std::vector<std::string>& paths, const MipChai
     }
     auto storage = planTexelStorage(paths.front(), content, options);
     if (!storage) return storage.error();
-    for (size_t i = 1; i < paths.size(); ++i)  // the same values, so only the container can object
+    stored.normalisation = storage->normalisation;
+    // The same values, so only the container can object: no second scan.
+    options.planned = TextureWriteOptions::Planned{type, storage->normalisation};
+    for (size_t i = 1; i < paths.size(); ++i)
         if (auto other = planTexelStorage(paths[i], content, options); !other) return other.error();
     stored.lookupError = worstLookupError(chain, wrap, storage->storeAndRead, options.threads);
     return stored;

@@ -3,6 +3,7 @@
 // share it, so both choose and record alike.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@ namespace heightpack::detail {
 
 struct StoredChain {
     PixelType pixelType = PixelType::Float;
+    std::optional<Normalisation> normalisation;  // uint16: as planned (hand it on as TextureWriteOptions::planned)
     std::vector<double> lookupError;  // per level, level 0 first, in the chain's units
     double worst() const;
 };

@@ -50,6 +50,10 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
     plan.levels = fullChainLevels(content.width, content.height);
     if (options.levels > 0) plan.levels = std::min(plan.levels, options.levels);
     if (options.pixelType == PixelType::Float) return plan;
+    if (options.planned && options.planned->pixelType == options.pixelType) {
+        plan.normalisation = options.planned->normalisation;
+        return plan;
+    }
 
     // One pass over the chain: the range (uint16) and what a half cannot hold.
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;

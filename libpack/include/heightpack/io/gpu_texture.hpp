@@ -44,6 +44,14 @@ struct TextureWriteOptions {
     int threads = 0;        // for filling and encoding rows; the bytes do not depend on it
     std::string writer;     // recorded as KTXwriter, e.g. "heightpack 0.14.0"
     std::function<void(double fraction)> progress;  // may be empty
+    // What planTexelStorage found for this very content in this pixel type (the uint16 normalisation),
+    // when the caller planned it: the writers then take it instead of scanning the whole chain again,
+    // which is all a plan costs. Set it only for the content and pixel type it was planned for.
+    struct Planned {
+        PixelType pixelType = PixelType::Float;
+        std::optional<Normalisation> normalisation;
+    };
+    std::optional<Planned> planned;
 };
 
 // Writes content into a KTX2 (path must end in .ktx2) or DDS (.dds) file, every level of the chain
