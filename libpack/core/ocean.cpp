@@ -104,7 +104,8 @@ SeaFields Ocean::fields(double t, const SeaFieldSet& which, double choppiness, i
             for (int q = 0; q < n; ++q) {
                 const size_t i = size_t(r) * n + q;
                 const size_t j = size_t((n - r) % n) * n + (n - q) % n;  // -k
-                const double c = std::cos(omega_[i] * t), s = std::sin(omega_[i] * t);
+                // At t = 0 (a single frame, a loop's first) the phase is exactly 1: no sine or cosine to take.
+                const double c = t == 0.0 ? 1.0 : std::cos(omega_[i] * t), s = t == 0.0 ? 0.0 : std::sin(omega_[i] * t);
                 const double a = amplitudeRe_[i], b = amplitudeIm_[i], a2 = amplitudeRe_[j], b2 = amplitudeIm_[j];
                 evolvedRe[i] = a * c + b * s + a2 * c + b2 * s;
                 evolvedIm[i] = b * c - a * s + a2 * s - b2 * c;
