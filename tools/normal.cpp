@@ -29,10 +29,9 @@ public:
                                                   "only the width is given)")
             ->required()
             ->check(lengthPairValidator(1e5));
-        cmd->add_option("--height", height_, "how far a stored 1.0 stands above a stored 0.0, in metres (the "
-                                             "viewer's displacement amplitude)")
-            ->required()
-            ->check(lengthValidator(1e3));
+        addLengthOption(*cmd, "--height", options_.normal.heightRange, 1e3,
+                        "how far a stored 1.0 stands above a stored 0.0, in metres (the viewer's displacement amplitude)")
+            ->required();
         addEnumOption(*cmd, "--kernel", options_.normal.kernel, "slope kernel; each measures a plane's slope exactly");
         addEnumOption(*cmd, "--wrap", options_.normal.wrap, "periodic: no seam at the tile edge; clamp: one-sided at the border");
         addEnumOption(*cmd, "--filter", options_.filter, "filter of the height mip chain each level's normals come from");
@@ -81,7 +80,6 @@ public:
         const auto comma = tileSize_.find(',');
         n.tileWidth = *parseLength(tileSize_.substr(0, comma));
         n.tileHeight = comma == std::string::npos ? 0.0 : *parseLength(tileSize_.substr(comma + 1));
-        n.heightRange = *parseLength(height_);
         n.alpha = heightInAlpha_ ? NormalAlpha::Height : varianceInAlpha_ ? NormalAlpha::SlopeVariance : NormalAlpha::None;
         n.threads = common_.threads;
         o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
@@ -189,7 +187,7 @@ private:
         return ExitCode::Ok;
     }
 
-    std::string input_, output_, tileSize_, height_, channel_, format_;
+    std::string input_, output_, tileSize_, channel_, format_;
     NormalJobOptions options_;
     std::string compression_ = nameOf(options_.compression), resize_ = "none", pixelType_ = "float";
     std::string tolerance_;

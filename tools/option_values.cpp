@@ -71,6 +71,13 @@ CLI::Validator lengthValidator(double maxMetres) {
         "LENGTH");
 }
 
+CLI::Option* addLengthOption(CLI::App& cmd, const std::string& flags, double& metres, double maxMetres,
+                             const std::string& description) {
+    return cmd.add_option_function<std::string>(flags, [&metres](const std::string& text) { metres = *parseLength(text); },
+                                                description)
+        ->check(lengthValidator(maxMetres));
+}
+
 CLI::Validator lengthPairValidator(double maxMetres) {
     return CLI::Validator(
         [maxMetres](std::string& text) {

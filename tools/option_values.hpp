@@ -23,6 +23,10 @@ void applyChannel(const std::string& text, LoadOptions& load);
 std::optional<double> parseLength(const std::string& text);
 // A length as parseLength reads it, at most maxMetres.
 CLI::Validator lengthValidator(double maxMetres);
+// --flag LENGTH bound to a field in metres: checked, and converted into the field once, while parsing; the
+// field keeps its value when the option is not given.
+CLI::Option* addLengthOption(CLI::App& cmd, const std::string& flags, double& metres, double maxMetres,
+                             const std::string& description);
 // One or two positive lengths up to maxMetres: "8m" or "8m,4m".
 CLI::Validator lengthPairValidator(double maxMetres);
 // A finite number in [lo, hi]; unlike CLI::Range it refuses NaN and infinities.

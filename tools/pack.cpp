@@ -39,9 +39,9 @@ public:
                                  ->capture_default_str()
                                  ->check(CLI::IsMember(compressionNames()));
         addPixelTypeOption(*cmd, pixelType_, true, &tolerance_);
-        cmd->add_option("--height", height_, "how far a stored 1.0 stands above a stored 0.0, in metres: recorded, and "
-                                             "lookup errors and --tolerance are then in metres")
-            ->check(lengthValidator(1e3));
+        addLengthOption(*cmd, "--height", options_.heightRange, 1e3,
+                        "how far a stored 1.0 stands above a stored 0.0, in metres: recorded, and lookup errors and "
+                        "--tolerance are then in metres");
         addEnumOption(*cmd, "--layout", options_.layout,
                       "neighbour4: each texel holds its four neighbours (one fetch per lookup); plain: one channel, "
                       "the height (textureGather, hardware filtering)",
@@ -80,7 +80,6 @@ public:
         options_.mip.threads = common_.threads;
         options_.compression = parseName<Compression>(compression_).value_or(Compression::Zip);
         options_.pixelType = requestedPixelType(pixelType_);
-        options_.heightRange = height_.empty() ? 0.0 : *parseLength(height_);
         if (const std::string problem =
                 toleranceInStoredUnits(pixelType_, tolerance_, options_.heightRange, options_.tolerance);
             !problem.empty())
@@ -216,7 +215,7 @@ private:
     std::string input_, output_, channel_;
     PackOptions options_;
     std::string compression_ = nameOf(options_.compression), resize_ = "none", pixelType_ = "float";
-    std::string tolerance_, height_;
+    std::string tolerance_;
     CLI::Option* compressionOption_ = nullptr;
 };
 

@@ -46,6 +46,15 @@ CLI::Validator unitValidator(const std::vector<std::pair<std::string, double>>& 
         "VALUE");
 }
 
+// --flag VALUE in the units given, bound to a field in SI units: checked and converted once, while parsing.
+CLI::Option* addUnitOption(CLI::App& cmd, const std::string& flags, double& field,
+                           const std::vector<std::pair<std::string, double>>& units, double max, const char* example,
+                           const std::string& description) {
+    return cmd.add_option_function<std::string>(
+                  flags, [&field, &units](const std::string& text) { field = *parseWithUnit(text, units); }, description)
+        ->check(unitValidator(units, max, example));
+}
+
 // --swell H,T,DIR: "2.5m,12s,250deg" (units optional): a significant height up to 30 m, a peak period
 // from 1 to 30 s, and a direction from -360 to 360 degrees.
 std::optional<SwellOptions> parseSwell(const std::string& text) {
@@ -75,29 +84,30 @@ public:
         cmd->add_option("-o,--output", output_, ".exr: heights in metres; .png or .tif: 16-bit, mapped onto [0,1]")
             ->required();
         addEnumOption(*cmd, "--spectrum", s.model, "phillips, jonswap (fetch-limited) or pierson-moskowitz (fully developed)");
-        cmd->add_option("--wind", wind_, "wind speed at 10 m: 12m/s, 20kn, 40km/h")->required()->check(unitValidator(kSpeedUnits, 100.0, "12m/s"));
+        addUnitOption(*cmd, "--wind", s.windSpeed, kSpeedUnits, 100.0, "12m/s", "wind speed at 10 m: 12m/s, 20kn, 40km/h")
+            ->required();
         cmd->add_option("--direction", s.windDirection, "wind direction in degrees, from +x toward +y")
             ->capture_default_str()
             ->check(finiteRange(-360.0, 360.0));
-        fetchOption_ = cmd->add_option("--fetch", fetch_, "JONSWAP fetch: 100km, 5000m (jonswap only)")
-                           ->default_str("100km")
-                           ->check(lengthValidator(1e7));
+        fetchOption_ = addLengthOption(*cmd, "--fetch", s.fetch, 1e7, "JONSWAP fetch: 100km, 5000m (jonswap only)")
+                           ->default_str("100km");
         gammaOption_ = cmd->add_option("--gamma", s.gamma, "JONSWAP peak enhancement (jonswap only)")
                            ->capture_default_str()
                            ->check(finiteRange(1.0, 10.0));
         addEnumOption(*cmd, "--spreading", s.spreading, "directional spreading: cos2, cos2s (Mitsuyasu's s) or donelan-banner");
         spreadingSOption_ = cmd->add_option("--spreading-s", s.spreadingExponent, "a fixed cos-2s exponent s (cos2s only)")
                                 ->check(finiteRange(0.1, 1000.0));
-        cmd->add_option("--depth", depth_, "water depth: 30m (finite-depth dispersion; TMA for jonswap, pierson-moskowitz)")
-            ->check(lengthValidator(1e4));
+        addLengthOption(*cmd, "--depth", s.depth, 1e4,
+                        "water depth: 30m (finite-depth dispersion; TMA for jonswap, pierson-moskowitz)");
         cmd->add_option("--swell", swell_, "a swell summed with the wind sea: HEIGHT,PERIOD,DIRECTION like 2.5m,12s,250deg")
             ->check(CLI::Validator([](std::string& t) { return parseSwell(t) ? std::string() : "'" + t + "' is not a swell "
                 "like 2.5m,12s,250deg (height up to 30 m, period 1 to 30 s, direction -360 to 360)"; }, "H,T,DIR"));
-        cmd->add_option("--tile-size", tileSize_, "metres across the tile: 256m")->required()->check(lengthValidator(1e5));
+        addLengthOption(*cmd, "--tile-size", s.tileSize, 1e5, "metres across the tile: 256m")->required();
         cmd->add_option("--size", s.size, "texels across (a power of two)")->capture_default_str();
         cmd->add_option("--seed", s.seed, "random seed: the same seed gives the same bytes")->capture_default_str();
         cmd->add_option("--frames", options_.frames, "write this many frames of a loop (needs --loop)")->capture_default_str();
-        cmd->add_option("--loop", loop_, "loop period: 8s; the sea at t + period is the sea at t")->check(unitValidator(kTimeUnits, 1e6, "8s"));
+        loopOption_ = addUnitOption(*cmd, "--loop", s.loopPeriod, kTimeUnits, 1e6, "8s",
+                                    "loop period: 8s; the sea at t + period is the sea at t");
         cmd->add_flag("--displacement", options_.displacement,
                       "also write Tessendorf's horizontal displacement (choppiness) as channels Dx, Dy (.exr)");
         cmd->add_flag("--foam", options_.foam, "also write looping foam coverage as channel Foam (.exr; implies --displacement)");
@@ -107,7 +117,8 @@ public:
         cmd->add_option("--foam-threshold", options_.foamOptions.threshold, "foam forms where the Jacobian J is below this")
             ->capture_default_str()
             ->check(finiteRange(-2.0, 2.0));
-        cmd->add_option("--foam-decay", foamDecay_, "foam's e-folding time: 2s")->default_str("2s")->check(unitValidator(kTimeUnits, 1e4, "2s"));
+        addUnitOption(*cmd, "--foam-decay", options_.foamOptions.decay, kTimeUnits, 1e4, "2s", "foam's e-folding time: 2s")
+            ->default_str("2s");
         cmd->add_option("--foam-build-up", options_.foamOptions.buildUp, "foam gained per second per unit of J below the threshold")
             ->capture_default_str()
             ->check(finiteRange(0.0, 1000.0));
@@ -133,7 +144,7 @@ public:
         SpectrumOptions& s = options_.spectrum;
         if (!isPowerOfTwo(s.size) || s.size < 4 || s.size > 8192) return usage("--size must be a power of two from 4 to 8192");
         if (options_.frames < 1 || options_.frames > 10000) return usage("--frames must be 1 to 10000");
-        if (options_.frames > 1 && loop_.empty()) return usage("--frames needs --loop: the period the frames cover");
+        if (options_.frames > 1 && loopOption_->count() == 0) return usage("--frames needs --loop: the period the frames cover");
         const int count = std::max(1, options_.cascades);
         if (count > 1 && s.size < kCascadeMinSize)
             return usage("--cascades needs --size " + std::to_string(kCascadeMinSize) + " or more: each band needs rings of waves");
@@ -150,13 +161,7 @@ public:
                 if (o->count() > 0)
                     std::fprintf(stderr, "heightpack: warning: %s is ignored with --spectrum %s (it shapes jonswap only)\n",
                                  o->get_name().c_str(), nameOf(s.model));
-        s.windSpeed = *parseWithUnit(wind_, kSpeedUnits);
-        s.tileSize = *parseLength(tileSize_);
-        if (!fetch_.empty()) s.fetch = *parseLength(fetch_);
-        if (!loop_.empty()) s.loopPeriod = *parseWithUnit(loop_, kTimeUnits);
-        if (!depth_.empty()) s.depth = *parseLength(depth_);
         if (!swell_.empty()) s.swell = *parseSwell(swell_);
-        options_.foamOptions.decay = *parseWithUnit(foamDecay_, kTimeUnits);
         options_.displacement = options_.displacement || options_.foam;
         options_.threads = common_.threads;
         // OpenEXR deflates the frames' blocks on its pool: with four float channels of noise-like data
@@ -226,9 +231,10 @@ private:
     }
 
     std::string output_;
-    std::string wind_, fetch_, tileSize_, loop_, depth_, swell_, foamDecay_ = "2s";
+    std::string swell_;
     SynthOptions options_;
     CLI::Option* fetchOption_ = nullptr;
+    CLI::Option* loopOption_ = nullptr;
     CLI::Option* gammaOption_ = nullptr;
     CLI::Option* spreadingSOption_ = nullptr;
 };
