@@ -24,14 +24,12 @@ public:
         CLI::App* cmd = app.add_subcommand("tile", "make a height map tile, changing it as little as the method allows");
         cmd->add_option("input", input_, "the height map")->required();
         cmd->add_option("-o,--output", output_, "the tiling map to write (.png, .tif, .exr)")->required();
-        cmd->add_option("--method", method_,
-                        "periodic: re-synthesise a band around each wrap line as new content that continues both "
+        addEnumOption(*cmd, "--method", options_.method,
+                      "periodic: re-synthesise a band around each wrap line as new content that continues both "
                         "sides (Gaussian conditional simulation with the map's own statistics), the large scales made "
                         "periodic by Moisan's smooth field; moisan: Moisan's periodic component only (slopes may kink "
                         "at the edges); crossfade: offset and blend (leaves an echo: features shown twice per tile); "
-                        "mirror: mirror tiling, twice the size")
-            ->capture_default_str()
-            ->check(CLI::IsMember({"periodic", "moisan", "crossfade", "mirror"}));
+                      "mirror: mirror tiling, twice the size");
         widthOption_ = cmd->add_option("--width", options_.width, "crossfade band as a fraction of the tile, in (0, 0.5]")
             ->capture_default_str()
             ->check(CLI::Validator(
@@ -71,11 +69,7 @@ public:
     }
 
     ExitCode run() override {
-        if (method_ != "crossfade" && widthGiven()) return usage("--width goes with --method crossfade");
-        options_.method = method_ == "crossfade" ? TileMethod::Crossfade
-                          : method_ == "mirror"  ? TileMethod::Mirror
-                          : method_ == "moisan"  ? TileMethod::Moisan
-                                                 : TileMethod::Periodic;
+        if (options_.method != TileMethod::Crossfade && widthGiven()) return usage("--width goes with --method crossfade");
         options_.bits = depth_ == "uint8" ? 8 : depth_ == "uint16" ? 16 : depth_ == "float" ? 32 : 0;
         applyChannel(channel_, options_.load);
         options_.load.silenceDecoderMessages = true;
@@ -108,14 +102,14 @@ public:
             const std::string why = r.after.failure ? describeSeamFailure(*r.after.failure, t)
                                                     : "its look does not pass: " + lookText(r.look, r.lookThresholds);
             std::fprintf(stderr, "heightpack: error: %s: --method %s could not make it tile: %s (%s); nothing written\n",
-                         r.input.c_str(), method_.c_str(), why.c_str(),
-                         method_ == "periodic" ? "no seed or band width passed: is it a sheet of unrelated pictures "
+                         r.input.c_str(), nameOf(options_.method), why.c_str(),
+                         options_.method == TileMethod::Periodic ? "no seed or band width passed: is it a sheet of unrelated pictures "
                                                  "rather than one map? --method moisan changes it least"
                                                : "try the default --method periodic");
         } else if (chatty()) {
             if (r.alreadyTiled) {
                 std::printf("%s already tiles at every level: wrote it unchanged to %s (--force applies %s anyway)\n",
-                            r.input.c_str(), r.output.c_str(), method_.c_str());
+                            r.input.c_str(), r.output.c_str(), nameOf(options_.method));
             } else {
                 std::printf("%s: %s\n", r.input.c_str(), describeSeamFailure(*r.before.failure, t).c_str());
                 std::printf("wrote %s: %dx%d, %s, tiles at every level; heights %.4g..%.4g (input %.4g..%.4g)\n",
@@ -141,7 +135,7 @@ public:
 private:
     bool widthGiven() const { return widthOption_ && widthOption_->count() > 0; }
 
-    std::string input_, output_, channel_, method_ = "periodic", depth_ = "keep";
+    std::string input_, output_, channel_, depth_ = "keep";
     TileOptions options_;
     CLI::Option* widthOption_ = nullptr;
 };

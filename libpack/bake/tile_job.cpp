@@ -16,16 +16,6 @@
 
 namespace heightpack {
 
-const char* tileMethodName(TileMethod method) {
-    switch (method) {
-        case TileMethod::Periodic: return "periodic";
-        case TileMethod::Moisan: return "moisan";
-        case TileMethod::Crossfade: return "crossfade";
-        case TileMethod::Mirror: return "mirror";
-    }
-    return "?";
-}
-
 namespace {
 
 bool holdsFloat(const std::string& ext) { return ext == ".exr" || ext == ".tif" || ext == ".tiff"; }
@@ -91,7 +81,7 @@ struct Storage {
 // verdict on the returned candidate as stored, so the caller need not judge it again.
 Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, const Storage& storage,
                   TileReport& report, std::optional<ChainSeams>& judged, std::optional<TileLook>& looked) {
-    report.methodUsed = tileMethodName(options.method);
+    report.methodUsed = nameOf(options.method);
     report.crossfadeWidth = options.width;
     switch (options.method) {
         case TileMethod::Moisan: return periodicComponent(map, PeriodicContinuity::Heights);

@@ -14,6 +14,7 @@
 #include "heightpack/bake/normal_job.hpp"
 #include "heightpack/bake/pack_job.hpp"
 #include "heightpack/bake/synth_job.hpp"
+#include "heightpack/bake/tile_job.hpp"
 #include "heightpack/io/info.hpp"
 
 #include "support/test_support.hpp"
@@ -175,6 +176,11 @@ TEST(SynthJob, DisplacementOrFoamIntoAFileThatIsNoExrIsAnOptionsError) {
         EXPECT_EQ(report.error().fixArgs[0], named);
         EXPECT_FALSE(std::filesystem::exists(dir.file("sea.png")));
     }
+}
+
+TEST(TileJob, MethodNamesAreTheDocumentedOnesAndRoundTrip) {
+    EXPECT_EQ(allNames<TileMethod>(), (std::vector<std::string>{"periodic", "moisan", "crossfade", "mirror"}));
+    for (const EnumName<TileMethod>& e : NameTable<TileMethod>::entries) EXPECT_EQ(parseName<TileMethod>(e.name), e.value);
 }
 
 TEST(NormalJob, APlaneGivesTheNormalOfItsSlope) {

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "heightpack/core/mip.hpp"
+#include "heightpack/core/names.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/core/tile_look.hpp"
 #include "heightpack/core/tileable.hpp"
@@ -23,7 +24,15 @@ enum class TileMethod {
     Crossfade,  // offset and blend: four copies, the high-pass blended keeping variance (leaves an echo)
     Mirror,     // mirror tiling: twice the size, symmetric
 };
-const char* tileMethodName(TileMethod method);
+template <>
+struct NameTable<TileMethod> {
+    static constexpr EnumName<TileMethod> entries[] = {
+        {TileMethod::Periodic, "periodic", "re-synthesise a band around each wrap line"},
+        {TileMethod::Moisan, "moisan", "Moisan's periodic component"},
+        {TileMethod::Crossfade, "crossfade", "offset and blend"},
+        {TileMethod::Mirror, "mirror", "mirror tiling, twice the size"},
+    };
+};
 
 struct TileOptions {
     LoadOptions load;
