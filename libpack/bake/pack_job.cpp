@@ -87,10 +87,11 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     const auto gpu = [](const std::string& path) {
         return !path.empty() && containerForPath(path).value_or(Container::Exr) != Container::Exr;
     };
+    const bool gpuOutput = gpu(output), gpuPlain = gpu(options.plainOutput);
     for (const auto& [asked, what, channels] : {std::tuple{options.displacement, "displacement", "twelve"},
                                                 std::tuple{options.foam, "foam", "eight"}})
-        if (asked && (gpu(output) || gpu(options.plainOutput)))
-            return withFix(inconsistentOptions(gpu(output) ? output : options.plainOutput,
+        if (asked && (gpuOutput || gpuPlain))
+            return withFix(inconsistentOptions(gpuOutput ? output : options.plainOutput,
                                                std::string("a KTX2 or DDS texture holds at most four channels; heights with ") +
                                                    (std::string(what) == "foam" ? "foam" : "Dx, Dy") + " need " + channels,
                                                std::string("write the ") + what + " to an .exr"),

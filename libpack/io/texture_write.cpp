@@ -22,7 +22,9 @@ Status writeTexture(const std::string& path, const MipChainSource& content, cons
     const auto container = containerForPath(path);
     if (!container)
         return cannotWrite(path, "names no texture container heightpack writes", "name the output .exr, .ktx2 or .dds");
-    if (*container != Container::Exr) return writeGpuTexture(path, content, options);
+    // The container, decided here once, picks the writer (each still guards its own name).
+    if (*container == Container::Ktx2) return writeKtx2(path, content, options);
+    if (*container == Container::Dds) return writeDds(path, content, options);
     if (Status s = exrTakes(path, options); !s) return s;
     ExrWriteOptions exr;
     exr.compression = options.exrCompression;
