@@ -6,6 +6,7 @@
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
 #include "heightpack/io/info.hpp"
+#include "heightpack/io/pixel_type.hpp"
 #include "heightpack/io/read.hpp"
 
 #include "job_steps.hpp"
