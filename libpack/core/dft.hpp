@@ -15,4 +15,9 @@ cv::Mat forwardDft(const cv::Mat& field, int threads);
 // of that size and type (it is written in place).
 void inverseDft(const cv::Mat& spectrum, cv::Mat& out, int threads);
 
+// The zero-mean periodic field (CV_64F, written to out as inverseDft writes) whose five-point Laplacian is
+// rhs, for Moisan's periodic + smooth decomposition: rhs's spectrum divided by the Laplacian's symbol
+// 2 cos(2 pi q / w) + 2 cos(2 pi r / h) - 4, the mean (where the symbol is 0) set to 0.
+void solvePeriodicPoisson(const cv::Mat& rhs, cv::Mat& out, int threads);
+
 }  // namespace heightpack::detail

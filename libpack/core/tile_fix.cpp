@@ -50,21 +50,8 @@ Image moisanPeriodic(const Image& map, bool relativeToSlope) {
     }
     // The smooth field s solves the periodic Poisson equation laplacian(s) = v with zero mean; the map
     // minus s has, everywhere, the Laplacian of the map's interior: no seam, and its mean kept.
-    cv::Mat spectrum = detail::forwardDft(v, 0);
-    for (int r = 0; r < h; ++r) {
-        for (int q = 0; q < w; ++q) {
-            auto& z = spectrum.at<cv::Vec2d>(r, q);
-            const double denominator = 2 * std::cos(2 * std::numbers::pi * q / w) + 2 * std::cos(2 * std::numbers::pi * r / h) - 4;
-            if (q == 0 && r == 0) {
-                z = cv::Vec2d(0, 0);
-            } else {
-                z[0] /= denominator;
-                z[1] /= denominator;
-            }
-        }
-    }
     cv::Mat smooth;
-    detail::inverseDft(spectrum, smooth, 0);
+    detail::solvePeriodicPoisson(v, smooth, 0);
     Image out(w, h, 1);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) out.at(x, y) = static_cast<float>(map.at(x, y) - smooth.at<double>(y, x));

@@ -204,19 +204,9 @@ Field topBottomSmoothField(const Field& f, int threads) {
         v.at(x, 0) += jump;
         v.at(x, h - 1) -= jump;
     }
-    cv::Mat spectrum = detail::forwardDft(v.mat(), threads);
-    std::vector<double> cosX(w), cosY(h);
-    for (int q = 0; q < w; ++q) cosX[q] = 2 * std::cos(2 * std::numbers::pi * q / w);
-    for (int r = 0; r < h; ++r) cosY[r] = 2 * std::cos(2 * std::numbers::pi * r / h);
-    for (int r = 0; r < h; ++r)
-        for (int q = 0; q < w; ++q) {
-            auto& z = spectrum.at<cv::Vec2d>(r, q);
-            const double denominator = cosX[q] + cosY[r] - 4;
-            z = (q == 0 && r == 0) ? cv::Vec2d(0, 0) : cv::Vec2d(z[0] / denominator, z[1] / denominator);
-        }
     Field s(w, h);
     cv::Mat out = s.mat();
-    detail::inverseDft(spectrum, out, threads);
+    detail::solvePeriodicPoisson(v.mat(), out, threads);
     return s;
 }
 
