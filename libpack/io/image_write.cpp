@@ -5,11 +5,16 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <utility>
+#include <vector>
 
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
 
+#include "png_write.hpp"
+#include "texel_encode.hpp"
 #include "text.hpp"
 
 namespace heightpack {
@@ -59,24 +64,35 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
         if (!std::isfinite(image.pixels[i]))
             return Error{ErrorKind::Internal, path, "internal error: the image holds a non-finite value; nothing was written",
                          "please report this with the command line"};
+    // PNG keeps text chunks only: numbers go in as text there, so nothing recorded is lost.
+    auto asText = [](const ExrAttribute& a) {
+        if (const auto* s = std::get_if<std::string>(&a.value)) return *s;
+        char text[32];
+        std::snprintf(text, sizeof text, "%.9g", std::get<float>(a.value));
+        return std::string(text);
+    };
+    if (ext == ".png" && image.channels == 1 && options.bits != 32 && options.srgbChannels == 0) {
+        std::vector<std::pair<std::string, std::string>> text;
+        for (const ExrAttribute& a : options.attributes) text.emplace_back(a.name, asText(a));
+        const std::vector<unsigned char> bytes = detail::encodeGreyPng(image, options.bits, text, options.threads);
+        TemporaryFile temp(path);
+        std::unique_ptr<std::FILE, detail::FileCloser> file(std::fopen(temp.path().c_str(), "wb"));
+        if (!file || std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size() || std::fflush(file.get()) != 0 ||
+            std::fclose(file.release()) != 0)
+            return cannotWrite(path, "writing failed", "check free disk space and permissions");
+        return temp.commit();
+    }
     TemporaryFile temp(path);
     spec.attribute("oiio:UnassociatedAlpha", 1);
     // OpenImageIO's EXR writer stamps the current time (capDate) when no DateTime is given; a fixed,
     // empty one keeps the same inputs giving the same bytes.
     spec.attribute("DateTime", "");
     if (options.srgbChannels > 0 && options.bits != 32) spec.attribute("oiio:ColorSpace", "sRGB");
-    // PNG keeps text chunks only: numbers go in as text there, so nothing recorded is lost.
-    const bool textOnly = ext == ".png";
     for (const ExrAttribute& a : options.attributes) {
-        if (const auto* s = std::get_if<std::string>(&a.value)) {
-            spec.attribute(a.name, *s);
-        } else if (textOnly) {
-            char text[32];
-            std::snprintf(text, sizeof text, "%.9g", std::get<float>(a.value));
-            spec.attribute(a.name, std::string(text));
-        } else {
+        if (ext == ".png" || std::holds_alternative<std::string>(a.value))
+            spec.attribute(a.name, asText(a));
+        else
             spec.attribute(a.name, std::get<float>(a.value));
-        }
     }
 
     std::vector<float> pixels = image.pixels;

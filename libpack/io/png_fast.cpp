@@ -11,20 +11,14 @@
 
 #include "heightpack/core/parallel.hpp"
 
+#include "png_format.hpp"
+
 namespace heightpack::detail {
 
 namespace {
 
 uint32_t be32(const unsigned char* p) {
     return (uint32_t(p[0]) << 24) | (uint32_t(p[1]) << 16) | (uint32_t(p[2]) << 8) | uint32_t(p[3]);
-}
-
-// The Paeth predictor (PNG spec 9.4), written so the compiler can use conditional moves: on noisy
-// heights a branchy version mispredicts on most bytes.
-inline int paeth(int a, int b, int c) {
-    const int pa = std::abs(b - c), pb = std::abs(a - c), pc = std::abs(a + b - 2 * c);
-    const int ab = pb < pa ? b : a;
-    return pc < std::min(pa, pb) ? c : ab;
 }
 
 // Undoes one row's filter. BPP bytes per pixel, known at compile time: byte i depends on byte i - BPP,
@@ -83,8 +77,7 @@ bool unfilter(unsigned char* rows, int height, size_t rowBytes, int bpp) {
 
 std::optional<Image> decodeGreyPng(const std::vector<unsigned char>& file, int width, int height, int channel,
                                    int threads) {
-    static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (file.size() < 8 + 25 || std::memcmp(file.data(), kSignature, 8) != 0) return std::nullopt;
+    if (file.size() < 8 + 25 || std::memcmp(file.data(), kPngSignature, 8) != 0) return std::nullopt;
     const unsigned char* data = file.data();
     const size_t size = file.size();
 

@@ -18,6 +18,7 @@
 #include <iterator>
 #include <limits>
 #include <numbers>
+#include <random>
 
 #include "heightpack/bake/pack_job.hpp"
 #include "heightpack/core/mip.hpp"
@@ -369,6 +370,57 @@ TEST(Io, FastPngDecoderReadsTheExamplesAsOpenImageIODoes) {
         std::vector<float> reference(in->spec().image_pixels());
         ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, reference.data()));
         EXPECT_EQ(fast->heights.pixels, reference) << name;
+    }
+}
+
+// A grey 8- or 16-bit PNG from writeFlatImage is heightpack's own (libdeflate, rows filtered on all
+// threads): libpng, through OpenImageIO, reads back the same samples as from the PNG OpenImageIO writes of
+// the same floats (its own rounding), with the attributes as text; the bytes are the same at any thread
+// count. Values: random in [0,1], beyond it (clamped), and exactly half a step off a level (ties).
+TEST(Io, FlatGreyPngIsReadBackByLibpngAsOpenImageIOWouldWriteIt) {
+    ScratchDir dir;
+    std::mt19937 random(5);
+    for (int bits : {8, 16}) {
+        const int w = 37 + bits, h = 29;
+        Image image(w, h, 1);
+        const double steps = bits == 8 ? 255.0 : 65535.0;
+        for (size_t i = 0; i < image.pixels.size(); ++i) {
+            const double u = std::uniform_real_distribution<double>(-0.05, 1.05)(random);
+            image.pixels[i] = static_cast<float>(i % 5 == 0 ? (std::floor(u * steps) + 0.5) / steps : u);
+        }
+        FlatImageOptions flat;
+        flat.bits = bits;
+        flat.attributes = {attribute(attr::tileMethod, "periodic"), attribute(attr::crossfadeWidth, 0.125f)};
+        for (int threads : {1, 3}) {
+            flat.threads = threads;
+            ASSERT_TRUE(writeFlatImage(dir.file("t" + std::to_string(threads) + ".png"), image, flat).ok());
+        }
+        std::ifstream a(dir.file("t1.png"), std::ios::binary), b(dir.file("t3.png"), std::ios::binary);
+        EXPECT_EQ(std::vector<char>(std::istreambuf_iterator<char>(a), {}), std::vector<char>(std::istreambuf_iterator<char>(b), {}));
+        // OpenImageIO's own writer, given the same clamped floats, as a reference.
+        std::vector<float> clamped(image.pixels);
+        for (float& v : clamped) v = std::clamp(v, 0.0f, 1.0f);
+        {
+            auto out = OIIO::ImageOutput::create(dir.file("oiio.png"));
+            ASSERT_TRUE(out && out->open(dir.file("oiio.png"), OIIO::ImageSpec(w, h, 1, bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16)));
+            ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, clamped.data()) && out->close());
+        }
+        auto samples = [&](const std::string& name, OIIO::ImageSpec* spec) {
+            auto in = OIIO::ImageInput::open(dir.file(name));
+            EXPECT_TRUE(in) << name;
+            std::vector<uint16_t> v(size_t(w) * h);
+            if (!in) return v;
+            if (spec) *spec = in->spec();
+            EXPECT_EQ(in->spec().format, bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16);
+            EXPECT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, v.data()));
+            return v;
+        };
+        OIIO::ImageSpec spec;
+        EXPECT_EQ(samples("t3.png", &spec), samples("oiio.png", nullptr)) << bits;
+        EXPECT_EQ(spec.width, w);
+        EXPECT_EQ(spec.nchannels, 1);
+        EXPECT_EQ(spec.get_string_attribute("heightpack:tileMethod"), "periodic");
+        EXPECT_EQ(spec.get_string_attribute("heightpack:crossfadeWidth"), "0.125");
     }
 }
 
