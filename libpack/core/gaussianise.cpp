@@ -5,12 +5,13 @@
 #include <cstdint>
 #include <cstring>
 #include <numbers>
+#include <utility>
 
 #include "heightpack/core/parallel.hpp"
 
 namespace heightpack::detail {
 
-std::vector<uint32_t> stableOrder(const std::vector<float>& values) {
+std::vector<uint32_t> stableOrder(const std::vector<float>& values, int threads) {
     const size_t n = values.size();
     // A float's bits as an unsigned key that sorts as the float does (negatives flipped, positives with
     // the sign bit set); -0 counts as +0, as comparison has it.
@@ -20,19 +21,52 @@ std::vector<uint32_t> stableOrder(const std::vector<float>& values) {
         std::memcpy(&u, &canonical, sizeof u);
         return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
     };
+    // The items in a fixed number of chunks: each pass counts digits per chunk on any thread, then each
+    // chunk scatters its items, in order, from its own start in each bucket. A stable sort has one result,
+    // so the thread count cannot change it.
+    constexpr int kChunks = 64, kBits = 11, kBuckets = 1 << kBits;
+    const size_t chunkSize = (n + kChunks - 1) / kChunks;
+    auto chunkRange = [&](int c) { return std::pair<size_t, size_t>(std::min(n, c * chunkSize), std::min(n, (c + 1) * chunkSize)); };
     std::vector<uint64_t> items(n), scratch(n);  // key << 32 | index
-    for (size_t i = 0; i < n; ++i) items[i] = uint64_t(key(values[i])) << 32 | i;
-    constexpr int kBits = 11, kBuckets = 1 << kBits;
+    parallelFor(kChunks, threads, [&](int begin, int end) {
+        for (size_t i = chunkRange(begin).first; i < chunkRange(end - 1).second; ++i) items[i] = uint64_t(key(values[i])) << 32 | i;
+    });
+    std::vector<size_t> counts(size_t(kChunks) * kBuckets);
     for (int shift = 32; shift < 64; shift += kBits) {
-        std::vector<size_t> start(kBuckets + 1, 0);
-        for (uint64_t item : items) ++start[((item >> shift) & (kBuckets - 1)) + 1];
-        if (std::find(start.begin() + 1, start.end(), n) != start.end()) continue;  // one bucket: no change
-        for (int b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
-        for (uint64_t item : items) scratch[start[(item >> shift) & (kBuckets - 1)]++] = item;
+        parallelFor(kChunks, threads, [&](int begin, int end) {
+            for (int c = begin; c < end; ++c) {
+                size_t* count = &counts[size_t(c) * kBuckets];
+                std::fill(count, count + kBuckets, size_t(0));
+                const auto [from, to] = chunkRange(c);
+                for (size_t i = from; i < to; ++i) ++count[(items[i] >> shift) & (kBuckets - 1)];
+            }
+        });
+        // Each (chunk, bucket)'s first place: buckets in order, chunks in order within a bucket.
+        size_t next = 0;
+        bool oneBucket = false;
+        for (int b = 0; b < kBuckets; ++b) {
+            const size_t bucketStart = next;
+            for (int c = 0; c < kChunks; ++c) {
+                const size_t count = counts[size_t(c) * kBuckets + b];
+                counts[size_t(c) * kBuckets + b] = next;
+                next += count;
+            }
+            oneBucket = oneBucket || next - bucketStart == n;
+        }
+        if (oneBucket) continue;  // every digit the same: no change
+        parallelFor(kChunks, threads, [&](int begin, int end) {
+            for (int c = begin; c < end; ++c) {
+                size_t* start = &counts[size_t(c) * kBuckets];
+                const auto [from, to] = chunkRange(c);
+                for (size_t i = from; i < to; ++i) scratch[start[(items[i] >> shift) & (kBuckets - 1)]++] = items[i];
+            }
+        });
         items.swap(scratch);
     }
     std::vector<uint32_t> order(n);
-    for (size_t i = 0; i < n; ++i) order[i] = static_cast<uint32_t>(items[i]);
+    parallelFor(kChunks, threads, [&](int begin, int end) {
+        for (size_t i = chunkRange(begin).first; i < chunkRange(end - 1).second; ++i) order[i] = static_cast<uint32_t>(items[i]);
+    });
     return order;
 }
 
@@ -72,8 +106,10 @@ Gaussianiser::Gaussianiser(const std::vector<float>& values, int threads) : sort
     if (n == 0) return;
     // The order of (value, index) pairs, by value then index: a stable radix sort of the values' bits,
     // which keeps the index order of equal values (and is ~10x std::sort's time on millions of texels).
-    const std::vector<uint32_t> order = stableOrder(values);
-    for (size_t i = 0; i < n; ++i) sorted[i] = values[order[i]];
+    const std::vector<uint32_t> order = stableOrder(values, threads);
+    parallelFor(static_cast<int>((n + 65535) / 65536), threads, [&](int begin, int end) {
+        for (size_t i = size_t(begin) * 65536; i < std::min(n, size_t(end) * 65536); ++i) sorted[i] = values[order[i]];
+    });
     // Runs of equal values share their mid-rank's quantile; the quantiles are computed on all threads.
     std::vector<std::pair<size_t, size_t>> runs;
     for (size_t start = 0; start < n;) {

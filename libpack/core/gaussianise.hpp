@@ -7,8 +7,9 @@
 
 namespace heightpack::detail {
 
-// The permutation that sorts values (finite, fewer than 2^32) by value, equal values in index order.
-std::vector<uint32_t> stableOrder(const std::vector<float>& values);
+// The permutation that sorts values (finite, fewer than 2^32) by value, equal values in index order; on
+// `threads` threads (0 = all cores), with one result whatever their number.
+std::vector<uint32_t> stableOrder(const std::vector<float>& values, int threads);
 
 // The standard normal CDF and its inverse (Acklam's approximation refined by a Halley step, ~1e-15).
 double normalCdf(double x);

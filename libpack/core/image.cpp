@@ -2,17 +2,21 @@
 
 #include <algorithm>
 
+#include "heightpack/core/parallel.hpp"
+
 namespace heightpack {
 
-Image transposed(const Image& image) {
+Image transposed(const Image& image, int threads) {
     assert(image.channels == 1);
     Image out(image.height, image.width, 1);
     // In 64 x 64 blocks: a plain loop writes every texel of a column to another cache line.
     constexpr int kBlock = 64;
-    for (int by = 0; by < image.height; by += kBlock)
-        for (int bx = 0; bx < image.width; bx += kBlock)
-            for (int y = by; y < std::min(by + kBlock, image.height); ++y)
-                for (int x = bx; x < std::min(bx + kBlock, image.width); ++x) out.at(y, x) = image.at(x, y);
+    parallelFor((image.height + kBlock - 1) / kBlock, threads, [&](int begin, int end) {
+        for (int by = begin * kBlock; by < std::min(end * kBlock, image.height); by += kBlock)
+            for (int bx = 0; bx < image.width; bx += kBlock)
+                for (int y = by; y < std::min(by + kBlock, image.height); ++y)
+                    for (int x = bx; x < std::min(bx + kBlock, image.width); ++x) out.at(y, x) = image.at(x, y);
+    });
     return out;
 }
 

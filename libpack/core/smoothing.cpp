@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "heightpack/core/parallel.hpp"
+#include "heightpack/core/tileable.hpp"
 
 namespace heightpack::detail {
 
@@ -54,6 +56,26 @@ void blur(Field& f, Field& scratch, double sigma, int threads) {
     alongColumns(scratch, f);
 }
 
+bool hasTerraces(const Image& map, int threads) {
+    const int w = map.width, h = map.height;
+    std::vector<size_t> equal(size_t(h), 0);
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y) {
+            const float* row = &map.pixels[size_t(y) * w];
+            const float* below = y + 1 < h ? row + w : nullptr;
+            size_t count = 0;
+            for (int x = 0; x + 1 < w; ++x) count += row[x] == row[x + 1];
+            if (below)
+                for (int x = 0; x < w; ++x) count += row[x] == below[x];
+            equal[y] = count;
+        }
+    });
+    size_t total = 0;
+    for (size_t c : equal) total += c;
+    const double pairs = double(w - 1) * h + double(w) * (h - 1);
+    return pairs > 0 && double(total) >= pairs / 20;
+}
+
 // A smooth map that rounds back to map: starting from the map, blurred and projected back into each
 // texel's rounding interval [v - q/2, v + q/2], a few times (projections onto convex sets). The plateaus of
 // a quantised gradient become the ramp they were rounded from; no texel leaves its interval.
@@ -70,6 +92,57 @@ std::vector<float> dequantised(const Image& map, double quantum, int threads) {
         });
     }
     return std::vector<float>(x.v.begin(), x.v.end());
+}
+
+std::vector<float> largeScaleField(const std::vector<float>& values, int w, int h, double sigma, int threads) {
+    int step = 1;
+    while (2 * step <= sigma / 8 && w % (2 * step) == 0 && h % (2 * step) == 0 && w / (2 * step) >= 64 && h / (2 * step) >= 64)
+        step *= 2;
+    const int cw = w / step, ch = h / step;
+    Field coarse(cw, ch);
+    parallelFor(ch, threads, [&](int begin, int end) {
+        for (int cy = begin; cy < end; ++cy)
+            for (int y = cy * step; y < (cy + 1) * step; ++y)
+                for (int x = 0; x < w; ++x) coarse.at(x / step, cy) += values[size_t(y) * w + x];
+    });
+    for (double& v : coarse.v) v /= double(step) * step;
+    {
+        Field scratch(cw, ch);
+        detail::blur(coarse, scratch, sigma / step, threads);
+    }
+    Image low(cw, ch, 1);
+    for (size_t i = 0; i < coarse.v.size(); ++i) low.pixels[i] = static_cast<float>(coarse.v[i]);
+    const Image lowPeriodic = periodicComponent(low, PeriodicContinuity::Heights);
+    Field field(cw, ch);
+    for (size_t i = 0; i < field.v.size(); ++i) field.v[i] = double(low.pixels[i]) - lowPeriodic.pixels[i];
+    // Texel x lies at (x + 0.5) / step - 0.5 in cells: between cells lo and lo + 1 with weight t of the latter.
+    struct Tap {
+        int lo, hi;
+        double t;
+    };
+    auto taps = [&](int n, int cells) {
+        std::vector<Tap> out(n);
+        for (int i = 0; i < n; ++i) {
+            const double c = std::clamp((i + 0.5) / step - 0.5, 0.0, double(cells - 1));
+            const int lo = std::min(static_cast<int>(c), cells - 1);
+            out[i] = {lo, std::min(lo + 1, cells - 1), c - lo};
+        }
+        return out;
+    };
+    const std::vector<Tap> tx = taps(w, cw), ty = taps(h, ch);
+    std::vector<float> smooth(values.size());
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y) {
+            const Tap& b = ty[y];
+            for (int x = 0; x < w; ++x) {
+                const Tap& a = tx[x];
+                const double top = field.at(a.lo, b.lo) + a.t * (field.at(a.hi, b.lo) - field.at(a.lo, b.lo));
+                const double bottom = field.at(a.lo, b.hi) + a.t * (field.at(a.hi, b.hi) - field.at(a.lo, b.hi));
+                smooth[size_t(y) * w + x] = static_cast<float>(top + b.t * (bottom - top));
+            }
+        }
+    });
+    return smooth;
 }
 
 }  // namespace heightpack::detail

@@ -179,25 +179,34 @@ Spectra spectraOf(const cv::Mat& spectrum, int threads) {
             const cv::Vec2d z = spectrum.at<cv::Vec2d>(y, x);
             power.at(x, y) = (x == 0 && y == 0) ? 0.0 : z[0] * z[0] + z[1] * z[1];
         }
-    // Smoothed over 5x5 frequency bins (a box, three times each way, circular).
+    // Smoothed over 5x5 frequency bins (a box, three times each way, circular). The neighbours' indices
+    // are wrapped once per line, not per texel; the sums add in the same order.
     smooth = power;
     Grid next(w, h);
+    std::vector<int> wrapX(size_t(w) + 4), wrapY(size_t(h) + 4);
+    for (int i = -2; i < w + 2; ++i) wrapX[i + 2] = (i + w) % w;
+    for (int i = -2; i < h + 2; ++i) wrapY[i + 2] = (i + h) % h;
     for (int pass = 0; pass < 3; ++pass) {
         parallelFor(h, threads, [&](int begin, int end) {
-            for (int y = begin; y < end; ++y)
+            for (int y = begin; y < end; ++y) {
+                const double* row = &smooth.v[size_t(y) * w];
                 for (int x = 0; x < w; ++x) {
                     double sum = 0;
-                    for (int d = -2; d <= 2; ++d) sum += smooth.at((x + d + w) % w, y);
+                    for (int d = 0; d < 5; ++d) sum += row[wrapX[x + d]];
                     next.at(x, y) = sum / 5;
                 }
+            }
         });
         parallelFor(h, threads, [&](int begin, int end) {
-            for (int y = begin; y < end; ++y)
+            for (int y = begin; y < end; ++y) {
+                const double* rows[5];
+                for (int d = 0; d < 5; ++d) rows[d] = &next.v[size_t(wrapY[y + d]) * w];
                 for (int x = 0; x < w; ++x) {
                     double sum = 0;
-                    for (int d = -2; d <= 2; ++d) sum += next.at(x, (y + d + h) % h);
+                    for (int d = 0; d < 5; ++d) sum += rows[d][x];
                     smooth.at(x, y) = sum / 5;
                 }
+            }
         });
     }
     return out;

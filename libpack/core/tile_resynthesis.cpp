@@ -7,6 +7,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "heightpack/core/parallel.hpp"
@@ -14,6 +15,7 @@
 
 #include "dft.hpp"
 #include "field.hpp"
+#include "gaussian_model.hpp"
 #include "gaussianise.hpp"
 #include "smoothing.hpp"
 
@@ -23,67 +25,9 @@ namespace {
 
 using Complex = std::complex<double>;
 
+using detail::Axis;
 using detail::Field;
-
-enum class Axis { X, Y };
-
-// A standard normal value for (seed, index) alone (SplitMix64, Box-Muller): the same noise on any thread.
-double whiteNoise(uint64_t seed, uint64_t index) {
-    auto mix = [](uint64_t z) {
-        z += 0x9E3779B97F4A7C15ull;
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    };
-    const uint64_t a = mix(seed * 0x632BE59BD9B4E019ull + 2 * index), b = mix(seed * 0x632BE59BD9B4E019ull + 2 * index + 1);
-    const double u1 = (double(a >> 11) + 0.5) / 9007199254740992.0, u2 = double(b >> 11) / 9007199254740992.0;
-    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * std::numbers::pi * u2);
-}
-
-// The stationary Gaussian model of a periodic field p: its circular autocovariance and one sample of the
-// field with that covariance (asymptotic discrete spot noise: p's spectrum times white noise's).
-struct GaussianModel {
-    Field covariance, sample;
-    GaussianModel(int w, int h) : covariance(w, h), sample(w, h) {}
-};
-
-// noise: the variance of the input's quantisation, in the Gaussian domain: white noise that the map holds
-// as terraces and a sample would show as grain. Its level is taken off the power spectrum, so the model is
-// of the field the quantised map samples, and the kriging treats it as measurement noise (a nugget).
-GaussianModel modelOf(Field p, double noise, uint64_t seed, int threads) {
-    const int w = p.w, h = p.h;
-    const double n = double(w) * h;
-    double mean = 0;
-    for (double x : p.v) mean += x;
-    mean /= n;
-    for (double& x : p.v) x -= mean;
-    GaussianModel model(w, h);
-    cv::Mat spectrum = detail::forwardDft(p.mat(), threads), noiseSpectrum;
-    cv::Mat power(h, w, CV_64FC2);
-    const double floor = n * noise;  // the expected |A(k)|^2 of white noise of that variance
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            auto& a = spectrum.at<cv::Vec2d>(y, x);
-            const double raw = a[0] * a[0] + a[1] * a[1], clean = std::max(raw - floor, 0.0);
-            power.at<cv::Vec2d>(y, x) = cv::Vec2d(clean, 0.0);
-            const double gain = raw > 0 ? std::sqrt(clean / raw) : 0.0;
-            a = cv::Vec2d(a[0] * gain, a[1] * gain);
-        }
-    cv::Mat covariance = model.covariance.mat();
-    detail::inverseDft(power, covariance, threads);
-    model.covariance.mat() /= n;  // covariance is a view of model.covariance.v: dft wrote in place
-    power.release();
-    Field white(w, h);
-    parallelFor(h, threads, [&](int begin, int end) {
-        for (size_t i = size_t(begin) * w; i < size_t(end) * w; ++i) white.v[i] = whiteNoise(seed, i);
-    });
-    noiseSpectrum = detail::forwardDft(white.mat(), threads);
-    cv::mulSpectrums(spectrum, noiseSpectrum, noiseSpectrum, 0);
-    cv::Mat sample = model.sample.mat();
-    detail::inverseDft(noiseSpectrum, sample, threads);
-    model.sample.mat() /= std::sqrt(n);
-    return model;
-}
+using detail::GaussianModel;
 
 // Rows of a (rows x length) complex spectrum, one row per input sequence: seq(r, i) for i in [0, length).
 template <class Get>
@@ -152,10 +96,9 @@ void resynthesiseLines(Field& field, const GaussianModel& model, Axis axis, int 
     for (int v = 0; v < h; ++v)
         for (int u = 0; u < w; ++u) mean += at(field, u, v);
     mean /= double(field.v.size());
-    // The covariance between lines du apart, per frequency along them: dft of C's line du.
-    const cv::Mat covHat = rowSpectra(strip, h, [&](int du, int dv) { return at(model.covariance, du % w, dv); });
+    const cv::Mat covHat = detail::lineCovarianceSpectra(model.power, axis, strip, threads);
     auto cov = [&](int dx, int ky) {
-        const cv::Vec2d z = covHat.at<cv::Vec2d>(std::abs(dx), ky);
+        const cv::Vec2d z = covHat.at<cv::Vec2d>(ky, std::abs(dx));
         return dx >= 0 ? Complex(z[0], z[1]) : Complex(z[0], -z[1]);  // C(-dx, dy) = C(dx, -dy)
     };
     const int conditioning = 2 * c;
@@ -164,7 +107,7 @@ void resynthesiseLines(Field& field, const GaussianModel& model, Axis axis, int 
         const int x = column(local(k));
         return at(field, x, y) - mean - at(model.sample, x, y);
     });
-    const double nugget = noise + 1e-7 * std::max(model.covariance.at(0, 0), 1e-12);
+    const double nugget = noise + 1e-7 * std::max(model.variance(), 1e-12);
     const int half = h / 2;
     cv::Mat kriged(band, h, CV_64FC2, cv::Scalar(0, 0));
     parallelFor(half + 1, threads, [&](int begin, int end) {
@@ -193,31 +136,11 @@ void resynthesiseLines(Field& field, const GaussianModel& model, Axis axis, int 
     }
 }
 
-// Moisan's smooth field of the jumps across the top/bottom wrap line alone: periodic in both directions,
-// harmonic but at that line, where it carries the jump. Taking it off makes field wrap top to bottom
-// without touching the left/right wrap line, as the left/right band's Fourier treatment along y needs.
-Field topBottomSmoothField(const Field& f, int threads) {
-    const int w = f.w, h = f.h;
-    Field v(w, h);
-    for (int x = 0; x < w; ++x) {
-        const double jump = f.at(x, h - 1) - f.at(x, 0);
-        v.at(x, 0) += jump;
-        v.at(x, h - 1) -= jump;
-    }
-    Field s(w, h);
-    cv::Mat out = s.mat();
-    detail::solvePeriodicPoisson(v.mat(), out, threads);
-    return s;
-}
-
-// Where the slopes along x (or y) stop resembling themselves: the lag at which the autocorrelation of the
-// difference field falls below 1/e, from the covariance C of the heights.
-double slopeCorrelationLength(const Field& covariance, Axis axis) {
-    const int w = axis == Axis::X ? covariance.w : covariance.h;
-    auto c = [&](int d) {
-        const int lag = ((d % w) + w) % w;
-        return axis == Axis::X ? covariance.at(lag, 0) : covariance.at(0, lag);
-    };
+// Where the slopes along an axis stop resembling themselves: the lag at which the autocorrelation of the
+// difference field falls below 1/e, from the heights' circular autocovariance along that axis.
+double slopeCorrelationLength(const std::vector<double>& lags) {
+    const int w = int(lags.size());
+    auto c = [&](int d) { return lags[size_t(((d % w) + w) % w)]; };
     auto d = [&](int dx) { return 2 * c(dx) - c(dx + 1) - c(dx - 1); };
     const double d0 = d(0);
     if (!(d0 > 0)) return 1.0;
@@ -263,43 +186,26 @@ ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& o
     }
     // 1. Ranks to Gaussians, of the map with its quantisation undone: otherwise a smooth 8-bit painting is a
     //    staircase whose steps the model takes for fine detail, and a sample shows them as grain.
-    const std::vector<float> values = options.quantum > 0 ? detail::dequantised(map, options.quantum, options.threads) : map.pixels;
-    GaussianModel model(w, h);
+    const std::vector<float> values = options.quantum > 0 && detail::hasTerraces(map, options.threads)
+                                          ? detail::dequantised(map, options.quantum, options.threads) : map.pixels;
     double noise = 0;
+    std::optional<GaussianModel> model;
     {
         const detail::Gaussianiser ranks(values, options.threads);
-        // The model: the covariance and a sample of the Gaussianised map's periodic component (which has
-        // no cross of edge jumps in its spectrum).
-        Image gImage(w, h, 1);
-        for (size_t i = 0; i < gImage.pixels.size(); ++i) gImage.pixels[i] = static_cast<float>(ranks.gaussian[i]);
-        Field p(w, h);
-        const Image periodic = periodicComponent(gImage, PeriodicContinuity::Heights);
-        for (size_t i = 0; i < p.v.size(); ++i) p.v[i] = periodic.pixels[i];
+        Field g(w, h);
+        g.v = ranks.gaussian;
         noise = quantisationNoise(ranks.sorted);
-        model = modelOf(std::move(p), noise, options.seed, options.threads);
+        model.emplace(detail::modelOf(g, noise, options.seed, options.threads));
     }
-    result.bandX = chooseBand(options.band, slopeCorrelationLength(model.covariance, Axis::X), w);
-    result.bandY = chooseBand(options.band, slopeCorrelationLength(model.covariance, Axis::Y), h);
+    result.bandX = chooseBand(options.band, slopeCorrelationLength(model->lagX), w);
+    result.bandY = chooseBand(options.band, slopeCorrelationLength(model->lagY), h);
     // 2. Large scales, in heights: Moisan's smooth field of a low-pass of the map at the band's scale (at
     //    least 1/16 of the tile: only scales the eye reads as the map's swell; each side of a wrap line
     //    blurred apart, mirrored). Beyond the bands this is the whole change.
-    std::vector<float> smooth(values.size(), 0.0f), corrected(values.size());
-    {
-        Field heights(w, h);
-        heights.v.assign(values.begin(), values.end());
-        const double sigma = std::max(0.5 * std::max(result.bandX, result.bandY), std::min(w, h) / 16.0);
-        {
-            Field scratch(w, h);
-            detail::blur(heights, scratch, sigma, options.threads);
-        }
-        Image lowImage(w, h, 1);
-        for (size_t i = 0; i < heights.v.size(); ++i) lowImage.pixels[i] = static_cast<float>(heights.v[i]);
-        const Image lowPeriodic = periodicComponent(lowImage, PeriodicContinuity::Heights);
-        for (size_t i = 0; i < values.size(); ++i) {
-            smooth[i] = lowImage.pixels[i] - lowPeriodic.pixels[i];
-            corrected[i] = values[i] - smooth[i];
-        }
-    }
+    const double sigma = std::max(0.5 * std::max(result.bandX, result.bandY), std::min(w, h) / 16.0);
+    const std::vector<float> smooth = detail::largeScaleField(values, w, h, sigma, options.threads);
+    std::vector<float> corrected(values.size());
+    for (size_t i = 0; i < values.size(); ++i) corrected[i] = values[i] - smooth[i];
     const detail::Gaussianiser ranks(corrected, options.threads);
     Field g(w, h);
     g.v = ranks.gaussian;
@@ -308,12 +214,12 @@ ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& o
     if (result.bandX + 2 * contextX <= w) {
         // The left/right band is solved per frequency along y, so its field must wrap top to bottom: the
         // top/bottom jump is set aside meanwhile (the top/bottom band replaces what it touches later).
-        const Field aside = topBottomSmoothField(g, options.threads);
+        const Field aside = detail::topBottomSmoothField(g, options.threads);
         for (size_t i = 0; i < g.v.size(); ++i) g.v[i] -= aside.v[i];
-        resynthesiseLines(g, model, Axis::X, result.bandX, contextX, noise, options.threads);
+        resynthesiseLines(g, *model, Axis::X, result.bandX, contextX, noise, options.threads);
         for (size_t i = 0; i < g.v.size(); ++i) g.v[i] += aside.v[i];
     }
-    if (result.bandY + 2 * contextY <= h) resynthesiseLines(g, model, Axis::Y, result.bandY, contextY, noise, options.threads);
+    if (result.bandY + 2 * contextY <= h) resynthesiseLines(g, *model, Axis::Y, result.bandY, contextY, noise, options.threads);
     // 5. Back to heights through the sorted values. Beyond the bands, the map itself plus the large-scale
     //    change there (so its own fine detail, terraces and all, stays exactly); in the bands, the new
     //    content, which a quantised output rounds to its levels.

@@ -173,7 +173,7 @@ LevelSeams measureSeams(const Image& level, const SeamOptions& options) {
     seams.height = level.height;
     seams.leftRight = scoreAlong(level.pixels.data(), level.width, level.height, options);
     // Columns as lines: the same code then reads every line contiguously.
-    const Image columns = transposed(level);
+    const Image columns = transposed(level, options.threads);
     seams.topBottom = scoreAlong(columns.pixels.data(), level.height, level.width, options);
     return seams;
 }

@@ -67,7 +67,8 @@ private:
 };
 
 // The image with rows and columns swapped (one channel): its columns become rows that read contiguously.
-Image transposed(const Image& image);
+// threads: 0 = all cores; the result does not depend on it.
+Image transposed(const Image& image, int threads = 1);
 
 // The given channels of image, in that order, as an image of that many channels (e.g. {1, 2} of Y, Dx, Dy
 // is Dx, Dy).

@@ -1,0 +1,44 @@
+// Internal: the stationary Gaussian model of a Gaussianised map that the band re-synthesis
+// (tile_resynthesis.cpp) conditions: its power spectrum, covariances and one unconditional sample, all
+// from one forward and one inverse DFT of the map.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "field.hpp"
+
+namespace heightpack::detail {
+
+// Which wrap line a band crosses: X, the left/right one (the band's lines are columns); Y, the top/bottom one.
+enum class Axis { X, Y };
+
+// The model of a Gaussianised map g: the spectrum of its periodic component (Moisan's: no cross of edge
+// jumps in it) less the quantisation's white floor, and what comes from it.
+struct GaussianModel {
+    cv::Mat power;                   // CV_64F, h x w: |P(k)|^2 less the floor, P the periodic component's DFT
+    std::vector<double> lagX, lagY;  // the circular autocovariance C(d, 0) and C(0, d)
+    Field sample;                    // a field with that covariance: sqrt(power) times complex white noise
+    GaussianModel(int w, int h) : power(h, w, CV_64F), lagX(w), lagY(h), sample(w, h) {}
+    double variance() const { return lagX[0]; }
+};
+
+// noise: the variance of the input's quantisation, in the Gaussian domain: white noise that the map holds
+// as terraces and a sample would show as grain. Its level is taken off the power spectrum, so the model is
+// of the field the quantised map samples, and the kriging treats it as measurement noise (a nugget). The
+// sample is drawn per frequency from (seed, index) alone: the same on any number of threads.
+GaussianModel modelOf(const Field& g, double noise, uint64_t seed, int threads);
+
+// The covariance between lines du apart (du < strip), per frequency k along them (k up to half their
+// length), as a (length / 2 + 1) x strip CV_64FC2 matrix: covHat(k, du) = the sum along the lines of
+// C(du, v) e^(-2 pi i k v / length).
+cv::Mat lineCovarianceSpectra(const cv::Mat& power, Axis axis, int strip, int threads);
+
+// Moisan's smooth field of the jumps across f's top/bottom wrap line alone: periodic in both directions,
+// harmonic but at that line, where it carries the jump. Taking it off makes f wrap top to bottom without
+// touching the left/right wrap line, as the left/right band's Fourier treatment along y needs.
+Field topBottomSmoothField(const Field& f, int threads);
+
+}  // namespace heightpack::detail

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# heightpack tile against heightpack pack on the same map (issue 22 asks tile within 2x of pack): a
+# 4096x4096 16-bit crop of a larger periodic map (so it does not tile), tiled to a 16-bit PNG and packed to
+# the default mip-mapped EXR. Runs alternate (tile, pack, tile, ...); prints median seconds, peak memory,
+# the ratio, and what tile chose (the attempt that passed: its seed, band and look scores).
+#   tests/bench/bench_tile.sh [BUILD_DIR] [RUNS] [SIZE]
+set -euo pipefail
+build=${1:-build}
+runs=${2:-3}
+size=${3:-4096}
+hp="$build/heightpack"
+mk="$build/tests/bench/heightpack_make_bench_map"
+[ -x "$hp" ] || { echo "bench_tile: no $hp; build first (cmake --build $build)" >&2; exit 2; }
+[ -x "$mk" ] || { echo "bench_tile: no $mk; build with -DHEIGHTPACK_BUILD_BENCHMARKS=ON" >&2; exit 2; }
+[ -x /usr/bin/time ] || { echo "bench_tile: needs GNU time (apt-get install time)" >&2; exit 2; }
+command -v oiiotool >/dev/null || { echo "bench_tile: needs oiiotool (apt-get install openimageio-tools)" >&2; exit 2; }
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+big=$((size * 5 / 4))
+"$mk" "$big" "$big" "$work/big.png"
+oiiotool "$work/big.png" --cut "${size}x${size}+0+0" -d uint16 -o "$work/in.png"
+echo "input: ${size}x${size} 16-bit crop of a ${big}x${big} periodic map, $(du -h "$work/in.png" | cut -f1); $(nproc) cores; $runs runs each"
+
+measure() {  # LOG COMMAND...: appends "seconds peakKiB"
+  local log=$1
+  shift
+  /usr/bin/time -f "%e %M" -o "$work/t" "$@" >/dev/null 2>&1
+  cat "$work/t" >>"$log"
+}
+median() { sort -n | awk '{a[NR] = $1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
+
+: >"$work/tile"
+: >"$work/pack"
+for ((i = 0; i < runs; i++)); do
+  measure "$work/tile" "$hp" tile "$work/in.png" -o "$work/tiled.png" -q
+  measure "$work/pack" "$hp" pack "$work/in.png" -o "$work/packed.exr" -q
+done
+[ -s "$work/tiled.png" ] || { echo "bench_tile: tile wrote nothing" >&2; exit 1; }
+awk -v ts="$(cut -d' ' -f1 "$work/tile" | median)" -v ps="$(cut -d' ' -f1 "$work/pack" | median)" \
+    -v tm="$(cut -d' ' -f2 "$work/tile" | median)" -v pm="$(cut -d' ' -f2 "$work/pack" | median)" 'BEGIN {
+  printf "tile %6.2f s %5.0f MiB | pack %6.2f s %5.0f MiB | tile / pack %.2f (issue 22: at most 2)\n",
+    ts, tm / 1024, ps, pm / 1024, ts / ps }'
+"$hp" info "$work/tiled.png" | grep -E "tileMethod|seed|tileBand" || true
+"$hp" check "$work/tiled.png" | grep -E "look" || true
