@@ -27,7 +27,10 @@ public:
         addEnumOption(*cmd, "--method", options_.method,
                       "periodic: re-synthesise a band around each wrap line as new content that continues both "
                         "sides (Gaussian conditional simulation with the map's own statistics), the large scales made "
-                        "periodic by Moisan's smooth field; moisan: Moisan's periodic component only (slopes may kink "
+                        "periodic by Moisan's smooth field, and for maps a Gaussian field does not describe the quilt; "
+                        "quilt: a strip copied from where it matches best across each wrap line, cut in along the "
+                        "least visible paths and healed in the gradient domain (pebbles, cells, strokes, sharp "
+                        "rock); moisan: Moisan's periodic component only (slopes may kink "
                         "at the edges); crossfade: offset and blend (leaves an echo: features shown twice per tile); "
                       "mirror: mirror tiling, twice the size");
         widthOption_ = cmd->add_option("--width", options_.width, "crossfade band as a fraction of the tile, in (0, 0.5]")
@@ -56,11 +59,13 @@ public:
         cmd->footer(
             "Examples:\n"
             "  heightpack tile painted_not_tileable.png -o painted_tiled.png\n"
+            "  heightpack tile pebbles.png --method quilt -o pebbles_tiled.png\n"
             "  heightpack tile painted.png --method crossfade --width 0.1 -o painted_tiled.png\n"
             "  heightpack tile painted.png --method mirror -o painted_mirrored.png\n"
             "The map is judged as check judges it, at every level pack would make, and periodic's result also as\n"
             "the eye sees it tiled (frame, blobs, echo: see check --help); it tries the next seeds and wider\n"
-            "bands before it gives up. One that tiles is written\n"
+            "bands, then the quilt (best and next-best source, a wider strip), before it falls back to\n"
+            "Moisan's component and crossfades. One that tiles is written\n"
             "unchanged (the same bytes, or as float when its heights came from a colour channel); --force applies\n"
             "the method anyway. Heights are never clipped or rescaled: when the fixed map leaves [0,1] an integer\n"
             "output cannot hold it, so .exr and .tif outputs become float (said in the output) and a .png fails.\n"
@@ -96,7 +101,8 @@ public:
                        {"width", r.width}, {"height", r.height}, {"bits", r.bits}, {"widenedToFloat", r.widened},
                        {"range", {r.low, r.high}}, {"inputRange", {r.inputLow, r.inputHigh}}, {"threshold", t},
                        {"before", chain(r.before)}, {"after", chain(r.after)}, {"look", lookJson(r.look, r.lookThresholds)},
-                       {"band", {r.bandX, r.bandY}}, {"seed", r.seed}, {"channel", channelJson(r.source)}});
+                       {"band", {r.bandX, r.bandY}}, {"seed", r.seed}, {"match", r.match},
+                       {"channel", channelJson(r.source)}});
         } else if (!common_.quiet && !r.written) {
             clearProgressLine();
             const std::string why = r.after.failure ? describeSeamFailure(*r.after.failure, t)
@@ -119,6 +125,10 @@ public:
                     std::printf("  re-synthesised %d texels across the left/right wrap line and %d across the "
                                 "top/bottom one (seed %llu)\n",
                                 r.bandX, r.bandY, static_cast<unsigned long long>(r.seed));
+                if (r.match != 0)
+                    std::printf("  quilted %d texels across the left/right wrap line and %d across the top/bottom "
+                                "one (source match %d)\n",
+                                r.bandX, r.bandY, r.match);
                 printLook(r.look, r.lookThresholds, false);
             }
             if (r.widened)

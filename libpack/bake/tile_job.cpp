@@ -8,6 +8,7 @@
 
 #include "heightpack/bake/check_job.hpp"
 #include "heightpack/core/mip.hpp"
+#include "heightpack/core/tile_quilt.hpp"
 #include "heightpack/core/tile_resynthesis.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
@@ -84,6 +85,15 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
     report.methodUsed = nameOf(options.method);
     report.crossfadeWidth = options.width;
     switch (options.method) {
+        case TileMethod::Quilt: {
+            QuiltOptions quilt;
+            quilt.threads = options.mip.threads;
+            QuiltResult q = quiltTile(map, quilt);
+            report.bandX = q.bandX;
+            report.bandY = q.bandY;
+            report.match = 1;
+            return std::move(q.map);
+        }
         case TileMethod::Moisan: return periodicComponent(map, PeriodicContinuity::Heights);
         case TileMethod::Crossfade: return crossfadeTile(map, options.width);
         case TileMethod::Mirror: return mirrorTile(map);
@@ -120,10 +130,25 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         report.seed = resynthesis.seed;
         if (acceptable(r.map)) return std::move(r.map);
     }
+    // Quilting, for maps a Gaussian field does not describe (pebbles, cells, strokes): the best match, the
+    // next best, then the best with strips half as wide again; judged like the re-synthesis.
+    report.seed = 0;
+    report.methodUsed = nameOf(TileMethod::Quilt);
+    QuiltOptions quilt;
+    quilt.threads = options.mip.threads;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        quilt.match = attempt == 1 ? 1 : 0;
+        quilt.band = attempt == 2 ? 1.5 / 8 : 0.0;
+        QuiltResult q = quiltTile(map, quilt);
+        report.bandX = q.bandX;
+        report.bandY = q.bandY;
+        report.match = quilt.match + 1;
+        if (acceptable(q.map)) return std::move(q.map);
+    }
     // The fallbacks are judged by their seams alone (as before the look existed); their look is reported.
     lookRequired = false;
     report.bandX = report.bandY = 0;
-    report.seed = 0;
+    report.match = 0;
     Image result = periodicComponent(map, PeriodicContinuity::HeightsAndSlopes);
     report.methodUsed = "moisan+bend";
     if (acceptable(result)) return result;
@@ -229,7 +254,8 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     }
     report.lookThresholds = options.look;
     report.look = looked ? *looked : measureTileLook(result, {&map, options.mip.threads, std::nullopt});
-    const bool lookCounts = options.method == TileMethod::Periodic && !report.alreadyTiled && report.seed != 0;
+    // Periodic's re-synthesised and quilted results were judged by their look (the fallbacks were not).
+    const bool lookCounts = looked.has_value();
     // Mirror tiling breaks slopes at its mirror lines by design (the help says so): it is written when its
     // heights meet, and the report still shows the kinks.
     const bool onlyDesignedKinks =
@@ -255,10 +281,10 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     };
     if (report.methodUsed.find("crossfade") != std::string::npos)
         flat.attributes.push_back(attribute(attr::crossfadeWidth, static_cast<float>(report.crossfadeWidth)));
-    if (report.seed != 0) {
+    if (report.seed != 0 || report.match != 0)
         flat.attributes.push_back(attribute(attr::tileBand, std::to_string(report.bandX) + "x" + std::to_string(report.bandY)));
-        flat.attributes.push_back(attribute(attr::seed, std::to_string(report.seed)));
-    }
+    if (report.seed != 0) flat.attributes.push_back(attribute(attr::seed, std::to_string(report.seed)));
+    if (report.match != 0) flat.attributes.push_back(attribute(attr::tileMatch, std::to_string(report.match)));
     progress("write", 0.0);
     if (Status s = writeFlatImage(output, result, flat); !s) return s.error();
     report.written = true;

@@ -179,7 +179,7 @@ TEST(SynthJob, DisplacementOrFoamIntoAFileThatIsNoExrIsAnOptionsError) {
 }
 
 TEST(TileJob, MethodNamesAreTheDocumentedOnesAndRoundTrip) {
-    EXPECT_EQ(allNames<TileMethod>(), (std::vector<std::string>{"periodic", "moisan", "crossfade", "mirror"}));
+    EXPECT_EQ(allNames<TileMethod>(), (std::vector<std::string>{"periodic", "quilt", "moisan", "crossfade", "mirror"}));
     for (const EnumName<TileMethod>& e : NameTable<TileMethod>::entries) EXPECT_EQ(parseName<TileMethod>(e.name), e.value);
 }
 

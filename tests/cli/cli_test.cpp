@@ -417,6 +417,48 @@ TEST(Cli, TileMakesThePaintingTileAndLeavesATilingMapAlone) {
     EXPECT_EQ(nlohmann::json::parse(mirror.out)["width"], 1024);
 }
 
+TEST(Cli, TileQuiltsWhenAskedAndWhereTheReSynthesisDoesNotLookRight) {
+    ScratchDir dir;
+    const std::string painted = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/painted_not_tileable.png";
+    const CliRun quilt = heightpackRun({"tile", painted, "--method", "quilt", "--json", "-o", dir.file("quilt.exr")});
+    ASSERT_EQ(quilt.code, 0) << quilt.err;
+    const auto report = nlohmann::json::parse(quilt.out);
+    EXPECT_EQ(report["method"], "quilt");
+    EXPECT_EQ(report["after"]["tiles"], true);
+    EXPECT_EQ(report["band"], nlohmann::json::array({64, 64}));  // 1/8 of 512 across each wrap line
+    auto in = OIIO::ImageInput::open(dir.file("quilt.exr"));
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:tileMethod"), "quilt");
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:tileBand"), "64x64");
+    EXPECT_EQ(in->spec().get_string_attribute("heightpack:tileMatch"), "1");
+    EXPECT_EQ(heightpackRun({"check", dir.file("quilt.exr")}).code, 0);
+
+    // The top-left 128x128 of a real ice texture (a painted green line on row 0 and column 0, which the
+    // crop's wrap lines cut apart): no re-synthesis seed or band looks right, so the default chain used
+    // to fall back to a crossfade (an echo); the quilt passes the look.
+    const std::string ice = std::string(HEIGHTPACK_SOURCE_DIR) + "/tests/corpus/etr_snowy_ice03.png";
+    auto source = OIIO::ImageInput::open(ice);
+    ASSERT_TRUE(source);
+    const OIIO::ImageSpec spec = source->spec();
+    std::vector<unsigned char> pixels(size_t(spec.width) * spec.height * spec.nchannels);
+    ASSERT_TRUE(source->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data()));
+    const int size = 128;
+    std::vector<unsigned char> crop(size_t(size) * size * spec.nchannels);
+    for (int y = 0; y < size; ++y)
+        std::copy_n(&pixels[size_t(y) * spec.width * spec.nchannels], size * spec.nchannels, &crop[size_t(y) * size * spec.nchannels]);
+    auto out = OIIO::ImageOutput::create(dir.file("ice.png"));
+    ASSERT_TRUE(out && out->open(dir.file("ice.png"), OIIO::ImageSpec(size, size, spec.nchannels, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, crop.data()));
+    out->close();
+    const CliRun chain = heightpackRun({"tile", dir.file("ice.png"), "--channel", "luma", "--json", "-o", dir.file("ice.exr")});
+    ASSERT_EQ(chain.code, 0) << chain.err;
+    const auto chosen = nlohmann::json::parse(chain.out);
+    EXPECT_EQ(chosen["method"], "quilt");
+    EXPECT_EQ(chosen["look"]["passes"], true);
+    EXPECT_EQ(chosen["seed"], 0);
+    EXPECT_GE(chosen["match"].get<int>(), 1);
+}
+
 TEST(Cli, CheckAndTileRefuseBadInput) {
     ScratchDir dir;
     writeImage(dir.file("map.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT8);

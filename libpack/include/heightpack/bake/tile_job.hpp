@@ -20,6 +20,9 @@ enum class TileMethod {
     Periodic,   // re-synthesis of a band around each wrap line (core/tile_resynthesis.hpp), the large scales
                 // made periodic by Moisan's smooth field; judged by the seam measure and the look, with
                 // another seed and then a wider band when a result does not pass
+    Quilt,      // a strip across each wrap line copied from where it matches best, cut in and healed
+                // (core/tile_quilt.hpp): for structured maps (pebbles, cells, strokes) that a Gaussian field
+                // does not describe
     Moisan,     // Moisan's original periodic component: heights meet, slopes may kink at the edges
     Crossfade,  // offset and blend: four copies, the high-pass blended keeping variance (leaves an echo)
     Mirror,     // mirror tiling: twice the size, symmetric
@@ -28,6 +31,7 @@ template <>
 struct NameTable<TileMethod> {
     static constexpr EnumName<TileMethod> entries[] = {
         {TileMethod::Periodic, "periodic", "re-synthesise a band around each wrap line"},
+        {TileMethod::Quilt, "quilt", "copy a strip from elsewhere in the map across each wrap line"},
         {TileMethod::Moisan, "moisan", "Moisan's periodic component"},
         {TileMethod::Crossfade, "crossfade", "offset and blend"},
         {TileMethod::Mirror, "mirror", "mirror tiling, twice the size"},
@@ -60,8 +64,9 @@ struct TileReport {
     ChainSeams after;           // the output as written (rounded to its type), likewise
     TileLook look;              // the output's frame, blobs and echo (the input's own echo subtracted)
     LookThresholds lookThresholds;
-    int bandX = 0, bandY = 0;   // Periodic: texels re-synthesised across the left/right and top/bottom wrap lines
+    int bandX = 0, bandY = 0;   // Periodic, quilt: texels re-synthesised (or quilted) across the left/right and top/bottom wrap lines
     uint64_t seed = 0;          // Periodic: the seed of the result written
+    int match = 0;              // quilt: which source match was copied (1 the best, 2 the next), else 0
     double crossfadeWidth = 0.0;  // the band of a crossfade used, fraction of the tile
     int bits = 0;
     // Written as float although the input (or --depth) is an integer type: the heights left [0,1], which

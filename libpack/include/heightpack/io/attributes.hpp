@@ -110,6 +110,7 @@ inline constexpr AttributeKey<std::string> seamsBefore{"heightpack:seamsBefore"}
 inline constexpr AttributeKey<std::string> seamsAfter{"heightpack:seamsAfter"};
 inline constexpr AttributeKey<float> crossfadeWidth{"heightpack:crossfadeWidth"};
 inline constexpr AttributeKey<std::string> tileBand{"heightpack:tileBand"};  // "BXxBY": texels re-synthesised
+inline constexpr AttributeKey<std::string> tileMatch{"heightpack:tileMatch"};  // quilt: 1 the best source, 2 the next
 // Seam previews.
 inline constexpr AttributeKey<float> threshold{"heightpack:threshold"};
 }  // namespace attr

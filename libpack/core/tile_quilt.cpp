@@ -1,0 +1,257 @@
+// Quilting a strip across each wrap line: see tile_quilt.hpp for the steps.
+#include "heightpack/core/tile_quilt.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "heightpack/core/parallel.hpp"
+#include "heightpack/core/tileable.hpp"
+
+#include "dft.hpp"
+#include "field.hpp"
+#include "quilt_kernels.hpp"
+#include "range.hpp"
+#include "smoothing.hpp"
+
+namespace heightpack {
+
+namespace detail {
+
+Field maskedSquaredErrors(Field target, Field mask, Field source, int threads) {
+    double constant = 0;
+    for (size_t i = 0; i < target.v.size(); ++i) {
+        constant += mask.v[i] * target.v[i] * target.v[i];
+        target.v[i] *= mask.v[i];
+    }
+    const cv::Mat sourceSpectrum = forwardDft(source.mat(), threads);
+    for (double& x : source.v) x *= x;
+    const cv::Mat squaredSpectrum = forwardDft(source.mat(), threads);
+    // Correlation: sum_p a(p) b(p + d) is the inverse DFT of B conj(A).
+    cv::Mat spectrum, cross;
+    cv::mulSpectrums(squaredSpectrum, forwardDft(mask.mat(), threads), spectrum, 0, true);
+    cv::mulSpectrums(sourceSpectrum, forwardDft(target.mat(), threads), cross, 0, true);
+    cv::scaleAdd(cross, -2.0, spectrum, spectrum);
+    Field errors(source.w, source.h);
+    cv::Mat out = errors.mat();
+    inverseDft(spectrum, out, threads);
+    for (double& e : errors.v) e += constant;
+    return errors;
+}
+
+std::vector<int> minimalCut(const std::vector<double>& cost, int width, int length) {
+    std::vector<double> total(cost.begin(), cost.begin() + width);
+    total.resize(cost.size());
+    std::vector<int> from(cost.size(), 0);
+    for (int line = 1; line < length; ++line) {
+        const size_t row = size_t(line) * width, previous = row - width;
+        for (int place = 0; place < width; ++place) {
+            int best = place;
+            for (int other : {place - 1, place + 1})
+                if (other >= 0 && other < width && total[previous + other] < total[previous + best]) best = other;
+            total[row + place] = total[previous + best] + cost[row + place];
+            from[row + place] = best;
+        }
+    }
+    std::vector<int> path(length);
+    const size_t last = size_t(length - 1) * width;
+    path[length - 1] = int(std::min_element(total.begin() + last, total.begin() + last + width) - (total.begin() + last));
+    for (int line = length - 1; line > 0; --line) path[line - 1] = from[size_t(line) * width + path[line]];
+    return path;
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::Field;
+
+int wrapped(int i, int n) { return ((i % n) + n) % n; }
+
+// A strip of `width` lines centred on the wrap line between the last line and the first, across a field
+// whose lines run along x (acrossX: the left/right wrap line, u = x, v = y) or along y. Its outer `overlap`
+// lines on each side are where the copy is cut in.
+struct Strip {
+    bool acrossX = true;
+    int across = 0, along = 0;  // the field's size across the wrap line and along it
+    int width = 0, overlap = 0;
+    int first = 0;  // the strip's first line, modulo across
+
+    Strip(bool x, int w, int h, int texels)
+        : acrossX(x), across(x ? w : h), along(x ? h : w), width(texels), overlap(std::max(2, texels / 4)),
+          first(wrapped(across - texels / 2, across)) {}
+    int line(int u) const { return wrapped(first + u, across); }  // u may lie beyond the strip
+    double& at(Field& f, int a, int l) const { return acrossX ? f.at(a, l) : f.at(l, a); }
+    double at(const Field& f, int a, int l) const { return acrossX ? f.at(a, l) : f.at(l, a); }
+    // Whether a copy shifted by du across takes its lines from one piece of the field, not across its wrap,
+    // with a line to spare on each side: the healing uses the copy's steps to the texels beside the strip.
+    bool onePiece(int du) const {
+        const int start = wrapped(first + du, across);
+        return start >= 1 && start + width + 1 <= across;
+    }
+};
+
+// Shifts whose copies are at least half a strip apart count as different sources.
+bool near(int a, int b, int n, int distance) {
+    const int d = wrapped(a - b, n);
+    return std::min(d, n - d) < distance;
+}
+
+// The match-th best shift (du, dv) of errors (indexed by map shift (dx, dy)) among those `allowed`, each
+// next one at least half a strip from those before it; the last found when there are fewer.
+std::pair<int, int> chooseShift(const Field& errors, const Strip& s, bool anyAlong, int match) {
+    std::vector<std::pair<int, int>> chosen;
+    for (int round = 0; round <= match; ++round) {
+        double best = std::numeric_limits<double>::infinity();
+        std::pair<int, int> shift{-1, -1};
+        for (int dv = 0; dv < (anyAlong ? s.along : 1); ++dv)
+            for (int du = 0; du < s.across; ++du) {
+                if (!s.onePiece(du)) continue;
+                const bool taken = std::any_of(chosen.begin(), chosen.end(), [&](const std::pair<int, int>& c) {
+                    return near(du, c.first, s.across, s.width / 2) && near(dv, c.second, s.along, s.width / 2);
+                });
+                const double e = s.at(errors, du, dv);
+                if (!taken && e < best) best = e, shift = {du, dv};
+            }
+        if (shift.first < 0) break;
+        chosen.push_back(shift);
+    }
+    return chosen.back();
+}
+
+// Replaces the strip of f with the copy shifted by (du, dv), cut in along the least visible paths of the
+// overlaps and healed (see tile_quilt.hpp, steps 3 and 4).
+void quiltStrip(Field& f, const Strip& s, int du, int dv, int threads) {
+    const int width = s.width, along = s.along, overlap = s.overlap;
+    auto mapValue = [&](int u, int v) { return s.at(f, s.line(u), wrapped(v, along)); };
+    auto copyValue = [&](int u, int v) { return s.at(f, wrapped(s.line(u) + du, s.across), wrapped(v + dv, along)); };
+    // 3. The cuts: the first copied place on the left overlap, the last on the right (counted from the
+    //    edge). The healing takes out an offset between map and copy, so what shows is where their
+    //    difference changes: its squared gradient, plus its square over the overlap's width squared (an
+    //    offset the healing must spread counts like a slope across the overlap).
+    auto difference = [&](int u, int v) { return mapValue(u, v) - copyValue(u, v); };
+    auto cost = [&](int u, int v) {
+        const double d = difference(u, v), du2 = 0.5 * (difference(u + 1, v) - difference(u - 1, v)),
+                     dv2 = 0.5 * (difference(u, v + 1) - difference(u, v - 1));
+        return du2 * du2 + dv2 * dv2 + d * d / (double(overlap) * overlap);
+    };
+    std::vector<double> leftCost(size_t(overlap) * along), rightCost(leftCost.size());
+    parallelFor(along, threads, [&](int begin, int end) {
+        for (int v = begin; v < end; ++v)
+            for (int k = 0; k < overlap; ++k) {
+                leftCost[size_t(v) * overlap + k] = cost(k, v);
+                rightCost[size_t(v) * overlap + k] = cost(width - 1 - k, v);
+            }
+    });
+    const std::vector<int> left = detail::minimalCut(leftCost, overlap, along);
+    const std::vector<int> right = detail::minimalCut(rightCost, overlap, along);
+    // The copy's share of the guidance: 0 beyond the cut paths, 1 between them, ramping over half an
+    //    overlap centred on each path (gradients blended there, so no crease runs along a path), 0 beyond
+    //    the strip.
+    const double ramp = std::max(1, overlap / 2);
+    auto share = [&](int u, int v) {
+        if (u < 0 || u >= width) return 0.0;
+        const int line = wrapped(v, along);
+        const double fromLeft = u - left[line] + 0.5, fromRight = width - 1 - right[line] - u + 0.5;
+        return std::clamp(0.5 + std::min(fromLeft, fromRight) / ramp, 0.0, 1.0);
+    };
+    // 4. The healing: the result f + c whose steps are closest (least squares, over the whole torus) to
+    //    the guidance: the map's steps blended with the copy's by their share (the mean share of an edge's
+    //    two texels). For each texel p, the sum over its neighbours q of c(p) - c(q) is the sum of
+    //    (guidance - f's step), nonzero only on the strip and beside it: a periodic Poisson equation, whose
+    //    solution beyond the strip is harmonic (no line where the strip ends).
+    auto excess = [&](int u, int v, int qu, int qv) {
+        const double a = 0.5 * (share(u, v) + share(qu, qv));
+        if (a == 0) return 0.0;
+        return a * (copyValue(u, v) - copyValue(qu, qv) - (mapValue(u, v) - mapValue(qu, qv)));
+    };
+    Field rhs(f.w, f.h);
+    parallelFor(width, threads, [&](int begin, int end) {
+        for (int u = begin; u < end; ++u)
+            for (int v = 0; v < along; ++v) {
+                double sum = 0;
+                for (const auto& [qu, qv] : {std::pair{u - 1, v}, {u + 1, v}, {u, v - 1}, {u, v + 1}}) sum += excess(u, v, qu, qv);
+                s.at(rhs, s.line(u), v) = -sum;  // the Laplacian of c is minus that sum
+            }
+    });
+    for (int v = 0; v < along; ++v) {  // the texels beside the strip take the other end of its edges
+        s.at(rhs, s.line(-1), v) += excess(0, v, -1, v);
+        s.at(rhs, s.line(width), v) += excess(width - 1, v, width, v);
+    }
+    Field correction(f.w, f.h);
+    cv::Mat out = correction.mat();
+    detail::solvePeriodicPoisson(rhs.mat(), out, threads);
+    for (size_t i = 0; i < f.v.size(); ++i) f.v[i] += correction.v[i];
+}
+
+// The map's texels on the strip's overlaps (the rest 0), and the mask of them.
+std::pair<Field, Field> overlapsOf(const Field& f, const Strip& s) {
+    Field target(f.w, f.h), mask(f.w, f.h);
+    for (int u = 0; u < s.width; ++u) {
+        if (u >= s.overlap && u < s.width - s.overlap) continue;
+        for (int v = 0; v < s.along; ++v) {
+            s.at(target, s.line(u), v) = s.at(f, s.line(u), v);
+            s.at(mask, s.line(u), v) = 1.0;
+        }
+    }
+    return {std::move(target), std::move(mask)};
+}
+
+// Finds the source of the strip and quilts it in; returns the shift as (dx, dy). anyAlong: the field wraps
+// along the strip, so a copy may come from any place along it.
+std::pair<int, int> quiltWrapLine(Field& f, const Strip& s, bool anyAlong, int match, int threads) {
+    auto [target, mask] = overlapsOf(f, s);
+    const Field errors = detail::maskedSquaredErrors(std::move(target), std::move(mask), f, threads);
+    const auto [du, dv] = chooseShift(errors, s, anyAlong, match);
+    quiltStrip(f, s, du, dv, threads);
+    return s.acrossX ? std::pair{du, dv} : std::pair{dv, du};
+}
+
+// Moisan's smooth field of the map blurred by sigma texels: the part of the large scales that does not wrap,
+// harmonic inside the tile.
+Field largeScaleMismatch(const Image& map, double sigma, int threads) {
+    Field low(map.width, map.height), scratch(map.width, map.height);
+    low.v.assign(map.pixels.begin(), map.pixels.end());
+    detail::blur(low, scratch, sigma, threads);
+    Image lowImage(map.width, map.height, 1);
+    std::copy(low.v.begin(), low.v.end(), lowImage.pixels.begin());
+    const Image periodic = periodicComponent(lowImage, PeriodicContinuity::Heights);
+    for (size_t i = 0; i < low.v.size(); ++i) low.v[i] = double(lowImage.pixels[i]) - periodic.pixels[i];
+    return low;
+}
+
+int stripTexels(double fraction, int size) {
+    const long texels = fraction > 0 ? std::lround(fraction * size) : std::lround(size / 8.0);
+    return std::clamp(int(texels), 8, size / 2);
+}
+
+}  // namespace
+
+QuiltResult quiltTile(const Image& map, const QuiltOptions& options) {
+    const int w = map.width, h = map.height;
+    if (std::min(w, h) < 16) return {periodicComponent(map, PeriodicContinuity::Heights)};  // no room for two overlaps
+    QuiltResult result;
+    Field f(w, h);
+    f.v.assign(map.pixels.begin(), map.pixels.end());
+    const Field mismatch = largeScaleMismatch(map, std::min(w, h) / 16.0, options.threads);
+    for (size_t i = 0; i < f.v.size(); ++i) f.v[i] -= mismatch.v[i];
+    result.bandX = stripTexels(options.band, w);
+    result.bandY = stripTexels(options.band, h);
+    // The left/right strip's copy comes from the same rows (the map does not wrap top to bottom yet, and
+    // a copy from other rows would carry the map's top/bottom seam to a row the second strip leaves).
+    const auto [xdx, xdy] = quiltWrapLine(f, Strip(true, w, h, result.bandX), false, options.match, options.threads);
+    const auto [ydx, ydy] = quiltWrapLine(f, Strip(false, w, h, result.bandY), true, options.match, options.threads);
+    result.sourceX[0] = xdx;
+    result.sourceX[1] = xdy;
+    result.sourceY[0] = ydx;
+    result.sourceY[1] = ydy;
+    result.map = Image(w, h, 1);
+    std::transform(f.v.begin(), f.v.end(), result.map.pixels.begin(), [](double x) { return static_cast<float>(x); });
+    detail::easeIntoRange(result.map, map);
+    return result;
+}
+
+}  // namespace heightpack
