@@ -210,19 +210,6 @@ std::pair<int, int> quiltWrapLine(Field& f, const Strip& s, bool anyAlong, int m
     return s.acrossX ? std::pair{du, dv} : std::pair{dv, du};
 }
 
-// Moisan's smooth field of the map blurred by sigma texels: the part of the large scales that does not wrap,
-// harmonic inside the tile.
-Field largeScaleMismatch(const Image& map, double sigma, int threads) {
-    Field low(map.width, map.height), scratch(map.width, map.height);
-    low.v.assign(map.pixels.begin(), map.pixels.end());
-    detail::blur(low, scratch, sigma, threads);
-    Image lowImage(map.width, map.height, 1);
-    std::copy(low.v.begin(), low.v.end(), lowImage.pixels.begin());
-    const Image periodic = periodicComponent(lowImage, PeriodicContinuity::Heights);
-    for (size_t i = 0; i < low.v.size(); ++i) low.v[i] = double(lowImage.pixels[i]) - periodic.pixels[i];
-    return low;
-}
-
 int stripTexels(double fraction, int size) {
     const long texels = fraction > 0 ? std::lround(fraction * size) : std::lround(size / 8.0);
     return std::clamp(int(texels), 8, size / 2);
@@ -236,8 +223,9 @@ QuiltResult quiltTile(const Image& map, const QuiltOptions& options) {
     QuiltResult result;
     Field f(w, h);
     f.v.assign(map.pixels.begin(), map.pixels.end());
-    const Field mismatch = largeScaleMismatch(map, std::min(w, h) / 16.0, options.threads);
-    for (size_t i = 0; i < f.v.size(); ++i) f.v[i] -= mismatch.v[i];
+    // The large scales that do not wrap (harmonic inside the tile), as the re-synthesis takes them off.
+    const std::vector<float> mismatch = detail::largeScaleField(map.pixels, w, h, std::min(w, h) / 16.0, options.threads);
+    for (size_t i = 0; i < f.v.size(); ++i) f.v[i] -= mismatch[i];
     result.bandX = stripTexels(options.band, w);
     result.bandY = stripTexels(options.band, h);
     // The left/right strip's copy comes from the same rows (the map does not wrap top to bottom yet, and

@@ -17,6 +17,7 @@
 #include "field.hpp"
 #include "gaussian_model.hpp"
 #include "gaussianise.hpp"
+#include "range.hpp"
 #include "smoothing.hpp"
 
 namespace heightpack {
@@ -153,22 +154,6 @@ double slopeCorrelationLength(const std::vector<double>& lags) {
     return w / 2.0;
 }
 
-// Beyond the bands the map less a smooth field can pass the map's own extremes (a crop that spans [0,1]
-// then no longer fits an integer file). Where it does, the values within 2% of the range of an extreme
-// and beyond are eased into that 2% (tanh, monotone, continuous): the rest, the whole middle of the range,
-// is untouched.
-void keepWithinRange(Image& out, const Image& map) {
-    const auto [lo, hi] = std::minmax_element(map.pixels.begin(), map.pixels.end());
-    const auto [olo, ohi] = std::minmax_element(out.pixels.begin(), out.pixels.end());
-    const double low = *lo, high = *hi, margin = 0.02 * (high - low);
-    if (!(margin > 0)) return;
-    const bool over = *ohi > high, under = *olo < low;
-    for (float& v : out.pixels) {
-        if (over && v > high - margin) v = static_cast<float>(high - margin + margin * std::tanh((v - (high - margin)) / margin));
-        if (under && v < low + margin) v = static_cast<float>(low + margin - margin * std::tanh((low + margin - v) / margin));
-    }
-}
-
 int chooseBand(double fraction, double correlation, int size) {
     const int texels = fraction > 0 ? static_cast<int>(std::lround(fraction * size))
                                     : static_cast<int>(std::lround(std::clamp(4 * correlation, size / 16.0, size / 4.0)));
@@ -235,7 +220,7 @@ ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& o
                 result.map.pixels[i] = inBand(x, y) ? ranks.back(g.v[i]) : map.pixels[i] - smooth[i];
             }
     });
-    keepWithinRange(result.map, map);
+    detail::easeIntoRange(result.map, map);
     return result;
 }
 
