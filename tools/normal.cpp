@@ -103,8 +103,8 @@ public:
         const std::vector<std::string> inputs = expandSequence(input_);
         std::vector<OutputRule> outputs;
         for (size_t f = 0; f < inputs.size(); ++f)
-            outputs.push_back(
-                {frameFileName(output_, int(f), int(inputs.size())), "-o", {".exr", ".ktx2", ".dds", ".png"}});
+            outputs.push_back({frameFileName(output_, int(f), int(inputs.size())), "-o", {".exr", ".ktx2", ".dds", ".png"},
+                               inputs.size() > 1});
         if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         nlohmann::json sequence = nlohmann::json::array();
         // A sequence's normal maps land together once every frame has succeeded: a bad frame leaves none.

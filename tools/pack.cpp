@@ -95,18 +95,18 @@ public:
         const std::vector<std::string> inputs = expandSequence(input_);
         const int frames = static_cast<int>(inputs.size());
         const std::string plain = options_.plainOutput;
+        // A sequence's outputs, and a packed file with its plain twin, land together once every job has
+        // succeeded: a bad frame (or a failed twin) leaves none of this run's files behind.
+        const bool stage = frames > 1 || !plain.empty();
         std::vector<OutputRule> outputs;
         for (int f = 0; f < frames; ++f) {
-            outputs.push_back({frameFileName(output_, f, frames), "-o", {".exr", ".ktx2", ".dds"}});
+            outputs.push_back({frameFileName(output_, f, frames), "-o", {".exr", ".ktx2", ".dds"}, stage});
             if (!plain.empty())
-                outputs.push_back({frameFileName(plain, f, frames), "--emit-plain", {".exr", ".ktx2", ".dds"}});
+                outputs.push_back({frameFileName(plain, f, frames), "--emit-plain", {".exr", ".ktx2", ".dds"}, stage});
         }
         if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         nlohmann::json sequence = nlohmann::json::array();
-        // A sequence's outputs, and a packed file with its plain twin, land together once every job has
-        // succeeded: a bad frame (or a failed twin) leaves none of this run's files behind.
         StagedOutputs staged;
-        const bool stage = frames > 1 || !plain.empty();
         HeldStdout held(stage);
         for (int f = 0; f < frames; ++f) {
             const Shown shown{frameFileName(output_, f, frames), plain.empty() ? plain : frameFileName(plain, f, frames)};

@@ -1,6 +1,5 @@
 #include "heightpack/io/texture_write.hpp"
 
-#include "heightpack/io/files.hpp"
 #include "texel_encode.hpp"
 
 namespace heightpack {
@@ -35,8 +34,7 @@ Status writeTexture(const TextureOutput& output, const MipChainSource& content, 
     exr.threads = options.threads;
     exr.progress = options.progress;
     if (options.storage.pixelType == PixelType::Half) {
-        // Refuse what a half cannot hold before anything is written.
-        if (Status s = checkWritable(path); !s) return s;
+        // Refuse what a half cannot hold before anything is written (writeTiledExr judges the path).
         auto plan = detail::planEncoding(path, content, options);
         if (!plan) return plan.error();
         exr.half = true;
