@@ -72,7 +72,7 @@ public:
         if (previewOption_ && previewOption_->count() > 0) {
             std::vector<OutputRule> outputs;
             for (size_t f = 0; f < inputs.size(); ++f)
-                outputs.push_back({frameFileName(preview, int(f), int(inputs.size())), "--preview", {".png"}});
+                outputs.push_back({frameFileName(preview, int(f), int(inputs.size())), "--preview", {".png"}, inputs.size() > 1});
             if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         }
         nlohmann::json frames = nlohmann::json::array();

@@ -72,9 +72,11 @@ ExitCode Command::checkOutputs(const std::vector<std::string>& inputs, const std
                 return refuse(o.path, "is the input" + (input == o.path ? std::string() : " " + input + " (the same file)") +
                                           ": writing it would destroy the input",
                               "give " + o.option + " another file name");
-        if (Status s = checkWritable(o.path); !s) return fail(s.error());
+        if (o.staged)
+            if (Status s = checkWritable(o.path); !s) return fail(s.error());
         const std::string ext = lowerExtension(o.path);
         if (std::find(o.extensions.begin(), o.extensions.end(), ext) == o.extensions.end()) {
+            if (Status s = checkWritable(o.path); !s) return fail(s.error());  // a folder, a device: say so
             std::string list;
             for (const std::string& e : o.extensions) list += (list.empty() ? "" : ", ") + e;
             return refuse(o.path,

@@ -66,12 +66,16 @@ protected:
         std::string path;
         std::string option;                   // "-o", "--preview": named in messages
         std::vector<std::string> extensions;  // lower case, with the dot: {".exr", ".png"}
+        // Written under a temporary name (StagedOutputs) that the job sees instead of this one.
+        bool staged = false;
     };
     // Judges every output before any input is read or anything is written: the path is not empty
-    // (exit 2); nothing already there is a folder, link, device or read-only (exit 4, from
-    // checkWritable); its extension is one the command writes faithfully (exit 2, naming them); it is
-    // not the same file as any input (device and inode: links and other spellings count) nor as another
-    // output (exit 2). Prints the error and returns its code, or Ok when every output passes.
+    // (exit 2); it is not the same file as any input (device and inode: links and other spellings count)
+    // nor as another output, and its extension is one the command writes faithfully (exit 2, naming them).
+    // Whether it can be written (nothing already there is a folder, link, device or read-only: exit 4) is
+    // the job's to judge, before it reads its input; only a staged output, whose name the job never sees,
+    // and a name refused here (so the error names what is really there) are judged with checkWritable
+    // here. Prints the error and returns its code, or Ok when every output passes.
     ExitCode checkOutputs(const std::vector<std::string>& inputs, const std::vector<OutputRule>& outputs) const;
     // Prints a JSON document on stdout, one object, newline-terminated.
     static void printJson(const nlohmann::json& document);

@@ -83,15 +83,15 @@ public:
         n.alpha = heightInAlpha_ ? NormalAlpha::Height : varianceInAlpha_ ? NormalAlpha::SlopeVariance : NormalAlpha::None;
         n.threads = common_.threads;
         o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
-        o.compression = parseName<Compression>(compression_).value_or(Compression::Zip);
-        o.pixelType = requestedPixelType(pixelType_);
+        o.storage.exrCompression = parseName<Compression>(compression_).value_or(Compression::Zip);
+        o.storage.pixelType = requestedPixelType(pixelType_);
         if (format == "png8" && pixelType_ != "float")
             return usage("--pixel-type is for .exr, .ktx2 and .dds outputs; a PNG normal map is 8-bit");
         // Normal maps' errors are in normal units: --tolerance is a plain number (no --height conversion).
-        if (const std::string problem = toleranceInStoredUnits(pixelType_, tolerance_, 0.0, o.tolerance); !problem.empty())
+        if (const std::string problem = toleranceInStoredUnits(pixelType_, tolerance_, 0.0, o.storage.tolerance); !problem.empty())
             return usage(problem);
-        if (const std::string problem = checkContainerChoice({output_}, o.pixelType, compression_,
-                                                             compressionOption_->count() > 0, o.supercompression);
+        if (const std::string problem = checkContainerChoice({output_}, o.storage.pixelType, compression_,
+                                                             compressionOption_->count() > 0, o.storage.supercompression);
             !problem.empty())
             return usage(problem);
         o.resizeToPowerOfTwo = resize_ == "pow2";
@@ -103,8 +103,8 @@ public:
         const std::vector<std::string> inputs = expandSequence(input_);
         std::vector<OutputRule> outputs;
         for (size_t f = 0; f < inputs.size(); ++f)
-            outputs.push_back(
-                {frameFileName(output_, int(f), int(inputs.size())), "-o", {".exr", ".ktx2", ".dds", ".png"}});
+            outputs.push_back({frameFileName(output_, int(f), int(inputs.size())), "-o", {".exr", ".ktx2", ".dds", ".png"},
+                               inputs.size() > 1});
         if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         nlohmann::json sequence = nlohmann::json::array();
         // A sequence's normal maps land together once every frame has succeeded: a bad frame leaves none.
@@ -189,7 +189,7 @@ private:
 
     std::string input_, output_, tileSize_, channel_, format_;
     NormalJobOptions options_;
-    std::string compression_ = nameOf(options_.compression), resize_ = "none", pixelType_ = "float";
+    std::string compression_ = nameOf(options_.storage.exrCompression), resize_ = "none", pixelType_ = "float";
     std::string tolerance_;
     CLI::Option* compressionOption_ = nullptr;
     bool heightInAlpha_ = false, varianceInAlpha_ = false;

@@ -78,15 +78,15 @@ public:
         options_.load.silenceDecoderMessages = true;  // errors come back in the result, as one line
         applyChannel(channel_, options_.load);
         options_.mip.threads = common_.threads;
-        options_.compression = parseName<Compression>(compression_).value_or(Compression::Zip);
-        options_.pixelType = requestedPixelType(pixelType_);
+        options_.storage.exrCompression = parseName<Compression>(compression_).value_or(Compression::Zip);
+        options_.storage.pixelType = requestedPixelType(pixelType_);
         if (const std::string problem =
-                toleranceInStoredUnits(pixelType_, tolerance_, options_.heightRange, options_.tolerance);
+                toleranceInStoredUnits(pixelType_, tolerance_, options_.heightRange, options_.storage.tolerance);
             !problem.empty())
             return usage(problem);
         const std::string containerProblem =
-            checkContainerChoice({output_, options_.plainOutput}, options_.pixelType, compression_,
-                                 compressionOption_->count() > 0, options_.supercompression);
+            checkContainerChoice({output_, options_.plainOutput}, options_.storage.pixelType, compression_,
+                                 compressionOption_->count() > 0, options_.storage.supercompression);
         if (!containerProblem.empty()) return usage(containerProblem);
         options_.resizeToPowerOfTwo = resize_ == "pow2";
         setLibraryThreads(common_.threads);
@@ -95,18 +95,18 @@ public:
         const std::vector<std::string> inputs = expandSequence(input_);
         const int frames = static_cast<int>(inputs.size());
         const std::string plain = options_.plainOutput;
+        // A sequence's outputs, and a packed file with its plain twin, land together once every job has
+        // succeeded: a bad frame (or a failed twin) leaves none of this run's files behind.
+        const bool stage = frames > 1 || !plain.empty();
         std::vector<OutputRule> outputs;
         for (int f = 0; f < frames; ++f) {
-            outputs.push_back({frameFileName(output_, f, frames), "-o", {".exr", ".ktx2", ".dds"}});
+            outputs.push_back({frameFileName(output_, f, frames), "-o", {".exr", ".ktx2", ".dds"}, stage});
             if (!plain.empty())
-                outputs.push_back({frameFileName(plain, f, frames), "--emit-plain", {".exr", ".ktx2", ".dds"}});
+                outputs.push_back({frameFileName(plain, f, frames), "--emit-plain", {".exr", ".ktx2", ".dds"}, stage});
         }
         if (const ExitCode code = checkOutputs(inputs, outputs); code != ExitCode::Ok) return code;
         nlohmann::json sequence = nlohmann::json::array();
-        // A sequence's outputs, and a packed file with its plain twin, land together once every job has
-        // succeeded: a bad frame (or a failed twin) leaves none of this run's files behind.
         StagedOutputs staged;
-        const bool stage = frames > 1 || !plain.empty();
         HeldStdout held(stage);
         for (int f = 0; f < frames; ++f) {
             const Shown shown{frameFileName(output_, f, frames), plain.empty() ? plain : frameFileName(plain, f, frames)};
@@ -149,8 +149,8 @@ private:
         const int width = r.levelSizes[0].first, height = r.levelSizes[0].second;
         const double seconds = r.loadSeconds + r.mipSeconds + r.writeSeconds;
         // What the output holds: the EXR codec, or KTX2's supercompression (none for DDS).
-        const std::string compression = !isGpuContainer(r.output) ? compression_
-                                         : options_.supercompression == Supercompression::Zstd ? "zstd"
+        const std::string compression = r.container == Container::Exr ? compression_
+                                         : options_.storage.supercompression == Supercompression::Zstd ? "zstd"
                                                                                                 : "none";
 
         const int channels = layoutChannels(r.layout);
@@ -181,7 +181,7 @@ private:
                 {"compression", compression},
                 {"pixelType", stored["pixelType"]},
                 {"pixelTypeRequested", pixelType_},
-                {"tolerance", options_.tolerance > 0.0 ? nlohmann::json(tolerance_) : nlohmann::json(nullptr)},
+                {"tolerance", options_.storage.tolerance > 0.0 ? nlohmann::json(tolerance_) : nlohmann::json(nullptr)},
                 {"heightScale", options_.scale},
                 {"heightOffset", options_.offset},
                 {"heightRange", options_.heightRange > 0.0 ? nlohmann::json(options_.heightRange) : nlohmann::json(nullptr)},
@@ -214,7 +214,7 @@ private:
 
     std::string input_, output_, channel_;
     PackOptions options_;
-    std::string compression_ = nameOf(options_.compression), resize_ = "none", pixelType_ = "float";
+    std::string compression_ = nameOf(options_.storage.exrCompression), resize_ = "none", pixelType_ = "float";
     std::string tolerance_;
     CLI::Option* compressionOption_ = nullptr;
 };

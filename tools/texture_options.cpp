@@ -104,11 +104,6 @@ std::vector<std::string> compressionNames() {
     return names;
 }
 
-bool isGpuContainer(const std::string& path) {
-    const auto c = containerForPath(path);
-    return c == Container::Ktx2 || c == Container::Dds;
-}
-
 std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelType pixelType,
                                  const std::string& compression, bool compressionGiven,
                                  Supercompression& supercompression) {

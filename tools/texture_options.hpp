@@ -38,9 +38,6 @@ std::string storedChainText(PixelType type, const std::vector<double>& lookupErr
 // The EXR compressions and the KTX2 one, for --compression's check.
 std::vector<std::string> compressionNames();
 
-// Whether path names a .ktx2 or .dds output.
-bool isGpuContainer(const std::string& path);
-
 // Checks the pixel type and compression against the container of every output (by extension); sets
 // supercompression. Returns what is wrong, for usage(), or empty.
 std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelType pixelType,

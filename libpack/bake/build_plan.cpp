@@ -62,9 +62,7 @@ PackOptions packOptions(const MapSettings& s, const std::string& version) {
     pack.mip.wrap = s.wrap;
     pack.mip.filter = s.filter;
     pack.resizeToPowerOfTwo = s.resize;
-    pack.compression = s.compression;
-    pack.pixelType = s.pixelType;
-    pack.tolerance = s.tolerance;
+    pack.storage = s.storage;
     pack.version = version;
     return pack;
 }
@@ -96,9 +94,7 @@ NormalJobOptions normalOptions(const NormalAsset& n, const std::string& version)
     job.normal.alpha = n.layer.alpha;
     job.filter = n.settings.filter;
     job.resizeToPowerOfTwo = n.settings.resize;
-    job.compression = n.settings.compression;
-    job.pixelType = n.settings.pixelType;
-    job.tolerance = n.settings.tolerance;
+    job.storage = n.settings.storage;
     job.version = version;
     return job;
 }
@@ -180,20 +176,19 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
         PackOptions pack = packOptions(d.settings, version);
         pack.scale = static_cast<float>(d.layer.heightScale);
         pack.offset = static_cast<float>(d.layer.heightOffset);
+        // The manifest decided the container from the output's name (settings.container is always set).
+        const bool intoExr = d.settings.container.value_or(Container::Exr) == Container::Exr;
         if (d.synth) {
             // displacement = true synthesises Dx, Dy and keeps them as a file's would be kept (below).
-            pack.displacement = d.synth->displacement && d.layer.choppiness > 0 &&
-                                containerForPath(d.output).value_or(Container::Exr) == Container::Exr;
+            pack.displacement = d.synth->displacement && d.layer.choppiness > 0 && intoExr;
             addSynthSteps(steps, d, pack);
         } else {
             // Dx, Dy ride along when the source has them (synth's displacement), unless choppiness turns them
             // off, into an EXR (a KTX2 or DDS texel has four channels, not twelve). Judged from the header, so
             // a painted map's key stays what it was.
-            pack.displacement = d.layer.choppiness > 0 && hasDisplacement(d.frames.front()) &&
-                                containerForPath(d.output).value_or(Container::Exr) == Container::Exr;
+            pack.displacement = d.layer.choppiness > 0 && hasDisplacement(d.frames.front()) && intoExr;
             // Foam likewise, unless foam = false.
-            pack.foam = d.keepFoam && hasFoam(d.frames.front()) &&
-                        containerForPath(d.output).value_or(Container::Exr) == Container::Exr;
+            pack.foam = d.keepFoam && hasFoam(d.frames.front()) && intoExr;
             addSourcedSteps(steps, d, d.layer.name, "displacement", m.threshold, pack, makePacked);
         }
     }

@@ -43,11 +43,17 @@ private:
 
 // The pixel type and supercompression (issue 14) put a line only when not the default, so every key made
 // before they existed still matches and no build redoes its outputs for them.
-// A tolerance ("auto") chooses the type itself, so it stands in for the pixel type.
-void putContainerChoice(Key& k, PixelType pixelType, double tolerance, Supercompression supercompression) {
-    if (tolerance > 0.0) k.put("tolerance", tolerance);
-    else if (pixelType != PixelType::Float) k.put("pixelType", pixelType);
-    if (supercompression != Supercompression::None) k.put("supercompression", supercompression);
+// A tolerance ("auto") chooses the type itself, so it stands in for the pixel type. The storage's fields
+// are lines of the job's own key (not a nested storage.*), as they were before they were one struct, so
+// existing keys still match; the zstd level likewise only when not the default.
+void putStorage(Key& k, const TextureStorage& s) {
+    static_assert(fieldCount<TextureStorage>() == 5, "TextureStorage changed: put the new field in its key text");
+    k.put("compression", s.exrCompression);
+    if (s.tolerance > 0.0) k.put("tolerance", s.tolerance);
+    else if (s.pixelType != PixelType::Float) k.put("pixelType", s.pixelType);
+    if (s.supercompression != Supercompression::None) k.put("supercompression", s.supercompression);
+    if (s.supercompression != Supercompression::None && s.zstdLevel != TextureStorage{}.zstdLevel)
+        k.put("zstdLevel", s.zstdLevel);
 }
 
 }  // namespace
@@ -96,15 +102,14 @@ void appendKeyText(std::string& text, std::string_view prefix, const FresnelOpti
 }
 
 void appendKeyText(std::string& text, std::string_view prefix, const PackOptions& o) {
-    static_assert(fieldCount<PackOptions>() == 16, "PackOptions changed: put the new field in its key text");
+    static_assert(fieldCount<PackOptions>() == 13, "PackOptions changed: put the new field in its key text");
     Key k(text, prefix);
     k.nested("load", o.load);
     k.nested("mip", o.mip);
     k.put("scale", o.scale);
     k.put("offset", o.offset);
     k.put("resizeToPowerOfTwo", o.resizeToPowerOfTwo);
-    k.put("compression", o.compression);
-    putContainerChoice(k, o.pixelType, o.tolerance, o.supercompression);
+    putStorage(k, o.storage);
     k.put("plainOutput", o.plainOutput);
     // The layout's line is the one it replaced (packed or not), so every existing key still matches.
     k.put("packed", o.layout == Layout::Neighbour4);
@@ -118,15 +123,14 @@ void appendKeyText(std::string& text, std::string_view prefix, const PackOptions
 }
 
 void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOptions& o) {
-    static_assert(fieldCount<NormalJobOptions>() == 12, "NormalJobOptions changed: put the new field in its key text");
+    static_assert(fieldCount<NormalJobOptions>() == 9, "NormalJobOptions changed: put the new field in its key text");
     Key k(text, prefix);
     k.nested("load", o.load);
     k.nested("normal", o.normal);
     k.put("filter", o.filter);
     k.put("resizeToPowerOfTwo", o.resizeToPowerOfTwo);
     k.put("format", o.format);
-    k.put("compression", o.compression);
-    putContainerChoice(k, o.pixelType, o.tolerance, o.supercompression);
+    putStorage(k, o.storage);
     if (o.layout != Layout::Rgb) k.put("layout", o.layout);  // a line only when not the default, as above
     k.put("version", o.version);
     // progress: reports, makes nothing

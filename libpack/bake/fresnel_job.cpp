@@ -33,8 +33,8 @@ Status writeFresnelRamp(const std::string& output, const FresnelOptions& options
         attribute(attr::version, version),
     };
     const Image ramp = makeFresnelRamp(options);
-    const auto container = containerForPath(output);
-    if (container == Container::Ktx2 || container == Container::Dds) {
+    // The container, decided once from the name: a KTX2 or DDS goes to writeTexture as such.
+    if (const auto container = containerForPath(output); container == Container::Ktx2 || container == Container::Dds) {
         MipChainSource content;
         content.width = ramp.width;
         content.height = ramp.height;
@@ -44,10 +44,10 @@ Status writeFresnelRamp(const std::string& output, const FresnelOptions& options
         };
         content.attributes = flat.attributes;
         TextureWriteOptions write;
-        write.pixelType = pixelType;
+        write.storage.pixelType = pixelType;
         write.levels = 1;  // a ramp is looked up, never minified
         write.writer = "heightpack " + version;
-        return writeTexture(output, content, write);
+        return writeTexture({output, *container}, content, write);
     }
     if (pixelType == PixelType::Uint16)
         return cannotWrite(output, "an EXR has no 16-bit normalised channels", "store float or half, or write .ktx2 or .dds");

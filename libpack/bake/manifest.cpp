@@ -85,7 +85,7 @@ MapSettings ManifestParser::settings(Section& s, const MapSettings& base) {
     MapSettings out = base;
     out.wrap = s.choice("wrap", base.wrap);
     out.filter = s.choice("filter", base.filter);
-    out.compression = s.choice("compression", base.compression);
+    out.storage.exrCompression = s.choice("compression", base.storage.exrCompression);
     out.resize = s.boolean("resize").value_or(base.resize);
     if (const auto c = s.text("channel")) {
         const auto parsed = parseName<ChannelSelect>(*c);
@@ -107,19 +107,19 @@ void ManifestParser::pixelType(Section& s, MapSettings& out, bool autoAllowed) {
                 throw s.error("pixel_type", "is \"auto\", which needs a tolerance",
                               "add tolerance = the worst lookup error allowed, in stored units (normal units "
                               "for normals), such as 0.0005");
-            out.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
+            out.storage.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
             return;
         }
         const auto parsed = parseName<PixelType>(*type);
         if (!parsed) throw s.error("pixel_type", "is '" + shorten(*type) + "', but must be one of: " + choices);
-        out.pixelType = *parsed;
-        out.tolerance = 0.0;
+        out.storage.pixelType = *parsed;
+        out.storage.tolerance = 0.0;
     }
     if (s.find("tolerance")) {
-        if (!(out.tolerance > 0.0))  // neither here nor in [defaults] is the type "auto"
+        if (!(out.storage.tolerance > 0.0))  // neither here nor in [defaults] is the type "auto"
             throw s.error("tolerance", "is given, but pixel_type is not \"auto\"",
                           "set pixel_type = \"auto\" beside it, or remove it");
-        out.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
+        out.storage.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
     }
 }
 
@@ -176,7 +176,7 @@ std::string ManifestParser::output(Section& s, const std::string& name, MapSetti
                       "name the output ." + std::string(containerName(*settings.container)) +
                           ", or set container to match it");
     settings.container = *named;
-    if (*named == Container::Exr && settings.pixelType == PixelType::Uint16 && settings.tolerance == 0.0) {
+    if (*named == Container::Exr && settings.storage.pixelType == PixelType::Uint16 && settings.storage.tolerance == 0.0) {
         const std::string what = "writes '" + p.string() + "' in uint16, but an EXR has no 16-bit normalised channels";
         const std::string fix = "set container = \"ktx2\" or \"dds\", or pixel_type = \"half\"";
         if (s.find("pixel_type")) throw s.error("pixel_type", "is \"uint16\": [" + s.prefix() + "] " + what, fix);

@@ -130,11 +130,11 @@ FresnelAsset ManifestParser::fresnel(Section& s) {
     // a ramp under auto defaults stays float.
     MapSettings ramp;
     ramp.container = defaults_.container;
-    ramp.pixelType = defaults_.tolerance > 0.0 ? PixelType::Float : defaults_.pixelType;
+    ramp.storage.pixelType = defaults_.storage.tolerance > 0.0 ? PixelType::Float : defaults_.storage.pixelType;
     if (s.find("container")) ramp.container = s.choice("container", Container::Exr);
     pixelType(s, ramp, false);
     f.output = output(s, f.layer.name, ramp);
-    f.pixelType = ramp.pixelType;
+    f.pixelType = ramp.storage.pixelType;
     const FresnelOptions defaults;
     f.options.ior = s.number("ior", defaults.ior, 1.0, 4.0);
     f.options.model = s.choice("model", defaults.model);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/exr_write.hpp"
@@ -106,6 +107,13 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
     if (options.layout != Layout::Rgb && options.layout != Layout::Xy)
         return Error{ErrorKind::Internal, output, std::string("a normal map has no '") + nameOf(options.layout) + "' layout",
                      "please report this"};
+    // A mip-mapped output's container, decided here once from its name: the planner and the writer take it.
+    std::optional<TextureOutput> mipMapped;
+    if (options.format == NormalFormat::Exr) {
+        auto named = textureOutput(output);
+        if (!named) return named.error();
+        mipMapped = *named;
+    }
 
     NormalReport report;
     report.layout = options.layout;
@@ -148,21 +156,19 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         };
         content.attributes = normalAttributes(options, report.source, report.sourceHash, content.width, content.height);
         TextureWriteOptions write;
-        write.pixelType = options.pixelType;
-        write.exrCompression = options.compression;
-        write.supercompression = options.supercompression;
+        write.storage = options.storage;
         write.threads = options.normal.threads;
         write.writer = "heightpack " + options.version;
         write.progress = [&](double f) { progress("write", f); };
-        auto storage = detail::chooseStorage({output}, content, stored, options.normal.wrap, write, options.tolerance);
+        auto storage = detail::chooseStorage({*mipMapped}, content, stored, options.normal.wrap, write);
         if (!storage) return storage.error();
-        write.pixelType = storage->pixelType;
+        write.storage.pixelType = storage->pixelType;
         write.planned = TextureWriteOptions::Planned{storage->pixelType, storage->normalisation};
         report.pixelType = storage->pixelType;
         report.lookupError = storage->lookupError;
         const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*storage);
         content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
-        if (Status s = writeTexture(output, content, write); !s) return s.error();
+        if (Status s = writeTexture(*mipMapped, content, write); !s) return s.error();
     }
     progress("write", 1.0);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

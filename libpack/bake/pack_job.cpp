@@ -83,11 +83,18 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         return withFix(inconsistentOptions(options.plainOutput, "would be a second plain chain beside the plain output",
                                            "write the plain chain once"),
                        Fix::OnePlainChain);
+    // Each output's container, decided here once from its name: the planner and the writer take it as it is.
+    auto packedOutput = textureOutput(output);
+    if (!packedOutput) return packedOutput.error();
+    std::optional<TextureOutput> twinOutput;  // the plain chain beside the packed one
+    if (packed && !options.plainOutput.empty()) {
+        auto twin = textureOutput(options.plainOutput);
+        if (!twin) return twin.error();
+        twinOutput = *twin;
+    }
     // A KTX2 or DDS texture holds four channels: heights with Dx, Dy need twelve, with foam eight (or more).
-    const auto gpu = [](const std::string& path) {
-        return !path.empty() && containerForPath(path).value_or(Container::Exr) != Container::Exr;
-    };
-    const bool gpuOutput = gpu(output), gpuPlain = gpu(options.plainOutput);
+    const bool gpuOutput = packedOutput->container != Container::Exr;
+    const bool gpuPlain = twinOutput && twinOutput->container != Container::Exr;
     for (const auto& [asked, what, channels] : {std::tuple{options.displacement, "displacement", "twelve"},
                                                 std::tuple{options.foam, "foam", "eight"}})
         if (asked && (gpuOutput || gpuPlain))
@@ -96,7 +103,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
                                                    (std::string(what) == "foam" ? "foam" : "Dx, Dy") + " need " + channels,
                                                std::string("write the ") + what + " to an .exr"),
                            Fix::CompanionsNeedExr, {what});
-    if (packed && !options.plainOutput.empty()) {
+    if (twinOutput) {
         if (std::filesystem::path(options.plainOutput).lexically_normal() ==
             std::filesystem::path(output).lexically_normal())
             return withFix(cannotWrite(options.plainOutput, "is also the packed output", "give the plain output another name"),
@@ -109,6 +116,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     report.output = output;
     report.plainOutput = packed ? options.plainOutput : output;
     report.layout = options.layout;
+    report.container = packedOutput->container;
 
     auto start = std::chrono::steady_clock::now();
     progress("load", 0.0);
@@ -148,9 +156,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
 
     start = std::chrono::steady_clock::now();
     TextureWriteOptions writeOptions;
-    writeOptions.pixelType = options.pixelType;
-    writeOptions.exrCompression = options.compression;
-    writeOptions.supercompression = options.supercompression;
+    writeOptions.storage = options.storage;
     writeOptions.threads = options.mip.threads;
     writeOptions.writer = "heightpack " + options.version;
     // A painted 8- or 16-bit map lies on a 16-bit grid (8-bit k/255 = 257k/65535): uint16 keeps it.
@@ -158,10 +164,8 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         writeOptions.gridOrigin = options.offset;
         writeOptions.gridSpan = options.scale;
     }
-    // The plain chain goes to plainOutput beside the packed one, or alone to output.
-    const std::string plainPath = packed ? options.plainOutput : output;
-    const bool both = packed && !plainPath.empty();
-    writeOptions.progress = [&](double f) { progress("write", both ? f * 0.8 : f); };
+    // The plain chain goes to plainOutput beside the packed one (the twin), or alone to output.
+    writeOptions.progress = [&](double f) { progress("write", twinOutput ? f * 0.8 : f); };
 
     const Wrap wrap = options.mip.wrap;
     MipChainSource content;
@@ -180,11 +184,11 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
 
     // The pixel type, given or chosen, and its lookup error: the same for both outputs, since a packed
     // texel holds copies of the plain chain's values.
-    std::vector<std::string> paths = {output};
-    if (both) paths.push_back(plainPath);
-    auto stored = detail::chooseStorage(paths, content, chain, wrap, writeOptions, options.tolerance);
+    std::vector<TextureOutput> outputs = {*packedOutput};
+    if (twinOutput) outputs.push_back(*twinOutput);
+    auto stored = detail::chooseStorage(outputs, content, chain, wrap, writeOptions);
     if (!stored) return stored.error();
-    writeOptions.pixelType = stored->pixelType;
+    writeOptions.storage.pixelType = stored->pixelType;
     // Dx, Dy and foam add values the plan did not see: then the writer plans again.
     if (companions.empty()) writeOptions.planned = TextureWriteOptions::Planned{stored->pixelType, stored->normalisation};
     report.pixelType = stored->pixelType;
@@ -200,8 +204,8 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     }
     if (displacement) content.attributes.push_back(attribute(attr::displacement, packed ? "neighbour4" : "plain"));
     if (foam) content.attributes.push_back(attribute(attr::foam, packed ? "neighbour4" : "plain"));
-    if (Status s = writeTexture(output, content, writeOptions); !s) return s.error();
-    if (both) {
+    if (Status s = writeTexture(*packedOutput, content, writeOptions); !s) return s.error();
+    if (twinOutput) {
         content.channelNames = {"Y"};
         content.fillRows = fillPlain;
         content.attributes = heightAttributes(Layout::Plain, options, report.source, report.sourceHash);
@@ -210,7 +214,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         if (displacement) content.attributes.push_back(attribute(attr::displacement, "plain"));
         if (foam) content.attributes.push_back(attribute(attr::foam, "plain"));
         writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
-        if (Status s = writeTexture(plainPath, content, writeOptions); !s) return s.error();
+        if (Status s = writeTexture(*twinOutput, content, writeOptions); !s) return s.error();
     }
     progress("write", 1.0);
     report.writeSeconds = secondsSince(start);

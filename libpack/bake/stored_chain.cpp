@@ -14,40 +14,40 @@ double StoredChain::worst() const {
 
 namespace {
 
-Result<StoredChain> measure(const std::vector<std::string>& paths, const MipChainSource& content,
+Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
                             const std::vector<Image>& chain, Wrap wrap, TextureWriteOptions options, PixelType type) {
-    options.pixelType = type;
+    options.storage.pixelType = type;
     StoredChain stored;
     stored.pixelType = type;
     if (type == PixelType::Float) {  // the float chain itself; the writer still judges the container
         stored.lookupError.assign(chain.size(), 0.0);
         return stored;
     }
-    auto storage = planTexelStorage(paths.front(), content, options);
+    auto storage = planTexelStorage(outputs.front(), content, options);
     if (!storage) return storage.error();
     stored.normalisation = storage->normalisation;
     // The same values, so only the container can object: no second scan.
     options.planned = TextureWriteOptions::Planned{type, storage->normalisation};
-    for (size_t i = 1; i < paths.size(); ++i)
-        if (auto other = planTexelStorage(paths[i], content, options); !other) return other.error();
+    for (size_t i = 1; i < outputs.size(); ++i)
+        if (auto other = planTexelStorage(outputs[i], content, options); !other) return other.error();
     stored.lookupError = worstLookupError(chain, wrap, storage->storeAndRead, options.threads);
     return stored;
 }
 
 }  // namespace
 
-Result<StoredChain> chooseStorage(const std::vector<std::string>& paths, const MipChainSource& content,
-                                  const std::vector<Image>& chain, Wrap wrap, const TextureWriteOptions& options,
-                                  double tolerance) {
-    if (!(tolerance > 0.0)) return measure(paths, content, chain, wrap, options, options.pixelType);
+Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
+                                  const std::vector<Image>& chain, Wrap wrap, const TextureWriteOptions& options) {
+    const double tolerance = options.storage.tolerance;
+    if (!(tolerance > 0.0)) return measure(outputs, content, chain, wrap, options, options.storage.pixelType);
     std::optional<StoredChain> best;
     for (const PixelType type : {PixelType::Half, PixelType::Uint16}) {  // two bytes a component
-        auto candidate = measure(paths, content, chain, wrap, options, type);
+        auto candidate = measure(outputs, content, chain, wrap, options, type);
         if (!candidate || candidate->worst() > tolerance) continue;
         if (!best || candidate->worst() < best->worst()) best = std::move(*candidate);
     }
     if (best) return *best;
-    return measure(paths, content, chain, wrap, options, PixelType::Float);
+    return measure(outputs, content, chain, wrap, options, PixelType::Float);
 }
 
 std::vector<ExrAttribute> lookupErrorAttributes(const StoredChain& stored) {

@@ -22,16 +22,16 @@ struct StoredChain {
 };
 
 // chain is what content writes, level by level (the plain heights of a packed output: a packed texel
-// holds copies of them, see worstLookupError). With tolerance 0, measures options.pixelType and fails as
-// writeTexture would when it cannot be stored. With tolerance > 0, chooses the type: the fewest bytes
-// whose worst error over the whole chain is within tolerance; half and uint16 take the same bytes, so of
-// the two that qualify the smaller error wins (half on a tie); float when neither does. A type the
+// holds copies of them, see worstLookupError). With options.storage.tolerance 0, measures
+// options.storage.pixelType and fails as writeTexture would when it cannot be stored. With a tolerance > 0,
+// chooses the type: the fewest bytes whose worst error over the whole chain is within the tolerance; half
+// and uint16 take the same bytes, so of the two that qualify the smaller error wins (half on a tie); float
+// when neither does. A type the
 // container lacks (uint16 in an EXR) or the values do not fit (a half beyond 65504) is passed over.
-// paths are every file the chain goes to (a packed output and its plain twin): a type must suit each
+// outputs are every file the chain goes to (a packed output and its plain twin): a type must suit each
 // one's container; content is what the first one holds.
-Result<StoredChain> chooseStorage(const std::vector<std::string>& paths, const MipChainSource& content,
-                                  const std::vector<Image>& chain, Wrap wrap, const TextureWriteOptions& options,
-                                  double tolerance);
+Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
+                                  const std::vector<Image>& chain, Wrap wrap, const TextureWriteOptions& options);
 
 // The attributes that record stored's lookup errors (lookupError, maxLookupError); none for float,
 // whose file is the float chain itself.

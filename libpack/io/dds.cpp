@@ -72,9 +72,7 @@ std::uint32_t codeOf(const std::array<const char*, N>& names, const std::string&
 
 Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
     if (Status s = checkWritable(path); !s) return s;
-    if (lowerExtension(path) != ".dds")
-        return cannotWrite(path, "is not a .dds name, but the file would be a DDS", "name the output .dds");
-    if (options.supercompression != Supercompression::None)
+    if (options.storage.supercompression != Supercompression::None)
         return cannotWrite(path, "DDS has no supercompression", "write it uncompressed, or as KTX2");
     auto planned = detail::planEncoding(path, content, options);
     if (!planned) return planned.error();

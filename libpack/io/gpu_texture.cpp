@@ -1,7 +1,7 @@
-// The KTX2 and DDS writers and readers behind one call each, and their files as TextureFiles.
+// The KTX2 and DDS readers behind one call, and their files as TextureFiles (the writers are writeKtx2 and
+// writeDds, chosen by writeTexture from the container its caller decided).
 #include "heightpack/io/gpu_texture.hpp"
 
-#include "heightpack/io/files.hpp"
 #include "texel_encode.hpp"
 
 namespace heightpack {
@@ -10,13 +10,6 @@ namespace detail {
 Result<GpuTexture> readKtx2(const std::string& path);
 Result<GpuTexture> readDds(const std::string& path);
 }  // namespace detail
-
-Status writeGpuTexture(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
-    const auto container = containerForPath(path);
-    if (container == Container::Ktx2) return writeKtx2(path, content, options);
-    if (container == Container::Dds) return writeDds(path, content, options);
-    return cannotWrite(path, "is neither a .ktx2 nor a .dds name", "name the output .ktx2 or .dds");
-}
 
 Result<GpuTexture> readGpuTexture(const std::string& path) {
     const auto container = containerForPath(path);

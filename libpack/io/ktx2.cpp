@@ -106,13 +106,11 @@ struct ZstdFree {
 
 Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
     if (Status s = checkWritable(path); !s) return s;
-    if (lowerExtension(path) != ".ktx2")
-        return cannotWrite(path, "is not a .ktx2 name, but the file would be a KTX2", "name the output .ktx2");
     auto planned = detail::planEncoding(path, content, options);
     if (!planned) return planned.error();
     const detail::EncodePlan& plan = *planned;
     const TexelFormatInfo& f = plan.format;
-    const bool zstd = options.supercompression == Supercompression::Zstd;
+    const bool zstd = options.storage.supercompression == Supercompression::Zstd;
 
     Attributes keyValues = detail::attributesAsText(content.attributes);
     if (plan.normalisation) {
@@ -122,7 +120,7 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
     keyValues.emplace_back("KTXwriter", options.writer.empty() ? std::string("heightpack") : options.writer);
     // By convention the option of Khronos' `ktx` tool that gives the same supercompression: data in the
     // file, not a hint naming a flag of heightpack's (the marker tells floor_rules.sh so).
-    if (zstd) keyValues.emplace_back("KTXwriterScParams", "--zstd " + std::to_string(options.zstdLevel));  // floor_rules: data
+    if (zstd) keyValues.emplace_back("KTXwriterScParams", "--zstd " + std::to_string(options.storage.zstdLevel));  // floor_rules: data
 
     const int levels = plan.levels;
     const std::vector<std::uint8_t> dfd = dataFormatDescriptor(f);
@@ -182,7 +180,7 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
     if (!write(bytes.data(), bytes.size())) return failed("writing the header");
 
     std::unique_ptr<ZSTD_CCtx, ZstdFree> cctx(zstd ? ZSTD_createCCtx() : nullptr);
-    if (zstd && (!cctx || ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_compressionLevel, options.zstdLevel))))
+    if (zstd && (!cctx || ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_compressionLevel, options.storage.zstdLevel))))
         return Error{ErrorKind::Internal, path, "internal error: Zstandard could not be set up", "please report this"};
     std::vector<std::uint8_t> packed(zstd ? ZSTD_CStreamOutSize() : 0);
     long long rowsTotal = 0, rowsDone = 0;

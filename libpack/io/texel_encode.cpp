@@ -46,11 +46,11 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
                                 const TextureWriteOptions& options) {
     EncodePlan plan;
     plan.sourceChannels = static_cast<int>(content.channelNames.size());
-    plan.format = texelFormatInfo(texelFormatFor(plan.sourceChannels, options.pixelType));
+    plan.format = texelFormatInfo(texelFormatFor(plan.sourceChannels, options.storage.pixelType));
     plan.levels = fullChainLevels(content.width, content.height);
     if (options.levels > 0) plan.levels = std::min(plan.levels, options.levels);
-    if (options.pixelType == PixelType::Float) return plan;
-    if (options.planned && options.planned->pixelType == options.pixelType) {
+    if (options.storage.pixelType == PixelType::Float) return plan;
+    if (options.planned && options.planned->pixelType == options.storage.pixelType) {
         plan.normalisation = options.planned->normalisation;
         return plan;
     }
@@ -76,7 +76,7 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
                     Scan& scan = scans[size_t(r)];
                     for (size_t i = size_t(r) * rowValues; i < size_t(r + 1) * rowValues; ++i) {
                         const float v = band[i];
-                        if (!std::isfinite(v) || (options.pixelType == PixelType::Half && !halfCanHold(v))) {
+                        if (!std::isfinite(v) || (options.storage.pixelType == PixelType::Half && !halfCanHold(v))) {
                             scan.bad = i;
                             break;
                         }

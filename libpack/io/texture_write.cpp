@@ -1,6 +1,5 @@
 #include "heightpack/io/texture_write.hpp"
 
-#include "heightpack/io/files.hpp"
 #include "texel_encode.hpp"
 
 namespace heightpack {
@@ -9,30 +8,33 @@ namespace {
 
 // What an EXR cannot hold of options: 16-bit normalised channels, Zstandard.
 Status exrTakes(const std::string& path, const TextureWriteOptions& options) {
-    if (options.pixelType == PixelType::Uint16)
+    if (options.storage.pixelType == PixelType::Uint16)
         return cannotWrite(path, "an EXR has no 16-bit normalised channels", "store float or half, or write .ktx2 or .dds");
-    if (options.supercompression != Supercompression::None)
+    if (options.storage.supercompression != Supercompression::None)
         return cannotWrite(path, "an EXR has no Zstandard compression", "use one of EXR's own, or write .ktx2");
     return Done{};
 }
 
 }  // namespace
 
-Status writeTexture(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
+Result<TextureOutput> textureOutput(const std::string& path) {
     const auto container = containerForPath(path);
     if (!container)
         return cannotWrite(path, "names no texture container heightpack writes", "name the output .exr, .ktx2 or .dds");
-    // The container, decided here once, picks the writer (each still guards its own name).
-    if (*container == Container::Ktx2) return writeKtx2(path, content, options);
-    if (*container == Container::Dds) return writeDds(path, content, options);
+    return TextureOutput{path, *container};
+}
+
+Status writeTexture(const TextureOutput& output, const MipChainSource& content, const TextureWriteOptions& options) {
+    const std::string& path = output.path;
+    if (output.container == Container::Ktx2) return writeKtx2(path, content, options);
+    if (output.container == Container::Dds) return writeDds(path, content, options);
     if (Status s = exrTakes(path, options); !s) return s;
     ExrWriteOptions exr;
-    exr.compression = options.exrCompression;
+    exr.compression = options.storage.exrCompression;
     exr.threads = options.threads;
     exr.progress = options.progress;
-    if (options.pixelType == PixelType::Half) {
-        // Refuse what a half cannot hold before anything is written.
-        if (Status s = checkWritable(path); !s) return s;
+    if (options.storage.pixelType == PixelType::Half) {
+        // Refuse what a half cannot hold before anything is written (writeTiledExr judges the path).
         auto plan = detail::planEncoding(path, content, options);
         if (!plan) return plan.error();
         exr.half = true;
@@ -40,17 +42,14 @@ Status writeTexture(const std::string& path, const MipChainSource& content, cons
     return writeTiledExr(path, content, exr);
 }
 
-Result<TexelStorage> planTexelStorage(const std::string& path, const MipChainSource& content,
+Result<TexelStorage> planTexelStorage(const TextureOutput& output, const MipChainSource& content,
                                       const TextureWriteOptions& options) {
-    const auto container = containerForPath(path);
-    if (!container)
-        return cannotWrite(path, "names no texture container heightpack writes", "name the output .exr, .ktx2 or .dds");
-    if (*container == Container::Exr)
-        if (Status s = exrTakes(path, options); !s) return s.error();
-    auto plan = detail::planEncoding(path, content, options);
+    if (output.container == Container::Exr)
+        if (Status s = exrTakes(output.path, options); !s) return s.error();
+    auto plan = detail::planEncoding(output.path, content, options);
     if (!plan) return plan.error();
     TexelStorage storage;
-    storage.pixelType = options.pixelType;
+    storage.pixelType = options.storage.pixelType;
     storage.format = plan->format.format;
     storage.normalisation = plan->normalisation;
     storage.storeAndRead = [plan = *plan](float v) { return detail::storeAndRead(plan, v); };

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -101,16 +102,13 @@ TEST(CacheKey, FresnelOptions) {
 }
 
 TEST(CacheKey, PackOptions) {
-    expectEveryFieldJudged(std::array<FieldChange<PackOptions>, 16>{{
+    expectEveryFieldJudged(std::array<FieldChange<PackOptions>, 13>{{
         {"load", [](PackOptions& o) { o.load.channel = ChannelSelect::Luma; }, true},
         {"mip", [](PackOptions& o) { o.mip.filter = Filter::Lanczos3; }, true},
         {"scale", [](PackOptions& o) { o.scale = 2.0f; }, true},
         {"offset", [](PackOptions& o) { o.offset = 0.5f; }, true},
         {"resizeToPowerOfTwo", [](PackOptions& o) { o.resizeToPowerOfTwo = true; }, true},
-        {"compression", [](PackOptions& o) { o.compression = Compression::Piz; }, true},
-        {"pixelType", [](PackOptions& o) { o.pixelType = PixelType::Half; }, true},
-        {"tolerance", [](PackOptions& o) { o.tolerance = 1e-4; }, true},
-        {"supercompression", [](PackOptions& o) { o.supercompression = Supercompression::Zstd; }, true},
+        {"storage", [](PackOptions& o) { o.storage.pixelType = PixelType::Half; }, true},  // each field: below
         {"plainOutput", [](PackOptions& o) { o.plainOutput = std::string("plain.exr"); }, true},
         {"layout", [](PackOptions& o) { o.layout = Layout::Plain; }, true},
         {"heightRange", [](PackOptions& o) { o.heightRange = 6.0; }, true},
@@ -128,17 +126,43 @@ TEST(CacheKey, PackOptions) {
     EXPECT_NE(keyText(a), keyText(b));
 }
 
+// The storage every job holds: each field that shapes the bytes is in the key of the jobs that hold it,
+// and a zstd level only counts with zstd.
+TEST(CacheKey, EveryStorageFieldIsInTheKey) {
+    EXPECT_EQ(fieldCount<TextureStorage>(), 5u) << "a field was added: add it to this test's list";
+    const std::vector<std::function<void(TextureStorage&)>> changes = {
+        [](TextureStorage& s) { s.exrCompression = Compression::Piz; },
+        [](TextureStorage& s) { s.pixelType = PixelType::Half; },
+        [](TextureStorage& s) { s.tolerance = 1e-4; },
+        [](TextureStorage& s) { s.supercompression = Supercompression::Zstd; },
+        [](TextureStorage& s) { s.supercompression = Supercompression::Zstd, s.zstdLevel = 19; },
+    };
+    for (size_t i = 0; i < changes.size(); ++i) {
+        PackOptions pack;
+        NormalJobOptions normal;
+        changes[i](pack.storage);
+        changes[i](normal.storage);
+        EXPECT_NE(keyText(pack), keyText(PackOptions{})) << i;
+        EXPECT_NE(keyText(normal), keyText(NormalJobOptions{})) << i;
+        for (size_t j = 0; j < i; ++j) {
+            PackOptions other;
+            changes[j](other.storage);
+            EXPECT_NE(keyText(pack), keyText(other)) << i << " " << j;
+        }
+    }
+    PackOptions level;
+    level.storage.zstdLevel = 19;  // without zstd it shapes nothing
+    EXPECT_EQ(keyText(level), keyText(PackOptions{}));
+}
+
 TEST(CacheKey, NormalJobOptions) {
-    expectEveryFieldJudged(std::array<FieldChange<NormalJobOptions>, 12>{{
+    expectEveryFieldJudged(std::array<FieldChange<NormalJobOptions>, 9>{{
         {"load", [](NormalJobOptions& o) { o.load.maxSide = 16; }, true},
         {"normal", [](NormalJobOptions& o) { o.normal.alpha = NormalAlpha::Height; }, true},
         {"filter", [](NormalJobOptions& o) { o.filter = Filter::Triangle; }, true},
         {"resizeToPowerOfTwo", [](NormalJobOptions& o) { o.resizeToPowerOfTwo = true; }, true},
         {"format", [](NormalJobOptions& o) { o.format = NormalFormat::Png8; }, true},
-        {"compression", [](NormalJobOptions& o) { o.compression = Compression::None; }, true},
-        {"pixelType", [](NormalJobOptions& o) { o.pixelType = PixelType::Uint16; }, true},
-        {"tolerance", [](NormalJobOptions& o) { o.tolerance = 1e-3; }, true},
-        {"supercompression", [](NormalJobOptions& o) { o.supercompression = Supercompression::Zstd; }, true},
+        {"storage", [](NormalJobOptions& o) { o.storage.exrCompression = Compression::None; }, true},
         {"layout", [](NormalJobOptions& o) { o.layout = Layout::Xy; }, true},
         {"version", [](NormalJobOptions& o) { o.version = std::string("2"); }, true},
         {"progress", [](NormalJobOptions& o) { o.progress = [](std::string_view, double) {}; }, false},
@@ -202,12 +226,12 @@ TEST(CacheKey, EveryPixelTypeAndEveryToleranceIsItsOwnKey) {
     std::vector<std::string> texts;
     for (const PixelType t : {PixelType::Float, PixelType::Half, PixelType::Uint16}) {
         PackOptions o;
-        o.pixelType = t;
+        o.storage.pixelType = t;
         texts.push_back(keyText(o));
     }
     for (const double tolerance : {1e-4, 2e-4}) {
         PackOptions o;
-        o.tolerance = tolerance;
+        o.storage.tolerance = tolerance;
         texts.push_back(keyText(o));
     }
     for (size_t i = 0; i < texts.size(); ++i)

@@ -47,14 +47,14 @@ TEST(ManifestContainers, DefaultsAndOwnTablesChooseContainerAndPixelType) {
     const MapSettings& swell = m->displacement[0].settings;
     EXPECT_EQ(m->displacement[0].output, "swell.ktx2");
     EXPECT_EQ(swell.container, Container::Ktx2);
-    EXPECT_EQ(swell.tolerance, 0.001);
+    EXPECT_EQ(swell.storage.tolerance, 0.001);
     const MapSettings& chop = m->displacement[1].settings;
     EXPECT_EQ(m->displacement[1].output, "chop.dds");
-    EXPECT_EQ(chop.pixelType, PixelType::Half);
-    EXPECT_EQ(chop.tolerance, 0.0) << "a type of its own drops the inherited auto";
-    EXPECT_EQ(m->displacement[2].settings.tolerance, 0.01) << "auto inherited, its own tolerance";
+    EXPECT_EQ(chop.storage.pixelType, PixelType::Half);
+    EXPECT_EQ(chop.storage.tolerance, 0.0) << "a type of its own drops the inherited auto";
+    EXPECT_EQ(m->displacement[2].settings.storage.tolerance, 0.01) << "auto inherited, its own tolerance";
     EXPECT_EQ(m->normals->output, "normals.ktx2");
-    EXPECT_EQ(m->normals->settings.pixelType, PixelType::Uint16);
+    EXPECT_EQ(m->normals->settings.storage.pixelType, PixelType::Uint16);
     EXPECT_EQ(m->fresnel->output, "ramp.dds") << "an output's extension names its container";
     EXPECT_EQ(m->fresnel->pixelType, PixelType::Float) << "auto is for mip chains; a ramp under it stays float";
 }

@@ -70,7 +70,7 @@ TEST(Manifest, AGoodManifestGivesWhatItSaysAndTheDefaultsItDoesNot) {
     EXPECT_EQ(swell.output, "swell.exr");
     EXPECT_EQ(swell.settings.wrap, Wrap::Clamp);      // from [defaults]
     EXPECT_EQ(swell.settings.filter, Filter::Box);
-    EXPECT_EQ(swell.settings.compression, Compression::Zip);  // the default of defaults
+    EXPECT_EQ(swell.settings.storage.exrCompression, Compression::Zip);  // the default of defaults
     EXPECT_FALSE(swell.mustTile) << "a clamped map need not tile";
     EXPECT_EQ(swell.layer.heightScale, 2.0);
     EXPECT_EQ(swell.layer.heightOffset, -1.0);

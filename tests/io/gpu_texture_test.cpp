@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "heightpack/io/gpu_texture.hpp"
+#include "heightpack/io/texture_write.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -66,8 +67,10 @@ TEST(GpuTexture, TwoChannelFormatsRoundTripThroughBothReaders) {
             const std::string path = dir.file(std::string("xy_") + pixelTypeName(type) + ext);
             SCOPED_TRACE(path);
             TextureWriteOptions options;
-            options.pixelType = type;
-            ASSERT_TRUE(writeGpuTexture(path, content, options).ok());
+            options.storage.pixelType = type;
+            const auto output = textureOutput(path);
+            ASSERT_TRUE(output.ok());
+            ASSERT_TRUE(writeTexture(*output, content, options).ok());
             auto t = readGpuTexture(path);
             ASSERT_TRUE(t.ok()) << t.error().what;
             const TexelFormat expected = type == PixelType::Float  ? TexelFormat::Rg32F
@@ -109,9 +112,11 @@ TEST(GpuTexture, DamagedFilesAreRefusedAsBadInput) {
     const MipChainSource content = xyContent(32, 16);
     for (const char* name : {"d.ktx2", "d.dds", "z.ktx2"}) {
         TextureWriteOptions options;
-        options.pixelType = PixelType::Half;
-        if (std::string(name) == "z.ktx2") options.supercompression = Supercompression::Zstd;
-        ASSERT_TRUE(writeGpuTexture(dir.file(name), content, options).ok());
+        options.storage.pixelType = PixelType::Half;
+        if (std::string(name) == "z.ktx2") options.storage.supercompression = Supercompression::Zstd;
+        const auto output = textureOutput(dir.file(name));
+        ASSERT_TRUE(output.ok());
+        ASSERT_TRUE(writeTexture(*output, content, options).ok());
         const std::vector<unsigned char> whole = readBytes(dir.file(name));
         const std::string damaged = dir.file(std::string("damaged") + (name[0] == 'd' && name[2] == 'd' ? ".dds" : ".ktx2"));
         // Every truncation fails; so does any byte of the fixed headers set to 0xFF, or the reader returns

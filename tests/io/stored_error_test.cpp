@@ -179,8 +179,8 @@ TEST(StoredError, AutoPicksTheFewestBytesWithinTheTolerance) {
     // The rule through the library (no process start per case), the CLI's length once at the end.
     auto pack = [&](PixelType type, double tolerance, const std::string& out) {
         PackOptions o;
-        o.pixelType = type;
-        o.tolerance = tolerance;
+        o.storage.pixelType = type;
+        o.storage.tolerance = tolerance;
         auto r = packHeightMap(dir.file("map.png"), dir.file(out), o);
         EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().what);
         return r.ok() ? *r : PackReport{};
@@ -248,12 +248,12 @@ TEST(Layouts, PlainHeightsAndXyNormalsInEveryContainerAndType) {
         } else {
             PackOptions p;
             p.layout = Layout::Plain;
-            p.pixelType = *parsePixelType(c.type);
+            p.storage.pixelType = *parsePixelType(c.type);
             ASSERT_TRUE(packHeightMap(dir.file("map.png"), plain, p).ok());
             NormalJobOptions o;
             o.normal = n;
             o.layout = Layout::Xy;
-            o.pixelType = p.pixelType;
+            o.storage.pixelType = p.storage.pixelType;
             ASSERT_TRUE(makeNormalMap(dir.file("map.png"), xy, o).ok());
         }
         for (const auto& [path, layout, channels] :

@@ -6,9 +6,11 @@
 
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/info.hpp"
+#include "heightpack/io/texture_write.hpp"
 #include "viewer_support.hpp"
 
 using namespace heightpack;
@@ -193,10 +195,11 @@ TEST(ViewerFormats, NormalMapsAndRampsOfEveryLayoutAndTypeShadeLikeTheFloatExr) 
         for (int y = y0; y < y0 + rows; ++y)
             for (int x = 0; x < l.width; ++x, dst += 2) dst[0] = l.at(x, y, 0), dst[1] = l.at(x, y, 1);
     };
-    for (const auto& [file, type] : {std::pair{"n_rg16.ktx2", PixelType::Uint16}, std::pair{"n_rg16f.dds", PixelType::Half}}) {
+    for (const auto& [file, container, type] : {std::tuple{"n_rg16.ktx2", Container::Ktx2, PixelType::Uint16},
+                                                std::tuple{"n_rg16f.dds", Container::Dds, PixelType::Half}}) {
         TextureWriteOptions o;
-        o.pixelType = type;
-        ASSERT_TRUE(writeGpuTexture(dir.file(file), xy, o));
+        o.storage.pixelType = type;
+        ASSERT_TRUE(writeTexture({dir.file(file), container}, xy, o));
     }
     const std::vector<std::string> common = {kExamples + "swell.png", "--size", "160x90", "--time", "3", "--camera",
                                              "0,0,6,30,-15", "--grid", "128", "--segments", "128"};

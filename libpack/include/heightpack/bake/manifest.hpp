@@ -16,6 +16,7 @@
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/pixel_type.hpp"
 #include "heightpack/io/read.hpp"
+#include "heightpack/io/texture_storage.hpp"
 
 namespace heightpack {
 
@@ -25,13 +26,13 @@ inline constexpr int kManifestFormat = 1;
 struct MapSettings {
     Wrap wrap = Wrap::Periodic;
     Filter filter = Filter::Kaiser;
-    Compression compression = Compression::Zip;
     bool resize = false;  // resample sides that are not powers of two up to the next ones
     ChannelSelect channel = ChannelSelect::Auto;
     // The container the output goes into; unset: the output's extension says (.exr when not given).
     std::optional<Container> container;
-    PixelType pixelType = PixelType::Float;
-    double tolerance = 0.0;  // > 0: pixel_type = "auto", the fewest bytes within it (stored units)
+    // pixel_type (tolerance > 0: "auto", the fewest bytes within it, stored units) and compression; a
+    // manifest names no supercompression.
+    TextureStorage storage;
 };
 
 // What every asset built from a source file shares.

@@ -14,6 +14,7 @@
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/read.hpp"
+#include "heightpack/io/texture_storage.hpp"
 #include "heightpack/version.hpp"
 
 namespace heightpack {
@@ -29,12 +30,9 @@ struct NormalJobOptions {
     Filter filter = Filter::Kaiser;   // for the height mip chain the normals are derived from
     bool resizeToPowerOfTwo = false;  // EXR only: a mip chain needs power-of-two sides
     NormalFormat format = NormalFormat::Exr;
-    Compression compression = Compression::Zip;
-    PixelType pixelType = PixelType::Float;                      // mip-mapped outputs
-    // > 0: "auto": pixelType is chosen, the fewest bytes whose worst lookup error over the chain is within
-    // this many normal units (as PackOptions::tolerance); 0: pixelType as given.
-    double tolerance = 0.0;
-    Supercompression supercompression = Supercompression::None;  // KTX2 outputs
+    // Mip-mapped outputs: pixel type or "auto" within a tolerance (normal units), EXR compression, KTX2
+    // supercompression.
+    TextureStorage storage;
     // Rgb: x, y, z (and alpha). Xy: x and y alone, for a shader that rebuilds z; mip-mapped outputs
     // without alpha only.
     Layout layout = Layout::Rgb;

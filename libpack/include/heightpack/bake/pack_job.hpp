@@ -13,6 +13,7 @@
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/read.hpp"
+#include "heightpack/io/texture_storage.hpp"
 #include "heightpack/version.hpp"
 
 namespace heightpack {
@@ -23,13 +24,9 @@ struct PackOptions {
     float scale = 1.0f;                // stored height = offset + scale * painted value
     float offset = 0.0f;
     bool resizeToPowerOfTwo = false;   // else a size that is not a power of two is refused
-    Compression compression = Compression::Zip;  // EXR outputs
-    // The container is the output's extension (.exr, .ktx2, .dds); these choose what goes into it.
-    PixelType pixelType = PixelType::Float;
-    // > 0: "auto": pixelType is chosen, the fewest bytes whose worst lookup error over the chain is within
-    // this many stored units (see chooseStorage in stored_chain.hpp); 0: pixelType as given.
-    double tolerance = 0.0;
-    Supercompression supercompression = Supercompression::None;  // KTX2 outputs
+    // How the texels are stored in whichever container the output's extension names (.exr, .ktx2, .dds):
+    // pixel type or "auto" within a tolerance (stored units), EXR compression, KTX2 supercompression.
+    TextureStorage storage;
     std::string plainOutput;           // also write the unpacked one-channel chain here, if not empty
     // Neighbour4: the packed chain at output. Plain: only the unpacked one-channel chain, at output
     // (textureGather or hardware filtering; foam, masks); plainOutput must then be empty.
@@ -56,6 +53,7 @@ struct PackReport {
     bool resized = false;
     std::vector<std::pair<int, int>> levelSizes;  // level 0 first
     Layout layout = Layout::Neighbour4;           // of output
+    Container container = Container::Exr;         // of output, as its name decided it
     PixelType pixelType = PixelType::Float;       // as written (the choice, with a tolerance)
     std::vector<double> lookupError;              // per level, stored units (see worstLookupError)
     double loadSeconds = 0.0;
@@ -77,7 +75,7 @@ struct PackedMaps {
 Result<PackedMaps> packHeights(Image heights, const SourceInfo& source, const PackOptions& options);
 
 // Packs the height map at input into a 4-neighbour packed, mip-mapped texture at output: EXR, KTX2 or DDS
-// by its extension, in options.pixelType.
+// by its extension, in options.storage.
 Result<PackReport> packHeightMap(const std::string& input, const std::string& output, const PackOptions& options);
 
 // The header attributes heightpack records for a chain written with these options and layout

@@ -16,6 +16,7 @@
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/pixel_type.hpp"
+#include "heightpack/io/texture_storage.hpp"
 
 namespace heightpack {
 
@@ -25,15 +26,10 @@ struct Normalisation {
     float scale = 1.0f;
 };
 
-enum class Supercompression { None, Zstd };
-
 // How a mip chain is stored, by every mip-mapped writer: writeTexture (any container), writeKtx2, writeDds
 // (and writeTiledExr through writeTexture). One struct from the job to the bytes.
 struct TextureWriteOptions {
-    PixelType pixelType = PixelType::Float;
-    Compression exrCompression = Compression::Zip;               // EXR only
-    Supercompression supercompression = Supercompression::None;  // KTX2 only; DDS must have None
-    int zstdLevel = 9;
+    TextureStorage storage;  // pixel type (as chosen: its tolerance is the job's), compressions
     // uint16 only. The chain is normalised to its range: value = offset + scale * u / 65535. When its
     // values start on a grid gridOrigin + gridSpan * k / 65535 (k integer: a painted 8- or 16-bit map),
     // the range is widened to the grid (offset on it, each grid step a whole number of codes), so level
@@ -54,14 +50,12 @@ struct TextureWriteOptions {
     std::optional<Planned> planned;
 };
 
-// Writes content into a KTX2 (path must end in .ktx2) or DDS (.dds) file, every level of the chain
-// that content's size implies (down to 1x1). Fails with BadInput, writing nothing, when a value cannot be
-// stored in the pixel type (a half beyond +-65504); with CannotWrite when the file cannot be written.
+// Writes content into a KTX2 or DDS file at path, whatever its name (writeTexture's caller decided the
+// container: see textureOutput), every level of the chain that content's size implies (down to 1x1).
+// Fails with BadInput, writing nothing, when a value cannot be stored in the pixel type (a half beyond
+// +-65504); with CannotWrite when the file cannot be written.
 Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
 Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
-
-// Either of the two by path's extension.
-Status writeGpuTexture(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
 
 // A KTX2 or DDS file as heightpack reads it.
 struct GpuTexture {

@@ -1,0 +1,24 @@
+// How a texture's texels are stored: the one choice a command line or a manifest makes and every job
+// (pack, normal) and every writer (writeTexture, writeKtx2, writeDds) takes as it is, so it is never
+// copied field by field from one struct into another.
+#pragma once
+
+#include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/pixel_type.hpp"
+
+namespace heightpack {
+
+enum class Supercompression { None, Zstd };
+
+struct TextureStorage {
+    PixelType pixelType = PixelType::Float;
+    // > 0: "auto": a job chooses pixelType, the fewest bytes whose worst lookup error over the chain is
+    // within this many stored units (normal units for normal maps; see chooseStorage in stored_chain.hpp);
+    // 0: pixelType as given. The choice is the job's: writers store pixelType and ignore this.
+    double tolerance = 0.0;
+    Compression exrCompression = Compression::Zip;               // EXR outputs
+    Supercompression supercompression = Supercompression::None;  // KTX2 outputs; DDS has none
+    int zstdLevel = 9;                                           // with Supercompression::Zstd
+};
+
+}  // namespace heightpack
