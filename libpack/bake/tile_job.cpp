@@ -116,18 +116,16 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         looked = measureTileLook(asStored, lookOptions);
         return looked->passes(options.look);
     };
-    ResynthesisOptions resynthesis;
-    resynthesis.quantum = seamOptions.quantum;
-    resynthesis.threads = options.mip.threads;
+    Resynthesiser resynthesiser(map, seamOptions.quantum, options.mip.threads);
     double firstBand = 0;
     for (int attempt = 0; attempt < 4; ++attempt) {
-        resynthesis.seed = options.seed + uint64_t(attempt);
-        resynthesis.band = attempt < 2 ? 0.0 : std::min(0.25, firstBand * (attempt == 2 ? 1.5 : 2.0));
-        ResynthesisResult r = resynthesiseTile(map, resynthesis);
+        const uint64_t seed = options.seed + uint64_t(attempt);
+        const double band = attempt < 2 ? 0.0 : std::min(0.25, firstBand * (attempt == 2 ? 1.5 : 2.0));
+        ResynthesisResult r = resynthesiser.attempt(seed, band);
         if (attempt == 0) firstBand = double(std::max(r.bandX, 1)) / map.width;
         report.bandX = r.bandX;
         report.bandY = r.bandY;
-        report.seed = resynthesis.seed;
+        report.seed = seed;
         if (acceptable(r.map)) return std::move(r.map);
     }
     // Quilting, for maps a Gaussian field does not describe (pebbles, cells, strokes): the best match, the

@@ -93,7 +93,7 @@ std::vector<double> lagsOf(std::vector<double> marginal, double n) {
 
 }  // namespace
 
-GaussianModel modelOf(const Field& g, double noise, uint64_t seed, int threads) {
+GaussianModel modelOf(const Field& g, double noise, int threads) {
     const int w = g.w, h = g.h;
     const double n = double(w) * h;
     GaussianModel model(w, h);
@@ -107,9 +107,24 @@ GaussianModel modelOf(const Field& g, double noise, uint64_t seed, int threads) 
                 model.power.at<double>(r, q) = std::max(a[0] * a[0] + a[1] * a[1] - floor, 0.0);
             }
     });
+    std::vector<double> marginalX(w, 0.0), marginalY(h, 0.0);
+    for (int r = 0; r < h; ++r)
+        for (int q = 0; q < w; ++q) {
+            const double p = model.power.at<double>(r, q);
+            marginalX[q] += p;
+            marginalY[r] += p;
+        }
+    model.lagX = lagsOf(std::move(marginalX), n);
+    model.lagY = lagsOf(std::move(marginalY), n);
+    return model;
+}
+
+Field sampleOf(const GaussianModel& model, uint64_t seed, int threads) {
+    const int w = model.power.cols, h = model.power.rows;
     // The sample's spectrum: sqrt(power) times complex white noise of unit variance, Hermitian so the sample
-    // is real (each pair of opposite frequencies drawn once, at the lower index, from (seed, index) alone:
-    // the same on any thread). Its covariance is the model's: (1/n^2) sum of power e^(2 pi i k.d).
+    // is real (each pair of opposite frequencies drawn once, at the lower index). Its covariance is the
+    // model's: (1/n^2) sum of power e^(2 pi i k.d).
+    cv::Mat spectrum(h, w, CV_64FC2);
     parallelFor(h, threads, [&](int begin, int end) {
         for (int r = begin; r < end; ++r)
             for (int q = 0; q < w; ++q) {
@@ -125,18 +140,10 @@ GaussianModel modelOf(const Field& g, double noise, uint64_t seed, int threads) 
                 spectrum.at<cv::Vec2d>(pr, pq) = cv::Vec2d(z.real(), -z.imag());
             }
     });
-    cv::Mat sample = model.sample.mat();
-    detail::inverseDft(spectrum, sample, threads);
-    std::vector<double> marginalX(w, 0.0), marginalY(h, 0.0);
-    for (int r = 0; r < h; ++r)
-        for (int q = 0; q < w; ++q) {
-            const double p = model.power.at<double>(r, q);
-            marginalX[q] += p;
-            marginalY[r] += p;
-        }
-    model.lagX = lagsOf(std::move(marginalX), n);
-    model.lagY = lagsOf(std::move(marginalY), n);
-    return model;
+    Field sample(w, h);
+    cv::Mat values = sample.mat();
+    detail::inverseDft(spectrum, values, threads);
+    return sample;
 }
 
 // The power's 1-D transform across the lines at each k, conjugated and scaled.

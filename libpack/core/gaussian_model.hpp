@@ -1,6 +1,6 @@
 // Internal: the stationary Gaussian model of a Gaussianised map that the band re-synthesis
-// (tile_resynthesis.cpp) conditions: its power spectrum, covariances and one unconditional sample, all
-// from one forward and one inverse DFT of the map.
+// (tile_resynthesis.cpp) conditions: its power spectrum and covariances, from one forward DFT of the map,
+// and unconditional samples, one inverse DFT each.
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -16,20 +16,22 @@ namespace heightpack::detail {
 enum class Axis { X, Y };
 
 // The model of a Gaussianised map g: the spectrum of its periodic component (Moisan's: no cross of edge
-// jumps in it) less the quantisation's white floor, and what comes from it.
+// jumps in it) less the quantisation's white floor, and the covariances along the axes.
 struct GaussianModel {
     cv::Mat power;                   // CV_64F, h x w: |P(k)|^2 less the floor, P the periodic component's DFT
     std::vector<double> lagX, lagY;  // the circular autocovariance C(d, 0) and C(0, d)
-    Field sample;                    // a field with that covariance: sqrt(power) times complex white noise
-    GaussianModel(int w, int h) : power(h, w, CV_64F), lagX(w), lagY(h), sample(w, h) {}
+    GaussianModel(int w, int h) : power(h, w, CV_64F), lagX(w), lagY(h) {}
     double variance() const { return lagX[0]; }
 };
 
 // noise: the variance of the input's quantisation, in the Gaussian domain: white noise that the map holds
 // as terraces and a sample would show as grain. Its level is taken off the power spectrum, so the model is
-// of the field the quantised map samples, and the kriging treats it as measurement noise (a nugget). The
-// sample is drawn per frequency from (seed, index) alone: the same on any number of threads.
-GaussianModel modelOf(const Field& g, double noise, uint64_t seed, int threads);
+// of the field the quantised map samples, and the kriging treats it as measurement noise (a nugget).
+GaussianModel modelOf(const Field& g, double noise, int threads);
+
+// A field with the model's covariance (asymptotic discrete spot noise: sqrt(power) times complex white
+// noise), drawn per frequency from (seed, index) alone: the same on any number of threads.
+Field sampleOf(const GaussianModel& model, uint64_t seed, int threads);
 
 // The covariance between lines du apart (du < strip), per frequency k along them (k up to half their
 // length), as a (length / 2 + 1) x strip CV_64FC2 matrix: covHat(k, du) = the sum along the lines of

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <vector>
@@ -86,7 +87,8 @@ double quantisationNoise(const std::vector<float>& sorted) {
 // Replaces the `band` columns (Axis::X; rows for Axis::Y) around the wrap line between the last and the
 // first with the model's sample conditioned on `context` lines on each side. The field must wrap along
 // the lines. In the loops below, u runs across the lines and v along them.
-void resynthesiseLines(Field& field, const GaussianModel& model, Axis axis, int band, int context, double noise, int threads) {
+void resynthesiseLines(Field& field, const GaussianModel& model, const Field& sample, Axis axis, int band, int context, double noise,
+                       int threads) {
     const bool across = axis == Axis::X;
     const int w = across ? field.w : field.h, h = across ? field.h : field.w, c = context, strip = band + 2 * context;
     auto at = [&](const Field& f, int u, int v) { return across ? f.at(u, v) : f.at(v, u); };
@@ -106,7 +108,7 @@ void resynthesiseLines(Field& field, const GaussianModel& model, Axis axis, int 
     auto local = [&](int k) { return k < c ? k : band + k; };  // context line k's place in the strip
     const cv::Mat residual = rowSpectra(conditioning, h, [&](int k, int y) {
         const int x = column(local(k));
-        return at(field, x, y) - mean - at(model.sample, x, y);
+        return at(field, x, y) - mean - at(sample, x, y);
     });
     const double nugget = noise + 1e-7 * std::max(model.variance(), 1e-12);
     const int half = h / 2;
@@ -133,7 +135,7 @@ void resynthesiseLines(Field& field, const GaussianModel& model, Axis axis, int 
     cv::dft(kriged, values, cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
     for (int m = 0; m < band; ++m) {
         const int x = column(c + m);
-        for (int y = 0; y < h; ++y) set(x, y) = mean + at(model.sample, x, y) + values.at<double>(m, y);
+        for (int y = 0; y < h; ++y) set(x, y) = mean + at(sample, x, y) + values.at<double>(m, y);
     }
 }
 
@@ -162,49 +164,77 @@ int chooseBand(double fraction, double correlation, int size) {
 
 }  // namespace
 
-ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& options) {
-    ResynthesisResult result;
+// What every attempt on one map shares: the values modelled, the model, the slopes' correlation lengths,
+// and the large scales of the last sigma asked for (with the corrected map's ranks).
+struct Resynthesiser::State {
+    const Image& map;
+    int threads;
+    std::vector<float> values;
+    double noise = 0;
+    std::optional<GaussianModel> model;
+    double correlationX = 0, correlationY = 0;
+    double sigma = -1;
+    std::vector<float> smooth;
+    std::optional<detail::Gaussianiser> ranks;
+    State(const Image& m, int t) : map(m), threads(t) {}
+};
+
+Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : state_(std::make_unique<State>(map, threads)) {
     const int w = map.width, h = map.height;
-    if (w < 16 || h < 16) {
+    if (w < 16 || h < 16) return;
+    // 1. Ranks to Gaussians, of the map with its quantisation undone: otherwise a smooth 8-bit painting is a
+    //    staircase whose steps the model takes for fine detail, and a sample shows them as grain.
+    State& s = *state_;
+    s.values = quantum > 0 && detail::hasTerraces(map, threads) ? detail::dequantised(map, quantum, threads) : map.pixels;
+    const detail::Gaussianiser ranks(s.values, threads);
+    Field g(w, h);
+    g.v = ranks.gaussian;
+    s.noise = quantisationNoise(ranks.sorted);
+    s.model.emplace(detail::modelOf(g, s.noise, threads));
+    s.correlationX = slopeCorrelationLength(s.model->lagX);
+    s.correlationY = slopeCorrelationLength(s.model->lagY);
+}
+
+Resynthesiser::~Resynthesiser() = default;
+
+ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
+    State& s = *state_;
+    const Image& map = s.map;
+    const int w = map.width, h = map.height, threads = s.threads;
+    ResynthesisResult result;
+    if (!s.model) {
         result.map = periodicComponent(map, PeriodicContinuity::Heights);
         return result;
     }
-    // 1. Ranks to Gaussians, of the map with its quantisation undone: otherwise a smooth 8-bit painting is a
-    //    staircase whose steps the model takes for fine detail, and a sample shows them as grain.
-    const std::vector<float> values = options.quantum > 0 && detail::hasTerraces(map, options.threads)
-                                          ? detail::dequantised(map, options.quantum, options.threads) : map.pixels;
-    double noise = 0;
-    std::optional<GaussianModel> model;
-    {
-        const detail::Gaussianiser ranks(values, options.threads);
-        Field g(w, h);
-        g.v = ranks.gaussian;
-        noise = quantisationNoise(ranks.sorted);
-        model.emplace(detail::modelOf(g, noise, options.seed, options.threads));
-    }
-    result.bandX = chooseBand(options.band, slopeCorrelationLength(model->lagX), w);
-    result.bandY = chooseBand(options.band, slopeCorrelationLength(model->lagY), h);
+    result.bandX = chooseBand(band, s.correlationX, w);
+    result.bandY = chooseBand(band, s.correlationY, h);
     // 2. Large scales, in heights: Moisan's smooth field of a low-pass of the map at the band's scale (at
     //    least 1/16 of the tile: only scales the eye reads as the map's swell; each side of a wrap line
     //    blurred apart, mirrored). Beyond the bands this is the whole change.
     const double sigma = std::max(0.5 * std::max(result.bandX, result.bandY), std::min(w, h) / 16.0);
-    const std::vector<float> smooth = detail::largeScaleField(values, w, h, sigma, options.threads);
-    std::vector<float> corrected(values.size());
-    for (size_t i = 0; i < values.size(); ++i) corrected[i] = values[i] - smooth[i];
-    const detail::Gaussianiser ranks(corrected, options.threads);
+    if (sigma != s.sigma) {
+        s.sigma = sigma;
+        s.ranks.reset();
+        s.smooth = detail::largeScaleField(s.values, w, h, sigma, threads);
+        std::vector<float> corrected(s.values.size());
+        for (size_t i = 0; i < s.values.size(); ++i) corrected[i] = s.values[i] - s.smooth[i];
+        s.ranks.emplace(corrected, threads);
+    }
+    const detail::Gaussianiser& ranks = *s.ranks;
     Field g(w, h);
     g.v = ranks.gaussian;
+    const Field sample = detail::sampleOf(*s.model, seed, threads);
     // 3. and 4. The bands, left/right first, then top/bottom.
     const int contextX = std::clamp(result.bandX / 2, 4, 32), contextY = std::clamp(result.bandY / 2, 4, 32);
     if (result.bandX + 2 * contextX <= w) {
         // The left/right band is solved per frequency along y, so its field must wrap top to bottom: the
         // top/bottom jump is set aside meanwhile (the top/bottom band replaces what it touches later).
-        const Field aside = detail::topBottomSmoothField(g, options.threads);
+        const Field aside = detail::topBottomSmoothField(g, threads);
         for (size_t i = 0; i < g.v.size(); ++i) g.v[i] -= aside.v[i];
-        resynthesiseLines(g, *model, Axis::X, result.bandX, contextX, noise, options.threads);
+        resynthesiseLines(g, *s.model, sample, Axis::X, result.bandX, contextX, s.noise, threads);
         for (size_t i = 0; i < g.v.size(); ++i) g.v[i] += aside.v[i];
     }
-    if (result.bandY + 2 * contextY <= h) resynthesiseLines(g, *model, Axis::Y, result.bandY, contextY, noise, options.threads);
+    if (result.bandY + 2 * contextY <= h) resynthesiseLines(g, *s.model, sample, Axis::Y, result.bandY, contextY, s.noise, threads);
     // 5. Back to heights through the sorted values. Beyond the bands, the map itself plus the large-scale
     //    change there (so its own fine detail, terraces and all, stays exactly); in the bands, the new
     //    content, which a quantised output rounds to its levels.
@@ -213,15 +243,19 @@ ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& o
         return dx < (result.bandX + 1) / 2 + 1 || dy < (result.bandY + 1) / 2 + 1;
     };
     result.map = Image(w, h, 1);
-    parallelFor(h, options.threads, [&](int begin, int end) {
+    parallelFor(h, threads, [&](int begin, int end) {
         for (int y = begin; y < end; ++y)
             for (int x = 0; x < w; ++x) {
                 const size_t i = size_t(y) * w + x;
-                result.map.pixels[i] = inBand(x, y) ? ranks.back(g.v[i]) : map.pixels[i] - smooth[i];
+                result.map.pixels[i] = inBand(x, y) ? ranks.back(g.v[i]) : map.pixels[i] - s.smooth[i];
             }
     });
     detail::easeIntoRange(result.map, map);
     return result;
+}
+
+ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& options) {
+    return Resynthesiser(map, options.quantum, options.threads).attempt(options.seed, options.band);
 }
 
 }  // namespace heightpack

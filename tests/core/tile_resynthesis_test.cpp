@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "heightpack/core/tile_look.hpp"
 #include "heightpack/core/tile_resynthesis.hpp"
@@ -125,6 +127,22 @@ TEST(Resynthesis, TheSameSeedGivesTheSameBytesOnAnyNumberOfThreads) {
     const Image a = resynthesiseTile(crop, one).map, b = resynthesiseTile(crop, many).map;
     EXPECT_EQ(a.pixels, b.pixels);
     EXPECT_NE(a.pixels, resynthesiseTile(crop, other).map.pixels);
+}
+
+// tile's attempts share one prepared Resynthesiser: whatever was asked of it before, an attempt gives the
+// bytes a fresh resynthesiseTile gives for that seed and band (a band wide enough to change the large
+// scales' width, and back).
+TEST(Resynthesis, AttemptsOnOnePreparedMapEqualFreshOnes) {
+    const Image crop = makeMap(drawMap(Family::Crop, 7));
+    Resynthesiser prepared(crop, 0.0, 2);
+    for (const auto& [seed, band] : std::vector<std::pair<uint64_t, double>>{{1, 0.0}, {3, 0.3}, {2, 0.0}}) {
+        ResynthesisOptions fresh;
+        fresh.seed = seed;
+        fresh.band = band;
+        const ResynthesisResult a = prepared.attempt(seed, band), b = resynthesiseTile(crop, fresh);
+        EXPECT_EQ(a.map.pixels, b.map.pixels) << seed << " " << band;
+        EXPECT_EQ(a.bandX, b.bandX);
+    }
 }
 
 TEST(Resynthesis, ABandWidthAskedForIsTheWidthReplaced) {

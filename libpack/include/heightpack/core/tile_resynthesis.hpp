@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 
 #include "heightpack/core/image.hpp"
 
@@ -42,5 +43,21 @@ struct ResynthesisResult {
 //      smooth field of step 2, so its own fine detail (terraces and all) stays exactly. Deterministic for a seed,
 // whatever the thread count. Maps smaller than 16 texels on a side get Moisan's periodic component.
 ResynthesisResult resynthesiseTile(const Image& map, const ResynthesisOptions& options = {});
+
+// The same for several attempts on one map (tile tries other seeds and bands when one does not pass):
+// step 1 is made once, step 2 once per large-scale width, so an attempt costs a sample and the bands.
+// attempt(seed, band) gives what resynthesiseTile with that seed and band gives. map must outlive it.
+class Resynthesiser {
+public:
+    Resynthesiser(const Image& map, double quantum, int threads);
+    ~Resynthesiser();
+    Resynthesiser(const Resynthesiser&) = delete;
+    Resynthesiser& operator=(const Resynthesiser&) = delete;
+    ResynthesisResult attempt(uint64_t seed, double band);
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
 
 }  // namespace heightpack
