@@ -72,7 +72,6 @@ OpenedImage::~OpenedImage() {
 }
 
 Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits) {
-    if (Status s = checkReadable(path); !s) return s.error();
     auto read = readInputBytes(path);
     if (!read) return read.error();
     OpenedImage opened;

@@ -1,6 +1,7 @@
 #include "input_format.hpp"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -277,7 +278,10 @@ Status judgePngChunks(const std::string& path, const std::vector<unsigned char>&
 
 Result<InputBytes> readInputBytes(const std::string& path) {
     InputBytes input;
-    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), std::fclose);
+    auto fd = openReadable(path);
+    if (!fd) return fd.error();
+    std::unique_ptr<FILE, int (*)(FILE*)> f(::fdopen(*fd, "rb"), std::fclose);
+    if (!f) ::close(*fd);
     struct stat st {};
     if (!f || ::fstat(::fileno(f.get()), &st) != 0)
         return badInput(path, std::string("cannot be opened: ") + std::strerror(errno), "check the file");

@@ -51,7 +51,12 @@ struct InputBytes {
     std::vector<unsigned char> bytes;  // the whole file; a JPEG without its metadata segments
 };
 
-// Reads path whole and decides its format from its first bytes (Targa, which has no magic, from its
+// A descriptor open for reading on path, a regular non-empty file this user may read (the caller closes
+// it); otherwise BadInput saying what path is (missing, a folder, a FIFO or device, unreadable, empty).
+// Nothing but a regular file is ever opened.
+Result<int> openReadable(const std::string& path);
+
+// Reads path whole (opened once, through openReadable) and decides its format from its first bytes (Targa, which has no magic, from its
 // .tga name and a plausible header). Fails with BadInput naming a format heightpack does not read, or
 // saying the bytes are no image heightpack knows.
 Result<InputBytes> readInputBytes(const std::string& path);

@@ -18,6 +18,7 @@
 #include "heightpack/io/attributes.hpp"
 
 #include "image_input.hpp"
+#include "input_format.hpp"
 #include "png_fast.hpp"
 #include "stderr_silencer.hpp"
 #include "text.hpp"
@@ -249,7 +250,9 @@ Status checkFinite(const Image& image, const std::string& path, int channel, con
     return Done{};
 }
 
-Status checkReadable(const std::string& path) {
+namespace detail {
+
+Result<int> openReadable(const std::string& path) {
     if (path.empty()) return badInput("''", "the input path is empty", "name an image file");
     struct stat st {};
     if (::stat(path.c_str(), &st) != 0) {
@@ -259,27 +262,43 @@ Status checkReadable(const std::string& path) {
         return badInput(path, "no such file", "check the path");
     }
     if (S_ISDIR(st.st_mode)) return badInput(path, "is a folder, not an image", "name an image file");
-    if (!S_ISREG(st.st_mode)) {
-        const char* what = S_ISFIFO(st.st_mode)                          ? "is a FIFO (named pipe)"
-                           : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "is a device"
-                           : S_ISSOCK(st.st_mode)                       ? "is a socket"
-                                                                        : "is not a regular file";
+    auto notRegular = [&](mode_t mode) {
+        const char* what = S_ISFIFO(mode)                   ? "is a FIFO (named pipe)"
+                           : S_ISCHR(mode) || S_ISBLK(mode) ? "is a device"
+                           : S_ISSOCK(mode)                 ? "is a socket"
+                                                            : "is not a regular file";
         return badInput(path, std::string(what) + ", not a regular file",
                         "save the image to a file first; heightpack reads only regular files");
-    }
-    // Opened without blocking (a regular file never blocks) to learn whether this user may read it.
+    };
+    if (!S_ISREG(st.st_mode)) return notRegular(st.st_mode);  // never opened: opening a device can act
+    // Without blocking: should the path become a FIFO after the stat, the open still returns, and the
+    // descriptor's own fstat below refuses it.
     const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
         if (errno == EACCES || errno == EPERM)
             return badInput(path, "permission denied", "make it readable (chmod u+r) or run as a user who may read it");
         return badInput(path, std::string("cannot be opened: ") + std::strerror(errno), "check the file");
     }
-    ::close(fd);
-    if (st.st_size == 0) return badInput(path, "file is empty", "export the height map again");
-    return Done{};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        const mode_t mode = st.st_mode;
+        ::close(fd);
+        return notRegular(mode);
+    }
+    if (st.st_size == 0) {
+        ::close(fd);
+        return badInput(path, "file is empty", "export the height map again");
+    }
+    return fd;
 }
 
+}  // namespace detail
 
+Status checkReadable(const std::string& path) {
+    auto fd = detail::openReadable(path);
+    if (!fd) return fd.error();
+    ::close(*fd);
+    return Done{};
+}
 
 std::string hashPixels(const Image& image) {
     const XXH64_hash_t h = XXH3_64bits(image.pixels.data(), image.pixels.size() * sizeof(float));
