@@ -15,15 +15,15 @@ namespace heightpack::cli {
 // --flag NAME, one of `allowed` (default: every name in E's table). The help lists the names and shows
 // the field's value when attached as the default; a name outside them is a usage error (exit 2) in
 // CLI11's words: "--wrap: foo not in {periodic,clamp}".
+// Checks a name against `allowed` and turns it into the enum's underlying integer, which is how CLI11
+// reads an enum field; a name outside them is a usage error in CLI11's words.
 template <class E>
-CLI::Option* addEnumOption(CLI::App& cmd, const std::string& flags, E& field, const std::string& description,
-                           std::vector<E> allowed = {}) {
+CLI::Validator enumNames(std::vector<E> allowed) {
     if (allowed.empty())
         for (const EnumName<E>& e : NameTable<E>::entries) allowed.push_back(e.value);
     std::string names;
     for (E value : allowed) names += (names.empty() ? "" : ",") + std::string(nameOf(value));
-    // CLI11 reads an enum field as its underlying integer: the name becomes that number here.
-    CLI::Validator byName(
+    return CLI::Validator(
         [allowed, names](std::string& text) -> std::string {
             for (E value : allowed)
                 if (text == nameOf(value)) {
@@ -33,7 +33,21 @@ CLI::Option* addEnumOption(CLI::App& cmd, const std::string& flags, E& field, co
             return text + " not in {" + names + "}";
         },
         "{" + names + "}", "name");
-    return cmd.add_option(flags, field, description)->transform(byName)->type_name("TEXT")->default_str(nameOf(field));
+}
+
+// --flag NAME, one of `allowed` (default: every name in E's table). The help lists the names and shows
+// the field's value when attached as the default; a name outside them is a usage error (exit 2) in
+// CLI11's words: "--wrap: foo not in {periodic,clamp}".
+template <class E>
+CLI::Option* addEnumOption(CLI::App& cmd, const std::string& flags, E& field, const std::string& description,
+                           std::vector<E> allowed = {}) {
+    return cmd.add_option(flags, field, description)->transform(enumNames<E>(std::move(allowed)))->type_name("TEXT")->default_str(nameOf(field));
+}
+
+// --flag NAME[,NAME...], repeatable: names of E's table, into a list in the order given.
+template <class E>
+CLI::Option* addEnumOption(CLI::App& cmd, const std::string& flags, std::vector<E>& field, const std::string& description) {
+    return cmd.add_option(flags, field, description)->transform(enumNames<E>({}))->type_name("TEXT")->delimiter(',');
 }
 
 }  // namespace heightpack::cli

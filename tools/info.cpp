@@ -6,11 +6,13 @@
 #include <iostream>
 
 #include "heightpack/core/parallel.hpp"
+#include "heightpack/io/engine_support.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/threads.hpp"
 
 #include "command.hpp"
+#include "enum_option.hpp"
 
 namespace heightpack::cli {
 
@@ -24,10 +26,15 @@ public:
         cmd->add_option("input", input_, "an EXR, KTX2 or DDS heightpack wrote, or any image; NAME.EXT for a sequence "
                                          "NAME.0000.EXT, NAME.0001.EXT, ...")
             ->required();
+        addEnumOption(*cmd, "--engine", engines_,
+                      "say whether the file loads as stored in these engines (three, babylon, unreal, unity, godot; "
+                      "repeat or separate with commas): a WARNING line for each that will not, with a format it does load");
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n  heightpack info out/swell.exr\n  heightpack info out/swell.exr --json\n"
-            "  heightpack info out/ripple_seq.exr   (the frames out/ripple_seq.0000.exr ...)\n");
+            "  heightpack info out/ripple_seq.exr   (the frames out/ripple_seq.0000.exr ...)\n"
+            "  heightpack info out/swell.ktx2 --engine three,godot\n"
+            "Engines: what each loader reads, with its source, is in README, 'Which engine loads what'.\n");
         return cmd;
     }
 
@@ -38,10 +45,14 @@ public:
         if (frames.size() > 1 || frames.front() != input_) return runSequence(frames);
         auto info = readFileInfo(input_, /*silenceDecoderMessages=*/true);
         if (!info) return fail(info.error());
-        if (common_.json)
-            printJson(toJson(*info));
-        else if (!common_.quiet)
+        if (common_.json) {
+            nlohmann::json j = toJson(*info);
+            if (!engines_.empty()) j["engines"] = enginesJson(*info);
+            printJson(j);
+        } else if (!common_.quiet) {
             printText(*info);
+            printEngines(*info);
+        }
         return ExitCode::Ok;
     }
 
@@ -174,7 +185,28 @@ private:
         }
     }
 
+    nlohmann::json enginesJson(const FileInfo& info) const {
+        nlohmann::json all = nlohmann::json::array();
+        for (Engine e : engines_) {
+            const EngineVerdict v = engineSupport(e, info, static_cast<int>(info.levels.size()));
+            all.push_back({{"engine", nameOf(e)}, {"support", nameOf(v.support)}, {"why", v.why},
+                           {"alternative", v.alternative.empty() ? nlohmann::json(nullptr) : nlohmann::json(v.alternative)}});
+        }
+        return all;
+    }
+
+    // One line per engine asked about; those that will not load the file as stored start with WARNING.
+    void printEngines(const FileInfo& info) const {
+        for (Engine e : engines_) {
+            const EngineVerdict v = engineSupport(e, info, static_cast<int>(info.levels.size()));
+            const bool warn = v.support == EngineSupport::Refuses || v.support == EngineSupport::Partial;
+            std::printf("  %s%s: %s: %s%s\n", warn ? "WARNING " : "", nameOf(e), nameOf(v.support), v.why.c_str(),
+                        v.alternative.empty() ? "" : ("; it loads " + v.alternative).c_str());
+        }
+    }
+
     std::string input_;
+    std::vector<Engine> engines_;
 };
 
 }  // namespace

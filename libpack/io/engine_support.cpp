@@ -1,0 +1,163 @@
+// The loaders' behaviour behind every entry is cited in README, "Which engine loads what".
+#include "heightpack/io/engine_support.hpp"
+
+#include <string_view>
+
+namespace heightpack {
+
+namespace {
+
+// The texel formats heightpack writes to KTX2 and DDS, by what a loader tells apart.
+enum class Texel { Rgba32F, Rgba16F, Rgba16Unorm, R32F, R16F, R16Unorm, Rg32F, Rg16F, Rg16Snorm, Other };
+
+Texel texelOf(std::string_view name) {
+    struct Entry {
+        std::string_view vk, dxgi;
+        Texel texel;
+    };
+    static constexpr Entry kTable[] = {
+        {"R32G32B32A32_SFLOAT", "R32G32B32A32_FLOAT", Texel::Rgba32F}, {"R16G16B16A16_SFLOAT", "R16G16B16A16_FLOAT", Texel::Rgba16F},
+        {"R16G16B16A16_UNORM", "R16G16B16A16_UNORM", Texel::Rgba16Unorm}, {"R32_SFLOAT", "R32_FLOAT", Texel::R32F},
+        {"R16_SFLOAT", "R16_FLOAT", Texel::R16F}, {"R16_UNORM", "R16_UNORM", Texel::R16Unorm},
+        {"R32G32_SFLOAT", "R32G32_FLOAT", Texel::Rg32F}, {"R16G16_SFLOAT", "R16G16_FLOAT", Texel::Rg16F},
+        {"R16G16_SNORM", "R16G16_SNORM", Texel::Rg16Snorm},
+    };
+    for (const Entry& e : kTable)
+        if (name == std::string("VK_FORMAT_").append(e.vk) || name == std::string("DXGI_FORMAT_").append(e.dxgi)) return e.texel;
+    return Texel::Other;
+}
+
+bool isFloat(Texel t) {
+    return t == Texel::Rgba32F || t == Texel::Rgba16F || t == Texel::R32F || t == Texel::R16F || t == Texel::Rg32F || t == Texel::Rg16F;
+}
+
+// The same channels in half floats, which every engine that reads KTX2 or DDS floats loads.
+std::string halfOf(Texel t, const char* container) {
+    const char* channels = t == Texel::Rgba16Unorm ? "RGBA" : t == Texel::R16Unorm ? "R" : "RG";
+    return std::string(container) + " " + channels + " half or float";
+}
+
+enum class FileKind { Ktx2, Dds, Exr, Png, Other };
+
+EngineVerdict verdict(EngineSupport s, std::string why, std::string alternative = {}) {
+    return {s, std::move(why), std::move(alternative)};
+}
+
+EngineVerdict threeJs(FileKind c, Texel t, bool mipmappedExr, bool png16) {
+    switch (c) {
+        case FileKind::Ktx2:
+            if (isFloat(t)) return verdict(EngineSupport::Loads, "KTX2Loader uploads it as stored, mip levels and all");
+            if (t == Texel::Rgba16Unorm)
+                return verdict(EngineSupport::Partial, "KTX2Loader loads it only where the GPU has EXT_texture_norm16", halfOf(t, "KTX2"));
+            return verdict(EngineSupport::Refuses, "KTX2Loader refuses this 16-bit integer format", halfOf(t, "KTX2"));
+        case FileKind::Dds:
+            return verdict(EngineSupport::Refuses, "DDSLoader reads block-compressed and 8-bit RGBA DDS only, no DX10 float or 16-bit format",
+                           isFloat(t) ? "KTX2 of the same format" : halfOf(t, "KTX2"));
+        case FileKind::Exr:
+            if (mipmappedExr) return verdict(EngineSupport::Partial, "EXRLoader reads the top level only: the file's mip levels are lost", "KTX2 float or half");
+            return verdict(EngineSupport::Loads, "EXRLoader reads scanline and tiled EXR, float or half");
+        case FileKind::Png:
+            if (png16) return verdict(EngineSupport::Partial, "the browser decodes a PNG to 8 bits per channel", "KTX2 R half or float");
+            return verdict(EngineSupport::Loads, "an 8-bit image, as the browser decodes it");
+        case FileKind::Other: break;
+    }
+    return verdict(EngineSupport::Unknown, "not a container heightpack knows three.js's loaders for");
+}
+
+EngineVerdict babylon(FileKind c, Texel t, bool tiledExr, bool png16) {
+    switch (c) {
+        case FileKind::Ktx2:
+            return verdict(EngineSupport::Refuses, "its KTX2 decoder transcodes Basis (UASTC, ETC1S) files only", "DDS RGBA float or half");
+        case FileKind::Dds:
+            if (t == Texel::Rgba32F || t == Texel::Rgba16F)
+                return verdict(EngineSupport::Partial,
+                               "loads with the file's mip levels, but flips the rows (breaking the neighbour order) unless invertY is false");
+            return verdict(EngineSupport::Refuses, "its DDS loader reads RGBA float and half only (an empty texture otherwise)", "DDS RGBA float or half");
+        case FileKind::Exr:
+            if (tiledExr) return verdict(EngineSupport::Refuses, "its EXR loader rejects tiled files", "DDS RGBA float or half");
+            return verdict(EngineSupport::Loads, "its EXR loader reads scanline files (it makes its own mip levels)");
+        case FileKind::Png:
+            if (png16) return verdict(EngineSupport::Partial, "the browser decodes a PNG to 8 bits per channel", "DDS RGBA float or half");
+            return verdict(EngineSupport::Loads, "an 8-bit image, as the browser decodes it");
+        case FileKind::Other: break;
+    }
+    return verdict(EngineSupport::Unknown, "not a container heightpack knows Babylon.js's loaders for");
+}
+
+EngineVerdict unreal(FileKind c, Texel, bool mipmappedExr, bool png16) {
+    switch (c) {
+        case FileKind::Ktx2: return verdict(EngineSupport::Refuses, "Unreal imports no KTX2 file", "a scanline EXR");
+        case FileKind::Dds: return verdict(EngineSupport::Unknown, "Unreal imports .dds, but which DXGI formats it keeps is not documented");
+        case FileKind::Exr:
+            if (mipmappedExr) return verdict(EngineSupport::Unknown, "Unreal imports EXR (HDR); whether it keeps the file's mip levels is not documented");
+            return verdict(EngineSupport::Loads, "Unreal imports EXR as an HDR texture");
+        case FileKind::Png:
+            return png16 ? verdict(EngineSupport::Loads, "Unreal imports a 16-bit grey PNG as G16")
+                         : verdict(EngineSupport::Loads, "an 8-bit image");
+        case FileKind::Other: break;
+    }
+    return verdict(EngineSupport::Unknown, "not a container heightpack knows Unreal's importers for");
+}
+
+EngineVerdict unity(FileKind c, Texel, bool mipmappedExr, bool png16) {
+    switch (c) {
+        case FileKind::Ktx2:
+            return verdict(EngineSupport::Refuses, "Unity reads KTX2 through the KtxUnity package, which reads supercompressed (Basis) files only", "a scanline EXR");
+        case FileKind::Dds: return verdict(EngineSupport::Unknown, "Unity imports .dds raw, but which DXGI formats is not documented");
+        case FileKind::Exr:
+            if (mipmappedExr) return verdict(EngineSupport::Unknown, "Unity imports EXR; whether it keeps the file's mip levels is not documented");
+            return verdict(EngineSupport::Loads, "Unity imports EXR as an HDR texture");
+        case FileKind::Png:
+            return png16 ? verdict(EngineSupport::Unknown, "whether Unity keeps a PNG's 16 bits is not documented")
+                         : verdict(EngineSupport::Loads, "an 8-bit image");
+        case FileKind::Other: break;
+    }
+    return verdict(EngineSupport::Unknown, "not a container heightpack knows Unity's importers for");
+}
+
+EngineVerdict godot(FileKind c, Texel t, bool mipmappedExr, bool png16) {
+    switch (c) {
+        case FileKind::Ktx2:
+        case FileKind::Dds: {
+            const char* name = c == FileKind::Ktx2 ? "KTX2" : "DDS";
+            if (isFloat(t)) return verdict(EngineSupport::Loads, std::string("its ") + name + " loader keeps the format and the file's mip levels");
+            if (t == Texel::Rgba16Unorm || t == Texel::R16Unorm)
+                return verdict(EngineSupport::Partial, std::string("only the newest Godot 4 releases read 16-bit integer ") + name, halfOf(t, name));
+            return verdict(EngineSupport::Refuses, std::string("its ") + name + " loader has no two-channel signed 16-bit format", halfOf(t, name));
+        }
+        case FileKind::Exr:
+            if (mipmappedExr)
+                return verdict(EngineSupport::Partial, "its EXR loader reads the top level only; the importer makes its own mip levels", "KTX2 or DDS float or half");
+            return verdict(EngineSupport::Loads, "its EXR loader reads scanline EXR, float or half");
+        case FileKind::Png:
+            if (png16) return verdict(EngineSupport::Partial, "Godot imports PNG at 8 bits per channel", "KTX2 R half or float");
+            return verdict(EngineSupport::Loads, "an 8-bit image");
+        case FileKind::Other: break;
+    }
+    return verdict(EngineSupport::Unknown, "not a container heightpack knows Godot's loaders for");
+}
+
+}  // namespace
+
+EngineVerdict engineSupport(Engine engine, const TextureHeader& header, int levels) {
+    const std::string_view format = header.format;
+    const size_t space = format.find(' ');
+    const std::string_view container = format.substr(0, space);
+    const Texel texel = space == std::string_view::npos ? Texel::Other : texelOf(format.substr(space + 1));
+    const FileKind c = container == "ktx2" ? FileKind::Ktx2 : container == "dds" ? FileKind::Dds
+                        : container == "openexr" ? FileKind::Exr : container == "png" ? FileKind::Png : FileKind::Other;
+    if ((c == FileKind::Ktx2 || c == FileKind::Dds) && texel == Texel::Other)
+        return verdict(EngineSupport::Unknown, "a texel format heightpack does not write: no entry for it");
+    const bool mipmappedExr = c == FileKind::Exr && levels > 1;
+    const bool png16 = c == FileKind::Png && header.pixelType == "uint16";
+    switch (engine) {
+        case Engine::ThreeJs: return threeJs(c, texel, mipmappedExr, png16);
+        case Engine::Babylon: return babylon(c, texel, c == FileKind::Exr && header.tiled, png16);
+        case Engine::Unreal: return unreal(c, texel, mipmappedExr, png16);
+        case Engine::Unity: return unity(c, texel, mipmappedExr, png16);
+        case Engine::Godot: return godot(c, texel, mipmappedExr, png16);
+    }
+    return {};
+}
+
+}  // namespace heightpack

@@ -1,0 +1,85 @@
+// Which engine loads what (issue 25): for every container and texel format heightpack writes, made by the
+// pack and normal jobs and read back by readTextureLayout, engineSupport's verdict per engine is the one
+// README's "Which engine loads what" table gives from each loader's source or documentation (the
+// expectations below are that table, written out independently of the code's own).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "heightpack/bake/normal_job.hpp"
+#include "heightpack/bake/pack_job.hpp"
+#include "heightpack/io/engine_support.hpp"
+#include "heightpack/io/image_write.hpp"
+#include "heightpack/io/info.hpp"
+
+#include "support/test_support.hpp"
+
+using namespace heightpack;
+using namespace heightpack::test;
+
+TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine) {
+    ScratchDir dir;
+    writeImage(dir.file("map.png"), makeImage(64, 64, smoothWave), OIIO::TypeDesc::UINT16);
+    struct Case {
+        bool normal;
+        Layout layout;
+        PixelType type;
+        std::string output, format;
+        std::vector<EngineSupport> expected;  // three.js, Babylon.js, Unreal, Unity, Godot
+    };
+    using enum EngineSupport;
+    const std::vector<Case> cases = {
+        {false, Layout::Neighbour4, PixelType::Float, "packed.ktx2", "ktx2 VK_FORMAT_R32G32B32A32_SFLOAT", {Loads, Refuses, Refuses, Refuses, Loads}},
+        {false, Layout::Neighbour4, PixelType::Half, "half.ktx2", "ktx2 VK_FORMAT_R16G16B16A16_SFLOAT", {Loads, Refuses, Refuses, Refuses, Loads}},
+        {false, Layout::Neighbour4, PixelType::Uint16, "u16.ktx2", "ktx2 VK_FORMAT_R16G16B16A16_UNORM", {Partial, Refuses, Refuses, Refuses, Partial}},
+        {false, Layout::Plain, PixelType::Uint16, "plain16.ktx2", "ktx2 VK_FORMAT_R16_UNORM", {Refuses, Refuses, Refuses, Refuses, Partial}},
+        {false, Layout::Plain, PixelType::Half, "plainh.ktx2", "ktx2 VK_FORMAT_R16_SFLOAT", {Loads, Refuses, Refuses, Refuses, Loads}},
+        {false, Layout::Neighbour4, PixelType::Float, "packed.dds", "dds DXGI_FORMAT_R32G32B32A32_FLOAT", {Refuses, Partial, Unknown, Unknown, Loads}},
+        {false, Layout::Neighbour4, PixelType::Half, "half.dds", "dds DXGI_FORMAT_R16G16B16A16_FLOAT", {Refuses, Partial, Unknown, Unknown, Loads}},
+        {false, Layout::Plain, PixelType::Float, "plain.dds", "dds DXGI_FORMAT_R32_FLOAT", {Refuses, Refuses, Unknown, Unknown, Loads}},
+        {false, Layout::Plain, PixelType::Uint16, "plain16.dds", "dds DXGI_FORMAT_R16_UNORM", {Refuses, Refuses, Unknown, Unknown, Partial}},
+        {false, Layout::Neighbour4, PixelType::Float, "packed.exr", "openexr", {Partial, Refuses, Unknown, Unknown, Partial}},
+        {true, Layout::Xy, PixelType::Uint16, "nxy16.ktx2", "ktx2 VK_FORMAT_R16G16_SNORM", {Refuses, Refuses, Refuses, Refuses, Refuses}},
+        {true, Layout::Xy, PixelType::Half, "nxyh.dds", "dds DXGI_FORMAT_R16G16_FLOAT", {Refuses, Refuses, Unknown, Unknown, Loads}},
+        {true, Layout::Rgb, PixelType::Float, "nrgb.ktx2", "ktx2 VK_FORMAT_R32G32B32A32_SFLOAT", {Loads, Refuses, Refuses, Refuses, Loads}},
+    };
+    const Engine engines[] = {Engine::ThreeJs, Engine::Babylon, Engine::Unreal, Engine::Unity, Engine::Godot};
+    for (const Case& c : cases) {
+        const std::string path = dir.file(c.output);
+        if (c.normal) {
+            NormalJobOptions options;
+            options.normal.tileWidth = 8.0;
+            options.normal.heightRange = 0.1;
+            options.layout = c.layout;
+            options.storage.pixelType = c.type;
+            const auto made = makeNormalMap(dir.file("map.png"), path, options);
+            ASSERT_TRUE(made) << c.output << ": " << made.error().what;
+        } else {
+            PackOptions options;
+            options.layout = c.layout;
+            options.storage.pixelType = c.type;
+            const auto made = packHeightMap(dir.file("map.png"), path, options);
+            ASSERT_TRUE(made) << c.output << ": " << made.error().what;
+        }
+        const auto layout = readTextureLayout(path);
+        ASSERT_TRUE(layout) << c.output;
+        EXPECT_EQ(layout->format, c.format) << c.output;
+        for (size_t e = 0; e < std::size(engines); ++e) {
+            const EngineVerdict v = engineSupport(engines[e], *layout, static_cast<int>(layout->levelSizes.size()));
+            EXPECT_EQ(v.support, c.expected[e]) << c.output << " in " << nameOf(engines[e]) << ": " << v.why;
+            EXPECT_FALSE(v.why.empty());
+            // A refusal names a format the engine does load.
+            if (v.support == Refuses) {
+                EXPECT_FALSE(v.alternative.empty()) << c.output << " in " << nameOf(engines[e]);
+            }
+        }
+    }
+    // A scanline EXR of one level, as tile and synth write: every engine's EXR loader reads it.
+    FlatImageOptions flat;
+    ASSERT_TRUE(writeFlatImage(dir.file("flat.exr"), makeImage(64, 64, smoothWave), flat));
+    const auto layout = readTextureLayout(dir.file("flat.exr"));
+    ASSERT_TRUE(layout);
+    EXPECT_FALSE(layout->tiled);
+    for (Engine e : engines) EXPECT_EQ(engineSupport(e, *layout, 1).support, Loads) << nameOf(e);
+}
