@@ -53,10 +53,10 @@ int BuildReport::restored() const {
 }
 
 void CacheCounts::add(const AssetCacheUse& use) {
+    stored += use.stored;
     if (!use.looked) return;
     hits += use.hit;
     misses += !use.hit;
-    stored += use.stored;
     rejected += !use.rejected.empty();
 }
 CacheCounts& CacheCounts::operator+=(const CacheCounts& other) {
@@ -241,9 +241,10 @@ void MaterialBuild::Impl::makeStep(Step& s, std::atomic<bool>& stop) {
 }
 
 // With a cache: the output restored from it, and the hash of its bytes; empty when it must be baked (no
-// entry, or one not trusted: why goes into the report).
+// entry, or one not trusted: why goes into the report). A forced build bakes (and stores) every output:
+// whoever forces a rebuild doubts what is there, the cache included.
 Result<std::string> MaterialBuild::Impl::restoreStep(Step& s, const std::string& output) {
-    if (options.cache.folder.empty()) return std::string();
+    if (options.cache.folder.empty() || options.force) return std::string();
     emit(BuildEvent::Type::Start, s, "restore", 0.0);
     s.report.cache.looked = true;
     auto found = restoreFromCache(options.cache.folder, s.report.key, s.report.output, output);

@@ -161,9 +161,10 @@ TEST_F(BuildCacheTest, SecondFolderRestoresEverythingAndIsThenUpToDateWithoutThe
     EXPECT_EQ(filesUnder(dir.file("two")), filesUnder(dir.file("one")));
     EXPECT_TRUE(strays(cache).empty());
 
-    const ProcessResult text = heightpackRun({"build", manifest, "-o", dir.file("two"), "--force", "--cache", cache});
+    const ProcessResult text = heightpackRun({"build", manifest, "-o", dir.file("text"), "--cache", cache});
     ASSERT_EQ(text.code, 0) << text.err;
     EXPECT_NE(text.out.find("restored from cache"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find(std::to_string(kOutputs) + " hit(s), 0 miss(es)"), std::string::npos) << text.out;
 
     const auto third = build("two", false);
     EXPECT_EQ(third["materials"][0]["upToDate"], kOutputs) << third.dump(1);
@@ -281,8 +282,10 @@ TEST_F(BuildCacheTest, TrimmingKeepsTheMostRecentlyUsedWithinTheSize) {
     ASSERT_EQ(left.size(), 1u);
     EXPECT_EQ(left.begin()->first, "long.exr");
 
-    // Sizes with units; a size that is none is a usage error.
+    // Sizes with units; a size that is none is a usage error. A forced build bakes and stores everything.
     const auto kept = build("one", true, {"--cache-size", "1K", "--force"});
+    EXPECT_EQ(kept["cache"]["stored"], kOutputs);
+    EXPECT_EQ(kept["cache"]["hits"], 0);
     EXPECT_EQ(kept["cache"]["bytes"], 0);  // every entry is over a kibibyte
     const ProcessResult bad = heightpackRun({"build", manifest, "-o", dir.file("one"), "--cache", cache, "--cache-size", "2X"});
     EXPECT_EQ(bad.code, 2) << bad.err;

@@ -24,7 +24,7 @@ struct BuildOptions {
     int jobs = 1;             // assets made at once
     int threads = 0;          // threads per asset; 0 = the cores shared among the jobs
     bool checkOnly = false;   // validate and run the tileability checks; write nothing
-    bool force = false;       // rebuild every output whatever its key
+    bool force = false;       // rebuild every output whatever its key (baked, not restored from a cache)
     // The shared cache (shared_cache.hpp): an output to make is first looked for there (by its key), and
     // what is baked is stored there. Not used by a check-only build. The folder must have passed openCache.
     CacheOptions cache;

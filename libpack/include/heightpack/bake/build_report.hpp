@@ -40,7 +40,7 @@ struct AssetCheck {
 
 // What the shared cache did for one output: only with a cache, and only for an output that had to be made.
 struct AssetCacheUse {
-    bool looked = false;      // the output had to be made, and the cache was asked for it first
+    bool looked = false;      // the output had to be made, and the cache was asked for it first (not when forced)
     bool hit = false;         // restored from the cache (status Restored): nothing baked
     bool stored = false;      // baked, then stored in the cache
     std::string rejected;     // the cache held an entry that failed verification: why (then baked and stored)
