@@ -74,7 +74,8 @@ public:
         cmd->add_option("--stamp", stamp_, "touch this file after a successful build; the depfile's target (for CMake)");
         cmd->add_option("--cache", cache_,
                         "shared cache folder (local or a network share; default: $HEIGHTPACK_CACHE): outputs another "
-                        "build made with the same inputs and options are copied from it, not baked; what is baked is stored");
+                        "build made with the same inputs and options are copied from it, not baked; what is baked is stored")
+            ->type_name("FOLDER");
         cmd->add_option("--cache-size", cacheSize_,
                         "the most the cache may hold after the build; least recently used entries go (default 10G)")
             ->check(byteSizeValidator());

@@ -100,7 +100,7 @@ std::string judgeHeader(const std::string& text, off_t fileBytes, const std::str
 }  // namespace
 
 Status openCache(const std::string& folder) {
-    const std::string hint = "give a folder this build can write (or none, to build without the cache)";
+    const std::string hint = "give a folder this build can write, or no cache folder to build without one";
     if (folder.empty()) return cannotWrite("''", "the cache folder is empty", hint);
     std::error_code ec;
     if (fs::exists(folder, ec) && !fs::is_directory(folder, ec))
@@ -135,18 +135,21 @@ Result<CacheLookup> restoreFromCache(const std::string& folder, const std::strin
 
     TemporaryFile temp(destination);
     {
-        const Fd out(::open(temp.path().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+        const Fd out(::open(temp.path().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666));
         if (out.fd < 0) return cannotWrite(destination, std::string("cannot be written: ") + std::strerror(errno));
         // A read that fails (an entry another builder evicted on a network share) is no hit; a write that
         // fails (a full disk) fails the bake that follows too, with its own error.
         if (!copyToEnd(entry.fd, kHeaderBytes, out.fd, 0)) {
+            if (errno == ENOSPC || errno == EDQUOT)
+                return cannotWrite(destination, std::string("cannot be written: ") + std::strerror(errno), "free some disk space");
             lookup.rejected = std::string("it could not be copied: ") + std::strerror(errno);
             return lookup;
         }
     }
     // What landed is judged, not what was read: a clone or a copy that went wrong is caught too.
     auto landed = hashFile(temp.path());
-    if (!landed || *landed != hash || fs::file_size(temp.path()) != size) {
+    std::error_code ec;
+    if (!landed || *landed != hash || fs::file_size(temp.path(), ec) != size) {
         lookup.rejected = "its bytes do not match the hash in its header (altered)";
         return lookup;
     }
@@ -171,7 +174,7 @@ Status storeInCache(const std::string& folder, const std::string& key, const std
     header.resize(kHeaderBytes, '\0');
     TemporaryFile temp(path, TemporaryScope::SharedFolder);
     {
-        const Fd out(::open(temp.path().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+        const Fd out(::open(temp.path().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666));
         if (out.fd < 0 || ::pwrite(out.fd, header.data(), header.size(), 0) != kHeaderBytes ||
             !copyToEnd(in.fd, 0, out.fd, kHeaderBytes))
             return cannotWrite(path, std::string("could not be written: ") + std::strerror(errno), "check free space");
@@ -188,21 +191,25 @@ CacheTrim trimCache(const std::string& folder, std::uint64_t limit) {
     std::vector<Entry> entries;
     CacheTrim trim;
     const auto dayAgo = fs::file_time_type::clock::now() - std::chrono::hours(24);
+    // Every step with an error code, never an exception: another builder may remove files (or a whole
+    // subfolder's last entry) while this one looks.
     std::error_code ec;
-    for (const fs::directory_entry& sub : fs::directory_iterator(folder, ec)) {
-        if (!sub.is_directory(ec)) continue;
+    for (fs::directory_iterator sub(folder, ec), end; !ec && sub != end; sub.increment(ec)) {
         std::error_code subEc;
-        for (const fs::directory_entry& file : fs::directory_iterator(sub.path(), subEc)) {
-            std::error_code fileEc;  // any file may go under us: another builder trims too
-            const std::string name = file.path().filename().string();
-            const auto used = fs::last_write_time(file.path(), fileEc);
-            const std::uint64_t bytes = file.file_size(fileEc);
-            if (fileEc || !file.is_regular_file(fileEc)) continue;
+        if (!sub->is_directory(subEc)) continue;
+        for (fs::directory_iterator file(sub->path(), subEc); !subEc && file != end; file.increment(subEc)) {
+            std::error_code fileEc;
+            const std::string name = file->path().filename().string();
+            if (!file->is_regular_file(fileEc)) continue;
+            const auto used = fs::last_write_time(file->path(), fileEc);
+            if (fileEc) continue;
+            const std::uint64_t bytes = file->file_size(fileEc);
+            if (fileEc) continue;
             if (name.starts_with(".") && name.find(".hptmp-") != std::string::npos) {
-                if (used < dayAgo) fs::remove(file.path(), fileEc);  // a killed writer's; a live one renames within the day
+                if (used < dayAgo) fs::remove(file->path(), fileEc);  // a killed writer's; a live one renames within the day
                 continue;
             }
-            if (file.path().extension() == ".bin") entries.push_back({used, bytes, file.path()});
+            if (file->path().extension() == ".bin") entries.push_back({used, bytes, file->path()});
         }
     }
     // Oldest first; the name breaks ties, so two builders trimming at once choose the same entries.
