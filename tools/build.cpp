@@ -2,6 +2,7 @@
 // or options changed, with material.json for the viewer and engines.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -14,12 +15,17 @@
 
 #include "command.hpp"
 #include "look_report.hpp"
+#include "option_values.hpp"
 
 namespace heightpack::cli {
 
 namespace {
 
 namespace fs = std::filesystem;
+
+nlohmann::json cacheJson(const CacheCounts& c) {
+    return {{"hits", c.hits}, {"misses", c.misses}, {"stored", c.stored}, {"rejected", c.rejected}};
+}
 
 nlohmann::json assetJson(const AssetReport& a, double threshold) {
     nlohmann::json j = {{"name", a.name},
@@ -32,6 +38,11 @@ nlohmann::json assetJson(const AssetReport& a, double threshold) {
                         {"status", assetStatusName(a.status)},
                         {"seconds", a.seconds}};
     if (a.frame >= 0) j["frame"] = a.frame;
+    if (a.cache.looked) {
+        auto reason = [](const std::string& why) { return why.empty() ? nlohmann::json(nullptr) : nlohmann::json(why); };
+        j["cache"] = {{"hit", a.cache.hit}, {"stored", a.cache.stored}, {"rejected", reason(a.cache.rejected)},
+                      {"storeFailed", reason(a.cache.storeFailed)}};
+    }
     if (a.check) {
         const AssetCheck& c = *a.check;
         j["check"] = {{"ran", c.ran}, {"passedEarlier", c.earlier}, {"tiles", c.tiles}};
@@ -61,14 +72,24 @@ public:
         cmd->add_flag("--force", force_, "rebuild every output, even those up to date");
         cmd->add_option("--depfile", depfile_, "write a Make/Ninja depfile listing the manifest and every source it reads");
         cmd->add_option("--stamp", stamp_, "touch this file after a successful build; the depfile's target (for CMake)");
+        cmd->add_option("--cache", cache_,
+                        "shared cache folder (local or a network share; default: $HEIGHTPACK_CACHE): outputs another "
+                        "build made with the same inputs and options are copied from it, not baked; what is baked is stored")
+            ->type_name("FOLDER");
+        cmd->add_option("--cache-size", cacheSize_,
+                        "the most the cache may hold after the build; least recently used entries go (default 10G)")
+            ->check(byteSizeValidator());
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
             "  heightpack build examples/ocean.toml -o out/ocean\n"
             "  heightpack build examples/*.toml -o out --jobs 2 --json\n"
             "  heightpack build examples/ocean.toml --check-only\n"
+            "  heightpack build examples/ocean.toml -o out/ocean --cache /mnt/share/hp-cache --cache-size 50G\n"
             "  heightpack-view out/ocean/material.json\n"
             "Only outputs whose source bytes or options changed are rebuilt (content hashes, not timestamps).\n"
+            "With --cache, each output to rebuild is first looked up by its key (inputs, options, version) and,\n"
+            "when another build stored it, copied after checking its size and hash: 'restored from cache'.\n"
             "Exit codes: 0 built or up to date, 1 a map that must tile does not (nothing written), 2 usage,\n"
             "3 bad manifest or source (FILE:LINE named), 4 cannot write output.\n");
         return cmd;
@@ -78,6 +99,12 @@ public:
         if (!checkOnly_ && output_.empty()) return usage("give the output folder with -o (or use --check-only)");
         if (checkOnly_ && (!depfile_.empty() || !stamp_.empty()))
             return usage("--depfile and --stamp write files; --check-only writes nothing");
+        // An explicit --cache with --check-only is a mistake to point out; $HEIGHTPACK_CACHE, set once for
+        // every build of a machine, is simply not used by a build that writes nothing.
+        if (checkOnly_ && cache_) return usage("--cache stores what a build writes; --check-only writes nothing");
+        if (cache_ && cache_->empty()) return usage("--cache needs a folder");
+        const char* cacheFromEnvironment = std::getenv("HEIGHTPACK_CACHE");
+        const std::string cacheFolder = cache_ ? *cache_ : checkOnly_ || !cacheFromEnvironment ? "" : cacheFromEnvironment;
         setLibraryThreads(common_.threads);
 
         // Everything is parsed before anything is built: a bad manifest stops the build before it starts.
@@ -92,6 +119,8 @@ public:
         options.threads = common_.threads;
         options.checkOnly = checkOnly_;
         options.force = force_;
+        options.cache.folder = cacheFolder;
+        if (!cacheSize_.empty()) options.cache.sizeLimit = *parseByteSize(cacheSize_);
         options.onEvent = [&tracker](const BuildEvent& e) { tracker.event(e); };
         MaterialsOptions files;
         files.depfile = depfile_;
@@ -107,6 +136,7 @@ public:
         };
         files.onBuilt = [&](const BuildReport& r, double seconds) {
             tracker.progress.clear();
+            if (!common_.quiet) warnAboutCache(r, cacheFolder);
             if (chatty()) printSummary(r, seconds);
         };
         auto built = buildMaterials(*manifests, options, files);
@@ -116,6 +146,13 @@ public:
 
         // Nothing was made when a check failed or only checks were asked for: say so per material.
         const bool checksPassed = built->checksPassed;
+        CacheCounts cacheCounts;
+        for (const BuildReport& report : built->materials) cacheCounts += report.cache();
+        const CacheTrim& trim = built->cacheTrim;
+        if (!cacheFolder.empty() && chatty() && checksPassed && !checkOnly_)
+            std::printf("cache %s: %d hit(s), %d miss(es), %d stored, %d rejected; %d evicted, %.1f MiB kept\n",
+                        cacheFolder.c_str(), cacheCounts.hits, cacheCounts.misses, cacheCounts.stored, cacheCounts.rejected,
+                        trim.removed, static_cast<double>(trim.bytesLeft) / (1 << 20));
         nlohmann::json materials = nlohmann::json::array();
         for (size_t i = 0; i < built->materials.size(); ++i) {
             const BuildReport& report = built->materials[i];
@@ -127,9 +164,17 @@ public:
             }
             materials.push_back(reportJson(report, (*manifests)[i].threshold));
         }
-        if (common_.json)
+        if (common_.json) {
+            nlohmann::json cache = nullptr;
+            if (!cacheFolder.empty()) {
+                cache = cacheJson(cacheCounts);
+                cache["folder"] = cacheFolder;
+                cache["evicted"] = trim.removed;
+                cache["bytes"] = trim.bytesLeft;
+            }
             printJson({{"command", "build"}, {"checkOnly", checkOnly_}, {"ok", checksPassed}, {"jobs", jobs_},
-                       {"seconds", seconds}, {"materials", materials}});
+                       {"seconds", seconds}, {"cache", cache}, {"materials", materials}});
+        }
         return checksPassed ? ExitCode::Ok : ExitCode::CheckFailed;
     }
 
@@ -205,8 +250,12 @@ private:
         }
         if (r.staleTemporariesRemoved > 0)
             std::printf("  removed %d temporary file(s) an interrupted build left\n", r.staleTemporariesRemoved);
-        if (r.rebuilt() == 0 && !r.materialWritten)
+        if (r.rebuilt() == 0 && r.restored() == 0 && !r.materialWritten)
             std::printf("%s: nothing to do, all %zu outputs up to date (%.2f s)\n", r.material.c_str(), r.assets.size(), seconds);
+        else if (r.restored() > 0)
+            std::printf("%s: %d rebuilt, %d restored from cache, %d up to date, material.json %s (%.2f s)\n",
+                        r.material.c_str(), r.rebuilt(), r.restored(), r.upToDate(),
+                        r.materialWritten ? "written" : "unchanged", seconds);
         else
             std::printf("%s: %d rebuilt, %d up to date, material.json %s (%.2f s)\n", r.material.c_str(), r.rebuilt(),
                         r.upToDate(), r.materialWritten ? "written" : "unchanged", seconds);
@@ -225,12 +274,30 @@ private:
                 {"materialWritten", r.materialWritten},
                 {"rebuilt", r.rebuilt()},
                 {"upToDate", r.upToDate()},
+                {"restored", r.restored()},
+                {"cache", cacheJson(r.cache())},
                 {"staleTemporariesRemoved", r.staleTemporariesRemoved},
                 {"checkFailures", failures},
                 {"assets", assets}};
     }
 
+    // A cache entry that was not trusted, or an output that could not be stored: the build went on (the
+    // output was baked), but a person should know the cache is not doing its job.
+    static void warnAboutCache(const BuildReport& r, const std::string& folder) {
+        for (const AssetReport& a : r.assets) {
+            const std::string entry = cacheEntryPath(folder, a.key, a.output);
+            if (!a.cache.rejected.empty())
+                std::fprintf(stderr, "heightpack: warning: %s: cache entry for %s not used: %s; baked and stored again\n",
+                             entry.c_str(), a.output.c_str(), a.cache.rejected.c_str());
+            if (!a.cache.storeFailed.empty())
+                std::fprintf(stderr, "heightpack: warning: %s not stored in the cache: %s\n", a.output.c_str(),
+                             a.cache.storeFailed.c_str());
+        }
+    }
+
     std::vector<std::string> manifests_;
+    std::optional<std::string> cache_;
+    std::string cacheSize_;
     std::string output_, depfile_, stamp_;
     int jobs_ = 1;
     bool checkOnly_ = false, force_ = false;

@@ -1,6 +1,7 @@
 #include "option_values.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -101,6 +102,31 @@ CLI::Validator finiteRange(double lo, double hi) {
             return ok ? std::string() : "'" + text + "' is not a number from " + numberText(lo) + " to " + numberText(hi);
         },
         "NUMBER in [" + numberText(lo) + ", " + numberText(hi) + "]");
+}
+
+std::optional<std::uint64_t> parseByteSize(const std::string& text) {
+    size_t digits = 0;
+    while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
+    if (digits == 0 || digits > 15) return std::nullopt;  // 15 digits of bytes is far past any disk, and no overflow
+    std::string unit = text.substr(digits);
+    for (char& c : unit) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    const std::uint64_t value = std::stoull(text.substr(0, digits));
+    if (unit.empty() || unit == "B") return value;
+    const std::string prefixes = "KMGT";
+    const size_t at = prefixes.find(unit[0]);
+    const std::string rest = unit.substr(1);
+    if (at == std::string::npos || !(rest.empty() || rest == "B" || rest == "IB")) return std::nullopt;
+    const int shift = 10 * static_cast<int>(at + 1);
+    if (value >= (std::uint64_t(1) << (63 - shift))) return std::nullopt;
+    return value << shift;
+}
+
+CLI::Validator byteSizeValidator() {
+    return CLI::Validator(
+        [](std::string& text) {
+            return parseByteSize(text) ? std::string() : "'" + text + "' is not a size such as 500M, 2G or 10GiB";
+        },
+        "SIZE");
 }
 
 std::optional<std::array<double, 3>> parseColour(const std::string& text) {

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -31,6 +32,10 @@ CLI::Option* addLengthOption(CLI::App& cmd, const std::string& flags, double& me
 CLI::Validator lengthPairValidator(double maxMetres);
 // A finite number in [lo, hi]; unlike CLI::Range it refuses NaN and infinities.
 CLI::Validator finiteRange(double lo, double hi);
+// A size in bytes: a whole number with an optional unit K, M, G or T (powers of 1024; "KiB", "KB", "k"
+// read alike): "500M", "2G", "10GiB", "1048576".
+std::optional<std::uint64_t> parseByteSize(const std::string& text);
+CLI::Validator byteSizeValidator();
 // A linear colour "r,g,b", each in [0,1].
 std::optional<std::array<double, 3>> parseColour(const std::string& text);
 CLI::Validator colourValidator();

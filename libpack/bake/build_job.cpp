@@ -35,6 +35,7 @@ const char* assetStatusName(AssetStatus status) {
     switch (status) {
         case AssetStatus::UpToDate: return "up to date";
         case AssetStatus::Rebuilt: return "rebuilt";
+        case AssetStatus::Restored: return "restored from cache";
         case AssetStatus::Checked: return "checked";
         case AssetStatus::Skipped: return "skipped";
     }
@@ -46,6 +47,29 @@ int BuildReport::rebuilt() const {
 }
 int BuildReport::upToDate() const {
     return static_cast<int>(std::count_if(assets.begin(), assets.end(), [](const AssetReport& a) { return a.status == AssetStatus::UpToDate; }));
+}
+int BuildReport::restored() const {
+    return static_cast<int>(std::count_if(assets.begin(), assets.end(), [](const AssetReport& a) { return a.status == AssetStatus::Restored; }));
+}
+
+void CacheCounts::add(const AssetCacheUse& use) {
+    stored += use.stored;
+    if (!use.looked) return;
+    hits += use.hit;
+    misses += !use.hit;
+    rejected += !use.rejected.empty();
+}
+CacheCounts& CacheCounts::operator+=(const CacheCounts& other) {
+    hits += other.hits;
+    misses += other.misses;
+    stored += other.stored;
+    rejected += other.rejected;
+    return *this;
+}
+CacheCounts BuildReport::cache() const {
+    CacheCounts counts;
+    for (const AssetReport& a : assets) counts.add(a.cache);
+    return counts;
 }
 
 // Everything a build holds between preparing (hashes, checks) and running (writing).
@@ -78,6 +102,8 @@ struct MaterialBuild::Impl {
     void hashStep(Step& s);
     void checkStep(Step& s);
     void makeStep(Step& s, std::atomic<bool>& stop);
+    Result<std::string> restoreStep(Step& s, const std::string& output);
+    void storeStep(Step& s, const std::string& output, const std::string& hash);
 };
 
 Status MaterialBuild::Impl::prepare() {
@@ -189,22 +215,53 @@ void MaterialBuild::Impl::makeStep(Step& s, std::atomic<bool>& stop) {
         return;
     }
     guarded(s, [&] {
-        emit(BuildEvent::Type::Start, s, "load", 0.0);
         const auto start = std::chrono::steady_clock::now();
         const std::string output = (folder / s.report.output).string();
-        Status made = s.make(output, threads, [&](std::string_view stage, double f) {
-            emit(BuildEvent::Type::Progress, s, stage, f);
-        });
-        if (!made) return void(s.error = inAsset(made.error(), s));
-        auto hash = hashFile(output);
-        if (!hash) return void(s.error = hash.error());
+        auto hash = restoreStep(s, output);
+        if (!hash) return void(s.error = inAsset(hash.error(), s));
+        if (hash->empty()) {
+            emit(BuildEvent::Type::Start, s, "load", 0.0);
+            Status made = s.make(output, threads, [&](std::string_view stage, double f) {
+                emit(BuildEvent::Type::Progress, s, stage, f);
+            });
+            if (!made) return void(s.error = inAsset(made.error(), s));
+            hash = hashFile(output);
+            if (!hash) return void(s.error = hash.error());
+            storeStep(s, output, *hash);
+        }
         s.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        // A restored output is recorded exactly as a baked one (same key, hash and check), so a later build
+        // without the cache finds it up to date.
         std::lock_guard<std::mutex> lock(mutex);
         state[s.report.output] = {s.report.key, *hash, s.mustTile ? s.checkKey : ""};
         if (Status saved = writeTextFile(statePath, buildStateText(state)); !saved) s.error = saved.error();
     });
     if (s.error) stop = true;
     else emit(BuildEvent::Type::Done, s, "", 1.0);
+}
+
+// With a cache: the output restored from it, and the hash of its bytes; empty when it must be baked (no
+// entry, or one not trusted: why goes into the report). A forced build bakes (and stores) every output:
+// whoever forces a rebuild doubts what is there, the cache included.
+Result<std::string> MaterialBuild::Impl::restoreStep(Step& s, const std::string& output) {
+    if (options.cache.folder.empty() || options.force) return std::string();
+    emit(BuildEvent::Type::Start, s, "restore", 0.0);
+    s.report.cache.looked = true;
+    auto found = restoreFromCache(options.cache.folder, s.report.key, s.report.output, output);
+    if (!found) return found.error();
+    s.report.cache.hit = found->hit;
+    s.report.cache.rejected = found->rejected;
+    if (!found->hit) return std::string();
+    s.report.status = AssetStatus::Restored;
+    return found->hash;
+}
+
+// With a cache: the output just baked stored in it. A failure is reported, not fatal: the output is made.
+void MaterialBuild::Impl::storeStep(Step& s, const std::string& output, const std::string& hash) {
+    if (options.cache.folder.empty()) return;
+    Status stored = storeInCache(options.cache.folder, s.report.key, s.report.output, output, hash);
+    s.report.cache.stored = stored.ok();
+    if (!stored) s.report.cache.storeFailed = stored.error().path + ": " + stored.error().what;
 }
 
 Status MaterialBuild::Impl::run() {

@@ -77,6 +77,11 @@ Result<MaterialsReport> buildMaterials(const std::vector<Manifest>& manifests, c
     for (const Manifest& m : manifests)
         if (Status s = uniqueName(names, m, manifests.size()); !s) return s.error();
 
+    // The cache is judged before any work, as the output folders are.
+    const bool cached = !options.checkOnly && !options.cache.folder.empty();
+    if (cached)
+        if (Status s = openCache(options.cache.folder); !s) return s.error();
+
     // 1. Every material hashed and checked before any is written.
     MaterialsReport report;
     std::vector<MaterialBuild> builds;
@@ -107,6 +112,9 @@ Result<MaterialsReport> buildMaterials(const std::vector<Manifest>& manifests, c
         report.dependencies.insert(report.dependencies.end(), r.dependencies.begin(), r.dependencies.end());
         report.materials.push_back(r);
     }
+
+    // Least recently used entries beyond the cache's size go once every material has used it.
+    if (writes && cached) report.cacheTrim = trimCache(options.cache.folder, options.cache.sizeLimit);
 
     // 3. The depfile and the stamp, for a build system.
     if (writes) {

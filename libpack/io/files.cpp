@@ -147,7 +147,20 @@ bool isPendingTemporary(const std::string& path) {
 
 }  // namespace
 
-TemporaryFile::TemporaryFile(const std::string& finalPath) : finalPath_(finalPath) {
+namespace {
+
+// This machine's name, in the letters, digits and '-' a file name keeps everywhere; "host" if it has none.
+std::string machineName() {
+    char raw[256] = {};
+    ::gethostname(raw, sizeof raw - 1);
+    std::string name;
+    for (const char* c = raw; *c; ++c) name += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '-';
+    return name.empty() ? "host" : name;
+}
+
+}  // namespace
+
+TemporaryFile::TemporaryFile(const std::string& finalPath, TemporaryScope scope) : finalPath_(finalPath) {
     // A staged output is written where it is: it is already a temporary file, which its own
     // TemporaryFile moves into place (or removes) later. Wrapping it again would leave temporaries of
     // temporaries after a kill.
@@ -160,11 +173,15 @@ TemporaryFile::TemporaryFile(const std::string& finalPath) : finalPath_(finalPat
     const fs::path target(finalPath);
     // Built with append: GCC 12 gives a false -Wrestrict on a chain of operator+ here.
     std::string name = ".";
-    name.append(target.stem().string()).append(".hptmp-").append(std::to_string(::getpid()));
+    name.append(target.stem().string()).append(".hptmp-");
+    // "at-HOST-" before the process id: removeStaleTemporaryFiles reads no id there, so it leaves it alone.
+    if (scope == TemporaryScope::SharedFolder) name.append("at-").append(machineName()).append("-");
+    name.append(std::to_string(::getpid()));
     name.append("-").append(std::to_string(counter++)).append(target.extension().string());
     path_ = (target.parent_path() / name).string();
     // What a killed earlier run left of this same output goes first: one mechanism for every writer.
-    removeStaleTemporaryFiles(target.parent_path().string(), target.stem().string());
+    if (scope == TemporaryScope::ThisMachine)
+        removeStaleTemporaryFiles(target.parent_path().string(), target.stem().string());
     std::lock_guard<std::mutex> lock(pendingMutex);
     for (int i = 0; i < kMaxPending && path_.size() < kMaxPath; ++i) {
         if (!pendingUsed[i].load()) {

@@ -13,6 +13,7 @@
 #include "heightpack/bake/build_report.hpp"
 #include "heightpack/bake/manifest.hpp"
 #include "heightpack/bake/material.hpp"
+#include "heightpack/bake/shared_cache.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/version.hpp"
 
@@ -23,7 +24,10 @@ struct BuildOptions {
     int jobs = 1;             // assets made at once
     int threads = 0;          // threads per asset; 0 = the cores shared among the jobs
     bool checkOnly = false;   // validate and run the tileability checks; write nothing
-    bool force = false;       // rebuild every output whatever its key
+    bool force = false;       // rebuild every output whatever its key (baked, not restored from a cache)
+    // The shared cache (shared_cache.hpp): an output to make is first looked for there (by its key), and
+    // what is baked is stored there. Not used by a check-only build. The folder must have passed openCache.
+    CacheOptions cache;
     std::string version = kVersion;  // this library's (heightpack/version.hpp); recorded in outputs, part of cache keys
     std::function<void(const BuildEvent&)> onEvent;
 };

@@ -28,6 +28,7 @@ struct MaterialsReport {
     bool checksPassed = true;               // no material has a check failure (then nothing was written)
     std::vector<BuildReport> materials;     // in the order given: after the build, else after the checks
     std::vector<std::string> dependencies;  // every material's, in order (the depfile's list)
+    CacheTrim cacheTrim;                    // with a cache: what trimming it to its size after the build did
 };
 
 // The folder material m is built into when count materials are built to output: output itself for one,
@@ -41,7 +42,8 @@ Result<std::vector<Manifest>> parseManifests(const std::vector<std::string>& pat
 // Builds the manifests: options.outputDir is the output folder (see materialOutputDir); options.onEvent
 // sees every material's assets. Prepares every material (MaterialBuild::prepare), then, when not
 // check-only and every check passed, judges the depfile and the stamp, runs every material and writes
-// the depfile and the stamp. A failing check is not an Error: checksPassed is false and nothing is
+// the depfile and the stamp; with a cache (options.cache), opens it first and trims it to its size
+// last. A failing check is not an Error: checksPassed is false and nothing is
 // written. Fails on the first Error of any stage (an unreadable source, an unwritable output).
 Result<MaterialsReport> buildMaterials(const std::vector<Manifest>& manifests, const BuildOptions& options,
                                        const MaterialsOptions& materials = {});

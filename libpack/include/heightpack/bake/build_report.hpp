@@ -21,6 +21,7 @@ inline constexpr const char* kMaterialFile = "material.json";
 enum class AssetStatus {
     UpToDate,  // its key matched and the output is the file this build made
     Rebuilt,   // written by this build
+    Restored,  // written by this build from the shared cache: another build had made it with the same key
     Checked,   // --check-only: checked, nothing written
     Skipped,   // --check-only and no check asked for
 };
@@ -37,6 +38,15 @@ struct AssetCheck {
     LookThresholds lookThresholds;
 };
 
+// What the shared cache did for one output: only with a cache, and only for an output that had to be made.
+struct AssetCacheUse {
+    bool looked = false;      // the output had to be made, and the cache was asked for it first (not when forced)
+    bool hit = false;         // restored from the cache (status Restored): nothing baked
+    bool stored = false;      // baked, then stored in the cache
+    std::string rejected;     // the cache held an entry that failed verification: why (then baked and stored)
+    std::string storeFailed;  // baked but not stored: why (the build goes on; the cache only saves time)
+};
+
 // One output of the material (a sequence gives one per frame).
 struct AssetReport {
     std::string name;       // the asset's name in the manifest
@@ -50,6 +60,15 @@ struct AssetReport {
     AssetStatus status = AssetStatus::UpToDate;
     double seconds = 0.0;
     std::optional<AssetCheck> check;  // empty when the manifest does not ask for one
+    AssetCacheUse cache;
+};
+
+// What the shared cache did for a build: how many outputs it restored (hits), how many it had to let be
+// baked (misses, the rejected among them), how many of those it stored.
+struct CacheCounts {
+    int hits = 0, misses = 0, stored = 0, rejected = 0;
+    void add(const AssetCacheUse& use);
+    CacheCounts& operator+=(const CacheCounts& other);
 };
 
 struct BuildReport {
@@ -63,6 +82,8 @@ struct BuildReport {
     std::vector<std::string> dependencies;  // every file the build reads: the manifest and the sources
     int rebuilt() const;
     int upToDate() const;
+    int restored() const;
+    CacheCounts cache() const;
 };
 
 // What the build tells its caller while it runs; calls are serialised.

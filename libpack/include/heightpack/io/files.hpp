@@ -58,9 +58,13 @@ std::string lowerExtension(const std::filesystem::path& path);
 // the destructor removes it. While it exists its path is registered for removePendingTemporaryFiles().
 // Given a path that is itself a pending temporary file (a StagedOutputs frame), it writes that path
 // directly and commit() leaves the move to the staged file's owner: one temporary name per output.
+// In a SharedFolder (a cache that builders on other machines write at once, over NFS or SMB) the name
+// also carries this machine's name, so two machines' writers never share a temporary, and the leftovers
+// of killed writers are not removed by process id: another machine's process is not this one's to see.
+enum class TemporaryScope { ThisMachine, SharedFolder };
 class TemporaryFile {
 public:
-    explicit TemporaryFile(const std::string& finalPath);
+    explicit TemporaryFile(const std::string& finalPath, TemporaryScope scope = TemporaryScope::ThisMachine);
     ~TemporaryFile();
     TemporaryFile(const TemporaryFile&) = delete;
     TemporaryFile& operator=(const TemporaryFile&) = delete;
