@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 
+#include "heightpack/bake/action_plan.hpp"
 #include "heightpack/bake/build_materials.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/files.hpp"
@@ -14,6 +15,7 @@
 #include "heightpack/version.hpp"
 
 #include "command.hpp"
+#include "enum_option.hpp"
 #include "look_report.hpp"
 #include "option_values.hpp"
 
@@ -79,10 +81,18 @@ public:
         cmd->add_option("--cache-size", cacheSize_,
                         "the most the cache may hold after the build; least recently used entries go (default 10G)")
             ->check(byteSizeValidator());
+        plan_ = addEnumOption(*cmd, "--plan", planFormat_,
+                              "write the build as actions on stdout (one per output, each `build --only OUTPUT`) "
+                              "for Ninja or a farm to run; build nothing")
+                    ->default_str("");
+        cmd->add_option("--only", only_, "make this one output (as the plan names it), or with material.json record "
+                                         "every output made and describe the material: a plan's action")
+            ->type_name("OUTPUT");
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
             "  heightpack build examples/ocean.toml -o out/ocean\n"
+            "  heightpack build examples/ocean.toml -o out/ocean --plan ninja > ocean.ninja && ninja -f ocean.ninja -j 8\n"
             "  heightpack build examples/*.toml -o out --jobs 2 --json\n"
             "  heightpack build examples/ocean.toml --check-only\n"
             "  heightpack build examples/ocean.toml -o out/ocean --cache /mnt/share/hp-cache --cache-size 50G\n"
@@ -105,11 +115,16 @@ public:
         if (cache_ && cache_->empty()) return usage("--cache needs a folder");
         const char* cacheFromEnvironment = std::getenv("HEIGHTPACK_CACHE");
         const std::string cacheFolder = cache_ ? *cache_ : checkOnly_ || !cacheFromEnvironment ? "" : cacheFromEnvironment;
+        if (plan_->count() && (checkOnly_ || !only_.empty() || !depfile_.empty() || !stamp_.empty() || force_))
+            return usage("--plan writes the build as actions and builds nothing: it goes without --check-only, --only, "
+                         "--force, --depfile and --stamp");
+        if (!only_.empty() && manifests_.size() != 1) return usage("--only names an output of one manifest: give one");
         setLibraryThreads(common_.threads);
 
         // Everything is parsed before anything is built: a bad manifest stops the build before it starts.
         auto manifests = parseManifests(manifests_);
         if (!manifests) return fail(manifests.error());
+        if (plan_->count()) return printPlan(*manifests, cacheFolder);
 
         const auto start = std::chrono::steady_clock::now();
         Tracker tracker(*this);  // one bar for the whole build, every material's outputs
@@ -119,6 +134,7 @@ public:
         options.threads = common_.threads;
         options.checkOnly = checkOnly_;
         options.force = force_;
+        options.only = only_;
         options.cache.folder = cacheFolder;
         if (!cacheSize_.empty()) options.cache.sizeLimit = *parseByteSize(cacheSize_);
         options.onEvent = [&tracker](const BuildEvent& e) { tracker.event(e); };
@@ -179,6 +195,19 @@ public:
     }
 
 private:
+    // The plan on stdout; each action carries the cache this build would use.
+    ExitCode printPlan(const std::vector<Manifest>& manifests, const std::string& cacheFolder) const {
+        std::error_code ec;
+        const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+        std::vector<std::string> extra;
+        if (!cacheFolder.empty()) extra = {"--cache", cacheFolder};
+        if (!cacheFolder.empty() && !cacheSize_.empty()) extra.insert(extra.end(), {"--cache-size", cacheSize_});
+        const auto actions = planActions(manifests, output_, ec ? std::string("heightpack") : self.string(), extra, kVersion);
+        const std::string text = planFormat_ == PlanFormat::Ninja ? ninjaFile(actions) : actionsJson(actions);
+        std::fwrite(text.data(), 1, text.size(), stdout);
+        return ExitCode::Ok;
+    }
+
     // The build's progress on the terminal: a line per finished output and one bar for every output of
     // every material. The bar counts finished outputs plus how far each one in progress has come, its
     // stages weighted roughly by their cost, so it only moves forward whatever order the jobs report in;
@@ -295,6 +324,9 @@ private:
         }
     }
 
+    CLI::Option* plan_ = nullptr;
+    PlanFormat planFormat_ = PlanFormat::Ninja;
+    std::string only_;
     std::vector<std::string> manifests_;
     std::optional<std::string> cache_;
     std::string cacheSize_;

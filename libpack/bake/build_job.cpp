@@ -104,6 +104,7 @@ struct MaterialBuild::Impl {
     void makeStep(Step& s, std::atomic<bool>& stop);
     Result<std::string> restoreStep(Step& s, const std::string& output);
     void storeStep(Step& s, const std::string& output, const std::string& hash);
+    Status recordMadeOutputs();
 };
 
 Status MaterialBuild::Impl::prepare() {
@@ -111,6 +112,15 @@ Status MaterialBuild::Impl::prepare() {
     report.material = m.name;
     report.outputDir = options.outputDir;
     steps = planSteps(m, options.version);
+    if (!options.only.empty() && options.only != kMaterialFile) {
+        const auto one = std::find_if(steps.begin(), steps.end(), [&](const Step& s) { return s.report.output == options.only; });
+        if (one == steps.end())
+            return Error{ErrorKind::InconsistentOptions, m.path, "makes no output named '" + options.only + "'",
+                         "name an output as the plan does (its path inside the output folder), or material.json"};
+        std::vector<Step> alone;
+        alone.push_back(std::move(*one));
+        steps = std::move(alone);
+    }
 
     std::set<std::string> dependencies{fs::absolute(m.path).lexically_normal().string()};
     for (const Step& s : steps)
@@ -143,6 +153,8 @@ Status MaterialBuild::Impl::prepare() {
     // 1. What changed: hash every input and every recorded output.
     forEachParallel(steps.size(), jobs, [&](size_t i) { guarded(steps[i], [&] { hashStep(steps[i]); }); });
     if (auto e = firstError()) return *e;
+    if (options.only == kMaterialFile)
+        if (Status taken = recordMadeOutputs(); !taken) return taken;
 
     // 2. Tileability, before anything is written: a map that must tile and does not stops the build.
     forEachParallel(steps.size(), jobs, [&](size_t i) {
@@ -174,6 +186,11 @@ void MaterialBuild::Impl::hashStep(Step& s) {
     s.checkKey = cacheKey(options.version, s.checkText, inputHash);
     if (options.checkOnly) {
         s.needCheck = s.mustTile;
+        return;
+    }
+    if (!options.only.empty()) {  // an action: made when the executor says, checked when made
+        s.needBuild = options.only != kMaterialFile;
+        s.needCheck = s.needBuild && s.mustTile;
         return;
     }
     const auto entry = state.find(s.report.output);
@@ -232,6 +249,7 @@ void MaterialBuild::Impl::makeStep(Step& s, std::atomic<bool>& stop) {
         s.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         // A restored output is recorded exactly as a baked one (same key, hash and check), so a later build
         // without the cache finds it up to date.
+        if (!options.only.empty()) return;  // the plan's last action records every output
         std::lock_guard<std::mutex> lock(mutex);
         state[s.report.output] = {s.report.key, *hash, s.mustTile ? s.checkKey : ""};
         if (Status saved = writeTextFile(statePath, buildStateText(state)); !saved) s.error = saved.error();
@@ -264,6 +282,22 @@ void MaterialBuild::Impl::storeStep(Step& s, const std::string& output, const st
     if (!stored) s.report.cache.storeFailed = stored.error().path + ": " + stored.error().what;
 }
 
+// The plan's last action: every output, made by the actions before it, recorded as a build that made
+// it would (key, hash, and the check its action ran).
+Status MaterialBuild::Impl::recordMadeOutputs() {
+    for (const Step& s : steps) {
+        const std::string output = (folder / s.report.output).string();
+        std::error_code ec;
+        if (!fs::is_regular_file(output, ec))
+            return badInput(output, "is not there: the plan's action that makes it has not run",
+                            "run the whole plan (ninja -f PLAN), not its last action alone");
+        auto hash = hashFile(output);
+        if (!hash) return hash.error();
+        state[s.report.output] = {s.report.key, *hash, s.mustTile ? s.checkKey : ""};
+    }
+    return Done{};
+}
+
 Status MaterialBuild::Impl::run() {
     if (ran || options.checkOnly || !report.checkFailures.empty())
         return Error{ErrorKind::Internal, m.path, "this build cannot run: it ran already, is check-only or failed its checks",
@@ -287,25 +321,30 @@ Status MaterialBuild::Impl::run() {
     std::atomic<bool> stop{false};
     forEachParallel(steps.size(), jobs, [&](size_t i) { makeStep(steps[i], stop); });
     // Synthesised maps' intermediates are gone once packed; their folder goes too (only when empty, and
-    // only now, when no step can be writing into it).
-    for (const fs::path& f : folders) fs::remove(f / kSynthFolder, ec);
+    // only now, when no step can be writing into it: in a plan, by the last action).
+    const bool oneOutput = !options.only.empty() && options.only != kMaterialFile;
+    if (!oneOutput)
+        for (const fs::path& f : folders) fs::remove(f / kSynthFolder, ec);
     if (auto e = firstError()) return *e;
     report.assets.clear();
     for (const Step& s : steps) report.assets.push_back(s.report);
+    if (oneOutput) return Done{};
 
     // 4. Outputs the manifest no longer names are forgotten (their files are left alone), then the
     // state and material.json, each rewritten only when its bytes change.
     std::set<std::string> current;
     for (const Step& s : steps) current.insert(s.report.output);
     for (auto it = state.begin(); it != state.end();) it = current.count(it->first) ? std::next(it) : state.erase(it);
+    // A plan's last action writes both whatever they hold: the executor compares their times with the outputs'.
+    const bool always = options.only == kMaterialFile;
     const std::string stateNow = buildStateText(state);
-    if (readText(statePath) != stateNow)
+    if (always || readText(statePath) != stateNow)
         if (Status s = writeTextFile(statePath, stateNow); !s) return s.error();
     auto description = describeMaterial(m, options.outputDir, options.version);
     if (!description) return description.error();
     const std::string materialPath = (folder / kMaterialFile).string();
     const std::string json = materialJson(*description);
-    if (readText(materialPath) != json) {
+    if (always || readText(materialPath) != json) {
         if (Status s = writeTextFile(materialPath, json); !s) return s.error();
         report.materialWritten = true;
     }

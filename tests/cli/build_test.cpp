@@ -744,3 +744,56 @@ TEST_F(BuildTest, ASynthesisedSeaRebuildsWhenItsSpectrumChanges) {
     EXPECT_NE(bad.err.find(manifest + ":10:"), std::string::npos) << bad.err;
     EXPECT_NE(bad.err.find("'displacement[0].synth.fetch_km'"), std::string::npos) << bad.err;
 }
+
+// The build as a Ninja plan (issue 26, item 1): run by Ninja at -j 1 and -j 4, it makes the same bytes as
+// `heightpack build` (the state file and material.json too, so a later build finds everything up to
+// date); a second run does nothing; changing one map reruns its action and the last one only. The
+// manifest adds a synthesised sea of three frames, three actions that share an intermediate folder.
+TEST_F(BuildTest, TheNinjaPlanMakesTheSameBytesAndRerunsOnlyWhatChanged) {
+    writeText(manifest, std::string(kManifest) +
+                            "\n[[displacement]]\nname = \"swell\"\ntile_size = 32.0\n"
+                            "synth = { wind = 9.0, size = 32, seed = 2, loop = 4.0, frames = 3 }\n");
+    ASSERT_EQ(build().code, 0);  // the reference, into out
+    const ProcessResult plan = heightpackRun({"build", manifest, "-o", dir.file("planned"), "--plan", "ninja"});
+    ASSERT_EQ(plan.code, 0) << plan.err;
+    writeText(dir.file("plan.ninja"), plan.out);
+    const ProcessResult json = heightpackRun({"build", manifest, "-o", dir.file("planned"), "--plan", "json"});
+    ASSERT_EQ(json.code, 0) << json.err;
+    const auto actions = nlohmann::json::parse(json.out)["actions"];
+    ASSERT_EQ(actions.size(), 4u + 3u + 1u);  // four outputs, three frames, material.json
+    EXPECT_EQ(actions.back()["outputs"][0], dir.file("planned") + "/material.json");
+    EXPECT_EQ(actions.back()["inputs"].size(), 2u + 7u);  // the program, the manifest, every output
+    EXPECT_EQ(actions[0]["inputs"][2], dir.file("maps/a.png"));
+
+    auto ninja = [&](const std::string& plan, const std::string& jobs) {
+        return runProcess({"ninja", "-C", dir.path().string(), "-f", plan, "-j", jobs});
+    };
+    // The plan's paths are as given (absolute here), so it runs from any folder; -j 1 from another plan.
+    const ProcessResult serial = heightpackRun({"build", manifest, "-o", dir.file("serial"), "--plan", "ninja"});
+    writeText(dir.file("serial.ninja"), serial.out);
+    const ProcessResult one = ninja("serial.ninja", "1"), four = ninja("plan.ninja", "4");
+    ASSERT_EQ(one.code, 0) << one.out << one.err;
+    ASSERT_EQ(four.code, 0) << four.out << four.err;
+    EXPECT_EQ(fingerprint(dir.file("planned")), fingerprint(out));
+    EXPECT_EQ(fingerprint(dir.file("serial")), fingerprint(out));
+    EXPECT_FALSE(fs::exists(dir.file("planned/.heightpack-synth")));  // the frames' intermediates are gone
+
+    const ProcessResult again = ninja("plan.ninja", "4");
+    EXPECT_NE(again.out.find("no work to do"), std::string::npos) << again.out;
+    const ProcessResult upToDate = heightpackRun({"build", manifest, "-o", dir.file("planned")});
+    EXPECT_NE(upToDate.out.find("nothing to do"), std::string::npos) << upToDate.out;
+
+    writeImage(dir.file("maps/b.png"), periodicMap(64, 0.09, 2), OIIO::TypeDesc::UINT16);
+    const ProcessResult changed = ninja("plan.ninja", "4");
+    ASSERT_EQ(changed.code, 0) << changed.out;
+    EXPECT_NE(changed.out.find("[1/2] bake sea: short.exr"), std::string::npos) << changed.out;
+    EXPECT_NE(changed.out.find("[2/2] describe sea: material.json"), std::string::npos) << changed.out;
+    ASSERT_EQ(build().code, 0);
+    EXPECT_EQ(fingerprint(dir.file("planned")), fingerprint(out));
+
+    // An output the manifest does not make, or --plan with what it does not go with: usage errors.
+    const ProcessResult unknown = heightpackRun({"build", manifest, "-o", dir.file("planned"), "--only", "nope.exr"});
+    EXPECT_EQ(unknown.code, 2) << unknown.err;
+    EXPECT_NE(unknown.err.find("nope.exr"), std::string::npos) << unknown.err;
+    EXPECT_EQ(heightpackRun({"build", manifest, "-o", out, "--plan", "ninja", "--check-only"}).code, 2);
+}

@@ -28,6 +28,12 @@ struct BuildOptions {
     // The shared cache (shared_cache.hpp): an output to make is first looked for there (by its key), and
     // what is baked is stored there. Not used by a check-only build. The folder must have passed openCache.
     CacheOptions cache;
+    // One action of a plan (action_plan.hpp), run side by side with the others by an executor that
+    // decided it is due: an output's name (as the plan and the state name it) makes that output alone,
+    // always (restored from the cache where it holds it), and writes neither the build state nor
+    // material.json; kMaterialFile takes every output as made (each must be there), records them all
+    // in the state and writes it and material.json, always (the executor judges by their times).
+    std::string only;
     std::string version = kVersion;  // this library's (heightpack/version.hpp); recorded in outputs, part of cache keys
     std::function<void(const BuildEvent&)> onEvent;
 };
