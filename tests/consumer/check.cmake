@@ -59,6 +59,17 @@ if(NOT EXISTS ${build}/water/material.json OR NOT EXISTS ${texture})
   message(FATAL_ERROR "the water material was not built")
 endif()
 file(SHA256 ${texture} first)
+# The same material through its plan (PER_OUTPUT): one command per output, the same bytes.
+macro(expect_same_as_actions)
+  foreach(name chop.exr material.json)
+    file(SHA256 ${build}/water/${name} whole)
+    file(SHA256 ${build}/water_actions/${name} per_output)
+    if(NOT whole STREQUAL per_output)
+      message(FATAL_ERROR "water_actions/${name} differs from water/${name}: the plan's commands made other bytes")
+    endif()
+  endforeach()
+endmacro()
+expect_same_as_actions()
 
 # Nothing changed: Ninja has nothing to do.
 run(${CMAKE_COMMAND} --build ${build})
@@ -89,6 +100,7 @@ file(SHA256 ${texture} changed)
 if(changed STREQUAL first)
   message(FATAL_ERROR "changing the map did not rebuild its texture")
 endif()
+expect_same_as_actions()
 message(STATUS "consumer: installed package, heightpack_add_material and its depfile work")
 
 # heightpack's source embedded with add_subdirectory: only what the engine links is built.
