@@ -1,6 +1,9 @@
 #include "texel_encode.hpp"
 
 #include <Imath/half.h>
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -104,11 +107,32 @@ void encodeTexels(const float* in, int from, int to, size_t texels, std::uint8_t
         for (int c = 0; c < to; ++c) putLe(out + (t * to + c) * sizeof(T), T(code(c < from ? in[t * from + c] : 1.0f)));
 }
 
+#if defined(__x86_64__) || defined(__i386__)
+// F16C's conversion, eight values an instruction, where the processor has it (x86-64 since 2012). It
+// rounds to nearest even as Imath does: the same bits for every float but NaNs, which are never stored
+// (compared over all 2^32 floats when this was written).
+__attribute__((target("avx,f16c"))) void halvesF16c(const float* in, size_t n, std::uint8_t* out) {
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8)
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 2 * i),
+                         _mm256_cvtps_ph(_mm256_loadu_ps(in + i), _MM_FROUND_TO_NEAREST_INT));
+    for (; i < n; ++i) putLe(out + 2 * i, Imath::half(in[i]).bits());
+}
+const bool kHasF16c = __builtin_cpu_supports("f16c") && __builtin_cpu_supports("avx");
+#else
+void halvesF16c(const float*, size_t, std::uint8_t*) {}
+constexpr bool kHasF16c = false;
+#endif
+
 void encodeRow(const EncodePlan& plan, const float* in, size_t texels, std::uint8_t* out) {
     const int from = plan.sourceChannels, to = plan.format.channels;
     switch (plan.format.kind) {
         case ComponentKind::Float32: encodeTexels<float>(in, from, to, texels, out, [](float v) { return v; }); break;
         case ComponentKind::Float16:
+            if (kHasF16c && from == to) {
+                halvesF16c(in, texels * size_t(to), out);
+                break;
+            }
             // Imath's conversion inline (floatToHalf's own), not a call a value.
             encodeTexels<std::uint16_t>(in, from, to, texels, out, [](float v) { return Imath::half(v).bits(); });
             break;
@@ -230,7 +254,7 @@ float snormValue(std::int16_t code) { return std::max(float(code) / 32767.0f, -1
 float storeAndRead(const EncodePlan& plan, float value) {
     switch (plan.format.kind) {
         case ComponentKind::Float32: return value;
-        case ComponentKind::Float16: return halfToFloat(floatToHalf(value));
+        case ComponentKind::Float16: return float(Imath::half(value));  // halfToFloat(floatToHalf(value)), inline
         case ComponentKind::Unorm16: {
             const Normalisation n = plan.normalisation.value_or(Normalisation{});
             return unormValue(unormCode(value, n), n);
