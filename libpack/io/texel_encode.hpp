@@ -42,9 +42,8 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
                                 const TextureWriteOptions& options);
 
 // Encodes a chain a band of rows at a time, filling and encoding on all threads. Its buffers live as long
-// as it does, so every band reuses pages already touched: a buffer made and freed per band was handed
-// back to the system each time (the CLI keeps large blocks in the heap, which then shrinks) and faulted
-// in again.
+// as it does: one allocation for the chain instead of two a band (a library caller's malloc may hand a
+// freed 4 MB band back to the system and fault it in again; the CLI keeps it in the heap).
 class BandEncoder {
 public:
     BandEncoder(const std::string& path, const MipChainSource& content, const EncodePlan& plan, int threads)
