@@ -5,19 +5,8 @@
 # CPU (user + system) seconds, peak memory and the ratios.
 #   tests/bench/bench_check.sh [BUILD_DIR] [RUNS] [SIZE]
 set -euo pipefail
-build=${1:-build}
-runs=${2:-5}
-size=${3:-4096}
-hp="$build/heightpack"
-mk="$build/tests/bench/heightpack_make_bench_map"
-[ -x "$hp" ] || { echo "bench_check: no $hp; build first (cmake --build $build)" >&2; exit 2; }
-[ -x "$mk" ] || { echo "bench_check: no $mk; build with -DHEIGHTPACK_BUILD_BENCHMARKS=ON" >&2; exit 2; }
-
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 . "$(dirname "$0")/measure.sh"
-"$mk" "$size" "$size" "$work/in.png"
-echo "input: ${size}x${size} 16-bit periodic PNG, $(du -h "$work/in.png" | cut -f1); $(nproc) cores; $runs runs each"
+bench_map bench_check "$@"
 
 : >"$work/check"
 : >"$work/read"
