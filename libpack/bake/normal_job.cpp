@@ -51,6 +51,10 @@ std::vector<Image> firstChannels(const std::vector<Image>& chain, int channels) 
 
 }  // namespace
 
+Compression defaultNormalCompression(PixelType requested, double tolerance) {
+    return requested == PixelType::Float && tolerance <= 0.0 ? Compression::None : Compression::Zip;
+}
+
 Result<NormalMaps> makeNormalChain(Image heights, const SourceInfo& source, const NormalJobOptions& options) {
     auto progress = [&](std::string_view stage, double f) {
         if (options.progress) options.progress(stage, f);

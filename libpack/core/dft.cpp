@@ -20,7 +20,10 @@ constexpr int kBlock = 16;
 void transformColumns(const cv::Mat& in, cv::Mat& out, int flags, int threads) {
     const int h = in.rows, w = in.cols;
     parallelFor((w + kBlock - 1) / kBlock, threads, [&](int begin, int end) {
-        cv::Mat lines(kBlock, h, CV_64FC2);
+        // Rows padded by a cache line: h complex doubles apart (a power of two), the 16 rows a gathered
+        // line is written across all fell into the same cache sets and evicted each other.
+        cv::Mat padded(kBlock, h + 4, CV_64FC2);
+        cv::Mat lines = padded.colRange(0, h);
         for (int block = begin; block < end; ++block) {
             const int x0 = block * kBlock, count = std::min(kBlock, w - x0);
             cv::Mat gathered = lines.rowRange(0, count);

@@ -212,16 +212,14 @@ Spectra spectraOf(const cv::Mat& spectrum, int threads) {
     return out;
 }
 
-}  // namespace
-
-double echoOf(const Image& map, int threads) {
-    const int w = map.width, h = map.height;
-    if (w < 64 || h < 64) return 0.0;
+// echoOf for the map whose spectrum (spectrumOf) is given: measureTileLook has it already.
+double echoOfSpectrum(const cv::Mat& spectrum, int threads) {
+    const int w = spectrum.cols, h = spectrum.rows;
     // The autocorrelation of the map whitened by its own smoothed spectrum: a stationary field's structure
     // (smooth, directional, large or small scaled) divides out, leaving a spike at lag 0 and noise of about
     // 1/sqrt(texels); a feature repeated at lag L multiplies the spectrum by 1 + cos(k.L), an oscillation
     // finer than the smoothing, which stays and becomes a peak at L.
-    const Spectra s = spectraOf(spectrumOf(map, threads), threads);
+    const Spectra s = spectraOf(spectrum, threads);
     cv::Mat whitened(h, w, CV_64FC2);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
@@ -237,6 +235,13 @@ double echoOf(const Image& map, int threads) {
             if (circularDistance(x, w) > w / 16 || circularDistance(y, h) > h / 16)
                 worst = std::max(worst, correlation.at<double>(y, x) / zero);
     return worst;
+}
+
+}  // namespace
+
+double echoOf(const Image& map, int threads) {
+    if (map.width < 64 || map.height < 64) return 0.0;
+    return echoOfSpectrum(spectrumOf(map, threads), threads);
 }
 
 double sourceEchoOf(const Image& input, int threads) {
@@ -280,7 +285,7 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
     look.blobs = std::max({ringScore(columnMeans(q), reachX, 0.05), ringScore(rowMeans(q), reachY, 0.05),
                            cornerScore(sums, std::max(2, std::min(w, h) / 32)), cornerScore(sums, std::max(2, std::min(w, h) / 16))});
     // Echo, less the source's own (of its periodic component: its seams would echo along their lines).
-    look.echo = echoOf(map, options.threads);
+    look.echo = echoOfSpectrum(spectrum, options.threads);  // the map's spectrum, transformed once
     look.echoBaseline = options.sourceEcho ? *options.sourceEcho : options.source ? sourceEchoOf(*options.source, options.threads) : 0.0;
     look.echo -= look.echoBaseline;
     return look;

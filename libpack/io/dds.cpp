@@ -125,13 +125,13 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     if (std::fwrite(h.data(), 4, h.size(), file.get()) != h.size()) return failed("writing the header");
     long long rowsTotal = 0, rowsDone = 0;
     for (int level = 0; level < plan.levels; ++level) rowsTotal += detail::levelSide(content.height, level);
-    std::vector<std::uint8_t> bytes;
+    detail::BandEncoder encoder(path, content, plan, options.threads);
+    const std::vector<std::uint8_t>& bytes = encoder.bytes();
     for (int level = 0; level < plan.levels; ++level) {
         const int lh = detail::levelSide(content.height, level);
         for (int y0 = 0; y0 < lh; y0 += kBandRows) {
             const int rows = std::min(kBandRows, lh - y0);
-            if (Status s = detail::encodeRows(path, content, plan, level, y0, rows, options.threads, bytes); !s)
-                return s;
+            if (Status s = encoder.encode(level, y0, rows); !s) return s;
             if (std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) return failed("writing a level");
             rowsDone += rows;
             if (options.progress) options.progress(double(rowsDone) / double(rowsTotal));

@@ -108,16 +108,17 @@ void zipTile(std::vector<unsigned char>& raw, std::vector<unsigned char>& scratc
              libdeflate_compressor* compressor) {
     const size_t n = raw.size();
     scratch.resize(n);
+    // Split and delta in one pass, each byte against its predecessor in the split order, read from raw:
+    // the loops carry no value from one byte to the next, so they vectorise (a tenth of the time of
+    // splitting, then delta-coding in place).
+    const size_t evens = (n + 1) / 2, odds = n / 2;
+    const unsigned char* in = raw.data();
     unsigned char* even = scratch.data();
-    unsigned char* odd = scratch.data() + (n + 1) / 2;
-    for (size_t i = 0; i + 1 < n; i += 2) *even++ = raw[i], *odd++ = raw[i + 1];  // pairs: no branch a byte
-    if (n % 2) *even = raw[n - 1];
-    int previous = scratch[0];
-    for (size_t i = 1; i < n; ++i) {
-        const int d = int(scratch[i]) - previous + (128 + 256);
-        previous = scratch[i];
-        scratch[i] = static_cast<unsigned char>(d);
-    }
+    unsigned char* odd = scratch.data() + evens;
+    if (n > 0) even[0] = in[0];
+    for (size_t i = 1; i < evens; ++i) even[i] = static_cast<unsigned char>(in[2 * i] - in[2 * i - 2] + 128);
+    if (odds > 0) odd[0] = static_cast<unsigned char>(in[1] - in[2 * (evens - 1)] + 128);  // after the last even
+    for (size_t i = 1; i < odds; ++i) odd[i] = static_cast<unsigned char>(in[2 * i + 1] - in[2 * i - 1] + 128);
     out.resize(libdeflate_zlib_compress_bound(compressor, n));
     const size_t packed = libdeflate_zlib_compress(compressor, scratch.data(), n, out.data(), out.size());
     if (packed == 0 || packed >= n)

@@ -176,8 +176,8 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
     };
     if (!file) return failed("creating the file");
     auto write = [&](const void* data, size_t n) { return n == 0 || std::fwrite(data, 1, n, file.get()) == n; };
-    std::vector<std::uint8_t> bytes = header();
-    if (!write(bytes.data(), bytes.size())) return failed("writing the header");
+    std::vector<std::uint8_t> head = header();
+    if (!write(head.data(), head.size())) return failed("writing the header");
 
     std::unique_ptr<ZSTD_CCtx, ZstdFree> cctx(zstd ? ZSTD_createCCtx() : nullptr);
     if (zstd && (!cctx || ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_compressionLevel, options.storage.zstdLevel))))
@@ -185,7 +185,9 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
     std::vector<std::uint8_t> packed(zstd ? ZSTD_CStreamOutSize() : 0);
     long long rowsTotal = 0, rowsDone = 0;
     for (int level = 0; level < levels; ++level) rowsTotal += detail::levelSide(content.height, level);
-    size_t position = bytes.size();
+    size_t position = head.size();
+    detail::BandEncoder encoder(path, content, plan, options.threads);
+    const std::vector<std::uint8_t>& bytes = encoder.bytes();
     const std::uint8_t zeros[16] = {};
     for (int level = levels - 1; level >= 0; --level) {
         const size_t start = zstd ? position : size_t(offset[level]);
@@ -197,8 +199,7 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
             return Error{ErrorKind::Internal, path, "internal error: Zstandard refused a level's size", "please report this"};
         for (int y0 = 0; y0 < h; y0 += kBandRows) {
             const int rows = std::min(kBandRows, h - y0);
-            if (Status s = detail::encodeRows(path, content, plan, level, y0, rows, options.threads, bytes); !s)
-                return s;
+            if (Status s = encoder.encode(level, y0, rows); !s) return s;
             if (!zstd) {
                 if (!write(bytes.data(), bytes.size())) return failed("writing a level");
                 position += bytes.size();
@@ -225,8 +226,8 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
         }
     }
     if (zstd) {  // the level index, now that the compressed sizes are known
-        bytes = header();
-        if (std::fseek(file.get(), 0, SEEK_SET) != 0 || !write(bytes.data(), dfdOffset)) return failed("writing the level index");
+        head = header();
+        if (std::fseek(file.get(), 0, SEEK_SET) != 0 || !write(head.data(), dfdOffset)) return failed("writing the level index");
     }
     if (std::fflush(file.get()) != 0 || std::ferror(file.get())) return failed("writing the file");
     if (std::fclose(file.release()) != 0) return failed("closing the file");

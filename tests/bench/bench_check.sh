@@ -1,30 +1,26 @@
 #!/usr/bin/env bash
-# Times `heightpack check` on one 4096x4096 16-bit periodic PNG (the map bench_pack.sh uses): median
-# seconds of RUNS runs. Issue 11 asks that check stay within 1.5x of its time before the new measure.
+# `heightpack check` against reading the same map (issue 24: within 1.5x of one decode): a SIZExSIZE
+# 16-bit periodic PNG (the map bench_pack.sh uses), checked and read by `heightpack info` (start-up, read,
+# decode and the level's statistics), runs alternating (check, info, check, ...). Prints median wall and
+# CPU (user + system) seconds, peak memory and the ratios.
 #   tests/bench/bench_check.sh [BUILD_DIR] [RUNS] [SIZE]
 set -euo pipefail
-build=${1:-build}
-runs=${2:-3}
-size=${3:-4096}
-hp="$build/heightpack"
-mk="$build/tests/bench/heightpack_make_bench_map"
-[ -x "$hp" ] || { echo "bench_check: no $hp; build first (cmake --build $build)" >&2; exit 2; }
-[ -x "$mk" ] || { echo "bench_check: no $mk; build with -DHEIGHTPACK_BUILD_BENCHMARKS=ON" >&2; exit 2; }
+. "$(dirname "$0")/measure.sh"
+bench_map bench_check "$@"
 
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-"$mk" "$size" "$size" "$work/in.png"
-echo "input: ${size}x${size} 16-bit periodic PNG, $(du -h "$work/in.png" | cut -f1); $(nproc) cores; $runs runs"
-
-: >"$work/times"
+: >"$work/check"
+: >"$work/read"
 for ((i = 0; i < runs; i++)); do
-  start=$(date +%s.%N)
-  # The verdict is not what is timed: check exits 1 on a seam, and that is still a finished run.
-  code=0
-  "$hp" check "$work/in.png" >/dev/null 2>&1 || code=$?
-  end=$(date +%s.%N)
-  [ "$code" -le 1 ] || { echo "bench_check: heightpack check failed with exit code $code" >&2; exit 1; }
-  echo "$end - $start" | bc -l >>"$work/times"
+  measure "$work/check" "$hp" check "$work/in.png"
+  measure "$work/read" "$hp" info "$work/in.png"
 done
-sort -n "$work/times" | awk '{a[NR] = $1} END {m = (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2;
-  printf "check %s: median %.3f s (runs: %s)\n", "'"${size}x${size}"'", m, NR}'
+# The verdict is not what is timed: check exits 1 on a seam, and that is still a finished run.
+if awk '$4 > 1 { bad = 1 } END { exit !bad }' "$work/check"; then
+  echo "bench_check: heightpack check failed (exit codes: $(cut -d' ' -f4 "$work/check" | tr '\n' ' '))" >&2
+  exit 1
+fi
+read -r cw cc cm < <(medians "$work/check")
+read -r rw rc rm < <(medians "$work/read")
+printf 'check %6.2f s wall %6.2f s CPU %5d MiB | read (info) %6.2f s wall %6.2f s CPU %5d MiB\n' \
+  "$cw" "$cc" "$cm" "$rw" "$rc" "$rm"
+echo "check / read: wall $(ratio "$cw" "$rw"), CPU $(ratio "$cc" "$rc") (issue 24: at most 1.5)"

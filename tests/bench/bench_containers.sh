@@ -3,15 +3,21 @@
 #  1. the time pack takes to write one 4096x4096 packed float chain (its own "write" timing: encoding and
 #     writing, not loading or mip-mapping) as .exr (zip), .ktx2 and .dds (uncompressed), each against
 #     `cp` of a file of the same bytes into the same folder, medians of RUNS runs;
-#  2. per example map, layout and pixel type: the GPU bytes of the whole chain and the worst packed-
+#  2. issue 24's ratios, whole `pack` runs alternating (float, half, uint16, read, cp, ...), medians of
+#     wall and CPU (user + system) seconds and peak memory: per container, half and uint16 against float
+#     (at most 1), and float against its floor, `heightpack info` (start-up, read, decode) plus `cp` of the
+#     float file (writing the same bytes) (at most 1.3);
+#  3. per example map, layout and pixel type: the GPU bytes of the whole chain and the worst packed-
 #     lookup error (pack --json), heights with the example manifest's amplitude as --height (ripple:
 #     stored units), and ripple's normal map in rgb and xy (normal units).
-#   tests/bench/bench_containers.sh [BUILD_DIR] [RUNS] [SIZE]
+#   tests/bench/bench_containers.sh [BUILD_DIR] [RUNS] [SIZE] [SECTIONS]   (SECTIONS: default "1 2 3")
 # Needs jq, and heightpack_make_bench_map (configure with -DHEIGHTPACK_BUILD_BENCHMARKS=ON).
 set -euo pipefail
 build=${1:-build}
 runs=${2:-5}
 size=${3:-4096}
+sections=${4:-1 2 3}
+section() { [[ " $sections " == *" $1 "* ]]; }
 hp="$build/heightpack"
 make_map="$build/tests/bench/heightpack_make_bench_map"
 examples="$(dirname "$0")/../../examples/maps"
@@ -22,9 +28,10 @@ command -v jq >/dev/null || { echo "bench_containers: needs jq (apt-get install 
 work=$(mktemp -d "${TMPDIR:-/tmp}/bench_containers.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 "$make_map" "$size" "$size" "$work/in.png"
-median() { sort -g | awk '{a[NR] = $1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
+. "$(dirname "$0")/measure.sh"
 now() { date +%s.%N; }
 
+if section 1; then
 echo "1. writing a ${size}x${size} packed float chain (every level, RGBA32F), $(nproc) cores, median of $runs runs"
 printf '%-5s %-6s %12s %10s %10s %10s\n' container codec bytes "write s" "cp s" "write/cp"
 exr_seconds=""
@@ -50,9 +57,41 @@ for ext in exr ktx2 dds; do
     "$(awk -v w="$w" -v c="$c" 'BEGIN { print w / c }')"
 done
 echo "(write/cp: 1 would be writing as fast as cp copies the finished file; exr zip write: $exr_seconds s)"
+fi
 
+if section 2; then
 echo
-echo "2. GPU bytes of the whole chain and worst packed-lookup error, pack/normal --json, .ktx2 outputs"
+echo "2. whole pack runs, ${size}x${size}, median of $runs alternating runs (wall s, CPU s, peak MiB)"
+printf '%-5s %-7s %8s %8s %8s %10s %10s\n' container type wall CPU MiB "wall ratio" "CPU ratio"
+for ext in ktx2 dds; do
+  for log in float half uint16 read cp; do : >"$work/$log"; done
+  for ((i = 0; i < runs; i++)); do
+    for type in float half uint16; do
+      rm -f "$work/$type.$ext"
+      measure "$work/$type" "$hp" pack "$work/in.png" --pixel-type "$type" -q -o "$work/$type.$ext"
+    done
+    measure "$work/read" "$hp" info "$work/in.png"
+    rm -f "$work/copy.$ext"
+    measure "$work/cp" cp "$work/float.$ext" "$work/copy.$ext"
+  done
+  read -r fw fc fm < <(medians "$work/float")
+  for type in float half uint16; do
+    read -r w c m < <(medians "$work/$type")
+    printf '%-5s %-7s %8.2f %8.2f %8d %10s %10s\n' "$ext" "$type" "$w" "$c" "$m" "$(ratio "$w" "$fw")" "$(ratio "$c" "$fc")"
+  done
+  read -r rw rc rm < <(medians "$work/read")
+  read -r cw cc cm < <(medians "$work/cp")
+  floor_wall=$(awk -v a="$rw" -v b="$cw" 'BEGIN { print a + b }')
+  floor_cpu=$(awk -v a="$rc" -v b="$cc" 'BEGIN { print a + b }')
+  printf '%-5s %-7s %8.2f %8.2f %8d %10s %10s  (info %.2f s + cp %.2f s; float / floor)\n' "$ext" floor \
+    "$floor_wall" "$floor_cpu" "$rm" "$(ratio "$fw" "$floor_wall")" "$(ratio "$fc" "$floor_cpu")" "$rw" "$cw"
+done
+echo "(issue 24: half and uint16 at most 1.00 of float; float at most 1.30 of its floor)"
+fi
+
+section 3 || exit 0
+echo
+echo "3. GPU bytes of the whole chain and worst packed-lookup error, pack/normal --json, .ktx2 outputs"
 printf '%-8s %-11s %-7s %12s %14s %s\n' map layout type "gpu bytes" "worst error" units
 row() {  # map layout type json
   printf '%-8s %-11s %-7s %12d %14.3g %s\n' "$1" "$2" "$3" "$(jq '.gpuBytes' <<<"$4")" \
