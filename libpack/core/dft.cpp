@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <functional>
 #include <numbers>
 #include <vector>
 
@@ -12,26 +14,27 @@ namespace heightpack::detail {
 namespace {
 
 // Lines per task: a column block is gathered into a small row-major matrix, so 16 columns (256 bytes of
-// complex doubles per row) are read and written a cache line at a time.
+// complex doubles, 128 of complex floats, per row) are read and written a cache line at a time.
 constexpr int kBlock = 16;
 
-// The 1-D complex transform of every column of in (CV_64FC2), with the row flags given, into out (of
-// in's size and type; may be in).
+// The 1-D complex transform of every column of in (CV_64FC2 with Vec2d, CV_32FC2 with Vec2f), with the
+// row flags given, into out (of in's size and type; may be in).
+template <typename Complex>
 void transformColumns(const cv::Mat& in, cv::Mat& out, int flags, int threads) {
     const int h = in.rows, w = in.cols;
     parallelFor((w + kBlock - 1) / kBlock, threads, [&](int begin, int end) {
-        cv::Mat lines(kBlock, h, CV_64FC2);
+        cv::Mat lines(kBlock, h, in.type());
         for (int block = begin; block < end; ++block) {
             const int x0 = block * kBlock, count = std::min(kBlock, w - x0);
             cv::Mat gathered = lines.rowRange(0, count);
             for (int y = 0; y < h; ++y) {
-                const cv::Vec2d* row = in.ptr<cv::Vec2d>(y) + x0;
-                for (int i = 0; i < count; ++i) gathered.ptr<cv::Vec2d>(i)[y] = row[i];
+                const Complex* row = in.ptr<Complex>(y) + x0;
+                for (int i = 0; i < count; ++i) gathered.ptr<Complex>(i)[y] = row[i];
             }
             cv::dft(gathered, gathered, flags | cv::DFT_ROWS);
             for (int y = 0; y < h; ++y) {
-                cv::Vec2d* row = out.ptr<cv::Vec2d>(y) + x0;
-                for (int i = 0; i < count; ++i) row[i] = gathered.ptr<cv::Vec2d>(i)[y];
+                Complex* row = out.ptr<Complex>(y) + x0;
+                for (int i = 0; i < count; ++i) row[i] = gathered.ptr<Complex>(i)[y];
             }
         }
     });
@@ -54,16 +57,43 @@ cv::Mat forwardDft(const cv::Mat& field, int threads) {
     CV_Assert(field.type() == CV_64F);
     cv::Mat spectrum(field.rows, field.cols, CV_64FC2);
     transformRows(field, spectrum, cv::DFT_COMPLEX_OUTPUT, threads);
-    transformColumns(spectrum, spectrum, 0, threads);
+    transformColumns<cv::Vec2d>(spectrum, spectrum, 0, threads);
     return spectrum;
 }
 
 void inverseDft(const cv::Mat& spectrum, cv::Mat& out, int threads) {
     CV_Assert(spectrum.type() == CV_64FC2);
     cv::Mat columns(spectrum.rows, spectrum.cols, CV_64FC2);
-    transformColumns(spectrum, columns, cv::DFT_INVERSE | cv::DFT_SCALE, threads);
+    transformColumns<cv::Vec2d>(spectrum, columns, cv::DFT_INVERSE | cv::DFT_SCALE, threads);
     out.create(spectrum.rows, spectrum.cols, CV_64F);
     transformRows(columns, out, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT, threads);
+}
+
+void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads,
+                          const std::function<void(int y, const float* row)>& take) {
+    CV_Assert(w % 2 == 0 && w >= 2 && h >= 1);
+    const int columns = w / 2 + 1;
+    cv::Mat spectrum(h, columns, CV_32FC2, half);
+    transformColumns<cv::Vec2f>(spectrum, spectrum, cv::DFT_INVERSE, threads);
+    // Column 0 and column w/2 are now real (each is the transform of a Hermitian column), so a row is
+    // OpenCV's packed real spectrum (CCS) Re0, Re1, Im1, ..., Re(w/2 - 1), Im(w/2 - 1), Re(w/2): w floats,
+    // copied into a block of rows and transformed to real rows together.
+    parallelFor((h + kBlock - 1) / kBlock, threads, [&](int begin, int end) {
+        cv::Mat packed(kBlock, w, CV_32F), real(kBlock, w, CV_32F);
+        for (int block = begin; block < end; ++block) {
+            const int y0 = block * kBlock, count = std::min(kBlock, h - y0);
+            for (int i = 0; i < count; ++i) {
+                const float* from = reinterpret_cast<const float*>(spectrum.ptr<cv::Vec2f>(y0 + i));
+                float* to = packed.ptr<float>(i);
+                to[0] = from[0];
+                std::copy(from + 2, from + w, to + 1);
+                to[w - 1] = from[w];
+            }
+            cv::Mat rows = real.rowRange(0, count);
+            cv::dft(packed.rowRange(0, count), rows, cv::DFT_INVERSE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);
+            for (int i = 0; i < count; ++i) take(y0 + i, rows.ptr<float>(i));
+        }
+    });
 }
 
 void solvePeriodicPoisson(const cv::Mat& rhs, cv::Mat& out, int threads) {

@@ -1,9 +1,12 @@
-// Internal: 2-D DFTs of double fields on all threads. OpenCV's cv::dft runs a 2-D transform on one thread;
+// Internal: 2-D DFTs of double (and, for the sea's inverse, float) fields on all threads. OpenCV's cv::dft runs a 2-D transform on one thread;
 // these run its 1-D row transforms in fixed blocks of rows, then of columns, each block on any thread, so
 // the result does not depend on the thread count.
 #pragma once
 
 #include <opencv2/core.hpp>
+
+#include <complex>
+#include <functional>
 
 namespace heightpack::detail {
 
@@ -14,6 +17,14 @@ cv::Mat forwardDft(const cv::Mat& field, int threads);
 // cv::dft(spectrum, out, DFT_INVERSE | DFT_SCALE | DFT_REAL_OUTPUT). out may be a view of existing storage
 // of that size and type (it is written in place).
 void inverseDft(const cv::Mat& spectrum, cv::Mat& out, int threads);
+
+// The real w x h field (w even) of a Hermitian spectrum given by its half kx = 0 .. w/2: h rows of w/2 + 1
+// complex floats (row r is ky = r, or r - h above h/2), unscaled (a plain sum over k, as cv::dft with
+// DFT_INVERSE | DFT_REAL_OUTPUT and no DFT_SCALE). `half` is the scratch: it is overwritten. Each row of
+// the field goes to take(y, row) once, from any thread, rows of one block in order; in float, rows and
+// then columns split in fixed blocks, so the values do not depend on the thread count.
+void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads,
+                          const std::function<void(int y, const float* row)>& take);
 
 // The zero-mean periodic field (CV_64F, written to out as inverseDft writes) whose five-point Laplacian is
 // rhs, for Moisan's periodic + smooth decomposition: rhs's spectrum divided by the Laplacian's symbol
