@@ -20,13 +20,14 @@ struct SeaStateSummary {
 // The summary for a sea whose grid resolves `resolvedVariance` (Ocean::resolvedVariance) of the spectrum.
 SeaStateSummary summariseSeaState(const SpectrumOptions& options, double resolvedVariance);
 
-// 4 x the standard deviation of the map's texels (one channel): the realised significant wave height.
-double significantWaveHeight(const Image& heights);
+// 4 x the standard deviation of the map's texels (in `channel`): the realised significant wave height.
+double significantWaveHeight(const Image& heights, int channel = 0);
 
-// The fraction of texels whose Jacobian is negative: where the choppy surface folds over itself.
-double foldFraction(const Image& jacobian);
+// The fraction of texels whose Jacobian (in `channel`) is negative: where the choppy surface folds over itself.
+double foldFraction(const Image& jacobian, int channel = 0);
 
-// The longest horizontal move any texel makes: the largest |choppiness * (Dx, Dy)| over a two-channel map.
-double largestDisplacement(const Image& displacement, double choppiness);
+// The longest horizontal move any texel makes: the largest |choppiness * (Dx, Dy)|, Dx in `channel` and
+// Dy in the next.
+double largestDisplacement(const Image& displacement, double choppiness, int channel = 0);
 
 }  // namespace heightpack
