@@ -181,6 +181,7 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
         if (options.foam) flat.channelNames.push_back("Foam");
         flat.bits = metres ? 32 : 16;
         flat.threads = options.threads;
+        flat.compression = options.compression;
         flat.attributes = sea;
         flat.attributes.push_back(attribute(attr::heightScale, static_cast<float>(scale)));
         flat.attributes.push_back(attribute(attr::heightOffset, static_cast<float>(offset)));
