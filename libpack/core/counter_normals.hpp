@@ -26,6 +26,7 @@ constexpr uint64_t normalStreamKey(uint64_t seed) { return mix64(seed ^ 0x6A09E6
 
 struct NormalPair {
     double first = 0.0, second = 0.0;
+    double radius = 0.0;  // Box-Muller's r: the length of (first, second), to rounding, without a root to take
 };
 
 // The two independent standard normal deviates of `index` in the stream `key`: r cos(2 pi u2) and
@@ -36,7 +37,7 @@ inline NormalPair normalPair(uint64_t key, uint64_t index) {
     const uint64_t b = mix64(key + (2 * index + 2) * kSplitMixGamma);
     const double u1 = double((a >> 11) + 1) * 0x1p-53, u2 = double(b >> 11) * 0x1p-53;
     const double r = std::sqrt(-2.0 * std::log(u1)), angle = 2.0 * std::numbers::pi * u2;
-    return {r * std::cos(angle), r * std::sin(angle)};
+    return {r * std::cos(angle), r * std::sin(angle), r};
 }
 
 }  // namespace heightpack::detail

@@ -21,9 +21,11 @@ enum OceanField { Height, DispX, DispY, DispXX, DispYY, DispXY };
 // The signed index of DFT bin q of n: 0, 1, ..., n/2 - 1, -n/2, ..., -1.
 int signedBin(int q, int n) { return q < n / 2 ? q : q - n; }
 
-// What one wave vector of the full grid holds: its amplitude h0(k) and the spectrum's variance there.
+// What one wave vector of the full grid holds: its amplitude h0(k), its modulus, and the spectrum's
+// variance there.
 struct Mode {
     std::complex<double> amplitude;
+    double modulus = 0.0;
     double variance = 0.0;
 };
 
@@ -48,7 +50,7 @@ Ocean::Ocean(const SpectrumOptions& options, const OceanOptions& how) : options_
         // Half the variance here, half through the conjugate partner's term: sqrt(s / 2) / sqrt(2) a part.
         const double a = 0.5 * std::sqrt(s);
         const detail::NormalPair g = detail::normalPair(key, uint64_t(r) * n + q);
-        return {{a * g.first, a * g.second}, s};
+        return {{a * g.first, a * g.second}, a * g.radius, s};
     };
     initial_.assign(size_t(n) * columns, {});
     if (how.evolves) partner_.assign(size_t(n) * columns, {});
@@ -64,8 +66,7 @@ Ocean::Ocean(const SpectrumOptions& options, const OceanOptions& how) : options_
                 // Every cell of the full grid once: -k is in this half only in column 0 (and the Nyquist
                 // column, empty), where it is counted as its own k.
                 rowVariance[r] += here.variance + (q > 0 ? there.variance : 0.0);
-                // sqrt of the norm, not abs (hypot): amplitudes this small cannot overflow.
-                rowBound[r] += std::sqrt(std::norm(here.amplitude)) + (q > 0 ? std::sqrt(std::norm(there.amplitude)) : 0.0);
+                rowBound[r] += here.modulus + (q > 0 ? there.modulus : 0.0);
             }
         }
     });
