@@ -115,7 +115,7 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
     SynthTileReport report;
     report.tileSize = s.tileSize;
     if (count > 1) report.bandLow = s.bandLow, report.bandHigh = s.bandHigh;
-    report.significantWaveHeight = significantWaveHeight(images[0]);
+    report.significantWaveHeight = significantWaveHeight(images[0], 0, options.threads);
     const SeaStateSummary summary = summariseSeaState(s, resolvedVariance);
     report.expectedSignificantWaveHeight = summary.significantWaveHeight;
     report.peakPeriod = summary.peakPeriod;
@@ -124,13 +124,11 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
     report.minHeight = report.maxHeight = images[0].pixels[0];
     double folds = 0.0, moved = 0.0;
     for (const Image& frame : images) {
-        for (size_t i = 0; i < frame.texelCount(); ++i) {
-            const double h = frame.pixels[i * channels];
-            report.minHeight = std::min(report.minHeight, h);
-            report.maxHeight = std::max(report.maxHeight, h);
-        }
-        if (layout.jacobian) folds += foldFraction(frame, jc) / frames;
-        if (layout.displacement) moved = std::max(moved, largestDisplacement(frame, options.choppiness, 1));
+        const auto [lo, hi] = channelRange(frame, 0, options.threads);
+        report.minHeight = std::min(report.minHeight, double(lo));
+        report.maxHeight = std::max(report.maxHeight, double(hi));
+        if (layout.jacobian) folds += foldFraction(frame, jc, options.threads) / frames;
+        if (layout.displacement) moved = std::max(moved, largestDisplacement(frame, options.choppiness, 1, options.threads));
     }
     if (layout.jacobian) report.foldFraction = folds;
     if (layout.displacement) {
@@ -141,7 +139,7 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
     // The Jacobian's channel becomes the foam's coverage: texel by texel for a frozen sea, through the
     // loop's densities for a sequence.
     if (options.foam) {
-        auto eachTexel = [&](Image& image, const std::function<void(size_t i, float& texel)>& change) {
+        auto eachTexel = [&](Image& image, const auto& change) {
             parallelFor(image.height, options.threads, [&](int y0, int y1) {
                 for (size_t i = size_t(y0) * image.width; i < size_t(y1) * image.width; ++i) change(i, image.pixels[i * channels + jc]);
             });

@@ -71,27 +71,47 @@ void inverseDft(const cv::Mat& spectrum, cv::Mat& out, int threads) {
 
 void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads,
                           const std::function<void(int y, const float* row)>& take) {
+    inverseRealDftOfHalf(half, w, h, threads, {HalfSpectrumRows{{}, take}});
+}
+
+void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads, const std::vector<HalfSpectrumRows>& fields) {
     CV_Assert(w % 2 == 0 && w >= 2 && h >= 1);
     const int columns = w / 2 + 1;
+    for (const HalfSpectrumRows& field : fields) CV_Assert(field.factor.empty() || int(field.factor.size()) == columns);
     cv::Mat spectrum(h, columns, CV_32FC2, half);
     transformColumns<cv::Vec2f>(spectrum, spectrum, cv::DFT_INVERSE, threads);
     // Column 0 and column w/2 are now real (each is the transform of a Hermitian column), so a row is
     // OpenCV's packed real spectrum (CCS) Re0, Re1, Im1, ..., Re(w/2 - 1), Im(w/2 - 1), Re(w/2): w floats,
-    // copied into a block of rows and transformed to real rows together.
+    // copied (times each field's factor) into a block of rows and transformed to real rows together. The
+    // columns' result is only read here, so every field's rows come from the one column pass.
     parallelFor((h + kBlock - 1) / kBlock, threads, [&](int begin, int end) {
         cv::Mat packed(kBlock, w, CV_32F), real(kBlock, w, CV_32F);
         for (int block = begin; block < end; ++block) {
             const int y0 = block * kBlock, count = std::min(kBlock, h - y0);
-            for (int i = 0; i < count; ++i) {
-                const float* from = reinterpret_cast<const float*>(spectrum.ptr<cv::Vec2f>(y0 + i));
-                float* to = packed.ptr<float>(i);
-                to[0] = from[0];
-                std::copy(from + 2, from + w, to + 1);
-                to[w - 1] = from[w];
+            for (const HalfSpectrumRows& field : fields) {
+                for (int i = 0; i < count; ++i) {
+                    const std::complex<float>* from = reinterpret_cast<const std::complex<float>*>(spectrum.ptr<cv::Vec2f>(y0 + i));
+                    float* to = packed.ptr<float>(i);
+                    if (field.factor.empty()) {
+                        const float* values = reinterpret_cast<const float*>(from);
+                        to[0] = values[0];
+                        std::copy(values + 2, values + w, to + 1);
+                        to[w - 1] = values[w];
+                        continue;
+                    }
+                    const std::complex<float>* factor = field.factor.data();
+                    to[0] = (from[0] * factor[0]).real();
+                    for (int q = 1; q < w / 2; ++q) {
+                        const std::complex<float> z = from[q] * factor[q];
+                        to[2 * q - 1] = z.real();
+                        to[2 * q] = z.imag();
+                    }
+                    to[w - 1] = (from[w / 2] * factor[w / 2]).real();
+                }
+                cv::Mat rows = real.rowRange(0, count);
+                cv::dft(packed.rowRange(0, count), rows, cv::DFT_INVERSE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);
+                for (int i = 0; i < count; ++i) field.take(y0 + i, rows.ptr<float>(i));
             }
-            cv::Mat rows = real.rowRange(0, count);
-            cv::dft(packed.rowRange(0, count), rows, cv::DFT_INVERSE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);
-            for (int i = 0; i < count; ++i) take(y0 + i, rows.ptr<float>(i));
         }
     });
 }

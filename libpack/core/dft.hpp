@@ -7,6 +7,7 @@
 
 #include <complex>
 #include <functional>
+#include <vector>
 
 namespace heightpack::detail {
 
@@ -25,6 +26,17 @@ void inverseDft(const cv::Mat& spectrum, cv::Mat& out, int threads);
 // then columns split in fixed blocks, so the values do not depend on the thread count.
 void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads,
                           const std::function<void(int y, const float* row)>& take);
+
+// Several fields from one half spectrum S: field f is the real field of S(kx, ky) * factor[kx], a factor
+// that depends on kx alone (i kx for d/dx, say), so one column pass serves them all and each costs only
+// its row pass. factor holds w/2 + 1 values (empty: 1). At kx = 0 and w/2 the columns' value times the
+// factor must be real, as it is when S times the factor is Hermitian (the field is real): only its real
+// part is used there. Rows of a block come field by field, in the order given.
+struct HalfSpectrumRows {
+    std::vector<std::complex<float>> factor;
+    std::function<void(int y, const float* row)> take;
+};
+void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads, const std::vector<HalfSpectrumRows>& fields);
 
 // The zero-mean periodic field (CV_64F, written to out as inverseDft writes) whose five-point Laplacian is
 // rhs, for Moisan's periodic + smooth decomposition: rhs's spectrum divided by the Laplacian's symbol

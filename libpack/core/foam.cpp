@@ -21,7 +21,10 @@ float frozenFoamDensity(float jacobian, const FoamOptions& o) {
     return static_cast<float>(o.buildUp * o.decay * std::fmax(0.0, o.threshold - jacobian));
 }
 
-float foamCoverageOf(float density) { return static_cast<float>(-std::expm1(-double(density))); }
+float foamCoverageOf(float density) {
+    // Most of a sea has no foam: no exponential to take there (-expm1(-0) is +0 all the same).
+    return density == 0.0f ? 0.0f : static_cast<float>(-std::expm1(-double(density)));
+}
 
 Image foamCoverage(const std::vector<float>& density, int width, int height, int threads) {
     assert(density.size() == size_t(width) * height);

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 #include "counter_normals.hpp"
 #include "dft.hpp"
@@ -14,9 +15,6 @@
 namespace heightpack {
 
 namespace {
-
-// The real fields a frame can need, each the evolved spectrum times a multiplier that keeps it Hermitian.
-enum OceanField { Height, DispX, DispY, DispXX, DispYY, DispXY };
 
 // The signed index of DFT bin q of n: 0, 1, ..., n/2 - 1, -n/2, ..., -1.
 int signedBin(int q, int n) { return q < n / 2 ? q : q - n; }
@@ -104,60 +102,80 @@ void Ocean::fieldsInto(double t, const SeaFieldTargets& to, double choppiness, i
         spectrum = evolved.data();
     }
 
-    // One field after another through one scratch spectrum, each transform on all threads; the Jacobian
-    // (1 + c Dxx)(1 + c Dyy) - c^2 Dxy^2 is built up in its target as its three fields come.
+    // The fields' multipliers of h(k, t), as a column pass's (of kx and ky) times a row pass's (of kx alone),
+    // so that fields sharing the first share one column pass (dft.hpp): D(k) = i k/|k| h(k) (a crest pulls
+    // its neighbours in: x + D compresses it, as a Gerstner wave does) and its derivatives, i kx or i ky
+    // once more. Four column passes for six fields:
+    //   h                      heights
+    //   h / k       then  i kx: Dx,  -kx^2: Dxx
+    //   -ky^2 h / k            Dyy
+    //   ky h / k    then  i: Dy,     -kx: Dxy
+    // The Jacobian (1 + c Dxx)(1 + c Dyy) - c^2 Dxy^2 is built up in its target in that order. k = 0
+    // carries nothing. The column multiplier's loop is compiled for each pass alone (a constant).
+    enum ColumnPass { Plain, OverK, MinusKy2OverK, KyOverK };
     std::vector<std::complex<float>> scratch(cells);
-    auto run = [&](OceanField field, const SeaFieldTarget& target) {
+    auto fill = [&](auto passConstant) {
+        constexpr ColumnPass pass = decltype(passConstant)::value;
         parallelFor(n, threads, [&](int begin, int end) {
             for (int r = begin; r < end; ++r) {
                 const std::complex<float>* from = spectrum + size_t(r) * columns;
                 std::complex<float>* row = scratch.data() + size_t(r) * columns;
-                if (field == Height) {
+                if constexpr (pass == Plain) {
                     std::copy(from, from + columns, row);
-                    continue;
-                }
-                const double ky = signedBin(r, n) * dk;
-                for (int q = 0; q < columns; ++q) {
-                    const double kx = q * dk, k = std::sqrt(kx * kx + ky * ky);
-                    const std::complex<double> h(from[q]);
-                    if (k <= 0.0 || h == 0.0) {
-                        row[q] = 0.0f;
-                        continue;
+                } else {
+                    const float ky = float(signedBin(r, n) * dk);
+                    for (int q = 0; q < columns; ++q) {
+                        const float kx = float(q * dk), k2 = kx * kx + ky * ky;
+                        const float inverse = k2 > 0.0f ? 1.0f / std::sqrt(k2) : 0.0f;
+                        if constexpr (pass == OverK) row[q] = from[q] * inverse;
+                        if constexpr (pass == MinusKy2OverK) row[q] = from[q] * (-ky * ky * inverse);
+                        if constexpr (pass == KyOverK) row[q] = from[q] * (ky * inverse);
                     }
-                    // D(k) = i k/|k| h(k) (a crest pulls its neighbours in: x + D compresses it, as a
-                    // Gerstner wave does); its derivatives multiply by i kx or i ky once more.
-                    const std::complex<double> ih(-h.imag(), h.real());
-                    switch (field) {
-                        case DispX: row[q] = std::complex<float>(ih * (kx / k)); break;
-                        case DispY: row[q] = std::complex<float>(ih * (ky / k)); break;
-                        case DispXX: row[q] = std::complex<float>(h * (-kx * kx / k)); break;
-                        case DispYY: row[q] = std::complex<float>(h * (-ky * ky / k)); break;
-                        default: row[q] = std::complex<float>(h * (-kx * ky / k)); break;
-                    }
-                }
-            }
-        });
-        const double c = choppiness;
-        detail::inverseRealDftOfHalf(scratch.data(), n, n, threads, [&](int y, const float* values) {
-            float* out = target.first + size_t(y) * n * target.stride;
-            const int step = target.stride;
-            for (int x = 0; x < n; ++x) {
-                float& texel = out[size_t(x) * step];
-                const double v = values[x];
-                switch (field) {
-                    case DispXX: texel = float(1 + c * v); break;
-                    case DispYY: texel = float(double(texel) * (1 + c * v)); break;
-                    case DispXY: texel = float(double(texel) - c * c * v * v); break;
-                    default: texel = values[x]; break;
                 }
             }
         });
     };
-    if (to.heights.first) run(Height, to.heights);
-    if (to.displacementX.first) run(DispX, to.displacementX);
-    if (to.displacementY.first) run(DispY, to.displacementY);
-    if (to.jacobian.first)
-        for (const OceanField field : {DispXX, DispYY, DispXY}) run(field, to.jacobian);
+    // Row-pass factors (of kx = q dk) and where each field's rows go.
+    std::vector<std::complex<float>> ikx(columns), minusKx2(columns), minusKx(columns), i(columns, {0.0f, 1.0f});
+    for (int q = 0; q < columns; ++q) {
+        const float kx = float(q * dk);
+        ikx[q] = {0.0f, kx}, minusKx2[q] = -kx * kx, minusKx[q] = -kx;
+    }
+    const double c = choppiness;
+    auto into = [](const SeaFieldTarget& target, int width, auto combine) {
+        return [&target, width, combine](int y, const float* values) {
+            float* out = target.first + size_t(y) * width * target.stride;
+            const size_t step = size_t(target.stride);
+            for (int x = 0; x < width; ++x) combine(out[x * step], double(values[x]));
+        };
+    };
+    auto store = [](float& texel, double v) { texel = float(v); };
+    using std::integral_constant;
+    using Rows = std::vector<detail::HalfSpectrumRows>;
+    if (to.heights.first) {
+        fill(integral_constant<ColumnPass, Plain>{});
+        detail::inverseRealDftOfHalf(scratch.data(), n, n, threads, Rows{{{}, into(to.heights, n, store)}});
+    }
+    if (to.displacementX.first || to.jacobian.first) {
+        Rows rows;
+        if (to.displacementX.first) rows.push_back({ikx, into(to.displacementX, n, store)});
+        if (to.jacobian.first) rows.push_back({minusKx2, into(to.jacobian, n, [c](float& j, double xx) { j = float(1 + c * xx); })});
+        fill(integral_constant<ColumnPass, OverK>{});
+        detail::inverseRealDftOfHalf(scratch.data(), n, n, threads, rows);
+    }
+    if (to.jacobian.first) {
+        fill(integral_constant<ColumnPass, MinusKy2OverK>{});
+        detail::inverseRealDftOfHalf(scratch.data(), n, n, threads,
+                                     Rows{{{}, into(to.jacobian, n, [c](float& j, double yy) { j = float(double(j) * (1 + c * yy)); })}});
+    }
+    if (to.displacementY.first || to.jacobian.first) {
+        Rows rows;
+        if (to.displacementY.first) rows.push_back({i, into(to.displacementY, n, store)});
+        if (to.jacobian.first)
+            rows.push_back({minusKx, into(to.jacobian, n, [c](float& j, double xy) { j = float(double(j) - c * c * xy * xy); })});
+        fill(integral_constant<ColumnPass, KyOverK>{});
+        detail::inverseRealDftOfHalf(scratch.data(), n, n, threads, rows);
+    }
 }
 
 SeaFields Ocean::fields(double t, const SeaFieldSet& which, double choppiness, int threads) const {

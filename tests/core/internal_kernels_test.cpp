@@ -10,6 +10,7 @@
 #include <cmath>
 #include <complex>
 #include <cstring>
+#include <functional>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -78,6 +79,65 @@ TEST(ThreadedDft, RealInverseOfAHalfSpectrumInFloatEqualsOpenCvsFullInverse) {
             for (int x = 0; x < w; ++x)  // no 1/(w h): the field times w h
                 ASSERT_NEAR(one[size_t(y) * w + x], field.at<double>(y, x) * w * h, 1e-5 * w * h) << w << "x" << h;
         for (int threads : {2, 3}) EXPECT_EQ(inverse(threads), one) << w << "x" << h << " on " << threads;
+    }
+}
+
+TEST(ThreadedDft, FieldsSharingOneColumnPassEqualTheirOwnInverses) {
+    // A field and its x derivative (factor i kx, 0 at the Nyquist column) from one column pass, against
+    // cv::dft of the full spectrum times i kx; and an odd column factor (ky, as the sea's Dy pass uses)
+    // whose kx = 0 column is imaginary until its row factor i makes it real.
+    std::mt19937 random(9);
+    std::normal_distribution<double> normal;
+    const int w = 32, h = 16;
+    cv::Mat field(h, w, CV_64F), full;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) field.at<double>(y, x) = normal(random);
+    cv::dft(field, full, cv::DFT_COMPLEX_OUTPUT);
+    auto signedBin = [](int q, int n) { return q < n / 2 ? q : q - n; };
+    // The reference: cv::dft's inverse of the full spectrum times m(kx, ky), unscaled.
+    auto reference = [&](const std::function<std::complex<double>(int kx, int ky)>& m) {
+        cv::Mat product = full.clone(), out;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const bool nyquist = x == w / 2 || y == h / 2;
+                const cv::Vec2d z = full.at<cv::Vec2d>(y, x);
+                const std::complex<double> v = nyquist ? 0.0 : std::complex<double>(z[0], z[1]) * m(signedBin(x, w), signedBin(y, h));
+                product.at<cv::Vec2d>(y, x) = {v.real(), v.imag()};
+            }
+        cv::dft(product, out, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT);
+        return out;
+    };
+    // The half spectrum times a column multiplier of ky (the Nyquist row and column left empty).
+    auto half = [&](bool timesKy) {
+        std::vector<std::complex<float>> out(size_t(h) * (w / 2 + 1));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w / 2; ++x) {
+                const cv::Vec2d z = full.at<cv::Vec2d>(y, x);
+                const double m = y == h / 2 ? 0.0 : timesKy ? signedBin(y, h) : 1.0;
+                out[size_t(y) * (w / 2 + 1) + x] = {float(z[0] * m), float(z[1] * m)};
+            }
+        return out;
+    };
+    std::vector<std::complex<float>> ikx(w / 2 + 1), i(w / 2 + 1, {0.0f, 1.0f});
+    for (int q = 0; q < w / 2; ++q) ikx[q] = {0.0f, float(q)};
+    for (int threads : {1, 3}) {
+        std::vector<float> plain(size_t(w) * h), dx(plain.size()), dy(plain.size());
+        auto into = [&](std::vector<float>& v) {
+            return [&v, w](int y, const float* row) { std::copy(row, row + w, v.begin() + size_t(y) * w); };
+        };
+        std::vector<std::complex<float>> a = half(false), b = half(true);
+        detail::inverseRealDftOfHalf(a.data(), w, h, threads, {{{}, into(plain)}, {ikx, into(dx)}});
+        detail::inverseRealDftOfHalf(b.data(), w, h, threads, {{i, into(dy)}});
+        const cv::Mat p = reference([](int, int) { return 1.0; });
+        const cv::Mat x = reference([](int kx, int) { return std::complex<double>(0.0, kx); });
+        const cv::Mat y = reference([](int, int ky) { return std::complex<double>(0.0, ky); });
+        for (int r = 0; r < h; ++r)
+            for (int c = 0; c < w; ++c) {
+                const size_t at = size_t(r) * w + c;
+                ASSERT_NEAR(plain[at], p.at<double>(r, c), 1e-3) << threads;
+                ASSERT_NEAR(dx[at], x.at<double>(r, c), 1e-2) << threads;
+                ASSERT_NEAR(dy[at], y.at<double>(r, c), 1e-2) << threads;
+            }
     }
 }
 

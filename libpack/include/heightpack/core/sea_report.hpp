@@ -2,6 +2,8 @@
 // spectrum, peak period and wavelength, steepness, folds, and how far the displacement can move a vertex.
 #pragma once
 
+#include <utility>
+
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/spectrum.hpp"
 
@@ -20,14 +22,20 @@ struct SeaStateSummary {
 // The summary for a sea whose grid resolves `resolvedVariance` (Ocean::resolvedVariance) of the spectrum.
 SeaStateSummary summariseSeaState(const SpectrumOptions& options, double resolvedVariance);
 
-// 4 x the standard deviation of the map's texels (in `channel`): the realised significant wave height.
-double significantWaveHeight(const Image& heights, int channel = 0);
+// The statistics of a channel of a map (0 in a one-channel map), each over rows on `threads` threads
+// (0 = all cores) and combined in row order, so any count gives the same value.
 
-// The fraction of texels whose Jacobian (in `channel`) is negative: where the choppy surface folds over itself.
-double foldFraction(const Image& jacobian, int channel = 0);
+// 4 x the standard deviation of the map's texels: the realised significant wave height.
+double significantWaveHeight(const Image& heights, int channel = 0, int threads = 1);
+
+// The smallest and largest value.
+std::pair<float, float> channelRange(const Image& image, int channel = 0, int threads = 1);
+
+// The fraction of texels whose Jacobian is negative: where the choppy surface folds over itself.
+double foldFraction(const Image& jacobian, int channel = 0, int threads = 1);
 
 // The longest horizontal move any texel makes: the largest |choppiness * (Dx, Dy)|, Dx in `channel` and
 // Dy in the next.
-double largestDisplacement(const Image& displacement, double choppiness, int channel = 0);
+double largestDisplacement(const Image& displacement, double choppiness, int channel = 0, int threads = 1);
 
 }  // namespace heightpack
