@@ -115,7 +115,7 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
     SynthTileReport report;
     report.tileSize = s.tileSize;
     if (count > 1) report.bandLow = s.bandLow, report.bandHigh = s.bandHigh;
-    report.significantWaveHeight = significantWaveHeight(images[0], 0, options.threads);
+
     const SeaStateSummary summary = summariseSeaState(s, resolvedVariance);
     report.expectedSignificantWaveHeight = summary.significantWaveHeight;
     report.peakPeriod = summary.peakPeriod;
@@ -123,12 +123,14 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
     report.steepness = summary.steepness;
     report.minHeight = report.maxHeight = images[0].pixels[0];
     double folds = 0.0, moved = 0.0;
-    for (const Image& frame : images) {
-        const auto [lo, hi] = channelRange(frame, 0, options.threads);
-        report.minHeight = std::min(report.minHeight, double(lo));
-        report.maxHeight = std::max(report.maxHeight, double(hi));
-        if (layout.jacobian) folds += foldFraction(frame, jc, options.threads) / frames;
-        if (layout.displacement) moved = std::max(moved, largestDisplacement(frame, options.choppiness, 1, options.threads));
+    const FrameChannels at{0, layout.displacement ? 1 : -1, layout.jacobian ? jc : -1};
+    for (int f = 0; f < frames; ++f) {
+        const FrameNumbers numbers = frameNumbers(images[f], at, options.choppiness, options.threads);
+        if (f == 0) report.significantWaveHeight = numbers.significantWaveHeight;
+        report.minHeight = std::min(report.minHeight, double(numbers.minHeight));
+        report.maxHeight = std::max(report.maxHeight, double(numbers.maxHeight));
+        folds += numbers.foldFraction / frames;
+        moved = std::max(moved, numbers.largestDisplacement);
     }
     if (layout.jacobian) report.foldFraction = folds;
     if (layout.displacement) {

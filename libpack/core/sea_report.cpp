@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <utility>
 #include <vector>
 
 #include "heightpack/core/parallel.hpp"
@@ -42,74 +41,75 @@ const float* rowOf(const Image& image, int y, int channel) {
 
 }  // namespace
 
-double significantWaveHeight(const Image& heights, int channel, int threads) {
-    // Two passes (mean, then squares about it): one pass loses digits for maps far from zero mean.
-    const double n = double(heights.texelCount());
-    if (n == 0) return 0.0;
-    const size_t step = size_t(heights.channels);
-    double sum = 0.0;
-    for (double row : perRow(heights, threads, [&](int y) {
-             const float* v = rowOf(heights, y, channel);
-             double s = 0.0;
-             for (int x = 0; x < heights.width; ++x) s += v[x * step];
-             return s;
-         }))
-        sum += row;
+FrameNumbers frameNumbers(const Image& frame, const FrameChannels& at, double choppiness, int threads) {
+    FrameNumbers numbers;
+    const double n = double(frame.texelCount());
+    if (n == 0) return numbers;
+    const size_t step = size_t(frame.channels);
+    // Pass 1: each row's height sum and range, folds and largest squared move (a float's square is exact
+    // in double: one root at the end gives hypot's answer to rounding without a hypot per texel).
+    struct RowNumbers {
+        double sum = 0.0, move2 = 0.0;
+        float lo = 0.0f, hi = 0.0f;
+        size_t folds = 0;
+    };
+    const std::vector<RowNumbers> rows = perRow(frame, threads, [&](int y) {
+        RowNumbers r;
+        if (at.heights >= 0) {
+            const float* h = rowOf(frame, y, at.heights);
+            r.lo = r.hi = h[0];
+            for (int x = 0; x < frame.width; ++x) {
+                r.sum += h[x * step];
+                r.lo = std::min(r.lo, h[x * step]), r.hi = std::max(r.hi, h[x * step]);
+            }
+        }
+        if (at.jacobian >= 0) {
+            const float* j = rowOf(frame, y, at.jacobian);
+            for (int x = 0; x < frame.width; ++x) r.folds += j[x * step] < 0.0f;
+        }
+        if (at.displacement >= 0) {
+            const float* d = rowOf(frame, y, at.displacement);
+            for (int x = 0; x < frame.width; ++x) {
+                const double dx = d[x * step], dy = d[x * step + 1];
+                r.move2 = std::max(r.move2, dx * dx + dy * dy);
+            }
+        }
+        return r;
+    });
+    double sum = 0.0, move2 = 0.0;
+    size_t folds = 0;
+    numbers.minHeight = rows[0].lo, numbers.maxHeight = rows[0].hi;
+    for (const RowNumbers& r : rows) {
+        sum += r.sum, folds += r.folds, move2 = std::max(move2, r.move2);
+        numbers.minHeight = std::min(numbers.minHeight, r.lo), numbers.maxHeight = std::max(numbers.maxHeight, r.hi);
+    }
+    numbers.foldFraction = double(folds) / n;
+    numbers.largestDisplacement = std::abs(choppiness) * std::sqrt(move2);
+    if (at.heights < 0) return numbers;
+    // Pass 2: squares about the mean (one pass loses digits for maps far from zero mean).
     const double mean = sum / n;
     double sq = 0.0;
-    for (double row : perRow(heights, threads, [&](int y) {
-             const float* v = rowOf(heights, y, channel);
+    for (double row : perRow(frame, threads, [&](int y) {
+             const float* v = rowOf(frame, y, at.heights);
              double s = 0.0;
-             for (int x = 0; x < heights.width; ++x) s += (v[x * step] - mean) * (v[x * step] - mean);
+             for (int x = 0; x < frame.width; ++x) s += (v[x * step] - mean) * (v[x * step] - mean);
              return s;
          }))
         sq += row;
-    return 4.0 * std::sqrt(sq / n);
+    numbers.significantWaveHeight = 4.0 * std::sqrt(sq / n);
+    return numbers;
 }
 
-std::pair<float, float> channelRange(const Image& image, int channel, int threads) {
-    const size_t step = size_t(image.channels);
-    std::pair<float, float> range{image.pixels[channel], image.pixels[channel]};
-    for (const auto& [lo, hi] : perRow(image, threads, [&](int y) {
-             const float* v = rowOf(image, y, channel);
-             std::pair<float, float> r{v[0], v[0]};
-             for (int x = 1; x < image.width; ++x) r = {std::min(r.first, v[x * step]), std::max(r.second, v[x * step])};
-             return r;
-         }))
-        range = {std::min(range.first, lo), std::max(range.second, hi)};
-    return range;
+double significantWaveHeight(const Image& heights, int channel, int threads) {
+    return frameNumbers(heights, {channel, -1, -1}, 1.0, threads).significantWaveHeight;
 }
 
 double foldFraction(const Image& jacobian, int channel, int threads) {
-    const size_t texels = jacobian.texelCount(), step = size_t(jacobian.channels);
-    if (texels == 0) return 0.0;
-    size_t folds = 0;
-    for (size_t row : perRow(jacobian, threads, [&](int y) {
-             const float* j = rowOf(jacobian, y, channel);
-             size_t count = 0;
-             for (int x = 0; x < jacobian.width; ++x) count += j[x * step] < 0.0f;
-             return count;
-         }))
-        folds += row;
-    return double(folds) / double(texels);
+    return frameNumbers(jacobian, {-1, -1, channel}, 1.0, threads).foldFraction;
 }
 
 double largestDisplacement(const Image& displacement, double choppiness, int channel, int threads) {
-    // The largest squared length, one root at the end: a float's square is exact in double, so this is
-    // hypot's answer to rounding without a hypot per texel (16 million at 4096^2).
-    const size_t step = size_t(displacement.channels);
-    double worst = 0.0;
-    for (double row : perRow(displacement, threads, [&](int y) {
-             const float* d = rowOf(displacement, y, channel);
-             double w = 0.0;
-             for (int x = 0; x < displacement.width; ++x) {
-                 const double dx = d[x * step], dy = d[x * step + 1];
-                 w = std::max(w, dx * dx + dy * dy);
-             }
-             return w;
-         }))
-        worst = std::max(worst, row);
-    return std::abs(choppiness) * std::sqrt(worst);
+    return frameNumbers(displacement, {-1, channel, -1}, choppiness, threads).largestDisplacement;
 }
 
 }  // namespace heightpack
