@@ -63,53 +63,101 @@ std::vector<ExrAttribute> seaAttributes(const SynthOptions& options, const Spect
 
 using ProgressFn = std::function<void(std::string_view, double)>;
 
-// One tile: every frame computed, then foam over the loop, then the numbers, then the files.
+// What a frame's image holds, in this order: the heights, then Dx and Dy, then the Jacobian (where the
+// foam goes once worked out from it); each only when asked for or needed by the report.
+struct FrameLayout {
+    bool displacement = false, jacobian = false;
+    int channels() const { return 1 + (displacement ? 2 : 0) + (jacobian ? 1 : 0); }
+    int jacobianChannel() const { return displacement ? 3 : 1; }
+};
+
+// The first `count` channels of image: what is written when the report needed more than the file holds.
+Image firstChannels(const Image& image, int count, int threads) {
+    Image out(image.width, image.height, count);
+    parallelFor(image.height, threads, [&](int y0, int y1) {
+        for (size_t i = size_t(y0) * image.width; i < size_t(y1) * image.width; ++i)
+            std::copy_n(&image.pixels[i * image.channels], count, &out.pixels[i * count]);
+    });
+    return out;
+}
+
+// One tile: every frame computed, then foam over the loop, then the numbers, then the files. Each frame's
+// fields are transformed straight into its interleaved image, the one the file is written from, and the
+// amplitudes are let go before writing: with displacement and foam, 24 bytes a texel at the peak.
 Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptions& s, const SynthOptions& options,
                                   int cascade, int count, const ProgressFn& progress, StagedOutputs* staged) {
     const bool metres = lowerExtension(output) == ".exr";
-    const bool wantJacobian = options.foam || options.report;
-    const bool wantDisplacement = options.displacement || wantJacobian;
-    const int frames = options.frames;
+    const FrameLayout layout{options.displacement || options.foam || options.report, options.foam || options.report};
+    const int frames = options.frames, channels = layout.channels(), jc = layout.jacobianChannel();
     const double period = s.loopPeriod;
     auto timeOf = [&](int f) { return frames > 1 ? f * period / frames : 0.0; };
     auto share = [&](double f) { return (cascade + f) / count; };
 
-    const Ocean ocean(s, options.threads);
-    std::vector<SeaFields> fields;
-    for (int f = 0; f < frames; ++f) {
-        progress("synth", share(double(f) / frames));
-        fields.push_back(ocean.fields(timeOf(f), {true, wantDisplacement, wantJacobian}, options.choppiness, options.threads));
+    std::vector<Image> images;
+    double resolvedVariance = 0.0, displacementBound = 0.0;
+    {
+        // A single frame is t = 0 only: the ocean keeps half the amplitudes.
+        const Ocean ocean(s, OceanOptions{options.threads, frames > 1});
+        for (int f = 0; f < frames; ++f) {
+            progress("synth", share(double(f) / frames));
+            Image& image = images.emplace_back(s.size, s.size, channels);
+            float* first = image.pixels.data();
+            SeaFieldTargets to;
+            to.heights = {first, channels};
+            if (layout.displacement) to.displacementX = {first + 1, channels}, to.displacementY = {first + 2, channels};
+            if (layout.jacobian) to.jacobian = {first + jc, channels};
+            ocean.fieldsInto(timeOf(f), to, options.choppiness, options.threads);
+        }
+        resolvedVariance = ocean.resolvedVariance();
+        displacementBound = ocean.displacementBound();
     }
 
     SynthTileReport report;
     report.tileSize = s.tileSize;
     if (count > 1) report.bandLow = s.bandLow, report.bandHigh = s.bandHigh;
-    report.significantWaveHeight = significantWaveHeight(fields[0].heights);
-    const SeaStateSummary summary = summariseSeaState(s, ocean.resolvedVariance());
+
+    const SeaStateSummary summary = summariseSeaState(s, resolvedVariance);
     report.expectedSignificantWaveHeight = summary.significantWaveHeight;
     report.peakPeriod = summary.peakPeriod;
     report.peakWavelength = summary.peakWavelength;
     report.steepness = summary.steepness;
-    report.minHeight = report.maxHeight = fields[0].heights.pixels[0];
+    report.minHeight = report.maxHeight = images[0].pixels[0];
     double folds = 0.0, moved = 0.0;
-    for (const SeaFields& frame : fields) {
-        const auto [lo, hi] = std::minmax_element(frame.heights.pixels.begin(), frame.heights.pixels.end());
-        report.minHeight = std::min(report.minHeight, double(*lo));
-        report.maxHeight = std::max(report.maxHeight, double(*hi));
-        if (wantJacobian) folds += foldFraction(frame.jacobian) / frames;
-        if (wantDisplacement) moved = std::max(moved, largestDisplacement(frame.displacement, options.choppiness));
+    const FrameChannels at{0, layout.displacement ? 1 : -1, layout.jacobian ? jc : -1};
+    for (int f = 0; f < frames; ++f) {
+        const FrameNumbers numbers = frameNumbers(images[f], at, options.choppiness, options.threads);
+        if (f == 0) report.significantWaveHeight = numbers.significantWaveHeight;
+        report.minHeight = std::min(report.minHeight, double(numbers.minHeight));
+        report.maxHeight = std::max(report.maxHeight, double(numbers.maxHeight));
+        folds += numbers.foldFraction / frames;
+        moved = std::max(moved, numbers.largestDisplacement);
     }
-    if (wantJacobian) report.foldFraction = folds;
-    if (wantDisplacement) {
+    if (layout.jacobian) report.foldFraction = folds;
+    if (layout.displacement) {
         report.maxDisplacement = moved;
-        report.displacementBound = std::abs(options.choppiness) * ocean.displacementBound();
+        report.displacementBound = std::abs(options.choppiness) * displacementBound;
     }
 
-    std::vector<std::vector<float>> foam;
+    // The Jacobian's channel becomes the foam's coverage: texel by texel for a frozen sea, through the
+    // loop's densities for a sequence.
     if (options.foam) {
-        std::vector<Image> jacobians;
-        for (SeaFields& frame : fields) jacobians.push_back(std::move(frame.jacobian));
-        foam = loopingFoamDensity(jacobians, frames > 1 ? period : 0.0, options.foamOptions);
+        auto eachTexel = [&](Image& image, const auto& change) {
+            parallelFor(image.height, options.threads, [&](int y0, int y1) {
+                for (size_t i = size_t(y0) * image.width; i < size_t(y1) * image.width; ++i) change(i, image.pixels[i * channels + jc]);
+            });
+        };
+        if (frames == 1 || period <= 0.0) {
+            for (Image& image : images)
+                eachTexel(image, [&](size_t, float& t) { t = foamCoverageOf(frozenFoamDensity(t, options.foamOptions)); });
+        } else {
+            std::vector<Image> jacobians;
+            for (const Image& image : images) {
+                Image& j = jacobians.emplace_back(image.width, image.height, 1);
+                for (size_t i = 0; i < j.pixels.size(); ++i) j.pixels[i] = image.pixels[i * channels + jc];
+            }
+            const std::vector<std::vector<float>> foam = loopingFoamDensity(jacobians, period, options.foamOptions);
+            for (int f = 0; f < frames; ++f) eachTexel(images[f], [&](size_t i, float& t) { t = foamCoverageOf(foam[f][i]); });
+        }
     }
 
     // Integer files: one mapping onto [0,1] for the whole sequence, so frames compare.
@@ -117,25 +165,23 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
     const double scale = metres ? 1.0 : std::max(report.maxHeight - report.minHeight, 1e-9);
     const std::vector<ExrAttribute> sea = seaAttributes(options, s, report, cascade, count);
     const bool withD = options.displacement || options.foam;
+    const int written = 1 + (withD ? 2 : 0) + (options.foam ? 1 : 0);
     for (int f = 0; f < frames; ++f) {
         progress("write", share(double(f) / frames));
-        const Image& h = fields[f].heights;
-        const int channels = 1 + (withD ? 2 : 0) + (options.foam ? 1 : 0);
-        Image image(h.width, h.height, channels);
-        const Image coverage = options.foam ? foamCoverage(foam[f], h.width, h.height, options.threads) : Image();
-        parallelFor(h.height, options.threads, [&](int y0, int y1) {
-            for (size_t i = size_t(y0) * h.width; i < size_t(y1) * h.width; ++i) {
-                float* texel = &image.pixels[i * channels];
-                texel[0] = static_cast<float>((h.pixels[i] - offset) / scale);
-                if (withD) texel[1] = fields[f].displacement.pixels[2 * i], texel[2] = fields[f].displacement.pixels[2 * i + 1];
-                if (options.foam) texel[3] = coverage.pixels[i];
+        if (!metres)
+            for (size_t i = 0; i < images[f].texelCount(); ++i) {
+                float& h = images[f].pixels[i * channels];
+                h = static_cast<float>((h - offset) / scale);
             }
-        });
+        Image compact;
+        if (written != channels) compact = firstChannels(images[f], written, options.threads);
+        const Image& image = written == channels ? images[f] : compact;
         FlatImageOptions flat;
         if (withD) flat.channelNames = {"Y", "Dx", "Dy"};
         if (options.foam) flat.channelNames.push_back("Foam");
         flat.bits = metres ? 32 : 16;
         flat.threads = options.threads;
+        flat.compression = options.compression;
         flat.attributes = sea;
         flat.attributes.push_back(attribute(attr::heightScale, static_cast<float>(scale)));
         flat.attributes.push_back(attribute(attr::heightOffset, static_cast<float>(offset)));

@@ -1,9 +1,13 @@
-// Internal: 2-D DFTs of double fields on all threads. OpenCV's cv::dft runs a 2-D transform on one thread;
+// Internal: 2-D DFTs of double (and, for the sea's inverse, float) fields on all threads. OpenCV's cv::dft runs a 2-D transform on one thread;
 // these run its 1-D row transforms in fixed blocks of rows, then of columns, each block on any thread, so
 // the result does not depend on the thread count.
 #pragma once
 
 #include <opencv2/core.hpp>
+
+#include <complex>
+#include <functional>
+#include <vector>
 
 namespace heightpack::detail {
 
@@ -14,6 +18,25 @@ cv::Mat forwardDft(const cv::Mat& field, int threads);
 // cv::dft(spectrum, out, DFT_INVERSE | DFT_SCALE | DFT_REAL_OUTPUT). out may be a view of existing storage
 // of that size and type (it is written in place).
 void inverseDft(const cv::Mat& spectrum, cv::Mat& out, int threads);
+
+// The real w x h field (w even) of a Hermitian spectrum given by its half kx = 0 .. w/2: h rows of w/2 + 1
+// complex floats (row r is ky = r, or r - h above h/2), unscaled (a plain sum over k, as cv::dft with
+// DFT_INVERSE | DFT_REAL_OUTPUT and no DFT_SCALE). `half` is the scratch: it is overwritten. Each row of
+// the field goes to take(y, row) once, from any thread, rows of one block in order; in float, rows and
+// then columns split in fixed blocks, so the values do not depend on the thread count.
+void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads,
+                          const std::function<void(int y, const float* row)>& take);
+
+// Several fields from one half spectrum S: field f is the real field of S(kx, ky) * factor[kx], a factor
+// that depends on kx alone (i kx for d/dx, say), so one column pass serves them all and each costs only
+// its row pass. factor holds w/2 + 1 values (empty: 1). At kx = 0 and w/2 the columns' value times the
+// factor must be real, as it is when S times the factor is Hermitian (the field is real): only its real
+// part is used there. Rows of a block come field by field, in the order given.
+struct HalfSpectrumRows {
+    std::vector<std::complex<float>> factor;
+    std::function<void(int y, const float* row)> take;
+};
+void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads, const std::vector<HalfSpectrumRows>& fields);
 
 // The zero-mean periodic field (CV_64F, written to out as inverseDft writes) whose five-point Laplacian is
 // rhs, for Moisan's periodic + smooth decomposition: rhs's spectrum divided by the Laplacian's symbol

@@ -17,12 +17,21 @@ void advanceFoam(std::vector<float>& density, const Image& jacobian, double dt, 
     }
 }
 
+float frozenFoamDensity(float jacobian, const FoamOptions& o) {
+    return static_cast<float>(o.buildUp * o.decay * std::fmax(0.0, o.threshold - jacobian));
+}
+
+float foamCoverageOf(float density) {
+    // Most of a sea has no foam: no exponential to take there (-expm1(-0) is +0 all the same).
+    return density == 0.0f ? 0.0f : static_cast<float>(-std::expm1(-double(density)));
+}
+
 Image foamCoverage(const std::vector<float>& density, int width, int height, int threads) {
     assert(density.size() == size_t(width) * height);
     Image out(width, height, 1);
     parallelFor(height, threads, [&](int y0, int y1) {
         for (size_t i = size_t(y0) * width; i < size_t(y1) * width; ++i)
-            out.pixels[i] = static_cast<float>(-std::expm1(-double(density[i])));
+            out.pixels[i] = foamCoverageOf(density[i]);
     });
     return out;
 }
@@ -37,7 +46,7 @@ std::vector<std::vector<float>> loopingFoamDensity(const std::vector<Image>& jac
         // Frozen: the fixed point of advanceFoam for any dt.
         for (const Image& j : jacobians) {
             std::vector<float> d(texels, 0.0f);
-            for (size_t i = 0; i < texels; ++i) d[i] = static_cast<float>(o.buildUp * o.decay * std::fmax(0.0, o.threshold - j.pixels[i]));
+            for (size_t i = 0; i < texels; ++i) d[i] = frozenFoamDensity(j.pixels[i], o);
             out.push_back(std::move(d));
         }
         return out;

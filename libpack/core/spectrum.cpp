@@ -134,28 +134,27 @@ double SeaSpectrum::swellWavenumberSpectrum(double k) const {
 
 double SeaSpectrum::omnidirectional(double k) const { return windWavenumberSpectrum(k) + swellWavenumberSpectrum(k); }
 
-double SeaSpectrum::directional(double kx, double ky) const {
-    const double k = std::hypot(kx, ky);
+double SeaSpectrum::directional(double kx, double ky) const { return directional(kx, ky, std::hypot(kx, ky)); }
+
+double SeaSpectrum::directional(double kx, double ky, double k) const {
     if (k <= 0.0) return 0.0;
     const SpectrumOptions& o = options_;
-    const double w = dispersionFrequency(k, o.depth);
+    // Only the spreadings that depend on frequency need it: not taken for cos2 without a swell.
+    auto frequency = [&] { return dispersionFrequency(k, o.depth); };
     double sum = 0.0;
-    if (const double s = windWavenumberSpectrum(k); s > 0.0) {
-        const double wind = radians(o.windDirection);
-        double spread;
-        if (o.spreading == Spreading::Cos2) {
-            // The common case without an arc tangent: cos(theta - wind) from the dot product.
-            const double c = (kx * windX_ + ky * windY_) / k;
-            spread = c > 0.0 ? (2.0 / std::numbers::pi) * c * c : 0.0;
-        } else {
-            spread = spreadingFunction({o.spreading, o.spreadingExponent, windPeak_, o.windSpeed},
-                                       std::atan2(ky, kx) - wind, w);
-        }
-        sum += s / k * spread;
+    if (o.spreading == Spreading::Cos2) {
+        // The common case without an arc tangent: cos(theta - wind) from the dot product. Half the plane
+        // (against the wind) is zero: the spectrum is not evaluated there.
+        const double c = (kx * windX_ + ky * windY_) / k;
+        if (c > 0.0)
+            if (const double s = windWavenumberSpectrum(k); s > 0.0) sum += s / k * ((2.0 / std::numbers::pi) * c * c);
+    } else if (const double s = windWavenumberSpectrum(k); s > 0.0) {
+        sum += s / k * spreadingFunction({o.spreading, o.spreadingExponent, windPeak_, o.windSpeed},
+                                         std::atan2(ky, kx) - radians(o.windDirection), frequency());
     }
     if (const double s = swellWavenumberSpectrum(k); s > 0.0) {
         const SpreadingOptions narrow{Spreading::Cos2s, o.swell.spreadingExponent, swellPeak_, o.windSpeed};
-        sum += s / k * spreadingFunction(narrow, std::atan2(ky, kx) - radians(o.swell.direction), w);
+        sum += s / k * spreadingFunction(narrow, std::atan2(ky, kx) - radians(o.swell.direction), frequency());
     }
     return sum;
 }

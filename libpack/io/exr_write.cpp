@@ -219,11 +219,12 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
     return Done{};
 }
 
-// The flat scanline file: ZIP blocks of 16 rows, a batch of blocks packed and deflated on all threads,
-// then written in order by one thread. It replaced OpenImageIO's writer (zlib through OpenEXR 3.1), which
-// took about 40% of `synth`'s time; the file holds the same channels, types and attributes.
+// The flat scanline file: blocks of rows (16 for ZIP and None, 1 for ZIPS), a batch of blocks packed (and
+// deflated) on all threads, then written in order by one thread. It replaced OpenImageIO's writer (zlib
+// through OpenEXR 3.1), which took about 40% of `synth`'s time; the file holds the same channels, types
+// and attributes.
 Status writeScanlineWithCore(const std::string& finalPath, const std::string& path, const ScanlineExrContent& content,
-                             bool half, int threads) {
+                             bool half, int threads, Compression compression) {
     CoreErrors errors;
     exr_context_t ctxt = nullptr;
     auto fail = [&](const char* step, exr_result_t rv) -> Status {
@@ -235,9 +236,13 @@ Status writeScanlineWithCore(const std::string& finalPath, const std::string& pa
     std::unique_ptr<exr_context_t, void (*)(exr_context_t*)> guard(&ctxt, [](exr_context_t* c) { exr_finish(c); });
     if (rv != EXR_ERR_SUCCESS) return fail("opening the file", rv);
 
+    const bool zip = compression != Compression::None;
     int part = 0;
     if ((rv = exr_add_part(ctxt, nullptr, EXR_STORAGE_SCANLINE, &part)) ||
-        (rv = exr_initialize_required_attr_simple(ctxt, part, content.width, content.height, EXR_COMPRESSION_ZIP)))
+        (rv = exr_initialize_required_attr_simple(ctxt, part, content.width, content.height,
+                                                  !zip ? EXR_COMPRESSION_NONE
+                                                  : compression == Compression::Zips ? EXR_COMPRESSION_ZIPS
+                                                                                     : EXR_COMPRESSION_ZIP)))
         return fail("describing the file", rv);
     // pLinear 0 (OpenEXRCore calls it "logarithmic"): what OpenImageIO wrote, Imf::Channel's default.
     for (const std::string& name : content.channelNames)
@@ -254,20 +259,26 @@ Status writeScanlineWithCore(const std::string& finalPath, const std::string& pa
     const int blocks = (content.height + linesPerBlock - 1) / linesPerBlock;
     // Enough blocks a batch to keep the threads busy, few enough that the compressed batch stays small.
     const int batch = 64;
+    // The batch's blocks are reserved here, on this thread: a worker's own allocations would come from its
+    // own arena, new memory beside the caller's freed heap (16 MB more at 4096^2, 4 float channels).
     std::vector<std::vector<unsigned char>> packed(batch);
+    libdeflate_compressor* sizing = libdeflate_alloc_compressor(kScanlineDeflateLevel);
+    const size_t rawBlock = size_t(linesPerBlock) * content.width * channels * (half ? 2 : 4);
+    for (std::vector<unsigned char>& block : packed) block.reserve(zip ? libdeflate_zlib_compress_bound(sizing, rawBlock) : rawBlock);
+    libdeflate_free_compressor(sizing);
     for (int first = 0; first < blocks; first += batch) {
         const int count = std::min(batch, blocks - first);
         std::vector<Status> failed(count, Done{});
         parallelFor(count, threads, [&](int a, int b) {
             std::vector<unsigned char> raw, scratch;
-            libdeflate_compressor* compressor = libdeflate_alloc_compressor(kScanlineDeflateLevel);
+            libdeflate_compressor* compressor = zip ? libdeflate_alloc_compressor(kScanlineDeflateLevel) : nullptr;
             for (int i = a; i < b; ++i) {
                 const int y0 = (first + i) * linesPerBlock, rows = std::min(linesPerBlock, content.height - y0);
                 const float* band = content.pixels + size_t(y0) * content.width * channels;
                 failed[i] = requireFinite(finalPath, band, size_t(content.width) * rows * channels, 0);
                 if (!failed[i]) continue;
-                packTile(band, content.width, channels, nameOrder, 0, content.width, rows, half, raw);
-                zipTile(raw, scratch, packed[i], compressor);
+                packTile(band, content.width, channels, nameOrder, 0, content.width, rows, half, zip ? raw : packed[i]);
+                if (zip) zipTile(raw, scratch, packed[i], compressor);
             }
             libdeflate_free_compressor(compressor);
         });
@@ -370,13 +381,15 @@ Status writeTiledExr(const std::string& path, const MipChainSource& content, con
     return temp.commit();
 }
 
-Status writeScanlineExr(const std::string& path, const ScanlineExrContent& content, bool half, int threads) {
+Status writeScanlineExr(const std::string& path, const ScanlineExrContent& content, bool half, int threads,
+                        Compression compression) {
     assert(content.width > 0 && content.height > 0 && !content.channelNames.empty() && content.pixels);
     if (Status writable = checkWritable(path); !writable) return writable;
     if (lowerExtension(path) != ".exr")
         return cannotWrite(path, "is not an .exr name, but the file would be an EXR", "name the output .exr");
     TemporaryFile temp(path);
-    if (Status written = writeScanlineWithCore(path, temp.path(), content, half, threads); !written) return written;
+    if (Status written = writeScanlineWithCore(path, temp.path(), content, half, threads, compression); !written)
+        return written;
     return temp.commit();
 }
 

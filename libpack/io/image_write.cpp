@@ -56,7 +56,7 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
         content.channelNames = spec.channelnames;
         content.pixels = image.pixels.data();
         content.attributes = options.attributes;
-        return writeScanlineExr(path, content, options.half, options.threads);
+        return writeScanlineExr(path, content, options.half, options.threads, options.compression);
     }
     // The last guard before bytes reach a file: an output never holds NaN or infinity
     // (writeScanlineExr keeps its own).

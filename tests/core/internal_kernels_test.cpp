@@ -1,16 +1,21 @@
 // The core floor's internal kernels against independent computations: the threaded 2-D DFTs
-// (libpack/core/dft.hpp) against OpenCV's own single-threaded cv::dft, and the radix sort behind the rank
-// Gaussianisation (libpack/core/gaussianise.hpp) against std::stable_sort.
+// (libpack/core/dft.hpp) against OpenCV's own single-threaded cv::dft, the radix sort behind the rank
+// Gaussianisation (libpack/core/gaussianise.hpp) against std::stable_sort, and the sea's counter-based
+// normal deviates (libpack/core/counter_normals.hpp) against the standard normal's moments.
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <complex>
 #include <cstring>
+#include <functional>
 #include <numeric>
 #include <random>
 #include <vector>
 
+#include "counter_normals.hpp"
 #include "dft.hpp"
 #include "gaussianise.hpp"
 
@@ -45,6 +50,141 @@ TEST(ThreadedDft, EqualsOpenCvsTransformAtOddAndEvenSizesOnAnyThreadCount) {
             EXPECT_EQ(std::memcmp(again.data, back.data, back.total() * back.elemSize()), 0) << threads;
         }
     }
+}
+
+TEST(ThreadedDft, RealInverseOfAHalfSpectrumInFloatEqualsOpenCvsFullInverse) {
+    // A real field's full spectrum (cv::dft, double) is the reference; the half kx = 0 .. w/2 of it, in
+    // float, must come back to the unscaled inverse to float rounding, with the same bytes on any threads.
+    std::mt19937 random(5);
+    std::normal_distribution<double> normal;
+    for (const auto& [w, h] : {std::pair{2, 1}, {4, 4}, {8, 2}, {16, 64}, {64, 16}, {128, 128}}) {
+        cv::Mat field(h, w, CV_64F), full;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) field.at<double>(y, x) = normal(random);
+        cv::dft(field, full, cv::DFT_COMPLEX_OUTPUT);
+        auto inverse = [&](int threads) {
+            std::vector<std::complex<float>> half(size_t(h) * (w / 2 + 1));
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x <= w / 2; ++x) {
+                    const cv::Vec2d z = full.at<cv::Vec2d>(y, x);
+                    half[size_t(y) * (w / 2 + 1) + x] = {float(z[0]), float(z[1])};
+                }
+            std::vector<float> out(size_t(w) * h, -1.0f);
+            detail::inverseRealDftOfHalf(half.data(), w, h, threads,
+                                         [&](int y, const float* row) { std::copy(row, row + w, out.begin() + size_t(y) * w); });
+            return out;
+        };
+        const std::vector<float> one = inverse(1);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)  // no 1/(w h): the field times w h
+                ASSERT_NEAR(one[size_t(y) * w + x], field.at<double>(y, x) * w * h, 1e-5 * w * h) << w << "x" << h;
+        for (int threads : {2, 3}) EXPECT_EQ(inverse(threads), one) << w << "x" << h << " on " << threads;
+    }
+}
+
+TEST(ThreadedDft, FieldsSharingOneColumnPassEqualTheirOwnInverses) {
+    // A field and its x derivative (factor i kx, 0 at the Nyquist column) from one column pass, against
+    // cv::dft of the full spectrum times i kx; and an odd column factor (ky, as the sea's Dy pass uses)
+    // whose kx = 0 column is imaginary until its row factor i makes it real.
+    std::mt19937 random(9);
+    std::normal_distribution<double> normal;
+    const int w = 32, h = 16;
+    cv::Mat field(h, w, CV_64F), full;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) field.at<double>(y, x) = normal(random);
+    cv::dft(field, full, cv::DFT_COMPLEX_OUTPUT);
+    auto signedBin = [](int q, int n) { return q < n / 2 ? q : q - n; };
+    // The reference: cv::dft's inverse of the full spectrum times m(kx, ky), unscaled.
+    auto reference = [&](const std::function<std::complex<double>(int kx, int ky)>& m) {
+        cv::Mat product = full.clone(), out;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const bool nyquist = x == w / 2 || y == h / 2;
+                const cv::Vec2d z = full.at<cv::Vec2d>(y, x);
+                const std::complex<double> v = nyquist ? 0.0 : std::complex<double>(z[0], z[1]) * m(signedBin(x, w), signedBin(y, h));
+                product.at<cv::Vec2d>(y, x) = {v.real(), v.imag()};
+            }
+        cv::dft(product, out, cv::DFT_INVERSE | cv::DFT_REAL_OUTPUT);
+        return out;
+    };
+    // The half spectrum times a column multiplier of ky (the Nyquist row and column left empty).
+    auto half = [&](bool timesKy) {
+        std::vector<std::complex<float>> out(size_t(h) * (w / 2 + 1));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w / 2; ++x) {
+                const cv::Vec2d z = full.at<cv::Vec2d>(y, x);
+                const double m = y == h / 2 ? 0.0 : timesKy ? signedBin(y, h) : 1.0;
+                out[size_t(y) * (w / 2 + 1) + x] = {float(z[0] * m), float(z[1] * m)};
+            }
+        return out;
+    };
+    std::vector<std::complex<float>> ikx(w / 2 + 1), i(w / 2 + 1, {0.0f, 1.0f});
+    for (int q = 0; q < w / 2; ++q) ikx[q] = {0.0f, float(q)};
+    for (int threads : {1, 3}) {
+        std::vector<float> plain(size_t(w) * h), dx(plain.size()), dy(plain.size());
+        auto into = [&](std::vector<float>& v) {
+            return [&v, w](int y, const float* row) { std::copy(row, row + w, v.begin() + size_t(y) * w); };
+        };
+        std::vector<std::complex<float>> a = half(false), b = half(true);
+        detail::inverseRealDftOfHalf(a.data(), w, h, threads, {{{}, into(plain)}, {ikx, into(dx)}});
+        detail::inverseRealDftOfHalf(b.data(), w, h, threads, {{i, into(dy)}});
+        const cv::Mat p = reference([](int, int) { return 1.0; });
+        const cv::Mat x = reference([](int kx, int) { return std::complex<double>(0.0, kx); });
+        const cv::Mat y = reference([](int, int ky) { return std::complex<double>(0.0, ky); });
+        for (int r = 0; r < h; ++r)
+            for (int c = 0; c < w; ++c) {
+                const size_t at = size_t(r) * w + c;
+                ASSERT_NEAR(plain[at], p.at<double>(r, c), 1e-3) << threads;
+                ASSERT_NEAR(dx[at], x.at<double>(r, c), 1e-2) << threads;
+                ASSERT_NEAR(dy[at], y.at<double>(r, c), 1e-2) << threads;
+            }
+    }
+}
+
+TEST(CounterNormals, AreStandardNormalAndUncorrelatedAlongCellsRowsAndSeeds) {
+    // 10^6 deviates: 500 000 pairs of a 4096-wide grid, as Ocean draws them (index = row * 4096 + column).
+    // Every tolerance is 5 standard errors of its estimate over N values: mean 1/sqrt(N), variance
+    // sqrt(2/N), fourth moment sqrt(96/N) (E x^8 - 9 = 96), a correlation 1/sqrt(N).
+    constexpr uint64_t kWidth = 4096, kPairs = 500000;
+    const uint64_t key = detail::normalStreamKey(1), other = detail::normalStreamKey(1 + detail::kSplitMixGamma);
+    std::vector<double> first(kPairs), second(kPairs), otherSeed(kPairs);
+    for (uint64_t i = 0; i < kPairs; ++i) {
+        const detail::NormalPair g = detail::normalPair(key, i);
+        first[i] = g.first, second[i] = g.second;
+        otherSeed[i] = detail::normalPair(other, i).first;  // a cascade's seed, as cascadeBands spaces them
+    }
+    std::vector<double> all(first);
+    all.insert(all.end(), second.begin(), second.end());
+    const double n = double(all.size());
+    auto mean = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / double(v.size()); };
+    auto moment = [&](int power) {
+        double sum = 0.0;
+        for (double x : all) sum += std::pow(x, power);
+        return sum / n;
+    };
+    // E[a b] over the pairs (a[i], b[i + shift]): a correlation, the deviates being standard.
+    auto correlation = [](const std::vector<double>& a, const std::vector<double>& b, size_t shift) {
+        double sum = 0.0;
+        for (size_t i = 0; i + shift < a.size(); ++i) sum += a[i] * b[i + shift];
+        return sum / double(a.size() - shift);
+    };
+    EXPECT_NEAR(mean(all), 0.0, 5 / std::sqrt(n));
+    EXPECT_NEAR(moment(2), 1.0, 5 * std::sqrt(2 / n));
+    EXPECT_NEAR(moment(3), 0.0, 5 * std::sqrt(15 / n));
+    EXPECT_NEAR(moment(4), 3.0, 5 * std::sqrt(96 / n));
+    const double half = 5 / std::sqrt(double(kPairs) - double(kWidth));
+    EXPECT_NEAR(correlation(first, second, 0), 0.0, half);       // real and imaginary part of one cell
+    EXPECT_NEAR(correlation(first, first, 1), 0.0, half);        // neighbouring cells of a row
+    EXPECT_NEAR(correlation(second, first, 1), 0.0, half);
+    EXPECT_NEAR(correlation(first, first, kWidth), 0.0, half);   // neighbouring rows
+    EXPECT_NEAR(correlation(first, otherSeed, 0), 0.0, half);    // the same cell of another cascade
+    EXPECT_NEAR(correlation(first, otherSeed, 1), 0.0, half);    // ... not a stream shifted by one
+    // The tails: P(|x| > 3) = 0.0026998 for a standard normal, its standard error sqrt(p (1 - p) / N).
+    const double p = 0.0026998;
+    const double beyond = double(std::count_if(all.begin(), all.end(), [](double x) { return std::abs(x) > 3.0; })) / n;
+    EXPECT_NEAR(beyond, p, 5 * std::sqrt(p * (1 - p) / n));
+    // A pure function of (key, index): asked again, in another order, the same bits.
+    EXPECT_EQ(detail::normalPair(key, 123456).first, first[123456]);
 }
 
 TEST(StableOrder, EqualsStdStableSortWithTiesNegativesAndSignedZeros) {

@@ -200,13 +200,16 @@ TEST(Spectrum, WavesRunWithTheWind) {
     };
     const cv::Mat a = spectrumAt(1.0), b = spectrumAt(1.0 + dt);
     const double dk = 2 * std::numbers::pi / o.tileSize, wind = 20.0 * std::numbers::pi / 180;
+    // The heights are float, and so is the transform that makes them: a bin below 1e-5 of the largest is
+    // mostly their rounding, and its phase measures nothing.
+    const double floor = 1e-5 * cv::norm(a, cv::NORM_INF);
     int checked = 0;
     for (int my = -8; my <= 8; ++my)
         for (int mx = 1; mx <= 8; ++mx) {
             const double kx = mx * dk, ky = my * dk;
             if (kx * std::cos(wind) + ky * std::sin(wind) <= 0.2 * std::hypot(kx, ky)) continue;
             const cv::Vec2d za = a.at<cv::Vec2d>((my + o.size) % o.size, mx), zb = b.at<cv::Vec2d>((my + o.size) % o.size, mx);
-            if (std::hypot(za[0], za[1]) < 1e-6) continue;
+            if (std::hypot(za[0], za[1]) < floor) continue;
             const double turned = std::atan2(za[0] * zb[1] - za[1] * zb[0], za[0] * zb[0] + za[1] * zb[1]);
             // To float rounding of the stored heights; running against the wind would be off by 2 w dt.
             EXPECT_NEAR(turned, std::remainder(-dispersionFrequency(std::hypot(kx, ky), o.depth) * dt, 2 * std::numbers::pi), 1e-3);

@@ -20,6 +20,13 @@ struct FoamOptions {
 // Stays 0 wherever J stays at or above the threshold. density and jacobian have the same texel count.
 void advanceFoam(std::vector<float>& density, const Image& jacobian, double dt, const FoamOptions& options);
 
+// The density a sea frozen with Jacobian `jacobian` at a texel settles at (advanceFoam's fixed point):
+// buildUp * decay * max(0, threshold - J).
+float frozenFoamDensity(float jacobian, const FoamOptions& options);
+
+// The coverage one texel of `density` shows: 1 - exp(-density), in [0, 1).
+float foamCoverageOf(float density);
+
 // Coverage in [0, 1) from a density: 1 - exp(-density), so coverage saturates instead of clipping.
 // Rows shared among `threads` threads (0 = all cores); each texel on its own, so any count gives the same.
 Image foamCoverage(const std::vector<float>& density, int width, int height, int threads = 1);

@@ -20,13 +20,28 @@ struct SeaStateSummary {
 // The summary for a sea whose grid resolves `resolvedVariance` (Ocean::resolvedVariance) of the spectrum.
 SeaStateSummary summariseSeaState(const SpectrumOptions& options, double resolvedVariance);
 
-// 4 x the standard deviation of the map's texels (one channel): the realised significant wave height.
-double significantWaveHeight(const Image& heights);
+// Where a frame's channels are: the heights, Dx (Dy in the next channel), the Jacobian; -1 = absent.
+struct FrameChannels {
+    int heights = 0, displacement = -1, jacobian = -1;
+};
+// The numbers a report takes from one frame; 0 for what its channels do not hold.
+struct FrameNumbers {
+    double significantWaveHeight = 0.0;  // 4 x the standard deviation of the heights
+    float minHeight = 0.0f, maxHeight = 0.0f;
+    double foldFraction = 0.0;         // of texels whose Jacobian is negative: the surface folds there
+    double largestDisplacement = 0.0;  // the largest |choppiness * (Dx, Dy)| of any texel
+};
+// All of them in two passes over the frame, over rows on `threads` threads (0 = all cores), combined in
+// row order: the same numbers whatever the count.
+FrameNumbers frameNumbers(const Image& frame, const FrameChannels& channels, double choppiness = 1.0, int threads = 1);
 
+// One number of one channel (0 in a one-channel map), as frameNumbers gives it.
+// 4 x the standard deviation of the map's texels: the realised significant wave height.
+double significantWaveHeight(const Image& heights, int channel = 0, int threads = 1);
 // The fraction of texels whose Jacobian is negative: where the choppy surface folds over itself.
-double foldFraction(const Image& jacobian);
-
-// The longest horizontal move any texel makes: the largest |choppiness * (Dx, Dy)| over a two-channel map.
-double largestDisplacement(const Image& displacement, double choppiness);
+double foldFraction(const Image& jacobian, int channel = 0, int threads = 1);
+// The longest horizontal move any texel makes: the largest |choppiness * (Dx, Dy)|, Dx in `channel` and
+// Dy in the next.
+double largestDisplacement(const Image& displacement, double choppiness, int channel = 0, int threads = 1);
 
 }  // namespace heightpack

@@ -2,6 +2,7 @@
 // periodic over the tile by construction, and looping in time when the frequencies are quantised.
 #pragma once
 
+#include <complex>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -77,6 +78,9 @@ public:
     // The directional spectrum over the wave-vector plane in m^4: each component's S(k) / k times its
     // spreading around its own direction.
     double directional(double kx, double ky) const;
+    // The same with k = |(kx, ky)| given: a grid that has it already (from sqrt, which cannot overflow
+    // there and is several times cheaper than hypot) saves taking it again.
+    double directional(double kx, double ky, double k) const;
     // The wind sea's peak angular frequency (rad/s) as its model defines it.
     double windPeakOmega() const { return windPeak_; }
     const SpectrumOptions& options() const { return options_; }
@@ -127,22 +131,39 @@ struct SeaFields {
     Image jacobian;      // one channel: (1 + c Dxx)(1 + c Dyy) - c^2 Dxy^2, derivatives taken spectrally
 };
 
-// A synthesised sea: Gaussian random amplitudes drawn once from the seed (a fixed generator and order,
-// so a seed reproduces the map), evolved to any time.
+// Where Ocean::fieldsInto writes one field: texel (x, y) at first[(y * size + x) * stride]; null = not wanted.
+struct SeaFieldTarget {
+    float* first = nullptr;
+    int stride = 1;  // floats from one texel to the next: 1 in a plane, the channel count in an interleaved image
+};
+struct SeaFieldTargets {
+    SeaFieldTarget heights, displacementX, displacementY, jacobian;
+};
+
+struct OceanOptions {
+    int threads = 1;      // threads for drawing up the amplitudes (0 = all cores); the sea is the same for any count
+    bool evolves = true;  // false: only t = 0 is ever asked (a single frame), and half the amplitudes' memory is kept
+};
+
+// A synthesised sea: Gaussian random amplitudes drawn from the seed (a counter-based generator: each wave
+// vector's draw depends on the seed and its index alone, so a seed reproduces the map on any thread count),
+// evolved to any time.
 class Ocean {
 public:
-    // `threads` shares out the work of drawing up the amplitudes (0 = all cores); the sea is the same
-    // for any count.
-    explicit Ocean(const SpectrumOptions& options, int threads = 1);
+    explicit Ocean(const SpectrumOptions& options, int threads = 1) : Ocean(options, OceanOptions{threads}) {}
+    Ocean(const SpectrumOptions& options, const OceanOptions& how);
     // Heights in metres at time t (seconds), size x size; real by construction (Hermitian spectrum).
     Image heights(double t) const;
     // Tessendorf's horizontal displacement (choppiness) at time t: two channels, x and y, in metres per
     // unit of choppiness, D(k) = i k / |k| h(k): an engine moves each vertex by lambda * D, and a crest
     // draws its neighbours in (a Gerstner wave's sharpening) for positive lambda.
     Image displacement(double t) const;
-    // Several fields at once, sharing the evolved spectrum and pairing real fields into complex
-    // transforms; `threads` splits the work (0 = all cores), the result is the same for any count.
+    // Several fields at once, sharing the evolved spectrum; `threads` splits the work (0 = all cores), the
+    // result is the same for any count.
     SeaFields fields(double t, const SeaFieldSet& which, double choppiness = 1.0, int threads = 1) const;
+    // The same fields written straight into the caller's storage (an interleaved image's channels, say),
+    // so no plane of each is held twice. t must be 0 unless the ocean evolves.
+    void fieldsInto(double t, const SeaFieldTargets& targets, double choppiness = 1.0, int threads = 1) const;
     // The variance the grid carries on average: the spectrum summed over the resolved wave vectors.
     double resolvedVariance() const { return resolvedVariance_; }
     // A bound on |D| at any point and time, per unit of choppiness: the sum over modes of |h(k, t)|,
@@ -152,8 +173,10 @@ public:
 
 private:
     SpectrumOptions options_;
-    std::vector<double> amplitudeRe_, amplitudeIm_;  // h0(k), row-major over the DFT grid
-    std::vector<double> omega_;
+    // Over the half kx = 0 .. size/2 of the DFT grid (size/2 + 1 a row; the rest follows by symmetry):
+    // h(k, 0) = h0(k) + conj(h0(-k)), and its partner h0(k) - conj(h0(-k)) (only when the sea evolves), so
+    // that h(k, t) = cos(w t) h(k, 0) - i sin(w t) partner.
+    std::vector<std::complex<float>> initial_, partner_;
     double resolvedVariance_ = 0.0;
     double displacementBound_ = 0.0;
 };

@@ -64,9 +64,11 @@ struct ScanlineExrContent {
     std::vector<ExrAttribute> attributes;
 };
 
-// Writes content as a scanline EXR in ZIP (16 rows a block; lossless), atomically as writeTiledExr does.
-// The blocks are packed and deflated on `threads` threads (0 = all cores) and written in file order, so
-// the bytes never depend on the thread count. A non-finite value is an internal error: nothing is written.
-Status writeScanlineExr(const std::string& path, const ScanlineExrContent& content, bool half, int threads);
+// Writes content as a scanline EXR, atomically as writeTiledExr does: in ZIP (16 rows a block; lossless),
+// ZIPS (one row a block) or uncompressed (None; any other compression is taken as Zip). The blocks are
+// packed (and deflated) on `threads` threads (0 = all cores) and written in file order, so the bytes never
+// depend on the thread count. A non-finite value is an internal error: nothing is written.
+Status writeScanlineExr(const std::string& path, const ScanlineExrContent& content, bool half, int threads,
+                        Compression compression = Compression::Zip);
 
 }  // namespace heightpack

@@ -7,6 +7,7 @@
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/attributes.hpp"
+#include "heightpack/io/exr_write.hpp"
 
 namespace heightpack {
 
@@ -18,6 +19,7 @@ struct FlatImageOptions {
     std::vector<ExrAttribute> attributes;  // metadata; a PNG holds numbers as text
     std::vector<std::string> channelNames; // empty: Y, RGB or RGBA by count
     int threads = 0;        // for compressing a float EXR (0 = all cores); the bytes do not depend on it
+    Compression compression = Compression::Zip;  // a float EXR's: zip, zips or none
 };
 
 // Writes image (1 to 4 channels: Y, RGB or RGBA) atomically, as writeTiledExr does. Integer formats clamp
