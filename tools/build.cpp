@@ -202,7 +202,12 @@ private:
         std::vector<std::string> extra;
         if (!cacheFolder.empty()) extra = {"--cache", cacheFolder};
         if (!cacheFolder.empty() && !cacheSize_.empty()) extra.insert(extra.end(), {"--cache-size", cacheSize_});
-        const auto actions = planActions(manifests, output_, ec ? std::string("heightpack") : self.string(), extra, kVersion);
+        const std::string program = ec ? std::string("heightpack") : self.string();
+        auto actions = planActions(manifests, output_, program, kVersion);
+        for (BuildAction& a : actions) {
+            a.command = {program, "build", a.manifest, "-o", a.folder, "--only", a.only, "-q"};
+            a.command.insert(a.command.end(), extra.begin(), extra.end());
+        }
         const std::string text = planFormat_ == PlanFormat::Ninja ? ninjaFile(actions) : actionsJson(actions);
         std::fwrite(text.data(), 1, text.size(), stdout);
         return ExitCode::Ok;

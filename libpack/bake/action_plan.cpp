@@ -44,24 +44,22 @@ std::string ninjaCommand(const std::vector<std::string>& argv) {
 }  // namespace
 
 std::vector<BuildAction> planActions(const std::vector<Manifest>& manifests, const std::string& output,
-                                     const std::string& executable, const std::vector<std::string>& extraArguments,
-                                     const std::string& version) {
+                                     const std::string& executable, const std::string& version) {
     std::vector<BuildAction> actions;
     for (const Manifest& m : manifests) {
         const std::string folder = materialOutputDir(output, m, manifests.size());
-        auto command = [&](const std::string& only) {
-            std::vector<std::string> argv{executable, "build", m.path, "-o", folder, "--only", only, "-q"};
-            argv.insert(argv.end(), extraArguments.begin(), extraArguments.end());
-            return argv;
-        };
         BuildAction last;
-        last.command = command(kMaterialFile);
+        last.manifest = m.path;
+        last.folder = folder;
+        last.only = kMaterialFile;
         last.inputs = {executable, m.path};
         last.outputs = {(fs::path(folder) / kMaterialFile).string(), (fs::path(folder) / kBuildStateFile).string()};
         last.description = std::string("describe ").append(m.name).append(": ").append(kMaterialFile);
         for (const detail::Step& s : detail::planSteps(m, version)) {
             BuildAction a;
-            a.command = command(s.report.output);
+            a.manifest = m.path;
+            a.folder = folder;
+            a.only = s.report.output;
             a.inputs = {executable, m.path};
             if (!s.report.input.empty()) a.inputs.push_back(s.report.input);
             a.outputs = {(fs::path(folder) / s.report.output).string()};

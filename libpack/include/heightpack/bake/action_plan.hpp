@@ -24,19 +24,20 @@ struct NameTable<PlanFormat> {
 };
 
 struct BuildAction {
-    std::vector<std::string> command;  // argv, the program first
+    // What the action makes: BuildOptions::only for `manifest` built into `folder` (an output's name, or
+    // kMaterialFile for the last action). The shell words it as its command (the library names no flag).
+    std::string manifest, folder, only;
+    std::vector<std::string> command;  // argv, the program first: filled by the shell
     std::vector<std::string> inputs;   // every file the command reads (the program too)
     std::vector<std::string> outputs;  // every file it writes
     std::string description;           // "bake ocean: swell.exr"
 };
 
 // The actions that build `manifests` into `output` (as `heightpack build` would: one manifest into output
-// itself, several into output/NAME), run by `executable` with `extraArguments` after each action's own
-// (the shared cache's, say). Paths are as given: an executor runs the actions from the folder the plan
-// was made in.
+// itself, several into output/NAME) with the program `executable` (an input of every action). Paths are
+// as given: an executor runs the actions from the folder the plan was made in.
 std::vector<BuildAction> planActions(const std::vector<Manifest>& manifests, const std::string& output,
-                                     const std::string& executable, const std::vector<std::string>& extraArguments,
-                                     const std::string& version);
+                                     const std::string& executable, const std::string& version);
 
 // The actions as a Ninja file (one rule per action kind, paths escaped; `ninja -f FILE` runs them) and as
 // JSON ({"actions": [{"command", "inputs", "outputs", "description"}]}).
