@@ -7,6 +7,7 @@
 
 #include "heightpack/core/parallel.hpp"
 
+#include "counter_normals.hpp"
 #include "dft.hpp"
 
 namespace heightpack::detail {
@@ -15,20 +16,11 @@ namespace {
 
 using Complex = std::complex<double>;
 
-// SplitMix64's finaliser: a well-mixed 64-bit value for each input.
-uint64_t mix(uint64_t z) {
-    z += 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-// A complex normal value of unit variance (each part N(0, 1/2)) for (seed, index) alone (Box-Muller, both
-// of its outputs): the same noise on any thread.
+// A complex normal value of unit variance (each part N(0, 1/2)) for (seed, index) alone: the same noise on
+// any thread, from the generator the sea's amplitudes come from.
 Complex complexNoise(uint64_t seed, uint64_t index) {
-    const uint64_t a = mix(seed * 0x632BE59BD9B4E019ull + 2 * index), b = mix(seed * 0x632BE59BD9B4E019ull + 2 * index + 1);
-    const double u1 = (double(a >> 11) + 0.5) / 9007199254740992.0, u2 = double(b >> 11) / 9007199254740992.0;
-    return std::polar(std::sqrt(-std::log(u1)), 2 * std::numbers::pi * u2);
+    const NormalPair pair = normalPair(normalStreamKey(seed), index);
+    return Complex(pair.first, pair.second) / std::numbers::sqrt2;
 }
 
 // Moisan's smooth field of g's edge jumps, in the frequency domain: S = V / lambda, where V is the DFT of

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# heightpack tile against heightpack pack on the same map (issue 22 asks tile within 2x of pack): a
-# 4096x4096 16-bit crop of a larger periodic map (so it does not tile), tiled to a 16-bit PNG and packed to
-# the default mip-mapped EXR. Runs alternate (tile, pack, tile, ...); prints median seconds, peak memory,
+# heightpack tile against heightpack pack on the same map (issue 22 asks tile within 2x of pack), on two
+# 4096x4096 16-bit maps that do not tile: a crop of a synthesised sea twice its size (what tile is for), and
+# a crop of the periodic sum of waves bench_pack.sh uses (a line spectrum, not a Gaussian sea: the
+# re-synthesis' look is borderline there, so tile may try more). Each is tiled to a 16-bit PNG and packed
+# to the default mip-mapped EXR. Runs alternate (tile, pack, tile, ...); prints median seconds, peak memory,
 # the ratio, and what tile chose (the attempt that passed: its seed, band and look scores).
 #   tests/bench/bench_tile.sh [BUILD_DIR] [RUNS] [SIZE]
 set -euo pipefail
@@ -17,10 +19,12 @@ command -v oiiotool >/dev/null || { echo "bench_tile: needs oiiotool (apt-get in
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+"$hp" synth --spectrum jonswap --wind 14m/s --tile-size 2048m --size $((2 * size)) --seed 5 -q -o "$work/sea.png"
+oiiotool "$work/sea.png" --cut "${size}x${size}+0+0" -d uint16 -o "$work/sea_crop.png"
 big=$((size * 5 / 4))
 "$mk" "$big" "$big" "$work/big.png"
-oiiotool "$work/big.png" --cut "${size}x${size}+0+0" -d uint16 -o "$work/in.png"
-echo "input: ${size}x${size} 16-bit crop of a ${big}x${big} periodic map, $(du -h "$work/in.png" | cut -f1); $(nproc) cores; $runs runs each"
+oiiotool "$work/big.png" --cut "${size}x${size}+0+0" -d uint16 -o "$work/waves_crop.png"
+echo "inputs: ${size}x${size} 16-bit crops of a synthesised sea and of a sum of waves; $(nproc) cores; $runs runs each"
 
 measure() {  # LOG COMMAND...: appends "seconds peakKiB"
   local log=$1
@@ -30,16 +34,19 @@ measure() {  # LOG COMMAND...: appends "seconds peakKiB"
 }
 median() { sort -n | awk '{a[NR] = $1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
 
-: >"$work/tile"
-: >"$work/pack"
-for ((i = 0; i < runs; i++)); do
-  measure "$work/tile" "$hp" tile "$work/in.png" -o "$work/tiled.png" -q
-  measure "$work/pack" "$hp" pack "$work/in.png" -o "$work/packed.exr" -q
+for map in sea_crop waves_crop; do
+  : >"$work/tile"
+  : >"$work/pack"
+  for ((i = 0; i < runs; i++)); do
+    measure "$work/tile" "$hp" tile "$work/$map.png" -o "$work/tiled.png" -q
+    measure "$work/pack" "$hp" pack "$work/$map.png" -o "$work/packed.exr" -q
+  done
+  [ -s "$work/tiled.png" ] || { echo "bench_tile: tile wrote nothing for $map" >&2; exit 1; }
+  awk -v m="$map" -v ts="$(cut -d' ' -f1 "$work/tile" | median)" -v ps="$(cut -d' ' -f1 "$work/pack" | median)" \
+      -v tm="$(cut -d' ' -f2 "$work/tile" | median)" -v pm="$(cut -d' ' -f2 "$work/pack" | median)" 'BEGIN {
+    printf "%-10s tile %6.2f s %5.0f MiB | pack %6.2f s %5.0f MiB | tile / pack %.2f (issue 22: at most 2)\n",
+      m, ts, tm / 1024, ps, pm / 1024, ts / ps }'
+  "$hp" info "$work/tiled.png" | grep -E "tileMethod|seed|tileMatch" | tr -s ' ' | tr '\n' ';'
+  "$hp" check "$work/tiled.png" | grep -E "look" || true
+  rm -f "$work/tiled.png"
 done
-[ -s "$work/tiled.png" ] || { echo "bench_tile: tile wrote nothing" >&2; exit 1; }
-awk -v ts="$(cut -d' ' -f1 "$work/tile" | median)" -v ps="$(cut -d' ' -f1 "$work/pack" | median)" \
-    -v tm="$(cut -d' ' -f2 "$work/tile" | median)" -v pm="$(cut -d' ' -f2 "$work/pack" | median)" 'BEGIN {
-  printf "tile %6.2f s %5.0f MiB | pack %6.2f s %5.0f MiB | tile / pack %.2f (issue 22: at most 2)\n",
-    ts, tm / 1024, ps, pm / 1024, ts / ps }'
-"$hp" info "$work/tiled.png" | grep -E "tileMethod|seed|tileBand" || true
-"$hp" check "$work/tiled.png" | grep -E "look" || true
