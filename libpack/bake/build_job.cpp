@@ -247,9 +247,9 @@ void MaterialBuild::Impl::makeStep(Step& s, std::atomic<bool>& stop) {
             storeStep(s, output, *hash);
         }
         s.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (!options.only.empty()) return;  // the plan's last action records every output
         // A restored output is recorded exactly as a baked one (same key, hash and check), so a later build
         // without the cache finds it up to date.
-        if (!options.only.empty()) return;  // the plan's last action records every output
         std::lock_guard<std::mutex> lock(mutex);
         state[s.report.output] = {s.report.key, *hash, s.mustTile ? s.checkKey : ""};
         if (Status saved = writeTextFile(statePath, buildStateText(state)); !saved) s.error = saved.error();
