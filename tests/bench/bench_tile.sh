@@ -14,25 +14,17 @@ hp="$build/heightpack"
 mk="$build/tests/bench/heightpack_make_bench_map"
 [ -x "$hp" ] || { echo "bench_tile: no $hp; build first (cmake --build $build)" >&2; exit 2; }
 [ -x "$mk" ] || { echo "bench_tile: no $mk; build with -DHEIGHTPACK_BUILD_BENCHMARKS=ON" >&2; exit 2; }
-[ -x /usr/bin/time ] || { echo "bench_tile: needs GNU time (apt-get install time)" >&2; exit 2; }
 command -v oiiotool >/dev/null || { echo "bench_tile: needs oiiotool (apt-get install openimageio-tools)" >&2; exit 2; }
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+. "$(dirname "$0")/measure.sh"
 "$hp" synth --spectrum jonswap --wind 14m/s --tile-size 2048m --size $((2 * size)) --seed 5 -q -o "$work/sea.png"
 oiiotool "$work/sea.png" --cut "${size}x${size}+0+0" -d uint16 -o "$work/sea_crop.png"
 big=$((size * 5 / 4))
 "$mk" "$big" "$big" "$work/big.png"
 oiiotool "$work/big.png" --cut "${size}x${size}+0+0" -d uint16 -o "$work/waves_crop.png"
 echo "inputs: ${size}x${size} 16-bit crops of a synthesised sea and of a sum of waves; $(nproc) cores; $runs runs each"
-
-measure() {  # LOG COMMAND...: appends "seconds peakKiB"
-  local log=$1
-  shift
-  /usr/bin/time -f "%e %M" -o "$work/t" "$@" >/dev/null 2>&1
-  cat "$work/t" >>"$log"
-}
-median() { sort -n | awk '{a[NR] = $1} END {print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2}'; }
 
 for map in sea_crop waves_crop; do
   : >"$work/tile"
@@ -42,10 +34,10 @@ for map in sea_crop waves_crop; do
     measure "$work/pack" "$hp" pack "$work/$map.png" -o "$work/packed.exr" -q
   done
   [ -s "$work/tiled.png" ] || { echo "bench_tile: tile wrote nothing for $map" >&2; exit 1; }
-  awk -v m="$map" -v ts="$(cut -d' ' -f1 "$work/tile" | median)" -v ps="$(cut -d' ' -f1 "$work/pack" | median)" \
-      -v tm="$(cut -d' ' -f2 "$work/tile" | median)" -v pm="$(cut -d' ' -f2 "$work/pack" | median)" 'BEGIN {
-    printf "%-10s tile %6.2f s %5.0f MiB | pack %6.2f s %5.0f MiB | tile / pack %.2f (issue 22: at most 2)\n",
-      m, ts, tm / 1024, ps, pm / 1024, ts / ps }'
+  read -r tw tc tm <<<"$(medians "$work/tile")"
+  read -r pw pc pm <<<"$(medians "$work/pack")"
+  printf "%-10s tile %6.2f s (CPU %.2f) %5s MiB | pack %6.2f s (CPU %.2f) %5s MiB | tile / pack %s (issue 22: at most 2)\n" \
+    "$map" "$tw" "$tc" "$tm" "$pw" "$pc" "$pm" "$(ratio "$tw" "$pw")"
   "$hp" info "$work/tiled.png" | grep -E "tileMethod|seed|tileMatch" | tr -s ' ' | tr '\n' ';'
   "$hp" check "$work/tiled.png" | grep -E "look" || true
   rm -f "$work/tiled.png"
