@@ -46,12 +46,13 @@ const sha256 = (data) => createHash('sha256').update(data).digest('hex');
 const vk = {
   109: ['VK_FORMAT_R32G32B32A32_SFLOAT', 'f32', 4], 97: ['VK_FORMAT_R16G16B16A16_SFLOAT', 'f16', 4],
   91: ['VK_FORMAT_R16G16B16A16_UNORM', 'unorm16', 4], 103: ['VK_FORMAT_R32G32_SFLOAT', 'f32', 2],
-  83: ['VK_FORMAT_R16G16_SFLOAT', 'f16', 2], 78: ['VK_FORMAT_R16G16_SNORM', 'snorm16', 2],
+  83: ['VK_FORMAT_R16G16_SFLOAT', 'f16', 2], 77: ['VK_FORMAT_R16G16_UNORM', 'unorm16', 2],
+  78: ['VK_FORMAT_R16G16_SNORM', 'snorm16', 2],
   100: ['VK_FORMAT_R32_SFLOAT', 'f32', 1], 76: ['VK_FORMAT_R16_SFLOAT', 'f16', 1], 70: ['VK_FORMAT_R16_UNORM', 'unorm16', 1],
 };
 const dxgi = {
   R32G32B32A32_FLOAT: ['f32', 4], R16G16B16A16_FLOAT: ['f16', 4], R16G16B16A16_UNORM: ['unorm16', 4],
-  R32G32_FLOAT: ['f32', 2], R16G16_FLOAT: ['f16', 2], R16G16_SNORM: ['snorm16', 2],
+  R32G32_FLOAT: ['f32', 2], R16G16_FLOAT: ['f16', 2], R16G16_UNORM: ['unorm16', 2], R16G16_SNORM: ['snorm16', 2],
   R32_FLOAT: ['f32', 1], R16_FLOAT: ['f16', 1], R16_UNORM: ['unorm16', 1],
 };
 
@@ -104,7 +105,8 @@ if (file.toLowerCase().endsWith('.ktx2')) {
   }
   if (at !== bytes.byteLength) throw new Error(`${bytes.byteLength - at} bytes after the last level`);
   // heightpack's record in dwReserved1 (README, "GPU containers"): 'HPCK', version 1, then the layout
-  // code and the wrap code. Read from the header's bytes as documented, not through heightpack.
+  // code and the wrap code, and with flag bit 1 (word 6) a uint16 file's normalised offset and scale
+  // (words 7 and 8, floats). Read from the header's bytes as documented, not through heightpack.
   const keyValues = {};
   const header = new DataView(bytes.buffer, bytes.byteOffset + 4, 124);
   const reserved = (i) => header.getUint32(4 * (7 + i), true);
@@ -113,6 +115,10 @@ if (file.toLowerCase().endsWith('.ktx2')) {
     const wraps = [undefined, 'periodic', 'clamp'];
     if (layouts[reserved(2)]) keyValues['heightpack:layout'] = layouts[reserved(2)];
     if (wraps[reserved(3)]) keyValues['heightpack:wrap'] = wraps[reserved(3)];
+    if (reserved(6) & 2) {
+      keyValues['heightpack:normalisedOffset'] = String(header.getFloat32(4 * (7 + 7), true));
+      keyValues['heightpack:normalisedScale'] = String(header.getFloat32(4 * (7 + 8), true));
+    }
   }
   console.log(JSON.stringify({ reader: 'nvddsinfo', format: `DXGI_FORMAT_${format}`, channels, width, height,
                                levelCount, keyValues, levels }));
