@@ -120,21 +120,31 @@ double ringScore(const std::vector<double>& profile, int reach, double floor) {
     return worst;
 }
 
-std::vector<double> columnMeans(const Grid& g) {
-    std::vector<double> c(g.w, 0.0);
-    for (int y = 0; y < g.h; ++y)
-        for (int x = 0; x < g.w; ++x) c[x] += g.at(x, y);
-    for (double& v : c) v /= g.h;
-    return c;
-}
-
-std::vector<double> rowMeans(const Grid& g) {
-    std::vector<double> r(g.h, 0.0);
-    for (int y = 0; y < g.h; ++y) {
-        for (int x = 0; x < g.w; ++x) r[y] += g.at(x, y);
-        r[y] /= g.w;
-    }
-    return r;
+// The means of g's columns and of its rows (of g squared where asked), on all threads: each mean sums in
+// one fixed order, so the thread count cannot change it.
+struct Profiles {
+    std::vector<double> columns, rows;
+};
+Profiles profilesOf(const Grid& g, bool squared, int threads) {
+    Profiles p{std::vector<double>(g.w, 0.0), std::vector<double>(g.h, 0.0)};
+    auto value = [&](int x, int y) { return squared ? g.at(x, y) * g.at(x, y) : g.at(x, y); };
+    parallelFor(g.h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y) {
+            double sum = 0;
+            for (int x = 0; x < g.w; ++x) sum += value(x, y);
+            p.rows[y] = sum / g.w;
+        }
+    });
+    constexpr int kColumns = 64;  // a block of columns per task, read a row segment at a time
+    parallelFor((g.w + kColumns - 1) / kColumns, threads, [&](int begin, int end) {
+        for (int x0 = begin * kColumns; x0 < std::min(g.w, end * kColumns); x0 += kColumns) {
+            const int x1 = std::min(g.w, x0 + kColumns);
+            for (int y = 0; y < g.h; ++y)
+                for (int x = x0; x < x1; ++x) p.columns[x] += value(x, y);
+            for (int x = x0; x < x1; ++x) p.columns[x] /= g.h;
+        }
+    });
+    return p;
 }
 
 // A summed-area table of q tiled 2x2, so that the sum over any circular square is four lookups.
@@ -283,10 +293,8 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
     //        detail is far coarser than a texel, and a frame is a loss or excess of its contrast).
     for (double fine = 1.0; fine == 1.0 || 2 * fine <= std::max(w, h) / 32.0; fine *= 2) {
         const double coarse = 2 * fine;
-        Grid energy = bandPassed(spectrum, fine, coarse, options.threads);
-        for (double& v : energy.v) v *= v;
-        look.frame = std::max({look.frame, ringScore(columnMeans(energy), reachX, 0.0),
-                               ringScore(rowMeans(energy), reachY, 0.0)});
+        const Profiles energy = profilesOf(bandPassed(spectrum, fine, coarse, options.threads), true, options.threads);
+        look.frame = std::max({look.frame, ringScore(energy.columns, reachX, 0.0), ringScore(energy.rows, reachY, 0.0)});
     }
     // Blobs: the squared standardised band-pass at the scale of a blob, 1/128 to 1/32 of the tile (the
     //        low-pass of the detail: a red-noise map's swell, far larger, would make every place unlike
@@ -300,7 +308,8 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
     const double sd = std::sqrt(var / double(q.v.size()));
     for (double& v : q.v) v = sd > 1e-12 ? ((v - mean) / sd) * ((v - mean) / sd) : 0.0;
     const TiledSums sums(q);
-    look.blobs = std::max({ringScore(columnMeans(q), reachX, 0.05), ringScore(rowMeans(q), reachY, 0.05),
+    const Profiles profiles = profilesOf(q, false, options.threads);
+    look.blobs = std::max({ringScore(profiles.columns, reachX, 0.05), ringScore(profiles.rows, reachY, 0.05),
                            cornerScore(sums, std::max(2, std::min(w, h) / 32)), cornerScore(sums, std::max(2, std::min(w, h) / 16))});
     // Echo, less the source's own (of its periodic component: its seams would echo along their lines).
     look.echo = echoOfSpectrum(spectrum, options.threads);  // the map's spectrum, transformed once

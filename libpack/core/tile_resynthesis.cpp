@@ -258,8 +258,7 @@ Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : st
     s.values = terraced ? detail::dequantised(map, quantum, threads) : map.pixels;
     s.noise = quantisationNoise(s.values, terraced ? 0.0 : quantum, threads);
     s.useSigma(largeScaleSigma(0, 0, w, h), w, h);
-    Field g(w, h);
-    g.v = s.ranks->gaussian;
+    const Field g(w, h, s.ranks->gaussian);
     s.model.emplace(detail::modelOf(g, s.noise, threads));
     s.correlationX = slopeCorrelationLength(s.model->lagX);
     s.correlationY = slopeCorrelationLength(s.model->lagY);
@@ -283,8 +282,7 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
     //    blurred apart, mirrored). Beyond the bands this is the whole change.
     s.useSigma(largeScaleSigma(result.bandX, result.bandY, w, h), w, h);
     const detail::Gaussianiser& ranks = *s.ranks;
-    Field g(w, h);
-    g.v = ranks.gaussian;
+    Field g(w, h, ranks.gaussian);
     const Field sample = detail::sampleOf(*s.model, seed, threads);
     // 3. and 4. The bands, left/right first, then top/bottom.
     const int contextX = std::clamp(result.bandX / 2, 4, 32), contextY = std::clamp(result.bandY / 2, 4, 32);

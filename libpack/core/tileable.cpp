@@ -153,8 +153,15 @@ SeamScore scoreAlong(const float* lines, int n, int m, const SeamOptions& option
     const int period = blockPeriod(sums[kJump3], options.level);
     // Below the source's steps, or float rounding at the heights' magnitude, a difference is no evidence:
     // on an exactly periodic, noiseless field every cut differs from the others by rounding alone.
-    double largest = 0;
-    for (size_t i = 0; i < size_t(n) * m; ++i) largest = std::max(largest, double(std::abs(lines[i])));
+    std::vector<float> largestOf(size_t(m), 0.0f);  // per line, on all threads: a maximum has one value
+    parallelFor(m, options.threads, [&](int begin, int end) {
+        for (int j = begin; j < end; ++j) {
+            float top = 0.0f;
+            for (int c = 0; c < n; ++c) top = std::max(top, std::abs(lines[size_t(j) * n + c]));
+            largestOf[j] = top;
+        }
+    });
+    const double largest = *std::max_element(largestOf.begin(), largestOf.end());
     const double quantum = std::max(options.quantum, largest * 4 * std::numeric_limits<float>::epsilon());
     // Nor is a contrast under a hundredth of the map's typical height step: no one sees a jump that small
     // (jump3 shows a jump twice over), and a noiseless analytic field, whose third differences are next to
