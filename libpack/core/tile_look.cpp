@@ -152,8 +152,10 @@ struct TiledSums {
     int w, h;
     std::vector<double> sat;
     explicit TiledSums(const Grid& q) : w(q.w), h(q.h), sat(size_t(2 * q.w + 1) * (2 * q.h + 1), 0.0) {
-        for (int y = 0; y < 2 * h; ++y)
-            for (int x = 0; x < 2 * w; ++x) at(x + 1, y + 1) = q.at(x % w, y % h) + at(x, y + 1) + at(x + 1, y) - at(x, y);
+        for (int y = 0; y < 2 * h; ++y) {
+            const double* row = &q.v[size_t(y < h ? y : y - h) * w];  // no modulo per texel
+            for (int x = 0; x < 2 * w; ++x) at(x + 1, y + 1) = row[x < w ? x : x - w] + at(x, y + 1) + at(x + 1, y) - at(x, y);
+        }
     }
     double& at(int x, int y) { return sat[size_t(y) * (2 * w + 1) + x]; }
     double at(int x, int y) const { return sat[size_t(y) * (2 * w + 1) + x]; }
@@ -203,11 +205,13 @@ Spectra spectraOf(const HalfSpectrum& spectrum, int threads) {
     Spectra out(w, h);
     Grid& power = out.power;
     Grid& smooth = out.smooth;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {  // beyond the half, the power of the opposite frequency: the same
-            const std::complex<float> z = x < spectrum.columns ? spectrum.at(x, y) : spectrum.at(w - x, (h - y) % h);
-            power.at(x, y) = (x == 0 && y == 0) ? 0.0 : std::norm(std::complex<double>(z));
-        }
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y)
+            for (int x = 0; x < w; ++x) {  // beyond the half, the power of the opposite frequency: the same
+                const std::complex<float> z = x < spectrum.columns ? spectrum.at(x, y) : spectrum.at(w - x, (h - y) % h);
+                power.at(x, y) = (x == 0 && y == 0) ? 0.0 : std::norm(std::complex<double>(z));
+            }
+    });
     // Smoothed over 5x5 frequency bins (a box, three times each way, circular). The neighbours' indices
     // are wrapped once per line, not per texel; the sums add in the same order.
     smooth = power;
@@ -250,18 +254,23 @@ double echoOfSpectrum(const HalfSpectrum& spectrum, int threads) {
     // finer than the smoothing, which stays and becomes a peak at L.
     const Spectra s = spectraOf(spectrum, threads);
     HalfSpectrum whitened{w, h, spectrum.columns, std::vector<std::complex<float>>(spectrum.values.size())};
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < whitened.columns; ++x)
-            whitened.values[size_t(y) * whitened.columns + x] =
-                float(s.smooth.at(x, y) > 0 ? s.power.at(x, y) / s.smooth.at(x, y) : 0.0);
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y)
+            for (int x = 0; x < whitened.columns; ++x)
+                whitened.values[size_t(y) * whitened.columns + x] =
+                    float(s.smooth.at(x, y) > 0 ? s.power.at(x, y) / s.smooth.at(x, y) : 0.0);
+    });
     const Grid correlation = fieldOf(whitened, threads);
     const double zero = correlation.at(0, 0);
     if (!(zero > 0)) return 0.0;
-    double worst = -1.0;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            if (circularDistance(x, w) > w / 16 || circularDistance(y, h) > h / 16) worst = std::max(worst, correlation.at(x, y) / zero);
-    return worst;
+    std::vector<double> worstOfRow(h, -1.0);  // a maximum is the same in any order
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y)
+            for (int x = 0; x < w; ++x)
+                if (circularDistance(x, w) > w / 16 || circularDistance(y, h) > h / 16)
+                    worstOfRow[y] = std::max(worstOfRow[y], correlation.at(x, y) / zero);
+    });
+    return *std::max_element(worstOfRow.begin(), worstOfRow.end());
 }
 
 }  // namespace
@@ -301,12 +310,23 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
     //        every other).
     const double large = std::max(w, h) / 32.0, small = std::max(1.0, std::max(w, h) / 128.0);
     Grid q = bandPassed(spectrum, small, large, options.threads);
-    double mean = 0, var = 0;
-    for (double v : q.v) mean += v;
-    mean /= double(q.v.size());
-    for (double v : q.v) var += (v - mean) * (v - mean);
-    const double sd = std::sqrt(var / double(q.v.size()));
-    for (double& v : q.v) v = sd > 1e-12 ? ((v - mean) / sd) * ((v - mean) / sd) : 0.0;
+    // Per row on all threads, the rows then summed in order: the same on any thread count.
+    auto sumOverRows = [&](auto term) {
+        std::vector<double> rows(q.h, 0.0);
+        parallelFor(q.h, options.threads, [&](int begin, int end) {
+            for (int y = begin; y < end; ++y)
+                for (int x = 0; x < q.w; ++x) rows[y] += term(q.at(x, y));
+        });
+        double total = 0;
+        for (double r : rows) total += r;
+        return total;
+    };
+    const double mean = sumOverRows([](double v) { return v; }) / double(q.v.size());
+    const double sd = std::sqrt(sumOverRows([&](double v) { return (v - mean) * (v - mean); }) / double(q.v.size()));
+    parallelFor(q.h, options.threads, [&](int begin, int end) {
+        for (size_t i = size_t(begin) * q.w; i < size_t(end) * q.w; ++i)
+            q.v[i] = sd > 1e-12 ? ((q.v[i] - mean) / sd) * ((q.v[i] - mean) / sd) : 0.0;
+    });
     const TiledSums sums(q);
     const Profiles profiles = profilesOf(q, false, options.threads);
     look.blobs = std::max({ringScore(profiles.columns, reachX, 0.05), ringScore(profiles.rows, reachY, 0.05),
