@@ -4,7 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <future>
 #include <optional>
+#include <utility>
 
 #include "heightpack/bake/check_job.hpp"
 #include "heightpack/core/mip.hpp"
@@ -37,10 +40,7 @@ bool exactIn(const Image& map, int bits) {
     });
 }
 
-double span(const Image& map) {
-    const auto [low, high] = std::minmax_element(map.pixels.begin(), map.pixels.end());
-    return double(*high) - *low;
-}
+double span(SampleRange range) { return double(range.high) - range.low; }
 
 // How a result will be stored: the type asked for, else the input's (a PNG holds no floats: 16 bits there),
 // widened to float where an integer type would clip (or round a map that should stay unchanged) and the
@@ -55,11 +55,11 @@ struct Storage {
         bool widened = false;
         bool storable = true;
     };
-    Choice choose(const Image& result, bool unchanged) const {
+    // range: the result's (sampleRange).
+    Choice choose(const Image& result, SampleRange range, bool unchanged) const {
         Choice c{bits, false, true};
         if (bits == 32) return c;
-        const auto [low, high] = std::minmax_element(result.pixels.begin(), result.pixels.end());
-        const bool inRange = *low >= 0.0f && *high <= 1.0f;
+        const bool inRange = range.low >= 0.0f && range.high <= 1.0f;
         if (inRange && !(unchanged && !exactIn(result, bits))) return c;
         if (!floatFormat || explicitBits) return Choice{bits, false, false};
         return Choice{32, true, true};
@@ -89,8 +89,10 @@ struct Storage {
 // look does not pass). No candidate may stretch the height span past 1.5x the input's. The last is returned
 // when none passes, and the caller writes nothing. `judged` (and `looked`, when the look was judged) is the
 // verdict on the returned candidate as stored, so the caller need not judge it again.
+// judging(asStored, bits) is told of each candidate, as stored, as its judging starts.
 Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, const Storage& storage,
-                  TileReport& report, std::optional<ChainSeams>& judged, std::optional<TileLook>& looked) {
+                  TileReport& report, std::optional<ChainSeams>& judged, std::optional<TileLook>& looked,
+                  const std::function<void(const Image& asStored, int bits)>& judging) {
     report.methodUsed = nameOf(options.method);
     report.crossfadeWidth = options.width;
     switch (options.method) {
@@ -108,17 +110,19 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         case TileMethod::Mirror: return mirrorTile(map);
         case TileMethod::Periodic: break;
     }
-    const double maxSpan = 1.5 * span(map);
+    const double maxSpan = 1.5 * span(sampleRange(map, options.mip.threads));
     bool lookRequired = true;
     LookOptions lookOptions{&map, options.mip.threads, std::nullopt};
     auto acceptable = [&](const Image& candidate) {
         judged.reset();
         looked.reset();
-        const Storage::Choice c = storage.choose(candidate, false);
-        if (!c.storable || span(candidate) > maxSpan) return false;
+        const SampleRange range = sampleRange(candidate, options.mip.threads);
+        const Storage::Choice c = storage.choose(candidate, range, false);
+        if (!c.storable || span(range) > maxSpan) return false;
         SeamOptions stored = seamOptions;
         stored.quantum = Storage::quantum(c.bits);
         const Image asStored = Storage::rounded(candidate, c.bits, options.mip.threads);
+        judging(asStored, c.bits);
         judged = measureChainSeams(seamChain(asStored, options.mip), options.threshold, stored);
         if (!judged->tiles() || !lookRequired) return judged->tiles();
         if (!lookOptions.sourceEcho) lookOptions.sourceEcho = sourceEchoOf(map, options.mip.threads);
@@ -189,9 +193,9 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     report.source = loaded->source;
     const Image& map = loaded->heights;
     progress("check", 0.0);
-    const auto [inLow, inHigh] = std::minmax_element(map.pixels.begin(), map.pixels.end());
-    report.inputLow = *inLow;
-    report.inputHigh = *inHigh;
+    const SampleRange inputRange = sampleRange(map, options.mip.threads);
+    report.inputLow = inputRange.low;
+    report.inputHigh = inputRange.high;
     SeamOptions seamOptions;
     seamOptions.threads = options.mip.threads;
     seamOptions.quantum = sampleQuantum(loaded->source);
@@ -225,26 +229,39 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     if (storage.bits == 32 && !storage.floatFormat) storage.bits = 16;
     std::optional<ChainSeams> judged;
     std::optional<TileLook> looked;
-    Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, storage, report, judged, looked);
+    // A grey PNG's pixels are compressed while the candidate is judged (the deflate is serial, the judging
+    // leaves a core idle at times): the one that passes is then written at once. (A candidate that does
+    // not pass costs its compression on the side.)
+    std::future<std::pair<PreparedPixels, int>> compressing;
+    auto judging = [&](const Image& asStored, int bits) {
+        if (ext != ".png" || bits == 32) return;
+        compressing = std::async(std::launch::async, [&output, stored = asStored, bits, threads = options.mip.threads] {
+            FlatImageOptions o;
+            o.bits = bits;
+            o.threads = threads;
+            return std::pair(preparePixels(output, stored, o), bits);
+        });
+    };
+    Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, storage, report, judged, looked, judging);
     if (report.alreadyTiled) report.methodUsed = "none";
     progress("tile", 1.0);
     report.width = result.width;
     report.height = result.height;
-    const auto [low, high] = std::minmax_element(result.pixels.begin(), result.pixels.end());
-    report.low = *low;
-    report.high = *high;
+    const SampleRange range = sampleRange(result, options.mip.threads);
+    report.low = range.low;
+    report.high = range.high;
 
-    const Storage::Choice stored = storage.choose(result, report.alreadyTiled);
+    const Storage::Choice stored = storage.choose(result, range, report.alreadyTiled);
     report.bits = stored.bits;
     report.widened = stored.widened;
     if (!stored.storable) {
         char what[200];
-        if (*low >= 0.0f && *high <= 1.0f)
+        if (range.low >= 0.0f && range.high <= 1.0f)
             std::snprintf(what, sizeof what, "the heights are not whole %d-bit steps: writing them so would round them",
                           stored.bits);
         else
             std::snprintf(what, sizeof what, "the tiled heights reach [%.4g, %.4g], outside the [0,1] of %d-bit samples",
-                          double(*low), double(*high), stored.bits);
+                          double(range.low), double(range.high), stored.bits);
         return withFix(cannotWrite(output, what,
                                    "write float samples (an .exr or .tif output); heightpack never clips or rescales heights"),
                        Fix::WriteFloat);
@@ -278,6 +295,10 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     FlatImageOptions flat;
     flat.bits = report.bits;
     flat.threads = options.mip.threads;
+    if (compressing.valid()) {  // the last candidate judged is the result
+        auto [prepared, bits] = compressing.get();
+        if (bits == report.bits) flat.prepared = std::move(prepared);
+    }
     flat.attributes = {
         attribute(attr::tileMethod, report.methodUsed),
         attribute(attr::source, std::filesystem::path(input).filename().string()),

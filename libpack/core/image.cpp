@@ -6,6 +6,31 @@
 
 namespace heightpack {
 
+SampleRange sampleRange(const Image& image, int threads) {
+    const size_t n = image.pixels.size();
+    if (n == 0) return {};
+    constexpr int kChunks = 64;
+    const size_t chunk = (n + kChunks - 1) / kChunks;
+    std::vector<SampleRange> ranges(kChunks, SampleRange{image.pixels[0], image.pixels[0]});
+    parallelFor(kChunks, threads, [&](int begin, int end) {
+        for (int c = begin; c < end; ++c) {
+            float low = image.pixels[0], high = low;
+            for (size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) {
+                const float v = image.pixels[i];
+                low = v < low ? v : low;  // the form minps computes, so the loop vectorises
+                high = v > high ? v : high;
+            }
+            ranges[c] = {low, high};
+        }
+    });
+    SampleRange all = ranges[0];
+    for (const SampleRange& r : ranges) {
+        all.low = std::min(all.low, r.low);
+        all.high = std::max(all.high, r.high);
+    }
+    return all;
+}
+
 Image transposed(const Image& image, int threads) {
     assert(image.channels == 1);
     Image out(image.height, image.width, 1);

@@ -241,7 +241,9 @@ struct Resynthesiser::State {
         ranks.reset();
         smooth = detail::largeScaleField(values, w, h, sigma, threads);
         std::vector<float> corrected(values.size());
-        for (size_t i = 0; i < values.size(); ++i) corrected[i] = values[i] - smooth[i];
+        parallelFor(h, threads, [&](int begin, int end) {
+            for (size_t i = size_t(begin) * w; i < size_t(end) * w; ++i) corrected[i] = values[i] - smooth[i];
+        });
         ranks.emplace(corrected, threads);
     }
 };
@@ -290,9 +292,14 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
         // The left/right band is solved per frequency along y, so its field must wrap top to bottom: the
         // top/bottom jump is set aside meanwhile (the top/bottom band replaces what it touches later).
         const Field aside = detail::topBottomSmoothField(g, threads);
-        for (size_t i = 0; i < g.v.size(); ++i) g.v[i] -= aside.v[i];
+        auto add = [&](double sign) {
+            parallelFor(h, threads, [&](int begin, int end) {
+                for (size_t i = size_t(begin) * w; i < size_t(end) * w; ++i) g.v[i] += sign * aside.v[i];
+            });
+        };
+        add(-1.0);
         resynthesiseLines(g, *s.model, sample, Axis::X, result.bandX, contextX, s.noise, threads);
-        for (size_t i = 0; i < g.v.size(); ++i) g.v[i] += aside.v[i];
+        add(1.0);
     }
     if (result.bandY + 2 * contextY <= h) resynthesiseLines(g, *s.model, sample, Axis::Y, result.bandY, contextY, s.noise, threads);
     // 5. Back to heights through the sorted values. Beyond the bands, the map itself plus the large-scale
@@ -310,7 +317,7 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
                 result.map.pixels[i] = inBand(x, y) ? ranks.back(g.v[i]) : map.pixels[i] - s.smooth[i];
             }
     });
-    detail::easeIntoRange(result.map, map);
+    detail::easeIntoRange(result.map, map, threads);
     return result;
 }
 

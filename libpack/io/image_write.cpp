@@ -27,7 +27,17 @@ double encodeSrgb(double linear) {
     return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
 }
 
+// Whether writeFlatImage encodes the image itself: one grey channel in an 8- or 16-bit PNG.
+bool encodesGreyPng(const std::string& ext, const Image& image, const FlatImageOptions& options) {
+    return ext == ".png" && image.channels == 1 && options.bits != 32 && options.srgbChannels == 0;
+}
+
 }  // namespace
+
+PreparedPixels preparePixels(const std::string& path, const Image& image, const FlatImageOptions& options) {
+    if (!encodesGreyPng(lowerExtension(path), image, options)) return {};
+    return {std::make_shared<const detail::GreyPngPixels>(detail::compressGreyPngPixels(image, options.bits, options.threads))};
+}
 
 Status writeFlatImage(const std::string& path, const Image& image, const FlatImageOptions& options) {
     assert(image.channels >= 1 && image.channels <= 4 && !image.empty());
@@ -71,10 +81,13 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
         std::snprintf(text, sizeof text, "%.9g", std::get<float>(a.value));
         return std::string(text);
     };
-    if (ext == ".png" && image.channels == 1 && options.bits != 32 && options.srgbChannels == 0) {
+    if (encodesGreyPng(ext, image, options)) {
         std::vector<std::pair<std::string, std::string>> text;
         for (const ExrAttribute& a : options.attributes) text.emplace_back(a.name, asText(a));
-        const std::vector<unsigned char> bytes = detail::encodeGreyPng(image, options.bits, text, options.threads);
+        const detail::GreyPngPixels* prepared = options.prepared.png.get();
+        const bool fits = prepared && prepared->width == image.width && prepared->height == image.height && prepared->bits == options.bits;
+        const std::vector<unsigned char> bytes = fits ? detail::assembleGreyPng(*prepared, text)
+                                                      : detail::encodeGreyPng(image, options.bits, text, options.threads);
         TemporaryFile temp(path);
         std::unique_ptr<std::FILE, detail::FileCloser> file(std::fopen(temp.path().c_str(), "wb"));
         if (!file || std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size() || std::fflush(file.get()) != 0 ||

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <memory>
 #include <stdexcept>
+#include <utility>
 
 #include "heightpack/core/parallel.hpp"
 
@@ -87,8 +88,7 @@ void filterRow(const unsigned char* row, const unsigned char* above, size_t stri
 
 }  // namespace
 
-std::vector<unsigned char> encodeGreyPng(const Image& image, int bits, const std::vector<std::pair<std::string, std::string>>& text,
-                                         int threads) {
+GreyPngPixels compressGreyPngPixels(const Image& image, int bits, int threads) {
     const int w = image.width, h = image.height, bpp = bits / 8;
     const size_t stride = size_t(w) * bpp;
     const float top = bits == 8 ? 255.0f : 65535.0f;
@@ -135,12 +135,16 @@ std::vector<unsigned char> encodeGreyPng(const Image& image, int bits, const std
     std::vector<unsigned char> compressed(libdeflate_zlib_compress_bound(deflater.get(), filtered.size()));
     compressed.resize(libdeflate_zlib_compress(deflater.get(), filtered.data(), filtered.size(), compressed.data(), compressed.size()));
     filtered = {};
+    return {w, h, bits, std::move(compressed)};
+}
 
+std::vector<unsigned char> assembleGreyPng(const GreyPngPixels& pixels, const std::vector<std::pair<std::string, std::string>>& text) {
+    const std::vector<unsigned char>& compressed = pixels.compressed;
     std::vector<unsigned char> png(std::begin(kPngSignature), std::end(kPngSignature));
     std::vector<unsigned char> header;
-    put32(header, static_cast<uint32_t>(w));
-    put32(header, static_cast<uint32_t>(h));
-    header.insert(header.end(), {static_cast<unsigned char>(bits), 0 /* grey */, 0, 0, 0 /* not interlaced */});
+    put32(header, static_cast<uint32_t>(pixels.width));
+    put32(header, static_cast<uint32_t>(pixels.height));
+    header.insert(header.end(), {static_cast<unsigned char>(pixels.bits), 0 /* grey */, 0, 0, 0 /* not interlaced */});
     chunk(png, "IHDR", header.data(), header.size());
     for (const auto& [keyword, value] : text) {
         std::vector<unsigned char> body(keyword.begin(), keyword.end());
@@ -152,6 +156,11 @@ std::vector<unsigned char> encodeGreyPng(const Image& image, int bits, const std
         chunk(png, "IDAT", compressed.data() + at, std::min(kIdatBytes, compressed.size() - at));
     chunk(png, "IEND", nullptr, 0);
     return png;
+}
+
+std::vector<unsigned char> encodeGreyPng(const Image& image, int bits, const std::vector<std::pair<std::string, std::string>>& text,
+                                         int threads) {
+    return assembleGreyPng(compressGreyPngPixels(image, bits, threads), text);
 }
 
 }  // namespace heightpack::detail

@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+#include <tuple>
+
 #include "heightpack/core/image.hpp"
 
 using namespace heightpack;
@@ -28,4 +32,26 @@ TEST(Image, InterleavesChannelsRowMajor) {
     EXPECT_EQ(image.row(1)[2 * 2 + 1], 5.0f);
     EXPECT_EQ(image.wrapped(-1, 3, Wrap::Periodic, 1), 5.0f);
     EXPECT_EQ(image.wrapped(7, 9, Wrap::Clamp, 1), 5.0f);
+}
+
+TEST(Image, SampleRangeIsTheLeastAndGreatestSampleOnAnyThreadCount) {
+    // Against std::minmax_element, on images whose extremes sit anywhere (first, last, one chunk's middle),
+    // with negatives, one channel and four, and sizes below and above the chunk count.
+    std::mt19937 random(3);
+    for (const auto& [w, h, c] : {std::tuple{1, 1, 1}, {7, 3, 1}, {64, 33, 4}, {257, 129, 1}}) {
+        Image image(w, h, c);
+        std::uniform_real_distribution<float> u(-3.0f, 2.0f);
+        for (float& v : image.pixels) v = u(random);
+        for (size_t at : {size_t(0), image.pixels.size() - 1, image.pixels.size() / 3}) {
+            Image probe = image;
+            probe.pixels[at] = 9.0f;
+            probe.pixels[(at + 1) % probe.pixels.size()] = -9.0f;
+            const auto [low, high] = std::minmax_element(probe.pixels.begin(), probe.pixels.end());
+            for (int threads : {1, 2, 5}) {
+                const SampleRange r = sampleRange(probe, threads);
+                EXPECT_EQ(r.low, *low) << w << "x" << h << "x" << c << " at " << at << " on " << threads;
+                EXPECT_EQ(r.high, *high) << w << "x" << h << "x" << c << " at " << at << " on " << threads;
+            }
+        }
+    }
 }

@@ -70,6 +70,13 @@ private:
 // threads: 0 = all cores; the result does not depend on it.
 Image transposed(const Image& image, int threads = 1);
 
+// The least and the greatest of the image's samples (every channel), on `threads` threads (0 = all cores):
+// 16 M texels are read in a few milliseconds where one thread took 50.
+struct SampleRange {
+    float low = 0.0f, high = 0.0f;
+};
+SampleRange sampleRange(const Image& image, int threads);
+
 // The given channels of image, in that order, as an image of that many channels (e.g. {1, 2} of Y, Dx, Dy
 // is Dx, Dy).
 Image selectChannels(const Image& image, const std::vector<int>& channels);
