@@ -1,7 +1,8 @@
 // A manifest that bakes a whole sea (issue 15, point 7): [displacement.synth] with displacement = true
-// gives the texture `heightpack synth --displacement` then `pack --displacement` give, and with cascades
-// = N the N tiles of `synth --cascades`, each a layer of material.json at core's tile size. Both are
-// checked against the command line run on the same parameters, texel by texel, at every level.
+// gives the texture `heightpack synth --displacement` then `pack --displacement` give (an EXR's layers or
+// a KTX2 array's, issue 25), and with cascades = N the N tiles of `synth --cascades`, each a layer of
+// material.json at core's tile size. Both are checked against the command line run on the same
+// parameters, texel by texel, at every level.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include <fstream>
 
 #include "heightpack/core/cascades.hpp"
+#include "heightpack/io/gpu_texture.hpp"
 
 #include "support/exr_levels.hpp"
 #include "support/heightpack_process.hpp"
@@ -89,15 +91,26 @@ TEST(SynthManifest, DisplacementIsWhatSynthThenPackMake) {
     EXPECT_EQ(sea["loopPeriod"], 6.0);
     EXPECT_EQ(sea["tileSize"], 48.0);
 
-    // A .ktx2 holds four channels: the same manifest packs the heights alone there, and says so.
+    // A .ktx2 holds them as an array texture: layers heights, Dx, Dy, each level the very bytes pack
+    // --displacement writes into a .ktx2 of the same sea.
     std::string gpu = kChoppy;
     gpu.replace(gpu.find("choppiness = 0.8"), 16, "output = \"sea.ktx2\"");
     writeText(dir.file("gpu.toml"), gpu);
     const ProcessResult ktx = heightpackRun({"build", dir.file("gpu.toml"), "-q", "-o", dir.file("gpu")});
     ASSERT_EQ(ktx.code, 0) << ktx.err;
-    const nlohmann::json flat = material(dir.file("gpu"))["displacement"][0];
-    EXPECT_EQ(flat["texture"]["file"], "sea.ktx2");
-    EXPECT_FALSE(flat.contains("horizontalDisplacement"));
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--displacement", "-q", "-o", dir.file("cli/packed.ktx2")}).code, 0);
+    for (const char* frame : {"0000", "0001"}) {
+        auto built = readGpuTexture(dir.file(std::string("gpu/sea.") + frame + ".ktx2"));
+        auto single = readGpuTexture(dir.file(std::string("cli/packed.") + frame + ".ktx2"));
+        ASSERT_TRUE(built.ok() && single.ok()) << frame;
+        EXPECT_EQ(built->layerNames, (std::vector<std::string>{"heights", "Dx", "Dy"}));
+        EXPECT_EQ(built->layerNames, single->layerNames);
+        ASSERT_EQ(built->levelBytes.size(), 7u);
+        EXPECT_TRUE(built->levelBytes == single->levelBytes) << frame;
+    }
+    const nlohmann::json choppy = material(dir.file("gpu"))["displacement"][0];
+    EXPECT_EQ(choppy["texture"]["file"], "sea.ktx2");
+    EXPECT_EQ(choppy["horizontalDisplacement"], true);
 }
 
 // cascades = 3: three layers sea_c0..2, at the tile sizes core's cascadeBands plans, scrolling at the
