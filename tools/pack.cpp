@@ -156,7 +156,8 @@ private:
         const int channels = layoutChannels(r.layout);
         if (common_.json) {
             const nlohmann::json stored =
-                storedChainJson(r.levelSizes, channels, r.pixelType, r.lookupError, options_.heightRange);
+                storedChainJson(r.levelSizes, channels, r.pixelType, r.lookupError, options_.heightRange, "stored",
+                                1 + (options_.displacement ? 2 : 0) + (options_.foam ? 1 : 0));
             const nlohmann::json doc = {
                 {"command", "pack"},
                 {"input", r.input},

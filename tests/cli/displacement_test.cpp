@@ -20,12 +20,7 @@ namespace {
 
 // A float EXR with channels Y, Dx, Dy, as synth --displacement writes them.
 void writeSea(const std::string& path, const Image& y, const Image& dx, const Image& dy) {
-    OIIO::ImageSpec spec(y.width, y.height, 3, OIIO::TypeDesc::FLOAT);
-    spec.channelnames = {"Y", "Dx", "Dy"};
-    std::vector<float> pixels;
-    for (size_t i = 0; i < y.texelCount(); ++i) pixels.insert(pixels.end(), {y.pixels[i], dx.pixels[i], dy.pixels[i]});
-    auto out = OIIO::ImageOutput::create(path);
-    ASSERT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
+    writeChannels(path, {"Y", "Dx", "Dy"}, {&y, &dx, &dy});
 }
 
 const Image kHeights = makeImage(32, 16, [](int x, int y) { return float(0.8 * std::sin(x * 0.39) * std::cos(y * 0.41)); });
