@@ -1,7 +1,7 @@
 // What pack decides for an array texture (issue 25) and what `info` reports of it: --pixel-type auto
 // judges every layer, not the heights alone; sourceHash covers every channel the file was made from
 // (XXH3 of the decoded values, computed here with libxxhash); info names the layers and their channels,
-// with statistics equal to the EXR's (OpenImageIO).
+// with statistics equal to the EXR's (OpenImageIO); the bytes do not depend on --threads.
 #include <gtest/gtest.h>
 #include <xxhash.h>
 
@@ -130,5 +130,24 @@ TEST(ArrayChoices, InfoReportsTheLayers) {
         EXPECT_EQ(info["gpuBytes"], gpuBytes);
         const ProcessResult text = heightpackRun({"info", dir.file(out)});
         EXPECT_NE(text.out.find("an array of 4 layers: heights, Dx, Dy, Foam"), std::string::npos) << text.out;
+    }
+}
+
+// The same array, byte for byte, whatever --threads (zstd KTX2 and DDS; bands of 64 rows, two of them).
+TEST(ArrayChoices, SameBytesWhateverTheThreadCount) {
+    ScratchDir dir;
+    const Image y = randomImage(64, 128, 31), dx = randomImage(64, 128, 32, -1.0f, 1.0f), foam = randomImage(64, 128, 33);
+    writeChannels(dir.file("sea.exr"), {"Y", "Dx", "Dy", "Foam"}, {&y, &dx, &dx, &foam});
+    for (const char* ext : {".ktx2", ".dds"}) {
+        std::vector<std::vector<unsigned char>> files;
+        for (const char* threads : {"1", "3"}) {
+            const std::string out = dir.file(std::string("t") + threads + ext);
+            std::vector<std::string> args = {"pack", dir.file("sea.exr"), "--displacement", "--foam", "--pixel-type", "uint16",
+                                             "--threads", threads, "-q", "-o", out};
+            if (std::string(ext) == ".ktx2") args.insert(args.end(), {"--compression", "zstd"});
+            ASSERT_EQ(heightpackRun(args).code, 0) << out;
+            files.push_back(readBytes(out));
+        }
+        EXPECT_TRUE(files[0] == files[1]) << ext;
     }
 }
