@@ -80,11 +80,11 @@ int main(int argc, char** argv) {
     app.add_flag("--two-pass", o.settings.twoPass, "combine the maps into an fp32 texture first (render-to-texture)");
     app.add_flag("--no-frustum-branch", frustumOff, "sample every vertex, even outside the guard-banded frustum");
     app.add_flag("--wireframe", o.settings.wireframe, "draw the grid as lines");
-    app.add_option("--tile-size", tileSizes, "metres each map's tile spans, e.g. 64,16");
-    app.add_option("--amplitude", amplitudes, "metres per stored unit for each map, e.g. 1.5,0.4");
+    app.add_option("--tile-size", tileSizes, "metres each map's tile spans, in the maps' order (up to 4), e.g. 64,16");
+    app.add_option("--amplitude", amplitudes, "metres per stored unit for each map (up to 4), e.g. 1.5,0.4");
     app.add_option("--choppiness", choppiness,
                    "how far the Dx, Dy of each map that has them move the grid sideways (0: heights only), e.g. 1 "
-                   "or 1,0.5; default the material's, else 1");
+                   "or 1,0.5 (up to 4); default the material's, else 1");
     app.add_option("--grid", o.settings.rings, "rings N of the radial grid (segments M follow --segments)");
     app.add_option("--segments", o.settings.segments, "segments M of the radial grid");
     app.add_flag("--json", o.json,
@@ -132,6 +132,9 @@ int main(int argc, char** argv) {
         if (heightpack::Status s = applyMaterial(path, o.files, o.settings, note); !s) return fail(s.error());
         if (!note.empty()) std::fprintf(stderr, "heightpack-view: note: %s\n", note.c_str());
         o.material = path;
+    } else if (o.files.heights.size() > size_t(kMaxLayers)) {
+        return usage("at most " + std::to_string(kMaxLayers) + " height maps displace the grid; " +
+                     std::to_string(o.files.heights.size()) + " were given");
     }
     std::vector<float> v;
     if (!camera.empty()) {
@@ -146,18 +149,20 @@ int main(int argc, char** argv) {
             return usage("--tiled must be NxM, e.g. 3x3");
         o.settings.tiledView = true;
     }
+    // One number per map, in the maps' order; a single choppiness is every map's.
+    const size_t most = size_t(kMaxLayers);
     if (!tileSizes.empty()) {
-        if (!parseFloats(tileSizes, v) || v.size() > 2 || v[0] <= 0 || (v.size() > 1 && v[1] <= 0))
-            return usage("--tile-size must be one or two positive lengths in metres, e.g. 64,16");
+        if (!parseFloats(tileSizes, v) || v.size() > most || std::any_of(v.begin(), v.end(), [](float x) { return x <= 0; }))
+            return usage("--tile-size must be one to four positive lengths in metres, e.g. 64,16");
         for (size_t k = 0; k < v.size(); ++k) o.settings.layers[k].tileSize = v[k];
     }
     if (!amplitudes.empty()) {
-        if (!parseFloats(amplitudes, v) || v.size() > 2) return usage("--amplitude must be one or two numbers, e.g. 1.5,0.4");
+        if (!parseFloats(amplitudes, v) || v.size() > most) return usage("--amplitude must be one to four numbers, e.g. 1.5,0.4");
         for (size_t k = 0; k < v.size(); ++k) o.settings.layers[k].amplitude = v[k];
     }
     if (!choppiness.empty()) {
-        if (!parseFloats(choppiness, v) || v.size() > 2 || v[0] < 0 || v[0] > 10 || (v.size() > 1 && (v[1] < 0 || v[1] > 10)))
-            return usage("--choppiness must be one or two numbers from 0 to 10, e.g. 1 or 1,0.5");
+        if (!parseFloats(choppiness, v) || v.size() > most || std::any_of(v.begin(), v.end(), [](float x) { return x < 0 || x > 10; }))
+            return usage("--choppiness must be one to four numbers from 0 to 10, e.g. 1 or 1,0.5");
         for (size_t k = 0; k < o.settings.layers.size(); ++k) o.settings.layers[k].choppiness = v[std::min(k, v.size() - 1)];
     }
     if (o.settings.rings < 2 || o.settings.segments < 3 || o.settings.rings > 4096 || o.settings.segments > 4096)

@@ -25,8 +25,8 @@ Status applyMaterial(const std::string& path, SceneFiles& files, RenderSettings&
         if (d.horizontalDisplacement) settings.layers[k].choppiness = static_cast<float>(d.choppiness);
     }
     if (m.displacement.size() > used)
-        note = "material " + m.name + " has " + std::to_string(m.displacement.size()) + " height maps; the first " +
-               std::to_string(used) + " displace the grid (chapter 18 displaces with the two largest)";
+        note = "material " + m.name + " has " + std::to_string(m.displacement.size()) + " height maps; the viewer draws the first " +
+               std::to_string(used) + " (heightpack's CPU sampler sums them all)";
     if (m.normals) {
         files.normals = resolve(m.normals->texture);
         for (size_t k = 0; k < settings.normalOctaves.size(); ++k) {

@@ -60,8 +60,13 @@ nlohmann::ordered_json bytesJson(const TextureBytes& b) {
             {"fresnel", b.fresnel}, {"foam", b.foam}, {"foamCoverage", b.foamCoverage}, {"total", b.total()}};
 }
 
-// The samplers the water program's vertex and fragment stages read (Renderer::samplers), each at most 16.
-nlohmann::ordered_json samplersJson(const StageSamplers& s) { return {{"vertex", s.vertex}, {"fragment", s.fragment}}; }
+// The samplers the water program's vertex and fragment stages read (Renderer::samplers), each at most 16,
+// and what this context allows each stage (GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, GL_MAX_TEXTURE_IMAGE_UNITS).
+nlohmann::ordered_json samplersJson(const Renderer& renderer) {
+    const StageSamplers& used = renderer.samplers();
+    const StageSamplers& limit = renderer.samplerLimits();
+    return {{"vertex", used.vertex}, {"fragment", used.fragment}, {"vertexLimit", limit.vertex}, {"fragmentLimit", limit.fragment}};
+}
 
 void printBench(const ViewerOptions& o, const Renderer& renderer, const ContextInfo& context, const PassTimes& chosen,
                 const std::vector<std::pair<Lookup, PassTimes>>& lookups) {
@@ -87,7 +92,7 @@ void printBench(const ViewerOptions& o, const Renderer& renderer, const ContextI
                                         {"combineWallMs", t.combineWall}};
         j["lookups"] = each;
         j["gpuBytes"] = bytesJson(b);
-        j["samplers"] = samplersJson(renderer.samplers());
+        j["samplers"] = samplersJson(renderer);
         std::printf("%s\n", j.dump().c_str());
         return;
     }
@@ -186,7 +191,7 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer, co
                                               {"context", context.platform},
                                               {"lookup", lookupName(o.settings.lookup)},
                                               {"gpuBytes", bytesJson(renderer.textureBytes())},
-                                              {"samplers", samplersJson(renderer.samplers())}};
+                                              {"samplers", samplersJson(renderer)}};
             std::printf("%s\n", j.dump().c_str());
         } else if (o.bench == 0) {
             std::printf("wrote %s: %dx%d at t = %.2f s\n", o.screenshot.c_str(), o.width, o.height, time);

@@ -31,20 +31,16 @@ void drawPanel(RenderSettings& s, PanelState& state, Camera& camera, const Scene
     ImGui::SliderFloat("speed", &state.timeScale, 0.0f, 4.0f);
 
     if (ImGui::CollapsingHeader("Height maps (18.2.1)", ImGuiTreeNodeFlags_DefaultOpen)) {
-        for (size_t k = 0; k < 2; ++k) {
+        // Every map that displaces the grid (up to kMaxLayers: a cascaded sea's tiles).
+        const size_t maps = std::min(scene.layers.size(), s.layers.size());
+        for (size_t k = 0; k < maps; ++k) {
             ImGui::PushID(static_cast<int>(k));
-            const bool present = k < scene.layers.size();
-            if (present)
-                ImGui::Text("map %zu: %s (%s)", k, scene.layers[k].path.c_str(), scene.layers[k].source.c_str());
-            else
-                ImGui::TextDisabled("map %zu: none", k);
+            ImGui::Text("map %zu: %s (%s)", k, scene.layers[k].path.c_str(), scene.layers[k].source.c_str());
             LayerSettings& l = s.layers[k];
-            ImGui::BeginDisabled(!present);  // no map, nothing to set
             ImGui::SliderFloat("tile size (m)", &l.tileSize, 0.5f, 2000.0f, "%.1f", ImGuiSliderFlags_Logarithmic);
             ImGui::SliderFloat2("scroll (tiles/s)", glm::value_ptr(l.scroll), -0.2f, 0.2f);
             ImGui::SliderFloat("wave height (m)", &l.amplitude, 0.0f, 20.0f);
-            ImGui::EndDisabled();
-            ImGui::BeginDisabled(!present || !scene.layers[k].horizontal);  // only maps with Dx, Dy move sideways
+            ImGui::BeginDisabled(!scene.layers[k].horizontal);  // only maps with Dx, Dy move sideways
             ImGui::SliderFloat("choppiness", &l.choppiness, 0.0f, 3.0f);
             ImGui::EndDisabled();
             ImGui::PopID();

@@ -15,13 +15,14 @@ namespace heightpack::view {
 
 namespace {
 
-// Texture units: height layers first (array textures, every frame of a map in one), then the shading
-// textures and the two maps' baked foam coverage. Each stage reads at most the eight layer arrays and the
-// combine target, or three shading textures and two coverage arrays: within the 16 samplers every GL 3.3
-// implementation offers a stage (init checks).
+// Texture units: per map its heights (the lookup's form of them), its Dx, Dy and its baked foam coverage,
+// all array textures holding every frame; then the shading textures and the combine target. The vertex
+// stage reads the heights, the shifts and the combine target (9 samplers), the fragment stage the heights,
+// the shifts, the coverage and three shading textures (15): within the 16 every GL 3.3 implementation
+// offers a stage (init checks). The units themselves run to 17, within GL 3.3's 48 combined.
 enum Unit {
-    kPacked0 = 0, kPacked1, kPlain0, kPlain1, kGather0, kGather1, kShift0, kShift1, kNormal, kFresnel, kFoam, kCombined,
-    kTiledMap, kFoamCoverage0, kFoamCoverage1
+    kHeights0 = 0, kShifts0 = kHeights0 + kMaxLayers, kFoamCoverage0 = kShifts0 + kMaxLayers,
+    kNormal = kFoamCoverage0 + kMaxLayers, kFresnel, kFoam, kCombined, kTiledMap
 };
 
 constexpr int kSamplersPerStage = 16;  // GL_MAX_TEXTURE_IMAGE_UNITS / GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS in GL 3.3
@@ -97,6 +98,8 @@ bool Renderer::init(std::string& error, bool gather) {
     none.frames.resize(1);
     none.frames[0].foam = {Image(1, 1, 1, 0.0f)};
     zeroCoverage_ = uploadFoamCoverage(none);
+    glGetIntegerv(GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, &samplerLimits_.vertex);
+    glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &samplerLimits_.fragment);
     for (auto [name, program] : {std::pair{"water", waterProgram_}, std::pair{"combine", combineProgram_},
                                  std::pair{"tiled", tiledProgram_}, std::pair{"sky", skyProgram_}}) {
         const StageSamplers s = activeSamplers(program);
@@ -166,59 +169,55 @@ void Renderer::buildGrid(int rings, int segments) {
     checkGl("Renderer::buildGrid");
 }
 
-void Renderer::bindLayers(GLuint program, float time) {
-    set(program, "uPacked0", int(kPacked0));
-    set(program, "uPacked1", int(kPacked1));
-    set(program, "uPlain0", int(kPlain0));
-    set(program, "uPlain1", int(kPlain1));
-    set(program, "uGather0", int(kGather0));
-    set(program, "uGather1", int(kGather1));
-    set(program, "uShift0", int(kShift0));
-    set(program, "uShift1", int(kShift1));
-    for (int k = 0; k < 2; ++k) {
+GLuint Renderer::LayerTextures::heights(Lookup lookup) const {
+    if (isGather(lookup)) return gather;
+    return lookup == Lookup::ReferenceBilinear || lookup == Lookup::ReferenceTrilinear ? plain : packed;
+}
+
+// Every per-map texture is bound here, and only here: map k's heights in the form the lookup reads, its
+// Dx, Dy and its baked foam coverage, with the frames this time shows. A map that is absent, or lacks one
+// of them, gets a stand-in of zeros, so every sampler has a complete texture.
+void Renderer::bindLayers(GLuint program, const RenderSettings& s, float time) {
+    GLint heights[kMaxLayers], shifts[kMaxLayers], coverage[kMaxLayers];
+    float coverageOn[kMaxLayers];
+    for (int k = 0; k < kMaxLayers; ++k) {
         const bool has = k < int(layers_.size());
+        const LayerTextures* l = has ? &layers_[size_t(k)] : nullptr;
+        heights[k] = kHeights0 + k, shifts[k] = kShifts0 + k, coverage[k] = kFoamCoverage0 + k;
+        const GLuint lookupTexture = has ? l->heights(s.lookup) : 0;
+        bindArrayTexture(heights[k], lookupTexture ? lookupTexture : dummyArray_);
+        bindArrayTexture(shifts[k], has && l->shift ? l->shift : zeroShift_);
+        const bool baked = has && l->foamCoverage && s.bakedFoam;
+        bindArrayTexture(coverage[k], baked ? l->foamCoverage : zeroCoverage_);
+        coverageOn[k] = baked ? 1.0f : 0.0f;
         // A sequence plays its loop: frame f covers [f, f+1) * period / frames, blended into the next.
         int current = 0, next = 0;
         float blend = 0.0f;
-        if (has && layers_[k].frames > 1) {
-            const double frames = double(layers_[k].frames);
-            double position = std::fmod(time / layers_[k].loopPeriod * frames, frames);
+        if (has && l->frames > 1) {
+            const double frames = double(l->frames);
+            double position = std::fmod(time / l->loopPeriod * frames, frames);
             if (position < 0) position += frames;
-            current = static_cast<int>(position) % layers_[k].frames;
-            next = (current + 1) % layers_[k].frames;
+            current = static_cast<int>(position) % l->frames;
+            next = (current + 1) % l->frames;
             blend = static_cast<float>(position - std::floor(position));
         }
-        bindArrayTexture(kPacked0 + k, has ? layers_[k].packed : dummyArray_);
-        bindArrayTexture(kPlain0 + k, has ? layers_[k].plain : dummyArray_);
-        bindArrayTexture(kGather0 + k, has && layers_[k].gather ? layers_[k].gather : dummyArray_);
-        const bool shift = has && layers_[k].shift;
-        bindArrayTexture(kShift0 + k, shift ? layers_[k].shift : zeroShift_);
         glUniform2i(glGetUniformLocation(program, indexed("uLayerFrame", k).c_str()), current, next);
         glUniform1f(glGetUniformLocation(program, indexed("uLayerBlend", k).c_str()), blend);
-        const Normalisation a = has ? layers_[k].decode[size_t(current)] : Normalisation{};
-        const Normalisation b = has ? layers_[k].decode[size_t(next)] : Normalisation{};
+        const Normalisation a = has ? l->decode[size_t(current)] : Normalisation{};
+        const Normalisation b = has ? l->decode[size_t(next)] : Normalisation{};
         glUniform4f(glGetUniformLocation(program, indexed("uLayerDecode", k).c_str()), a.offset, a.scale, b.offset, b.scale);
     }
-}
-
-// The frames' layers and blend are bindLayers' uLayerFrame and uLayerBlend: the coverage array holds frame
-// f in layer f, as the heights' arrays do.
-void Renderer::bindFoamCoverage(GLuint program, const RenderSettings& s) {
-    glm::vec2 on(0.0f);
-    for (int k = 0; k < 2; ++k) {
-        const bool has = k < int(layers_.size()) && layers_[k].foamCoverage && s.bakedFoam;
-        bindArrayTexture(kFoamCoverage0 + k, has ? layers_[k].foamCoverage : zeroCoverage_);
-        on[k] = has ? 1.0f : 0.0f;
-    }
-    set(program, "uFoamCoverage0", int(kFoamCoverage0));
-    set(program, "uFoamCoverage1", int(kFoamCoverage1));
-    set(program, "uCoverageOn", on);
+    // A program without one of these arrays (the combine pass reads no coverage) finds location -1: a no-op.
+    glUniform1iv(glGetUniformLocation(program, "uHeights"), kMaxLayers, heights);
+    glUniform1iv(glGetUniformLocation(program, "uShifts"), kMaxLayers, shifts);
+    glUniform1iv(glGetUniformLocation(program, "uFoamCoverage"), kMaxLayers, coverage);
+    glUniform1fv(glGetUniformLocation(program, "uCoverageOn"), kMaxLayers, coverageOn);
 }
 
 void Renderer::setCommonUniforms(GLuint p, const Camera& camera, const RenderSettings& s, float time, int height) {
-    const int count = std::min<int>(2, static_cast<int>(layers_.size()));
+    const int count = std::min<int>(kMaxLayers, static_cast<int>(layers_.size()));
     set(p, "uLayerCount", count);
-    for (int k = 0; k < 2; ++k) {
+    for (int k = 0; k < kMaxLayers; ++k) {
         const LayerSettings& l = s.layers[k];
         const glm::vec4 xform(1.0f / l.tileSize, l.scroll.x, l.scroll.y, l.amplitude);
         glUniform4fv(glGetUniformLocation(p, indexed("uLayerXform", k).c_str()), 1, glm::value_ptr(xform));
@@ -253,7 +252,7 @@ void Renderer::setCommonUniforms(GLuint p, const Camera& camera, const RenderSet
         glUniform4fv(glGetUniformLocation(p, indexed("uExplosion", e).c_str()), 1, glm::value_ptr(v));
     }
     set(p, "uExplosionShape", s.explosionShape);
-    bindLayers(p, time);
+    bindLayers(p, s, time);
 }
 
 void Renderer::render(const Camera& camera, const RenderSettings& s, float time, int width, int height,
@@ -361,7 +360,6 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
     set(waterProgram_, "uFoam", int(kFoam));
     bindTexture(kFoam, foamTexture_ ? foamTexture_ : dummyTexture_);
     set(waterProgram_, "uFoamScale", 1.0f / s.foamTileSize);
-    bindFoamCoverage(waterProgram_, s);
     glPolygonMode(GL_FRONT_AND_BACK, s.wireframe ? GL_LINE : GL_FILL);
     glBindVertexArray(gridVao_);
     glDrawElements(GL_TRIANGLES, gridIndexCount_, GL_UNSIGNED_INT, nullptr);

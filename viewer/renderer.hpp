@@ -37,6 +37,10 @@ inline const char* lookupName(Lookup l) {
 }
 enum class ViewMode { Shaded = 0, Height = 1, Lod = 2 };
 
+// The maps that displace the grid, common.glsl's kMaxLayers: the four tiles of synth --cascades 4 (the
+// chapter displaces with two; a cascaded sea needs every tile to be the spectrum once).
+constexpr int kMaxLayers = 4;
+
 struct LayerSettings {
     float tileSize = 64.0f;       // metres a tile spans (scale A = 1 / tileSize)
     glm::vec2 scroll{0.01f, 0.004f};  // tiles per second (B)
@@ -66,8 +70,10 @@ struct RenderSettings {
     glm::vec2 guardBand{1.2f, 2.0f};  // C0, C1
     bool twoPass = false;         // combine into an fp32 texture first (render-to-texture)
     // Water model (18.2.1)
-    std::array<LayerSettings, 2> layers{LayerSettings{64.0f, {0.010f, 0.004f}, 1.5f},
-                                        LayerSettings{16.0f, {-0.006f, 0.011f}, 0.4f}};
+    std::array<LayerSettings, kMaxLayers> layers{LayerSettings{64.0f, {0.010f, 0.004f}, 1.5f},
+                                                 LayerSettings{16.0f, {-0.006f, 0.011f}, 0.4f},
+                                                 LayerSettings{4.0f, {0.015f, -0.008f}, 0.1f},
+                                                 LayerSettings{1.0f, {-0.02f, -0.013f}, 0.025f}};
     float waterLevel = 0.0f;
     // Shading
     ViewMode view = ViewMode::Shaded;
@@ -137,6 +143,8 @@ public:
     const TextureBytes& textureBytes() const { return bytes_; }
     // The samplers the water program's stages read (the most of any program): at most 16 each.
     const StageSamplers& samplers() const { return waterSamplers_; }
+    // What this context allows a stage: GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, GL_MAX_TEXTURE_IMAGE_UNITS.
+    const StageSamplers& samplerLimits() const { return samplerLimits_; }
     // measure: read timer queries into times(); wallClock: also bracket each pass with glFinish (for
     // --bench; it stalls the pipeline, so the interactive loop does not).
     void render(const Camera& camera, const RenderSettings& settings, float time, int width, int height,
@@ -152,8 +160,7 @@ public:
 private:
     void buildGrid(int rings, int segments);
     void setCommonUniforms(GLuint program, const Camera& camera, const RenderSettings& s, float time, int height);
-    void bindLayers(GLuint program, float time);
-    void bindFoamCoverage(GLuint program, const RenderSettings& s);
+    void bindLayers(GLuint program, const RenderSettings& s, float time);
 
     GLuint waterProgram_ = 0, combineProgram_ = 0, tiledProgram_ = 0, skyProgram_ = 0;
     GLuint gridVao_ = 0, gridVbo_ = 0, gridIbo_ = 0, emptyVao_ = 0;
@@ -171,6 +178,9 @@ private:
         double loopPeriod = 0.0;
         std::vector<GatherAtlas::Origin> gatherOrigins;  // the same for every frame: they share a size
         glm::vec2 gatherSize{1.0f};
+        // The texture the shader's uHeights reads for this lookup: the packed chain, the plain chain or
+        // the gather atlas (0 where the context has none).
+        GLuint heights(Lookup lookup) const;
     };
     std::vector<LayerTextures> layers_;
     void releaseLayers();
@@ -180,7 +190,7 @@ private:
     bool gather_ = false;
     std::string gatherProblem_;
     TextureBytes bytes_;
-    StageSamplers waterSamplers_;
+    StageSamplers waterSamplers_, samplerLimits_;
     RenderTarget combined_;
     GLuint queries_[3] = {0, 0, 0};
     PassTimes times_;

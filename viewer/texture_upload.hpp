@@ -1,6 +1,6 @@
 // Textures from stored chains, uploaded in the precision they were stored in (GL_RGBA16F for half,
-// GL_R16 / GL_RGBA16 for 16-bit normalised, GL_RG16_SNORM for two-channel normals), and the bytes each
-// texture holds on the GPU as GL itself reports them.
+// GL_R16 / GL_RG16 / GL_RGBA16 for 16-bit normalised, GL_RG16_SNORM for the two-channel normals of
+// earlier versions), and the bytes each texture holds on the GPU as GL itself reports them.
 #pragma once
 
 #include <epoxy/gl.h>

@@ -320,11 +320,15 @@ Status MaterialBuild::Impl::run() {
     // what it had not finished.
     std::atomic<bool> stop{false};
     forEachParallel(steps.size(), jobs, [&](size_t i) { makeStep(steps[i], stop); });
-    // Synthesised maps' intermediates are gone once packed; their folder goes too (only when empty, and
-    // only now, when no step can be writing into it: in a plan, by the last action).
+    // Synthesised maps' intermediates are gone once packed; what steps shared (a foam loop) and their
+    // folder go too (the folder only when empty), only now, when no step can be reading or writing them:
+    // in a plan, by the last action.
     const bool oneOutput = !options.only.empty() && options.only != kMaterialFile;
-    if (!oneOutput)
+    if (!oneOutput) {
+        for (const Step& s : steps)
+            for (const std::string& shared : s.intermediates) fs::remove(folder / shared, ec);
         for (const fs::path& f : folders) fs::remove(f / kSynthFolder, ec);
+    }
     if (auto e = firstError()) return *e;
     report.assets.clear();
     for (const Step& s : steps) report.assets.push_back(s.report);

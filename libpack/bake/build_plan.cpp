@@ -1,16 +1,20 @@
 #include "build_plan.hpp"
 
 #include <filesystem>
+#include <optional>
 
 #include "heightpack/bake/cache_key.hpp"
 #include "heightpack/bake/fresnel_job.hpp"
 #include "heightpack/bake/normal_job.hpp"
 #include "heightpack/bake/pack_job.hpp"
+#include "heightpack/core/spectrum.hpp"
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/displacement_read.hpp"
 #include "heightpack/io/foam_read.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
+
+#include "foam_loop.hpp"
 
 namespace heightpack::detail {
 
@@ -99,33 +103,42 @@ NormalJobOptions normalOptions(const NormalAsset& n, const std::string& version)
     return job;
 }
 
-// Frame f of a synthesised sea: the heights in metres at f * loop / frames, and with pack.displacement
-// Dx, Dy (metres per unit of choppiness), as `heightpack synth` writes them, into the intermediate file
-// (with the loop's timing, which the packed frame then carries), packed from there like any source, and
-// the intermediate removed. Its name is fixed, not a temporary one, because the packed header records the
-// source's name and the bytes must be the same on every run.
+// Frame f of a synthesised sea: the heights in metres at f * loop / frames, with pack.displacement Dx, Dy
+// (metres per unit of choppiness), and with a foam loop Dx, Dy and the frame's foam coverage, the channels
+// `heightpack synth --displacement` (--foam) writes, into the intermediate file (with the loop's timing,
+// which the packed frame then carries), packed from there like any source, and the intermediate removed.
+// Its name is fixed, not a temporary one, because the packed header records the source's name and the
+// bytes must be the same on every run.
 Status makeSynthesised(const SynthSource& sea, int frame, const std::string& intermediate, const PackOptions& pack,
-                       const std::string& output, int threads, const ProgressFn& progress) {
-    const fs::path path = fs::path(output).parent_path() / intermediate;
+                       const std::optional<FoamLoop>& foamLoop, const std::string& output, int threads,
+                       const ProgressFn& progress) {
+    const fs::path folder = fs::path(output).parent_path(), path = folder / intermediate;
     std::error_code ec;
     fs::create_directories(path.parent_path(), ec);
     if (ec) return cannotWrite(path.parent_path().string(), "cannot be created as a folder", "check the permissions");
+    // The loop first: the one step that computes it reports its progress before its own frame's.
+    std::optional<Image> foam;
+    if (foamLoop) {
+        auto coverage = foamLoopFrame(*foamLoop, folder, frame, threads, progress);
+        if (!coverage) return coverage.error();
+        foam = std::move(*coverage);
+    }
     progress("synth", 0.0);
-    const double t = sea.frames > 1 ? frame * sea.spectrum.loopPeriod / sea.frames : 0.0;
-    const bool withD = pack.displacement;
-    SeaFields fields = Ocean(sea.spectrum, threads).fields(t, {true, withD, false}, 1.0, threads);
-    Image image = std::move(fields.heights);
+    const double t = synthFrameTime(sea, frame);
+    const bool withD = pack.displacement || foam;  // synth's foam brings Dx, Dy with it
+    const int channels = 1 + (withD ? 2 : 0) + (foam ? 1 : 0), size = sea.spectrum.size;
+    // Y, Dx, Dy (, Foam) interleaved, the channels synth writes and pack --displacement (--foam) reads.
+    Image image(size, size, channels);
+    float* first = image.pixels.data();
+    SeaFieldTargets to;
+    to.heights = {first, channels};
+    if (withD) to.displacementX = {first + 1, channels}, to.displacementY = {first + 2, channels};
+    Ocean(sea.spectrum, threads).fieldsInto(t, to, 1.0, threads);
     FlatImageOptions flat;
-    if (withD) {
-        // Y, Dx, Dy interleaved, the channels synth --displacement writes and pack --displacement reads.
-        Image sea3(image.width, image.height, 3);
-        for (size_t i = 0; i < image.texelCount(); ++i) {
-            sea3.pixels[3 * i] = image.pixels[i];
-            sea3.pixels[3 * i + 1] = fields.displacement.pixels[2 * i];
-            sea3.pixels[3 * i + 2] = fields.displacement.pixels[2 * i + 1];
-        }
-        image = std::move(sea3);
-        flat.channelNames = {"Y", "Dx", "Dy"};
+    if (withD) flat.channelNames = {"Y", "Dx", "Dy"};
+    if (foam) {
+        for (size_t i = 0; i < image.texelCount(); ++i) image.pixels[i * channels + 3] = foam->pixels[i];
+        flat.channelNames.push_back("Foam");
     }
     flat.threads = threads;
     flat.attributes = {attribute(attr::layout, "synthesised"), attribute(attr::version, pack.version)};
@@ -142,9 +155,13 @@ Status makeSynthesised(const SynthSource& sea, int frame, const std::string& int
 
 // The steps of a synthesised displacement map: one per frame, each keyed on the spectrum, the frame and
 // the packing, with no input file (so no input hash and no tileability check: it tiles by construction).
+// With foam kept (pack.foam), every frame shares one foam loop, and its key has the foam's options and
+// the choppiness the foam is worked out for.
 void addSynthSteps(std::vector<Step>& steps, const DisplacementAsset& d, const PackOptions& pack) {
     const SynthSource sea = *d.synth;
     const int frames = static_cast<int>(d.frames.size());
+    std::optional<FoamLoop> foamLoop;
+    if (pack.foam) foamLoop = foamLoopOf(sea, d.layer.name, pack.version);
     for (int f = 0; f < frames; ++f) {
         Step step;
         step.report.name = d.layer.name;
@@ -154,15 +171,22 @@ void addSynthSteps(std::vector<Step>& steps, const DisplacementAsset& d, const P
         step.report.output = frameFileName(d.output, f, frames);
         step.mustTile = false;
         // The cascade's own band, tile size and seed are in its spectrum; its place among the others, a
-        // line only with cascades (so every key made before them still matches). Dx, Dy are pack's line.
+        // line only with cascades (so every key made before them still matches). Dx, Dy are pack's line,
+        // and so is foam; its options, lines only with it.
         const std::string cascade = sea.cascades > 1 ? "synth.cascade=" + std::to_string(sea.cascade) + "/" +
                                                            std::to_string(sea.cascades) + "\n"
                                                      : "";
         step.optionsText = "kind=displacement\nsynth.frame=" + std::to_string(f) + "/" + std::to_string(frames) +
                            "\n" + cascade + keyText(sea.spectrum, "synth.") + keyText(pack, "displacement.");
+        if (foamLoop) {
+            step.optionsText.append("synth.choppiness=").append(number(sea.choppiness)).append("\n");
+            step.optionsText.append(keyText(sea.foamOptions, "synth.foam."));
+            for (const std::string& file : foamLoopFiles(*foamLoop))  // beside the output, as its intermediates
+                step.intermediates.push_back((fs::path(step.report.output).parent_path() / file).string());
+        }
         const std::string intermediate = d.frames[f];
-        step.make = [sea, f, intermediate, pack](const std::string& output, int threads, const ProgressFn& progress) {
-            return makeSynthesised(sea, f, intermediate, pack, output, threads, progress);
+        step.make = [sea, f, intermediate, pack, foamLoop](const std::string& output, int threads, const ProgressFn& progress) {
+            return makeSynthesised(sea, f, intermediate, pack, foamLoop, output, threads, progress);
         };
         steps.push_back(std::move(step));
     }
@@ -181,6 +205,8 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
         if (d.synth) {
             // displacement = true synthesises Dx, Dy and keeps them as a file's would be kept (below).
             pack.displacement = d.synth->displacement && d.layer.choppiness > 0;
+            // foam = true synthesises the loop's foam and keeps it as a file's would be (below).
+            pack.foam = d.synth->foam;
             addSynthSteps(steps, d, pack);
         } else {
             // Dx, Dy ride along when the source has them (synth's displacement), unless choppiness turns them

@@ -23,6 +23,9 @@ struct Step {
     std::string checkText;    // key text of every option that shapes the check
     CheckOptions check;
     std::function<Status(const std::string& output, int threads, const ProgressFn& progress)> make;
+    // Files (relative to the material's output folder) that make may leave for other steps to read, such as a
+    // synthesised sea's foam loop: removed once the whole build is done, never by one output's action.
+    std::vector<std::string> intermediates;
     // Worked out while building:
     std::string checkKey;
     bool needBuild = false, needCheck = false;

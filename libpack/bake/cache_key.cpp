@@ -184,6 +184,14 @@ void appendKeyText(std::string& text, std::string_view prefix, const SpectrumOpt
     k.put("bandHigh", o.bandHigh);
 }
 
+void appendKeyText(std::string& text, std::string_view prefix, const FoamOptions& o) {
+    static_assert(fieldCount<FoamOptions>() == 3, "FoamOptions changed: put the new field in its key text");
+    Key k(text, prefix);
+    k.put("threshold", o.threshold);
+    k.put("decay", o.decay);
+    k.put("buildUp", o.buildUp);
+}
+
 std::string cacheKey(std::string_view version, std::string_view text, std::string_view inputHash) {
     std::string all = "heightpack ";
     all.append(version).append("\n").append(text).append("input=").append(inputHash).append("\n");

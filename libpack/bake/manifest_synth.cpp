@@ -55,6 +55,15 @@ SynthSource parseSynthSource(Section& t, double tileSize) {
                       "add loop = the period in seconds, such as 8");
     // What is baked beside the heights, and into how many tiles: `synth`'s --displacement and --cascades.
     out.displacement = t.boolean("displacement").value_or(false);
+    // Foam, as synth's --foam and its --foam-* flags; the tuning without foam would change the key, not the sea.
+    out.foam = t.boolean("foam").value_or(false);
+    for (const char* foamOnly : {"foam_threshold", "foam_decay", "foam_build_up"})
+        if (t.find(foamOnly) && !out.foam)
+            throw t.error(foamOnly, "tunes the foam, but foam is not true", "set foam = true beside it, or remove it");
+    FoamOptions& f = out.foamOptions;
+    f.threshold = t.number("foam_threshold", f.threshold, -2.0, 2.0);
+    f.decay = t.number("foam_decay", f.decay, 0.0, 1e4, true);
+    f.buildUp = t.number("foam_build_up", f.buildUp, 0.0, 1000.0);
     out.cascades = t.integer("cascades", 1, 1, kMaxCascades);
     if (out.cascades > 1 && o.size < kCascadeMinSize)
         throw t.error("cascades", "is " + std::to_string(out.cascades) + ", but size is " + std::to_string(o.size) +

@@ -45,6 +45,16 @@ std::vector<DisplacementAsset> ManifestParser::displacement(Section& s) {
     d.layer.heightOffset = s.number("height_offset", 0.0, -1e6, 1e6);
     d.layer.choppiness = s.number("choppiness", 1.0, 0.0, 10.0);
     d.keepFoam = s.boolean("foam").value_or(true);
+    if (d.synth && d.synth->foam) {
+        // A synthesised sea's foam is where the surface the viewer draws (moved by choppiness x D) folds.
+        if (d.layer.choppiness == 0)
+            throw s.error("choppiness", "is 0, but [" + s.prefix() + ".synth] asks for foam, which forms where the surface folds",
+                          "give choppiness above 0, or remove foam = true");
+        if (!d.keepFoam)
+            throw s.error("foam", "is false, but [" + s.prefix() + ".synth] synthesises foam",
+                          "remove one of them: foam = true in the synth table makes the foam this key would drop");
+        d.synth->choppiness = d.layer.choppiness;
+    }
     if (d.layer.heightScale == 0) throw s.error("height_scale", "is 0, which would flatten the map");
     d.layer.wrap = d.settings.wrap;
     d.layer.filter = d.settings.filter;

@@ -8,6 +8,7 @@
 
 #include "heightpack/bake/check_job.hpp"
 #include "heightpack/core/mip.hpp"
+#include "heightpack/core/parallel.hpp"
 #include "heightpack/core/tile_quilt.hpp"
 #include "heightpack/core/tile_resynthesis.hpp"
 #include "heightpack/io/files.hpp"
@@ -25,12 +26,14 @@ std::string verdictText(const ChainSeams& seams) {
     return seams.tiles() ? "tiles at every level" : describeSeamFailure(*seams.failure, seams.threshold);
 }
 
-// Whether every height is a whole number of steps of a bits-bit type, inside [0,1].
+// Whether every height is a whole number of steps of a bits-bit type, inside [0,1], as a reader of such
+// samples gives it: within 0.01 of a step (a float holds k/65535 to 0.004 steps near 1, and readers
+// multiply by 1/65535 rather than divide, so neither an exact test nor one within 1e-3 holds).
 bool exactIn(const Image& map, int bits) {
     const double steps = bits == 8 ? 255.0 : 65535.0;
     return std::all_of(map.pixels.begin(), map.pixels.end(), [&](float v) {
         const double s = double(v) * steps;
-        return v >= 0.0f && v <= 1.0f && std::abs(s - std::round(s)) < 1e-3;
+        return v >= 0.0f && v <= 1.0f && std::abs(s - std::round(s)) < 0.01;
     });
 }
 
@@ -61,11 +64,17 @@ struct Storage {
         if (!floatFormat || explicitBits) return Choice{bits, false, false};
         return Choice{32, true, true};
     }
-    // The heights as that type stores them.
-    static Image rounded(Image result, int bits) {
+    // The heights as that type stores them (in [0,1] where bits < 32: choose said so; rounded half up
+    // by a cast, which libm's round costs several times on 16 M texels).
+    static Image rounded(Image result, int bits, int threads) {
         if (bits == 32) return result;
         const double steps = bits == 8 ? 255.0 : 65535.0;
-        for (float& v : result.pixels) v = static_cast<float>(std::round(double(v) * steps) / steps);
+        float* v = result.pixels.data();
+        const size_t row = size_t(result.width) * result.channels;
+        parallelFor(result.height, threads, [&](int begin, int end) {
+            for (size_t i = begin * row; i < end * row; ++i)
+                v[i] = static_cast<float>(double(static_cast<int64_t>(double(v[i]) * steps + 0.5)) / steps);
+        });
         return result;
     }
     static double quantum(int bits) { return bits == 8 ? 1.0 / 255 : bits == 16 ? 1.0 / 65535 : 0.0; }
@@ -109,7 +118,7 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         if (!c.storable || span(candidate) > maxSpan) return false;
         SeamOptions stored = seamOptions;
         stored.quantum = Storage::quantum(c.bits);
-        const Image asStored = Storage::rounded(candidate, c.bits);
+        const Image asStored = Storage::rounded(candidate, c.bits, options.mip.threads);
         judged = measureChainSeams(seamChain(asStored, options.mip), options.threshold, stored);
         if (!judged->tiles() || !lookRequired) return judged->tiles();
         if (!lookOptions.sourceEcho) lookOptions.sourceEcho = sourceEchoOf(map, options.mip.threads);
@@ -242,7 +251,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     }
     // Judge what will be stored: rounded to the type (Periodic's candidates were judged so already, with
     // the same type: the same rounding and quantum).
-    result = Storage::rounded(std::move(result), report.bits);
+    result = Storage::rounded(std::move(result), report.bits, options.mip.threads);
     if (judged) {
         report.after = std::move(*judged);
     } else {

@@ -77,19 +77,42 @@ void inverseDft(const cv::Mat& spectrum, cv::Mat& out, int threads) {
     transformRows(columns, out, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT, threads);
 }
 
+std::vector<std::complex<float>> forwardRealDftToHalf(int w, int h, int threads, const std::function<void(int y, float* row)>& give) {
+    CV_Assert(w >= 1 && h >= 1);
+    const int columns = w / 2 + 1;
+    std::vector<std::complex<float>> half(size_t(h) * columns);
+    parallelFor((h + kFloatBlock - 1) / kFloatBlock, threads, [&](int begin, int end) {
+        cv::Mat rows(kFloatBlock, w, CV_32F), spectra;
+        for (int block = begin; block < end; ++block) {
+            const int y0 = block * kFloatBlock, count = std::min(kFloatBlock, h - y0);
+            for (int i = 0; i < count; ++i) give(y0 + i, rows.ptr<float>(i));
+            cv::dft(rows.rowRange(0, count), spectra, cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
+            for (int i = 0; i < count; ++i) {
+                const cv::Vec2f* from = spectra.ptr<cv::Vec2f>(i);
+                for (int q = 0; q < columns; ++q) half[size_t(y0 + i) * columns + q] = {from[q][0], from[q][1]};
+            }
+        }
+    });
+    cv::Mat spectrum(h, columns, CV_32FC2, half.data());
+    transformColumns<cv::Vec2f>(spectrum, spectrum, 0, threads);
+    return half;
+}
+
 void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads,
                           const std::function<void(int y, const float* row)>& take) {
     inverseRealDftOfHalf(half, w, h, threads, {HalfSpectrumRows{{}, take}});
 }
 
 void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads, const std::vector<HalfSpectrumRows>& fields) {
-    CV_Assert(w % 2 == 0 && w >= 2 && h >= 1);
+    CV_Assert(w >= 2 && h >= 1);
+    const bool even = w % 2 == 0;  // an even row has a real last column (w/2), an odd one none
     const int columns = w / 2 + 1;
     for (const HalfSpectrumRows& field : fields) CV_Assert(field.factor.empty() || int(field.factor.size()) == columns);
     cv::Mat spectrum(h, columns, CV_32FC2, half);
     transformColumns<cv::Vec2f>(spectrum, spectrum, cv::DFT_INVERSE, threads);
-    // Column 0 and column w/2 are now real (each is the transform of a Hermitian column), so a row is
-    // OpenCV's packed real spectrum (CCS) Re0, Re1, Im1, ..., Re(w/2 - 1), Im(w/2 - 1), Re(w/2): w floats,
+    // Column 0 and (w even) column w/2 are now real (each is the transform of a Hermitian column), so a row
+    // is OpenCV's packed real spectrum (CCS) Re0, Re1, Im1, ..., Re(w/2 - 1), Im(w/2 - 1), Re(w/2) (w odd:
+    // Re0, Re1, Im1, ..., Re(w/2), Im(w/2)): w floats,
     // copied (times each field's factor) into a block of rows and transformed to real rows together. The
     // columns' result is only read here, so every field's rows come from the one column pass.
     parallelFor((h + kFloatBlock - 1) / kFloatBlock, threads, [&](int begin, int end) {
@@ -103,18 +126,18 @@ void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads, 
                     if (field.factor.empty()) {
                         const float* values = reinterpret_cast<const float*>(from);
                         to[0] = values[0];
-                        std::copy(values + 2, values + w, to + 1);
-                        to[w - 1] = values[w];
+                        std::copy(values + 2, values + w + (even ? 0 : 1), to + 1);
+                        if (even) to[w - 1] = values[w];
                         continue;
                     }
                     const std::complex<float>* factor = field.factor.data();
                     to[0] = (from[0] * factor[0]).real();
-                    for (int q = 1; q < w / 2; ++q) {
+                    for (int q = 1; q < (even ? w / 2 : columns); ++q) {
                         const std::complex<float> z = from[q] * factor[q];
                         to[2 * q - 1] = z.real();
                         to[2 * q] = z.imag();
                     }
-                    to[w - 1] = (from[w / 2] * factor[w / 2]).real();
+                    if (even) to[w - 1] = (from[w / 2] * factor[w / 2]).real();
                 }
                 cv::Mat rows = real.rowRange(0, count);
                 cv::dft(packed.rowRange(0, count), rows, cv::DFT_INVERSE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);

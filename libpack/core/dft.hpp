@@ -19,7 +19,14 @@ cv::Mat forwardDft(const cv::Mat& field, int threads);
 // of that size and type (it is written in place).
 void inverseDft(const cv::Mat& spectrum, cv::Mat& out, int threads);
 
-// The real w x h field (w even) of a Hermitian spectrum given by its half kx = 0 .. w/2: h rows of w/2 + 1
+// The half kx = 0 .. w/2 (rounded down) of the spectrum of a real w x h field, in floats: h rows of w/2 + 1
+// complex values (as inverseRealDftOfHalf takes them), unscaled, as cv::dft with DFT_COMPLEX_OUTPUT gives
+// them. give(y, row) writes the field's row y (w floats) into row, once per row, from any thread. Rows and
+// then columns go in fixed blocks: the values do not depend on the thread count. A quarter of the work
+// and memory of forwardDft, where a statistic or a model needs no more than float precision.
+std::vector<std::complex<float>> forwardRealDftToHalf(int w, int h, int threads, const std::function<void(int y, float* row)>& give);
+
+// The real w x h field of a Hermitian spectrum given by its half kx = 0 .. w/2 (rounded down): h rows of w/2 + 1
 // complex floats (row r is ky = r, or r - h above h/2), unscaled (a plain sum over k, as cv::dft with
 // DFT_INVERSE | DFT_REAL_OUTPUT and no DFT_SCALE). `half` is the scratch: it is overwritten. Each row of
 // the field goes to take(y, row) once, from any thread, rows of one block in order; in float, rows and
@@ -31,7 +38,7 @@ void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads,
 // that depends on kx alone (i kx for d/dx, say), so one column pass serves them all and each costs only
 // its row pass. factor holds w/2 + 1 values (empty: 1). At kx = 0 and w/2 the columns' value times the
 // factor must be real, as it is when S times the factor is Hermitian (the field is real): only its real
-// part is used there. Rows of a block come field by field, in the order given.
+// part is used there (w odd: at kx = 0 alone). Rows of a block come field by field, in the order given.
 struct HalfSpectrumRows {
     std::vector<std::complex<float>> factor;
     std::function<void(int y, const float* row)> take;

@@ -25,19 +25,19 @@ Complex complexNoise(uint64_t seed, uint64_t index) {
 
 // Moisan's smooth field of g's edge jumps, in the frequency domain: S = V / lambda, where V is the DFT of
 // the jumps (nonzero on the four border lines only, so two 1-D DFTs give it) and lambda the five-point
-// Laplacian's symbol, S(0) = 0. apply(r, q, S(q, r)) is called once per frequency, on any thread. Only the
-// jumps across the left/right wrap line, or the top/bottom one, are taken when asked.
+// Laplacian's symbol, S(0) = 0. apply(r, q, S(q, r)) is called once per frequency with q < columns (w, or
+// w/2 + 1 for the half a real field needs), on any thread. Only the jumps across the left/right wrap line,
+// or the top/bottom one, are taken when asked.
 struct EdgeJumps {
     bool leftRight = true, topBottom = true;
 };
-template <class Apply>
-void forSmoothSpectrum(const Field& g, EdgeJumps jumps, int threads, Apply apply) {
-    const int w = g.w, h = g.h;
+template <class At, class Apply>
+void forSmoothSpectrum(int w, int h, At at, EdgeJumps jumps, int columns, int threads, Apply apply) {
     cv::Mat leftRight(1, h, CV_64F, cv::Scalar(0)), topBottom(1, w, CV_64F, cv::Scalar(0)), down, across;
     if (jumps.leftRight)
-        for (int y = 0; y < h; ++y) leftRight.at<double>(0, y) = g.at(w - 1, y) - g.at(0, y);
+        for (int y = 0; y < h; ++y) leftRight.at<double>(0, y) = double(at(w - 1, y)) - at(0, y);
     if (jumps.topBottom)
-        for (int x = 0; x < w; ++x) topBottom.at<double>(0, x) = g.at(x, h - 1) - g.at(x, 0);
+        for (int x = 0; x < w; ++x) topBottom.at<double>(0, x) = double(at(x, h - 1)) - at(x, 0);
     cv::dft(leftRight, down, cv::DFT_COMPLEX_OUTPUT);
     cv::dft(topBottom, across, cv::DFT_COMPLEX_OUTPUT);
     // v(0, y) = J(y) and v(w-1, y) = -J(y) have the DFT J^(r) (1 - e^(2 pi i q / w)); likewise along y.
@@ -54,7 +54,7 @@ void forSmoothSpectrum(const Field& g, EdgeJumps jumps, int threads, Apply apply
     parallelFor(h, threads, [&](int begin, int end) {
         for (int r = begin; r < end; ++r) {
             const cv::Vec2d d = down.at<cv::Vec2d>(0, r);
-            for (int q = 0; q < w; ++q) {
+            for (int q = 0; q < columns; ++q) {
                 const cv::Vec2d a = across.at<cv::Vec2d>(0, q);
                 apply(r, q, q == 0 && r == 0 ? Complex(0, 0)
                                              : (Complex(d[0], d[1]) * edgeX[q] + Complex(a[0], a[1]) * edgeY[r]) /
@@ -64,12 +64,15 @@ void forSmoothSpectrum(const Field& g, EdgeJumps jumps, int threads, Apply apply
     });
 }
 
-// The DFT of Moisan's periodic component of g, from g's own (spectrum, overwritten): G less the smooth
-// field's, the mean set to 0. The periodic component itself is never needed in space.
-void toPeriodicSpectrum(const Field& g, cv::Mat& spectrum, int threads) {
-    forSmoothSpectrum(g, {}, threads, [&](int r, int q, Complex s) {
-        cv::Vec2d& z = spectrum.at<cv::Vec2d>(r, q);
-        z = r == 0 && q == 0 ? cv::Vec2d(0, 0) : cv::Vec2d(z[0] - s.real(), z[1] - s.imag());
+// The DFT of Moisan's periodic component of a w x h field, from the field's own (its half kx <= w/2,
+// overwritten): the field's less the smooth field's, the mean set to 0. at(x, y) reads the field (only its
+// border lines). The periodic component itself is never needed in space.
+template <class At>
+void toPeriodicSpectrum(int w, int h, At at, std::vector<std::complex<float>>& half, int threads) {
+    const int columns = w / 2 + 1;
+    forSmoothSpectrum(w, h, at, {}, columns, threads, [&](int r, int q, Complex s) {
+        std::complex<float>& z = half[size_t(r) * columns + q];
+        z = r == 0 && q == 0 ? std::complex<float>(0, 0) : std::complex<float>(std::complex<double>(z) - s);
     });
 }
 
@@ -85,18 +88,31 @@ std::vector<double> lagsOf(std::vector<double> marginal, double n) {
 
 }  // namespace
 
+std::vector<std::complex<float>> periodicHalfSpectrum(const Image& map, int threads) {
+    const int w = map.width, h = map.height;
+    std::vector<std::complex<float>> half = forwardRealDftToHalf(w, h, threads, [&](int y, float* row) {
+        for (int x = 0; x < w; ++x) row[x] = map.at(x, y);
+    });
+    toPeriodicSpectrum(w, h, [&](int x, int y) { return map.at(x, y); }, half, threads);
+    return half;
+}
+
 GaussianModel modelOf(const Field& g, double noise, int threads) {
-    const int w = g.w, h = g.h;
+    const int w = g.w, h = g.h, columns = w / 2 + 1;
     const double n = double(w) * h;
     GaussianModel model(w, h);
-    cv::Mat spectrum = detail::forwardDft(cv::Mat(h, w, CV_64F, const_cast<double*>(g.v.data())), threads);
-    toPeriodicSpectrum(g, spectrum, threads);
+    // In floats: the power is a statistic, and the transform of a real field's half costs a quarter.
+    std::vector<std::complex<float>> half = detail::forwardRealDftToHalf(w, h, threads, [&](int y, float* row) {
+        const double* from = &g.v[size_t(y) * w];
+        for (int x = 0; x < w; ++x) row[x] = static_cast<float>(from[x]);
+    });
+    toPeriodicSpectrum(w, h, [&](int x, int y) { return g.at(x, y); }, half, threads);
     const double floor = n * noise;  // the expected |P(k)|^2 of white noise of that variance
     parallelFor(h, threads, [&](int begin, int end) {
         for (int r = begin; r < end; ++r)
-            for (int q = 0; q < w; ++q) {
-                const cv::Vec2d a = spectrum.at<cv::Vec2d>(r, q);
-                model.power.at<double>(r, q) = std::max(a[0] * a[0] + a[1] * a[1] - floor, 0.0);
+            for (int q = 0; q < w; ++q) {  // beyond the half, the opposite frequency's power: the same
+                const std::complex<double> a = q < columns ? half[size_t(r) * columns + q] : half[size_t((h - r) % h) * columns + (w - q)];
+                model.power.at<double>(r, q) = std::max(std::norm(a) - floor, 0.0);
             }
     });
     std::vector<double> marginalX(w, 0.0), marginalY(h, 0.0);
@@ -112,29 +128,34 @@ GaussianModel modelOf(const Field& g, double noise, int threads) {
 }
 
 Field sampleOf(const GaussianModel& model, uint64_t seed, int threads) {
-    const int w = model.power.cols, h = model.power.rows;
+    const int w = model.power.cols, h = model.power.rows, columns = w / 2 + 1;
     // The sample's spectrum: sqrt(power) times complex white noise of unit variance, Hermitian so the sample
-    // is real (each pair of opposite frequencies drawn once, at the lower index). Its covariance is the
-    // model's: (1/n^2) sum of power e^(2 pi i k.d).
-    cv::Mat spectrum(h, w, CV_64FC2);
+    // is real. Its covariance is the model's: (1/n^2) sum of power e^(2 pi i k.d). Only the half kx <= w/2
+    // is stored (the float inverse makes the rest); in its first and last columns, which hold their own
+    // partners, each pair of opposite frequencies is drawn once, at the lower row. Floats: the sample is
+    // noise, and their transform takes a third of the time.
+    const double scale = 1.0 / (double(w) * h);
+    std::vector<std::complex<float>> half(size_t(h) * columns);
     parallelFor(h, threads, [&](int begin, int end) {
         for (int r = begin; r < end; ++r)
-            for (int q = 0; q < w; ++q) {
-                const int pr = (h - r) % h, pq = (w - q) % w;
-                const size_t index = size_t(r) * w + q, partner = size_t(pr) * w + pq;
-                if (partner < index) continue;  // drawn with its partner
-                const Complex z = std::sqrt(model.power.at<double>(r, q)) * complexNoise(seed, index);
-                if (partner == index) {  // a real frequency: the real part's N(0, 1/2), made N(0, 1)
-                    spectrum.at<cv::Vec2d>(r, q) = cv::Vec2d(z.real() * std::numbers::sqrt2, 0.0);
+            for (int q = 0; q < columns; ++q) {
+                const bool ownPartner = q == 0 || 2 * q == w;
+                const int pr = (h - r) % h;
+                if (ownPartner && pr < r) continue;  // drawn with its partner
+                const size_t index = size_t(r) * w + q;
+                const Complex z = scale * std::sqrt(model.power.at<double>(r, q)) * complexNoise(seed, index);
+                if (ownPartner && pr == r) {  // a real frequency: the real part's N(0, 1/2), made N(0, 1)
+                    half[size_t(r) * columns + q] = std::complex<float>(float(z.real() * std::numbers::sqrt2), 0.0f);
                     continue;
                 }
-                spectrum.at<cv::Vec2d>(r, q) = cv::Vec2d(z.real(), z.imag());
-                spectrum.at<cv::Vec2d>(pr, pq) = cv::Vec2d(z.real(), -z.imag());
+                half[size_t(r) * columns + q] = std::complex<float>(z);
+                if (ownPartner) half[size_t(pr) * columns + q] = std::complex<float>(std::conj(z));
             }
     });
     Field sample(w, h);
-    cv::Mat values = sample.mat();
-    detail::inverseDft(spectrum, values, threads);
+    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) {
+        std::copy(row, row + w, sample.v.begin() + ptrdiff_t(y) * w);
+    });
     return sample;
 }
 
@@ -165,12 +186,16 @@ cv::Mat lineCovarianceSpectra(const cv::Mat& power, Axis axis, int strip, int th
 }
 
 Field topBottomSmoothField(const Field& f, int threads) {
-    cv::Mat spectrum(f.h, f.w, CV_64FC2);
-    forSmoothSpectrum(f, {.leftRight = false, .topBottom = true}, threads,
-                      [&](int r, int q, Complex s) { spectrum.at<cv::Vec2d>(r, q) = cv::Vec2d(s.real(), s.imag()); });
-    Field out(f.w, f.h);
-    cv::Mat values = out.mat();
-    detail::inverseDft(spectrum, values, threads);
+    // In floats, from the half spectrum (see sampleOf): the field is only set aside and added back.
+    const int w = f.w, h = f.h, columns = w / 2 + 1;
+    const double scale = 1.0 / (double(w) * h);
+    std::vector<std::complex<float>> half(size_t(h) * columns);
+    forSmoothSpectrum(w, h, [&](int x, int y) { return f.at(x, y); }, {.leftRight = false, .topBottom = true}, columns, threads,
+                      [&](int r, int q, Complex s) { half[size_t(r) * columns + q] = std::complex<float>(s * scale); });
+    Field out(w, h);
+    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) {
+        std::copy(row, row + w, out.v.begin() + ptrdiff_t(y) * w);
+    });
     return out;
 }
 

@@ -5,8 +5,11 @@
 
 #include <opencv2/core.hpp>
 
+#include <complex>
 #include <cstdint>
 #include <vector>
+
+#include "heightpack/core/image.hpp"
 
 #include "field.hpp"
 
@@ -23,6 +26,10 @@ struct GaussianModel {
     GaussianModel(int w, int h) : power(h, w, CV_64F), lagX(w), lagY(h) {}
     double variance() const { return lagX[0]; }
 };
+
+// The spectrum of Moisan's periodic component of map's first channel, as forwardRealDftToHalf gives it (the
+// half kx <= w/2, in floats, unscaled), the mean set to 0: the map's own less its edge jumps' smooth field's.
+std::vector<std::complex<float>> periodicHalfSpectrum(const Image& map, int threads);
 
 // noise: the variance of the input's quantisation, in the Gaussian domain: white noise that the map holds
 // as terraces and a sample would show as grain. Its level is taken off the power spectrum, so the model is

@@ -72,7 +72,10 @@ std::vector<uint32_t> stableOrder(const std::vector<float>& values, int threads)
 
 double normalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
-double inverseNormalCdf(double p) {
+namespace {
+
+// Acklam's rational approximation of the normal quantile: relative error below 1.15e-9.
+double acklamQuantile(double p) {
     static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
                                1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
     static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
@@ -82,20 +85,25 @@ double inverseNormalCdf(double p) {
     static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
                                3.754408661907416e+00};
     const double low = 0.02425;
-    double x;
     if (p < low) {
         const double q = std::sqrt(-2 * std::log(p));
-        x = (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
-    } else if (p > 1 - low) {
-        const double q = std::sqrt(-2 * std::log(1 - p));
-        x = -(((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-            ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
-    } else {
-        const double q = p - 0.5, r = q * q;
-        x = (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
-            (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
+        return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+               ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
     }
+    if (p > 1 - low) {
+        const double q = std::sqrt(-2 * std::log(1 - p));
+        return -(((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+               ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
+    }
+    const double q = p - 0.5, r = q * q;
+    return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+           (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
+}
+
+}  // namespace
+
+double inverseNormalCdf(double p) {
+    const double x = acklamQuantile(p);
     const double e = normalCdf(x) - p;
     const double u = e * std::sqrt(2 * std::numbers::pi) * std::exp(x * x / 2);
     return x - u / (1 + x * u / 2);
@@ -111,18 +119,23 @@ Gaussianiser::Gaussianiser(const std::vector<float>& values, int threads) : sort
         for (size_t i = size_t(begin) * 65536; i < std::min(n, size_t(end) * 65536); ++i) sorted[i] = values[order[i]];
     });
     // Runs of equal values share their mid-rank's quantile; the quantiles are computed on all threads.
-    std::vector<std::pair<size_t, size_t>> runs;
-    for (size_t start = 0; start < n;) {
-        size_t end = start + 1;
-        while (end < n && sorted[end] == sorted[start]) ++end;
-        runs.emplace_back(start, end);
-        start = end;
-    }
-    parallelFor(static_cast<int>(runs.size()), threads, [&](int begin, int end) {
-        for (int r = begin; r < end; ++r) {
-            const auto [start, stop] = runs[r];
-            const double g = inverseNormalCdf((0.5 * double(start + stop - 1) + 0.5) / double(n));
+    // Acklam's approximation alone: its error (1.15e-9 relative) is far below the spacing of neighbouring
+    // ranks' quantiles (1/(n pdf), over 1e-7 for 2^24 values), and a map of distinct values has a quantile
+    // per texel, where the Halley step's erfc and exp were most of the time.
+    // Each block of sorted places takes the runs that start in it (a run may end in a later block), so
+    // no list of runs is built: a map of distinct values has one per texel.
+    constexpr size_t kPlaces = 65536;
+    parallelFor(static_cast<int>((n + kPlaces - 1) / kPlaces), threads, [&](int begin, int end) {
+        for (size_t start = size_t(begin) * kPlaces, last = std::min(n, size_t(end) * kPlaces); start < last;) {
+            if (start > 0 && sorted[start] == sorted[start - 1]) {  // inside a run an earlier block takes
+                ++start;
+                continue;
+            }
+            size_t stop = start + 1;
+            while (stop < n && sorted[stop] == sorted[start]) ++stop;
+            const double g = acklamQuantile((0.5 * double(start + stop - 1) + 0.5) / double(n));
             for (size_t k = start; k < stop; ++k) gaussian[order[k]] = g;
+            start = stop;
         }
     });
 }

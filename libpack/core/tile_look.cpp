@@ -1,10 +1,9 @@
 // The frame, blob and echo statistics of tile_look.hpp.
 #include "heightpack/core/tile_look.hpp"
 
-#include <opencv2/core.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <vector>
 
@@ -13,6 +12,7 @@
 
 #include "dft.hpp"
 #include "field.hpp"
+#include "gaussian_model.hpp"
 
 namespace heightpack {
 
@@ -20,35 +20,52 @@ namespace {
 
 using Grid = detail::Field;
 
-cv::Mat spectrumOf(const Image& map, int threads) {
-    cv::Mat m(map.height, map.width, CV_64F);
-    for (int y = 0; y < map.height; ++y)
-        for (int x = 0; x < map.width; ++x) m.at<double>(y, x) = map.at(x, y);
-    return detail::forwardDft(m, threads);
+// The half spectrum of a map (kx = 0 .. w/2) in floats: the statistics need no more, and a real field's
+// transforms in floats cost a quarter of complex ones in double.
+struct HalfSpectrum {
+    int w, h, columns;
+    std::vector<std::complex<float>> values;
+    std::complex<float> at(int q, int r) const { return values[size_t(r) * columns + q]; }
+};
+
+HalfSpectrum spectrumOf(const Image& map, int threads) {
+    const int w = map.width;
+    return {w, map.height, w / 2 + 1, detail::forwardRealDftToHalf(w, map.height, threads, [&](int y, float* row) {
+                for (int x = 0; x < w; ++x) row[x] = map.at(x, y);  // the first channel
+            })};
+}
+
+// The real field of a half spectrum (overwritten), scaled by 1/(w h) as the inverse of spectrumOf.
+Grid fieldOf(HalfSpectrum& half, int threads) {
+    Grid out(half.w, half.h);
+    const double scale = 1.0 / (double(half.w) * half.h);
+    detail::inverseRealDftOfHalf(half.values.data(), half.w, half.h, threads, [&](int y, const float* row) {
+        double* to = &out.v[size_t(y) * half.w];
+        for (int x = 0; x < half.w; ++x) to[x] = row[x] * scale;
+    });
+    return out;
 }
 
 double gaussianGain(double f, double sigma) { return std::exp(-2 * std::numbers::pi * std::numbers::pi * sigma * sigma * f * f); }
 
 // The map filtered periodically with a difference of Gaussians of sigmas fine < coarse (texels): a band
 // pass. Each Gaussian's gain is the product of its gains along x and y, so no exponential per texel.
-Grid bandPassed(const cv::Mat& spectrum, double fine, double coarse, int threads) {
-    const int h = spectrum.rows, w = spectrum.cols;
-    auto gains = [](int n, double sigma) {
-        std::vector<double> g(n);
-        for (int i = 0; i < n; ++i) g[i] = gaussianGain(double(std::min(i, n - i)) / n, sigma);
+Grid bandPassed(const HalfSpectrum& spectrum, double fine, double coarse, int threads) {
+    const int h = spectrum.h, w = spectrum.w, columns = spectrum.columns;
+    auto gains = [](int count, int n, double sigma) {
+        std::vector<double> g(count);
+        for (int i = 0; i < count; ++i) g[i] = gaussianGain(double(std::min(i, n - i)) / n, sigma);
         return g;
     };
-    const std::vector<double> fineX = gains(w, fine), fineY = gains(h, fine), coarseX = gains(w, coarse), coarseY = gains(h, coarse);
-    cv::Mat s(h, w, CV_64FC2);
+    const std::vector<double> fineX = gains(columns, w, fine), fineY = gains(h, h, fine), coarseX = gains(columns, w, coarse),
+                              coarseY = gains(h, h, coarse);
+    HalfSpectrum s{w, h, columns, std::vector<std::complex<float>>(spectrum.values.size())};
     parallelFor(h, threads, [&](int begin, int end) {
         for (int y = begin; y < end; ++y)
-            for (int x = 0; x < w; ++x)
-                s.at<cv::Vec2d>(y, x) = spectrum.at<cv::Vec2d>(y, x) * (fineX[x] * fineY[y] - coarseX[x] * coarseY[y]);
+            for (int x = 0; x < columns; ++x)
+                s.values[size_t(y) * columns + x] = spectrum.at(x, y) * float(fineX[x] * fineY[y] - coarseX[x] * coarseY[y]);
     });
-    Grid out(w, h);
-    cv::Mat m(h, w, CV_64F, out.v.data());
-    detail::inverseDft(s, m, threads);
-    return out;
+    return fieldOf(s, threads);
 }
 
 // Torus distance between offsets a and b on a circle of n.
@@ -103,21 +120,31 @@ double ringScore(const std::vector<double>& profile, int reach, double floor) {
     return worst;
 }
 
-std::vector<double> columnMeans(const Grid& g) {
-    std::vector<double> c(g.w, 0.0);
-    for (int y = 0; y < g.h; ++y)
-        for (int x = 0; x < g.w; ++x) c[x] += g.at(x, y);
-    for (double& v : c) v /= g.h;
-    return c;
-}
-
-std::vector<double> rowMeans(const Grid& g) {
-    std::vector<double> r(g.h, 0.0);
-    for (int y = 0; y < g.h; ++y) {
-        for (int x = 0; x < g.w; ++x) r[y] += g.at(x, y);
-        r[y] /= g.w;
-    }
-    return r;
+// The means of g's columns and of its rows (of g squared where asked), on all threads: each mean sums in
+// one fixed order, so the thread count cannot change it.
+struct Profiles {
+    std::vector<double> columns, rows;
+};
+Profiles profilesOf(const Grid& g, bool squared, int threads) {
+    Profiles p{std::vector<double>(g.w, 0.0), std::vector<double>(g.h, 0.0)};
+    auto value = [&](int x, int y) { return squared ? g.at(x, y) * g.at(x, y) : g.at(x, y); };
+    parallelFor(g.h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y) {
+            double sum = 0;
+            for (int x = 0; x < g.w; ++x) sum += value(x, y);
+            p.rows[y] = sum / g.w;
+        }
+    });
+    constexpr int kColumns = 64;  // a block of columns per task, read a row segment at a time
+    parallelFor((g.w + kColumns - 1) / kColumns, threads, [&](int begin, int end) {
+        for (int x0 = begin * kColumns; x0 < std::min(g.w, end * kColumns); x0 += kColumns) {
+            const int x1 = std::min(g.w, x0 + kColumns);
+            for (int y = 0; y < g.h; ++y)
+                for (int x = x0; x < x1; ++x) p.columns[x] += value(x, y);
+            for (int x = x0; x < x1; ++x) p.columns[x] /= g.h;
+        }
+    });
+    return p;
 }
 
 // A summed-area table of q tiled 2x2, so that the sum over any circular square is four lookups.
@@ -153,12 +180,14 @@ double cornerScore(const TiledSums& sums, int half) {
     return std::abs(zScore(square(0, 0), null, double(null.size()) * step * step / (4.0 * half * half)));
 }
 
-Image halved(const Image& map) {
+Image halved(const Image& map, int threads) {
     Image out(map.width / 2, map.height / 2, 1);
-    for (int y = 0; y < out.height; ++y)
-        for (int x = 0; x < out.width; ++x)
-            out.at(x, y) = 0.25f * (map.at(2 * x, 2 * y) + map.at(2 * x + 1, 2 * y) + map.at(2 * x, 2 * y + 1) +
-                                    map.at(2 * x + 1, 2 * y + 1));
+    parallelFor(out.height, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y)
+            for (int x = 0; x < out.width; ++x)
+                out.at(x, y) = 0.25f * (map.at(2 * x, 2 * y) + map.at(2 * x + 1, 2 * y) + map.at(2 * x, 2 * y + 1) +
+                                        map.at(2 * x + 1, 2 * y + 1));
+    });
     return out;
 }
 
@@ -169,15 +198,15 @@ struct Spectra {
     Spectra(int w, int h) : power(w, h), smooth(w, h) {}
 };
 
-Spectra spectraOf(const cv::Mat& spectrum, int threads) {
-    const int h = spectrum.rows, w = spectrum.cols;
+Spectra spectraOf(const HalfSpectrum& spectrum, int threads) {
+    const int h = spectrum.h, w = spectrum.w;
     Spectra out(w, h);
     Grid& power = out.power;
     Grid& smooth = out.smooth;
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const cv::Vec2d z = spectrum.at<cv::Vec2d>(y, x);
-            power.at(x, y) = (x == 0 && y == 0) ? 0.0 : z[0] * z[0] + z[1] * z[1];
+        for (int x = 0; x < w; ++x) {  // beyond the half, the power of the opposite frequency: the same
+            const std::complex<float> z = x < spectrum.columns ? spectrum.at(x, y) : spectrum.at(w - x, (h - y) % h);
+            power.at(x, y) = (x == 0 && y == 0) ? 0.0 : std::norm(std::complex<double>(z));
         }
     // Smoothed over 5x5 frequency bins (a box, three times each way, circular). The neighbours' indices
     // are wrapped once per line, not per texel; the sums add in the same order.
@@ -213,27 +242,25 @@ Spectra spectraOf(const cv::Mat& spectrum, int threads) {
 }
 
 // echoOf for the map whose spectrum (spectrumOf) is given: measureTileLook has it already.
-double echoOfSpectrum(const cv::Mat& spectrum, int threads) {
-    const int w = spectrum.cols, h = spectrum.rows;
+double echoOfSpectrum(const HalfSpectrum& spectrum, int threads) {
+    const int w = spectrum.w, h = spectrum.h;
     // The autocorrelation of the map whitened by its own smoothed spectrum: a stationary field's structure
     // (smooth, directional, large or small scaled) divides out, leaving a spike at lag 0 and noise of about
     // 1/sqrt(texels); a feature repeated at lag L multiplies the spectrum by 1 + cos(k.L), an oscillation
     // finer than the smoothing, which stays and becomes a peak at L.
     const Spectra s = spectraOf(spectrum, threads);
-    cv::Mat whitened(h, w, CV_64FC2);
+    HalfSpectrum whitened{w, h, spectrum.columns, std::vector<std::complex<float>>(spectrum.values.size())};
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            whitened.at<cv::Vec2d>(y, x) =
-                cv::Vec2d(s.smooth.at(x, y) > 0 ? s.power.at(x, y) / s.smooth.at(x, y) : 0.0, 0.0);
-    cv::Mat correlation;
-    detail::inverseDft(whitened, correlation, threads);
-    const double zero = correlation.at<double>(0, 0);
+        for (int x = 0; x < whitened.columns; ++x)
+            whitened.values[size_t(y) * whitened.columns + x] =
+                float(s.smooth.at(x, y) > 0 ? s.power.at(x, y) / s.smooth.at(x, y) : 0.0);
+    const Grid correlation = fieldOf(whitened, threads);
+    const double zero = correlation.at(0, 0);
     if (!(zero > 0)) return 0.0;
     double worst = -1.0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            if (circularDistance(x, w) > w / 16 || circularDistance(y, h) > h / 16)
-                worst = std::max(worst, correlation.at<double>(y, x) / zero);
+            if (circularDistance(x, w) > w / 16 || circularDistance(y, h) > h / 16) worst = std::max(worst, correlation.at(x, y) / zero);
     return worst;
 }
 
@@ -247,28 +274,27 @@ double echoOf(const Image& map, int threads) {
 double sourceEchoOf(const Image& input, int threads) {
     if (input.width < 64 || input.height < 64) return 0.0;
     Image source = input.channels == 1 ? input : selectChannels(input, {0});
-    while (source.width > 2048 || source.height > 2048) source = halved(source);
-    return std::max(0.0, echoOf(periodicComponent(source, PeriodicContinuity::Heights), threads));
+    while (source.width > 2048 || source.height > 2048) source = halved(source, threads);
+    const HalfSpectrum periodic{source.width, source.height, source.width / 2 + 1, detail::periodicHalfSpectrum(source, threads)};
+    return std::max(0.0, echoOfSpectrum(periodic, threads));
 }
 
 TileLook measureTileLook(const Image& input, const LookOptions& options) {
     TileLook look;
     Image map = input.channels == 1 ? input : selectChannels(input, {0});
-    while (map.width > 2048 || map.height > 2048) map = halved(map);
+    while (map.width > 2048 || map.height > 2048) map = halved(map, options.threads);
     const int w = map.width, h = map.height;
     if (w < 64 || h < 64) return look;
     look.measured = true;
-    const cv::Mat spectrum = spectrumOf(map, options.threads);
+    const HalfSpectrum spectrum = spectrumOf(map, options.threads);
     const int reachX = std::max(4, w / 8), reachY = std::max(4, h / 8);
 
     // Frame: band-pass energy in octaves, from 1-2 texels up to 1/64-1/32 of the tile (a smooth painting's
     //        detail is far coarser than a texel, and a frame is a loss or excess of its contrast).
     for (double fine = 1.0; fine == 1.0 || 2 * fine <= std::max(w, h) / 32.0; fine *= 2) {
         const double coarse = 2 * fine;
-        Grid energy = bandPassed(spectrum, fine, coarse, options.threads);
-        for (double& v : energy.v) v *= v;
-        look.frame = std::max({look.frame, ringScore(columnMeans(energy), reachX, 0.0),
-                               ringScore(rowMeans(energy), reachY, 0.0)});
+        const Profiles energy = profilesOf(bandPassed(spectrum, fine, coarse, options.threads), true, options.threads);
+        look.frame = std::max({look.frame, ringScore(energy.columns, reachX, 0.0), ringScore(energy.rows, reachY, 0.0)});
     }
     // Blobs: the squared standardised band-pass at the scale of a blob, 1/128 to 1/32 of the tile (the
     //        low-pass of the detail: a red-noise map's swell, far larger, would make every place unlike
@@ -282,7 +308,8 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
     const double sd = std::sqrt(var / double(q.v.size()));
     for (double& v : q.v) v = sd > 1e-12 ? ((v - mean) / sd) * ((v - mean) / sd) : 0.0;
     const TiledSums sums(q);
-    look.blobs = std::max({ringScore(columnMeans(q), reachX, 0.05), ringScore(rowMeans(q), reachY, 0.05),
+    const Profiles profiles = profilesOf(q, false, options.threads);
+    look.blobs = std::max({ringScore(profiles.columns, reachX, 0.05), ringScore(profiles.rows, reachY, 0.05),
                            cornerScore(sums, std::max(2, std::min(w, h) / 32)), cornerScore(sums, std::max(2, std::min(w, h) / 16))});
     // Echo, less the source's own (of its periodic component: its seams would echo along their lines).
     look.echo = echoOfSpectrum(spectrum, options.threads);  // the map's spectrum, transformed once

@@ -42,46 +42,100 @@ cv::Mat rowSpectra(int rows, int length, Get seq) {
 }
 
 // In-place Cholesky of a Hermitian positive definite n x n matrix (lower triangle), then solves A x = b.
+// The inner products are written out in real arithmetic: std::complex's product checks for infinities
+// and NaNs on every call, which keeps the loops from vectorising (twice the time of the whole solve).
 void choleskySolve(std::vector<Complex>& a, std::vector<Complex>& b, int n) {
-    for (int j = 0; j < n; ++j) {
-        double d = a[j * n + j].real();
-        for (int k = 0; k < j; ++k) d -= std::norm(a[j * n + k]);
-        d = std::sqrt(std::max(d, 1e-300));
-        a[j * n + j] = d;
-        for (int i = j + 1; i < n; ++i) {
-            Complex s = a[i * n + j];
-            for (int k = 0; k < j; ++k) s -= a[i * n + k] * std::conj(a[j * n + k]);
-            a[i * n + j] = s / d;
+    // a[i n + k] times the conjugate of a[j n + k], summed over k < count.
+    auto rowProduct = [&](int i, int j, int count) {
+        const double* p = reinterpret_cast<const double*>(&a[size_t(i) * n]);
+        const double* q = reinterpret_cast<const double*>(&a[size_t(j) * n]);
+        double re = 0, im = 0;
+        for (int k = 0; k < count; ++k) {
+            re += p[2 * k] * q[2 * k] + p[2 * k + 1] * q[2 * k + 1];
+            im += p[2 * k + 1] * q[2 * k] - p[2 * k] * q[2 * k + 1];
         }
+        return Complex(re, im);
+    };
+    for (int j = 0; j < n; ++j) {
+        const double d = std::sqrt(std::max(a[size_t(j) * n + j].real() - rowProduct(j, j, j).real(), 1e-300));
+        a[size_t(j) * n + j] = d;
+        for (int i = j + 1; i < n; ++i) a[size_t(i) * n + j] = (a[size_t(i) * n + j] - rowProduct(i, j, j)) / d;
     }
     for (int i = 0; i < n; ++i) {  // L y = b
         Complex s = b[i];
-        for (int k = 0; k < i; ++k) s -= a[i * n + k] * b[k];
-        b[i] = s / a[i * n + i].real();
+        for (int k = 0; k < i; ++k) s -= a[size_t(i) * n + k] * b[k];
+        b[i] = s / a[size_t(i) * n + i].real();
     }
     for (int i = n - 1; i >= 0; --i) {  // L^H x = y
         Complex s = b[i];
-        for (int k = i + 1; k < n; ++k) s -= std::conj(a[k * n + i]) * b[k];
-        b[i] = s / a[i * n + i].real();
+        for (int k = i + 1; k < n; ++k) s -= std::conj(a[size_t(k) * n + i]) * b[k];
+        b[i] = s / a[size_t(i) * n + i].real();
     }
 }
 
 // The variance, in the Gaussian domain, of rounding the map to its levels: each run of equal values spans
-// an interval of Gaussians, over which a value is spread as if uniformly. 0 for a float map.
-double quantisationNoise(const std::vector<float>& sorted) {
-    const double n = double(sorted.size());
+// an interval of Gaussians, over which a value is spread as if uniformly. 0 for a float map. runs(add) calls
+// add(count) for each run of equal values, in increasing order of the value.
+template <class Runs>
+double quantisationNoise(size_t n, Runs runs) {
     auto quantile = [&](double rank) { return detail::inverseNormalCdf(std::clamp(rank / n, 0.5 / n, 1 - 0.5 / n)); };
     double variance = 0;
-    for (size_t start = 0; start < sorted.size();) {
-        size_t end = start + 1;
-        while (end < sorted.size() && sorted[end] == sorted[start]) ++end;
-        if (end - start > 1) {
-            const double span = quantile(double(end)) - quantile(double(start));
-            variance += double(end - start) / n * span * span / 12;
+    size_t start = 0;
+    runs([&](size_t count) {
+        if (count > 1) {
+            const double span = quantile(double(start + count)) - quantile(double(start));
+            variance += double(count) / n * span * span / 12;
         }
-        start = end;
-    }
+        start += count;
+    });
     return variance;
+}
+
+// quantisationNoise of values: from a histogram where every value is a whole number of quanta (a map read
+// from integer samples: no sort), else from the sorted values.
+double quantisationNoise(const std::vector<float>& values, double quantum, int threads) {
+    const size_t n = values.size();
+    if (quantum > 0) {
+        const auto [low, high] = std::minmax_element(values.begin(), values.end());
+        const double inverse = 1 / quantum, first = std::round(*low * inverse), levels = std::round(*high * inverse) - first + 1;
+        // Counted in fixed chunks, each its own histogram, summed in order: the same on any thread count.
+        constexpr int kChunks = 16;
+        constexpr double kMostLevels = 1 << 17;  // 8- and 16-bit samples, and some headroom
+        std::vector<std::vector<size_t>> counts(levels <= kMostLevels ? kChunks : 0);
+        std::vector<char> whole(kChunks, 1);
+        const size_t chunk = (n + kChunks - 1) / kChunks;
+        parallelFor(int(counts.size()), threads, [&](int begin, int end) {
+            for (int c = begin; c < end; ++c) {
+                counts[c].assign(size_t(levels), 0);
+                for (size_t i = size_t(c) * chunk; i < std::min(n, size_t(c + 1) * chunk); ++i) {
+                    const double q = values[i] * inverse - first;  // at least -0.5
+                    const auto level = static_cast<int64_t>(q + 0.5);
+                    if (!(std::abs(q - double(level)) < 0.01)) {  // a float holds k/65535 to 0.004 steps
+                        whole[c] = 0;
+                        break;
+                    }
+                    ++counts[c][size_t(level)];
+                }
+            }
+        });
+        if (!counts.empty() && std::all_of(whole.begin(), whole.end(), [](char w) { return w != 0; }))
+            return quantisationNoise(n, [&](auto add) {
+                for (size_t level = 0; level < size_t(levels); ++level) {
+                    size_t count = 0;
+                    for (const std::vector<size_t>& c : counts) count += c[level];
+                    if (count > 0) add(count);
+                }
+            });
+    }
+    const std::vector<uint32_t> order = detail::stableOrder(values, threads);
+    return quantisationNoise(n, [&](auto add) {
+        for (size_t start = 0; start < n;) {
+            size_t end = start + 1;
+            while (end < n && values[order[end]] == values[order[start]]) ++end;
+            add(end - start);
+            start = end;
+        }
+    });
 }
 
 // Replaces the `band` columns (Axis::X; rows for Axis::Y) around the wrap line between the last and the
@@ -96,8 +150,7 @@ void resynthesiseLines(Field& field, const GaussianModel& model, const Field& sa
     const int first = w - band / 2 - context;  // the strip's first line, modulo w
     auto column = [&](int local) { return ((first + local) % w + w) % w; };
     double mean = 0;
-    for (int v = 0; v < h; ++v)
-        for (int u = 0; u < w; ++u) mean += at(field, u, v);
+    for (double value : field.v) mean += value;  // in memory order (across the lines is a stride for Y)
     mean /= double(field.v.size());
     const cv::Mat covHat = detail::lineCovarianceSpectra(model.power, axis, strip, threads);
     auto cov = [&](int dx, int ky) {
@@ -162,6 +215,10 @@ int chooseBand(double fraction, double correlation, int size) {
     return std::clamp(texels, std::min(4, size / 4), size / 2);
 }
 
+// The sigma of the large scales for a band (texels): at least 1/16 of the tile (only scales the eye reads
+// as the map's swell).
+double largeScaleSigma(int bandX, int bandY, int w, int h) { return std::max(0.5 * std::max(bandX, bandY), std::min(w, h) / 16.0); }
+
 }  // namespace
 
 // What every attempt on one map shares: the values modelled, the model, the slopes' correlation lengths,
@@ -177,19 +234,31 @@ struct Resynthesiser::State {
     std::vector<float> smooth;
     std::optional<detail::Gaussianiser> ranks;
     State(const Image& m, int t) : map(m), threads(t) {}
+    // The large scales at sigma and the ranks of the values less them, unless they are at sigma already.
+    void useSigma(double newSigma, int w, int h) {
+        if (newSigma == sigma) return;
+        sigma = newSigma;
+        ranks.reset();
+        smooth = detail::largeScaleField(values, w, h, sigma, threads);
+        std::vector<float> corrected(values.size());
+        for (size_t i = 0; i < values.size(); ++i) corrected[i] = values[i] - smooth[i];
+        ranks.emplace(corrected, threads);
+    }
 };
 
 Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : state_(std::make_unique<State>(map, threads)) {
     const int w = map.width, h = map.height;
     if (w < 16 || h < 16) return;
-    // 1. Ranks to Gaussians, of the map with its quantisation undone: otherwise a smooth 8-bit painting is a
-    //    staircase whose steps the model takes for fine detail, and a sample shows them as grain.
+    // 1. Ranks to Gaussians, of the map with its quantisation undone (otherwise a smooth 8-bit painting is a
+    //    staircase whose steps the model takes for fine detail, and a sample shows them as grain) and its
+    //    large scales at the least sigma taken off (step 2): the field the bands are conditioned in, so one
+    //    Gaussianisation serves the model and every attempt whose bands ask no larger sigma.
     State& s = *state_;
-    s.values = quantum > 0 && detail::hasTerraces(map, threads) ? detail::dequantised(map, quantum, threads) : map.pixels;
-    const detail::Gaussianiser ranks(s.values, threads);
-    Field g(w, h);
-    g.v = ranks.gaussian;
-    s.noise = quantisationNoise(ranks.sorted);
+    const bool terraced = quantum > 0 && detail::hasTerraces(map, threads);
+    s.values = terraced ? detail::dequantised(map, quantum, threads) : map.pixels;
+    s.noise = quantisationNoise(s.values, terraced ? 0.0 : quantum, threads);
+    s.useSigma(largeScaleSigma(0, 0, w, h), w, h);
+    const Field g(w, h, s.ranks->gaussian);
     s.model.emplace(detail::modelOf(g, s.noise, threads));
     s.correlationX = slopeCorrelationLength(s.model->lagX);
     s.correlationY = slopeCorrelationLength(s.model->lagY);
@@ -211,18 +280,9 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
     // 2. Large scales, in heights: Moisan's smooth field of a low-pass of the map at the band's scale (at
     //    least 1/16 of the tile: only scales the eye reads as the map's swell; each side of a wrap line
     //    blurred apart, mirrored). Beyond the bands this is the whole change.
-    const double sigma = std::max(0.5 * std::max(result.bandX, result.bandY), std::min(w, h) / 16.0);
-    if (sigma != s.sigma) {
-        s.sigma = sigma;
-        s.ranks.reset();
-        s.smooth = detail::largeScaleField(s.values, w, h, sigma, threads);
-        std::vector<float> corrected(s.values.size());
-        for (size_t i = 0; i < s.values.size(); ++i) corrected[i] = s.values[i] - s.smooth[i];
-        s.ranks.emplace(corrected, threads);
-    }
+    s.useSigma(largeScaleSigma(result.bandX, result.bandY, w, h), w, h);
     const detail::Gaussianiser& ranks = *s.ranks;
-    Field g(w, h);
-    g.v = ranks.gaussian;
+    Field g(w, h, ranks.gaussian);
     const Field sample = detail::sampleOf(*s.model, seed, threads);
     // 3. and 4. The bands, left/right first, then top/bottom.
     const int contextX = std::clamp(result.bandX / 2, 4, 32), contextY = std::clamp(result.bandY / 2, 4, 32);

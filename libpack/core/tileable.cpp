@@ -53,18 +53,27 @@ std::array<std::vector<double>, kOperators> operatorSums(const float* lines, int
     const int blocks = (m + kBlock - 1) / kBlock;
     std::vector<std::array<std::vector<double>, kOperators>> partial(blocks);
     parallelFor(blocks, threads, [&](int begin, int end) {
-        std::vector<double> d(n);
+        // The differences padded with their wrapped neighbours (padded[c + 1] = d[c]), so the loop over
+        // the gaps has no wrap to test and vectorises.
+        std::vector<double> padded(size_t(n) + 2);
         for (int b = begin; b < end; ++b) {
             auto& sums = partial[b];
             for (auto& s : sums) s.assign(n, 0.0);
+            double* jump1 = sums[kJump1].data();
+            double* jump3 = sums[kJump3].data();
+            double* kink = sums[kKink].data();
             for (int j = b * kBlock; j < std::min(m, (b + 1) * kBlock); ++j) {
                 const float* h = lines + size_t(j) * n;
-                for (int c = 0; c < n; ++c) d[c] = double(h[c + 1 == n ? 0 : c + 1]) - h[c];
+                double* d = padded.data() + 1;
+                for (int c = 0; c + 1 < n; ++c) d[c] = double(h[c + 1]) - h[c];
+                d[n - 1] = double(h[0]) - h[n - 1];
+                d[-1] = d[n - 1];
+                d[n] = d[0];
                 for (int c = 0; c < n; ++c) {
-                    const double before = d[c == 0 ? n - 1 : c - 1], after = d[c + 1 == n ? 0 : c + 1];
-                    sums[kJump1][c] += std::abs(d[c]);
-                    sums[kJump3][c] += std::abs(after - 2 * d[c] + before);
-                    sums[kKink][c] += std::abs(after - before);
+                    const double before = d[c - 1], after = d[c + 1];
+                    jump1[c] += std::abs(d[c]);
+                    jump3[c] += std::abs(after - 2 * d[c] + before);
+                    kink[c] += std::abs(after - before);
                 }
             }
         }
@@ -144,8 +153,15 @@ SeamScore scoreAlong(const float* lines, int n, int m, const SeamOptions& option
     const int period = blockPeriod(sums[kJump3], options.level);
     // Below the source's steps, or float rounding at the heights' magnitude, a difference is no evidence:
     // on an exactly periodic, noiseless field every cut differs from the others by rounding alone.
-    double largest = 0;
-    for (size_t i = 0; i < size_t(n) * m; ++i) largest = std::max(largest, double(std::abs(lines[i])));
+    std::vector<float> largestOf(size_t(m), 0.0f);  // per line, on all threads: a maximum has one value
+    parallelFor(m, options.threads, [&](int begin, int end) {
+        for (int j = begin; j < end; ++j) {
+            float top = 0.0f;
+            for (int c = 0; c < n; ++c) top = std::max(top, std::abs(lines[size_t(j) * n + c]));
+            largestOf[j] = top;
+        }
+    });
+    const double largest = *std::max_element(largestOf.begin(), largestOf.end());
     const double quantum = std::max(options.quantum, largest * 4 * std::numeric_limits<float>::epsilon());
     // Nor is a contrast under a hundredth of the map's typical height step: no one sees a jump that small
     // (jump3 shows a jump twice over), and a noiseless analytic field, whose third differences are next to

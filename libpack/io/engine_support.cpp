@@ -10,7 +10,8 @@ namespace heightpack {
 namespace {
 
 // The texel formats heightpack writes to KTX2 and DDS, by what a loader tells apart.
-enum class Texel { Rgba32F, Rgba16F, Rgba16Unorm, R32F, R16F, R16Unorm, Rg32F, Rg16F, Rg16Snorm, Other };
+// R16G16_SNORM: xy normals in uint16 as earlier versions wrote them (read, no longer written).
+enum class Texel { Rgba32F, Rgba16F, Rgba16Unorm, R32F, R16F, R16Unorm, Rg32F, Rg16F, Rg16Unorm, Rg16Snorm, Other };
 
 Texel texelOf(std::string_view name) {
     struct Entry {
@@ -22,7 +23,7 @@ Texel texelOf(std::string_view name) {
         {"R16G16B16A16_UNORM", "R16G16B16A16_UNORM", Texel::Rgba16Unorm}, {"R32_SFLOAT", "R32_FLOAT", Texel::R32F},
         {"R16_SFLOAT", "R16_FLOAT", Texel::R16F}, {"R16_UNORM", "R16_UNORM", Texel::R16Unorm},
         {"R32G32_SFLOAT", "R32G32_FLOAT", Texel::Rg32F}, {"R16G16_SFLOAT", "R16G16_FLOAT", Texel::Rg16F},
-        {"R16G16_SNORM", "R16G16_SNORM", Texel::Rg16Snorm},
+        {"R16G16_UNORM", "R16G16_UNORM", Texel::Rg16Unorm}, {"R16G16_SNORM", "R16G16_SNORM", Texel::Rg16Snorm},
     };
     for (const Entry& e : kTable)
         if (name == std::string("VK_FORMAT_").append(e.vk) || name == std::string("DXGI_FORMAT_").append(e.dxgi)) return e.texel;
@@ -51,7 +52,8 @@ EngineVerdict threeJs(FileKind c, Texel t, bool mipmappedExr, bool png16) {
             if (isFloat(t)) return verdict(EngineSupport::Loads, "KTX2Loader uploads it as stored, mip levels and all");
             if (t == Texel::Rgba16Unorm)
                 return verdict(EngineSupport::Partial, "KTX2Loader loads it only where the GPU has EXT_texture_norm16", halfOf(t, "KTX2"));
-            return verdict(EngineSupport::Refuses, "KTX2Loader refuses this 16-bit integer format", halfOf(t, "KTX2"));
+            return verdict(EngineSupport::Refuses, "KTX2Loader's only 16-bit normalised format is RGBA (R16G16B16A16_UNORM)",
+                           halfOf(t, "KTX2"));
         case FileKind::Dds:
             return verdict(EngineSupport::Refuses, "DDSLoader reads block-compressed and 8-bit RGBA DDS only, no DX10 float or 16-bit format",
                            isFloat(t) ? "KTX2 of the same format" : halfOf(t, "KTX2"));
@@ -123,7 +125,7 @@ EngineVerdict godot(FileKind c, Texel t, bool mipmappedExr, bool png16) {
         case FileKind::Dds: {
             const char* name = c == FileKind::Ktx2 ? "KTX2" : "DDS";
             if (isFloat(t)) return verdict(EngineSupport::Loads, std::string("its ") + name + " loader keeps the format and the file's mip levels");
-            if (t == Texel::Rgba16Unorm || t == Texel::R16Unorm)
+            if (t == Texel::Rgba16Unorm || t == Texel::R16Unorm || t == Texel::Rg16Unorm)
                 return verdict(EngineSupport::Partial, std::string("only the newest Godot 4 releases read 16-bit integer ") + name, halfOf(t, name));
             return verdict(EngineSupport::Refuses, std::string("its ") + name + " loader has no two-channel signed 16-bit format", halfOf(t, name));
         }

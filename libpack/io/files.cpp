@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -268,6 +269,22 @@ Status writeTextFile(const std::string& path, const std::string& text) {
         if (!out) return cannotWrite(path, "could not be written", "check free disk space");
     }
     return temp.commit();
+}
+
+FileLock::FileLock(const std::string& path) {
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) return;
+    int granted;
+    while ((granted = ::flock(fd_, LOCK_EX)) != 0 && errno == EINTR) {
+    }
+    if (granted != 0) {
+        ::close(fd_);
+        fd_ = -1;
+    }
+}
+
+FileLock::~FileLock() {
+    if (fd_ >= 0) ::close(fd_);  // closing the only descriptor releases the lock
 }
 
 const std::string& StagedOutputs::stage(const std::string& finalPath) {

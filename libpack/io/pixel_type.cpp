@@ -13,7 +13,7 @@ namespace heightpack {
 namespace {
 
 // Vulkan and DXGI codes from the Vulkan registry and Microsoft's DXGI_FORMAT enumeration.
-constexpr std::array<TexelFormatInfo, 9> kFormats = {{
+constexpr std::array<TexelFormatInfo, 10> kFormats = {{
     {TexelFormat::Rgba32F, 4, ComponentKind::Float32, 109, 2, "VK_FORMAT_R32G32B32A32_SFLOAT",
      "DXGI_FORMAT_R32G32B32A32_FLOAT"},
     {TexelFormat::Rgba16F, 4, ComponentKind::Float16, 97, 10, "VK_FORMAT_R16G16B16A16_SFLOAT",
@@ -22,6 +22,7 @@ constexpr std::array<TexelFormatInfo, 9> kFormats = {{
      "DXGI_FORMAT_R16G16B16A16_UNORM"},
     {TexelFormat::Rg32F, 2, ComponentKind::Float32, 103, 16, "VK_FORMAT_R32G32_SFLOAT", "DXGI_FORMAT_R32G32_FLOAT"},
     {TexelFormat::Rg16F, 2, ComponentKind::Float16, 83, 34, "VK_FORMAT_R16G16_SFLOAT", "DXGI_FORMAT_R16G16_FLOAT"},
+    {TexelFormat::Rg16Unorm, 2, ComponentKind::Unorm16, 77, 35, "VK_FORMAT_R16G16_UNORM", "DXGI_FORMAT_R16G16_UNORM"},
     {TexelFormat::Rg16Snorm, 2, ComponentKind::Snorm16, 78, 37, "VK_FORMAT_R16G16_SNORM", "DXGI_FORMAT_R16G16_SNORM"},
     {TexelFormat::R32F, 1, ComponentKind::Float32, 100, 41, "VK_FORMAT_R32_SFLOAT", "DXGI_FORMAT_R32_FLOAT"},
     {TexelFormat::R16F, 1, ComponentKind::Float16, 76, 54, "VK_FORMAT_R16_SFLOAT", "DXGI_FORMAT_R16_FLOAT"},
@@ -65,7 +66,7 @@ TexelFormat texelFormatFor(int channels, PixelType type) {
         case 2:
             return type == PixelType::Float  ? TexelFormat::Rg32F
                    : type == PixelType::Half ? TexelFormat::Rg16F
-                                             : TexelFormat::Rg16Snorm;
+                                             : TexelFormat::Rg16Unorm;
         default:
             return type == PixelType::Float  ? TexelFormat::Rgba32F
                    : type == PixelType::Half ? TexelFormat::Rgba16F

@@ -18,8 +18,12 @@ namespace heightpack::detail {
 
 namespace {
 
-// libpng's and OpenImageIO's default zlib level; libdeflate's level 6 makes a file a little smaller.
-constexpr int kDeflateLevel = 6;
+// libpng's and OpenImageIO's default zlib level; libdeflate's level 6 makes a file a little smaller. On
+// noisy 16-bit samples (a sea's heights) level 1 is both smaller (74% of the raw bytes against 76% on a
+// 4096^2 sea) and 1.6x faster; on smooth 8-bit paintings 10-17% larger. So each image takes the faster
+// level where a sample of its rows says it costs nothing.
+constexpr int kDeflateLevel = 6, kFastDeflateLevel = 1;
+constexpr size_t kLevelSampleBytes = size_t(1) << 20;
 // IDAT chunks of this many bytes at most (any size is valid; smaller ones cost 12 bytes each).
 constexpr size_t kIdatBytes = size_t(1) << 20;
 
@@ -35,22 +39,44 @@ void chunk(std::vector<unsigned char>& out, const char type[4], const unsigned c
     put32(out, libdeflate_crc32(0, out.data() + start, length + 4));
 }
 
+// One filter type over a row into trial; returns the sum of the filtered bytes taken as signed
+// magnitudes. A template per type, so that no branch on the type sits in the loop (which then vectorises).
+template <int type>
+uint64_t filterAs(const unsigned char* row, const unsigned char* above, size_t stride, size_t bpp, unsigned char* trial) {
+    auto predicted = [](int a, int b, int c) {
+        if constexpr (type == 0) return 0;
+        else if constexpr (type == 1) return a;
+        else if constexpr (type == 2) return b;
+        else if constexpr (type == 3) return (a + b) / 2;
+        else return paeth(a, b, c);
+    };
+    uint64_t sum = 0;
+    auto put = [&](size_t i, int a, int b, int c) {
+        const unsigned char v = static_cast<unsigned char>(row[i] - predicted(a, b, c));
+        trial[i] = v;
+        sum += v < 128 ? v : 256 - v;
+    };
+    const size_t lead = std::min(bpp, stride);
+    if (above) {
+        for (size_t i = 0; i < lead; ++i) put(i, 0, above[i], 0);
+        for (size_t i = lead; i < stride; ++i) put(i, row[i - bpp], above[i], above[i - bpp]);
+    } else {
+        for (size_t i = 0; i < lead; ++i) put(i, 0, 0, 0);
+        for (size_t i = lead; i < stride; ++i) put(i, row[i - bpp], 0, 0);
+    }
+    return sum;
+}
+
 // Row y's filter type byte and filtered bytes into out (1 + stride bytes): the filter of the five with the
 // least sum of the filtered bytes taken as signed magnitudes. bpp: bytes per pixel.
 void filterRow(const unsigned char* row, const unsigned char* above, size_t stride, int bpp, unsigned char* out,
                std::vector<unsigned char>& trial) {
     trial.resize(stride);
+    using Filter = uint64_t (*)(const unsigned char*, const unsigned char*, size_t, size_t, unsigned char*);
+    static constexpr Filter filters[5] = {filterAs<0>, filterAs<1>, filterAs<2>, filterAs<3>, filterAs<4>};
     uint64_t best = UINT64_MAX;
     for (int type = 0; type < 5; ++type) {
-        uint64_t sum = 0;
-        for (size_t i = 0; i < stride; ++i) {
-            const int a = i >= size_t(bpp) ? row[i - bpp] : 0, b = above ? above[i] : 0,
-                      c = above && i >= size_t(bpp) ? above[i - bpp] : 0;
-            const int predicted = type == 0 ? 0 : type == 1 ? a : type == 2 ? b : type == 3 ? (a + b) / 2 : paeth(a, b, c);
-            const unsigned char v = static_cast<unsigned char>(row[i] - predicted);
-            trial[i] = v;
-            sum += v < 128 ? v : 256 - v;
-        }
+        const uint64_t sum = filters[type](row, above, stride, size_t(bpp), trial.data());
         if (sum < best) {
             best = sum;
             out[0] = static_cast<unsigned char>(type);
@@ -73,7 +99,8 @@ std::vector<unsigned char> encodeGreyPng(const Image& image, int bits, const std
         for (int y = begin; y < end; ++y) {
             unsigned char* row = &samples[stride * y];
             for (int x = 0; x < w; ++x) {
-                const unsigned v = static_cast<unsigned>(std::round(std::clamp(image.at(x, y) * top, 0.0f, top)));
+                // Rounded half up by the cast (the value is not negative): libm's round is a call per texel.
+                const unsigned v = static_cast<unsigned>(std::clamp(image.at(x, y) * top, 0.0f, top) + 0.5f);
                 if (bits == 8) {
                     row[x] = static_cast<unsigned char>(v);
                 } else {
@@ -90,9 +117,21 @@ std::vector<unsigned char> encodeGreyPng(const Image& image, int bits, const std
                       &filtered[(stride + 1) * y], trial);
     });
     samples = {};
-    std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> deflater(
-        libdeflate_alloc_compressor(kDeflateLevel), libdeflate_free_compressor);
-    if (!deflater) throw std::bad_alloc();
+    using Deflater = std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)>;
+    auto compressor = [](int level) {
+        Deflater d(libdeflate_alloc_compressor(level), libdeflate_free_compressor);
+        if (!d) throw std::bad_alloc();
+        return d;
+    };
+    Deflater deflater = compressor(kDeflateLevel);
+    if (filtered.size() > 2 * kLevelSampleBytes) {  // the middle rows: the first may be all flat
+        Deflater fast = compressor(kFastDeflateLevel);
+        const unsigned char* sample = filtered.data() + (filtered.size() - kLevelSampleBytes) / 2;
+        std::vector<unsigned char> out(libdeflate_zlib_compress_bound(deflater.get(), kLevelSampleBytes));
+        const size_t slow = libdeflate_zlib_compress(deflater.get(), sample, kLevelSampleBytes, out.data(), out.size());
+        const size_t quick = libdeflate_zlib_compress(fast.get(), sample, kLevelSampleBytes, out.data(), out.size());
+        if (quick <= slow) deflater = std::move(fast);
+    }
     std::vector<unsigned char> compressed(libdeflate_zlib_compress_bound(deflater.get(), filtered.size()));
     compressed.resize(libdeflate_zlib_compress(deflater.get(), filtered.data(), filtered.size(), compressed.data(), compressed.size()));
     filtered = {};

@@ -41,7 +41,11 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
         {false, Layout::Plain, PixelType::Float, "plain.dds", "dds DXGI_FORMAT_R32_FLOAT", {Refuses, Refuses, Unknown, Unknown, Loads}},
         {false, Layout::Plain, PixelType::Uint16, "plain16.dds", "dds DXGI_FORMAT_R16_UNORM", {Refuses, Refuses, Unknown, Unknown, Partial}},
         {false, Layout::Neighbour4, PixelType::Float, "packed.exr", "openexr", {Partial, Refuses, Unknown, Unknown, Partial}},
-        {true, Layout::Xy, PixelType::Uint16, "nxy16.ktx2", "ktx2 VK_FORMAT_R16G16_SNORM", {Refuses, Refuses, Refuses, Refuses, Refuses}},
+        // xy normals in uint16 are unsigned normalised, as rgb ones: Godot's newest loaders take them, three.js's
+        // KTX2Loader still only RGBA16.
+        {true, Layout::Xy, PixelType::Uint16, "nxy16.ktx2", "ktx2 VK_FORMAT_R16G16_UNORM", {Refuses, Refuses, Refuses, Refuses, Partial}},
+        {true, Layout::Xy, PixelType::Uint16, "nxy16.dds", "dds DXGI_FORMAT_R16G16_UNORM", {Refuses, Refuses, Unknown, Unknown, Partial}},
+        {true, Layout::Rgb, PixelType::Uint16, "nrgb16.ktx2", "ktx2 VK_FORMAT_R16G16B16A16_UNORM", {Partial, Refuses, Refuses, Refuses, Partial}},
         {true, Layout::Xy, PixelType::Half, "nxyh.dds", "dds DXGI_FORMAT_R16G16_FLOAT", {Refuses, Refuses, Unknown, Unknown, Loads}},
         {true, Layout::Rgb, PixelType::Float, "nrgb.ktx2", "ktx2 VK_FORMAT_R32G32B32A32_SFLOAT", {Loads, Refuses, Refuses, Refuses, Loads}},
     };

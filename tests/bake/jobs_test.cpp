@@ -3,11 +3,17 @@
 // slope of a plane, Schlick's formula), never with saved outputs.
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "heightpack/bake/build_materials.hpp"
 #include "heightpack/bake/fresnel_job.hpp"
@@ -183,6 +189,34 @@ TEST(SynthJob, DisplacementOrFoamIntoAFileThatIsNoExrIsAnOptionsError) {
 TEST(TileJob, MethodNamesAreTheDocumentedOnesAndRoundTrip) {
     EXPECT_EQ(allNames<TileMethod>(), (std::vector<std::string>{"periodic", "quilt", "moisan", "crossfade", "mirror"}));
     for (const EnumName<TileMethod>& e : NameTable<TileMethod>::entries) EXPECT_EQ(parseName<TileMethod>(e.name), e.value);
+}
+
+TEST(TileJob, AMapThatTilesKeepsItsSixteenBitSamplesInAnotherFormat) {
+    // A periodic sum of cosines in 16-bit samples: it tiles, so tile copies its heights into the other
+    // format, in the same type and bit for bit (a float holds k/65535 only to 0.004 steps, which once read
+    // as "not whole steps" made the copy float, or refused it into a PNG).
+    test::ScratchDir dir;
+    const int n = 64;
+    const Image map = test::makeImage(n, n, [&](int x, int y) {
+        const double v = 0.5 + 0.2 * std::cos(2 * std::numbers::pi * x / n) + 0.2 * std::sin(2 * std::numbers::pi * 2 * y / n);
+        return static_cast<float>(std::round(v * 65535) / 65535);
+    });
+    test::writeImage(dir.file("in.png"), map, OIIO::TypeDesc::UINT16);
+    test::writeImage(dir.file("in.tif"), map, OIIO::TypeDesc::UINT16);
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"in.png", "out.tif"}, {"in.tif", "out.png"}}) {
+        auto report = tileFile(dir.file(from), dir.file(to), TileOptions{});
+        ASSERT_TRUE(report) << report.error().what;
+        EXPECT_TRUE(report->alreadyTiled) << from;
+        EXPECT_EQ(report->bits, 16) << from << " -> " << to;
+        EXPECT_FALSE(report->widened) << from << " -> " << to;
+        auto in = OIIO::ImageInput::open(dir.file(to));
+        ASSERT_TRUE(in) << to;
+        EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT16) << to;
+        std::vector<uint16_t> samples(size_t(n) * n);
+        ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, samples.data()));
+        for (size_t i = 0; i < samples.size(); ++i)
+            ASSERT_EQ(samples[i], static_cast<uint16_t>(std::lround(map.pixels[i] * 65535.0))) << to << " at " << i;
+    }
 }
 
 TEST(NormalJob, APlaneGivesTheNormalOfItsSlope) {

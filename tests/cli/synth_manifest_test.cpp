@@ -1,8 +1,9 @@
 // A manifest that bakes a whole sea (issue 15, point 7): [displacement.synth] with displacement = true
+// A manifest that bakes a whole sea (issue 15, point 7): [displacement.synth] with displacement = true
 // gives the texture `heightpack synth --displacement` then `pack --displacement` give (an EXR's layers or
-// a KTX2 array's, issue 25), and with cascades = N the N tiles of `synth --cascades`, each a layer of
-// material.json at core's tile size. Both are checked against the command line run on the same
-// parameters, texel by texel, at every level.
+// a KTX2 array's), with foam = true (issue 25) what `synth --foam` then `pack --foam` give, and with
+// cascades = N the N tiles of `synth --cascades`, each a layer of material.json at core's tile size. Each
+// is checked against the command line run on the same parameters, texel by texel, at every level.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -171,6 +172,81 @@ cascades = 3
     }
     // The tiles' heights have the spectrum once: no two cascades are the same sea.
     EXPECT_NE(readLevels(dir.file("cli/sea_c0.exr"))[0].pixels, readLevels(dir.file("cli/sea_c1.exr"))[0].pixels);
+}
+
+// foam = true (issue 25): every frame of the build is, byte for byte and at every level, what `synth
+// --displacement --foam` at the asset's choppiness and foam options, then `pack --foam` (with
+// --displacement when displacement = true), make of the same sea; and through the Ninja plan, whose
+// frames are separate processes sharing the loop, the same bytes again.
+TEST(SynthManifest, FoamIsWhatSynthThenPackMake) {
+    ScratchDir dir;
+    std::string foamy = kChoppy;
+    foamy.replace(foamy.find("choppiness = 0.8"), 16, "choppiness = 1.3");
+    foamy.replace(foamy.find("frames = 2"), 10, "frames = 3");
+    foamy += "foam = true\nfoam_threshold = 0.8\nfoam_decay = 1.5\nfoam_build_up = 5.0\n";
+    std::string foamOnly = foamy;
+    foamOnly.replace(foamOnly.find("displacement = true"), 19, "displacement = false");
+    writeText(dir.file("foamy.toml"), foamy);
+    writeText(dir.file("foam_only.toml"), foamOnly);
+    for (const char* folder : {"cli", "cli_foam_only"}) std::filesystem::create_directory(dir.file(folder));
+    ASSERT_EQ(heightpackRun({"synth", "--spectrum", "jonswap", "--wind", "11m/s", "--fetch", "80km", "--direction", "25",
+                   "--tile-size", "48m", "--size", "64", "--seed", "5", "--loop", "6s", "--frames", "3", "--displacement",
+                   "--foam", "--choppiness", "1.3", "--foam-threshold", "0.8", "--foam-decay", "1.5s", "--foam-build-up", "5",
+                   "-q", "-o", dir.file("cli/sea.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--displacement", "--foam", "-q", "-o",
+                   dir.file("cli/packed.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--foam", "-q", "-o", dir.file("cli_foam_only/packed.exr")}).code, 0);
+
+    const ProcessResult built = heightpackRun({"build", dir.file("foamy.toml"), "-q", "-o", dir.file("out")});
+    ASSERT_EQ(built.code, 0) << built.err;
+    const ProcessResult alone = heightpackRun({"build", dir.file("foam_only.toml"), "-q", "-o", dir.file("foam_only")});
+    ASSERT_EQ(alone.code, 0) << alone.err;
+    float most = 0.0f;
+    for (const char* frame : {"0000", "0001", "0002"}) {
+        SCOPED_TRACE(frame);
+        const std::string name = std::string("sea.") + frame + ".exr", packed = std::string("packed.") + frame + ".exr";
+        expectSameTexels(dir.file("out/" + name), dir.file("cli/" + packed));
+        EXPECT_EQ(readBytes(dir.file("out/" + name)), readBytes(dir.file("cli/" + packed))) << "the header too";
+        expectSameTexels(dir.file("foam_only/" + name), dir.file("cli_foam_only/" + packed));
+        EXPECT_EQ(readBytes(dir.file("foam_only/" + name)), readBytes(dir.file("cli_foam_only/" + packed)));
+        const std::vector<Level> levels = readLevels(dir.file("out/" + name));
+        EXPECT_EQ(levels.at(0).names.size(), 16u) << "heights, Dx, Dy and foam, four neighbours each";
+        EXPECT_EQ(readLevels(dir.file("foam_only/" + name)).at(0).names.size(), 8u) << "heights and foam";
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) most = std::max(most, levels[0].at("Foam.R", x, y));
+    }
+    EXPECT_GT(most, 0.1f) << "a sea with foam, so that the comparison compares some";
+    for (const char* folder : {"out", "foam_only"}) {
+        EXPECT_EQ(material(dir.file(folder))["displacement"][0]["foam"], true) << folder;
+        EXPECT_FALSE(std::filesystem::exists(dir.file(std::string(folder) + "/.heightpack-synth"))) << folder;
+    }
+    EXPECT_EQ(material(dir.file("out"))["displacement"][0]["horizontalDisplacement"], true);
+    // Into a .ktx2: one array texture (heights, Dx, Dy, Foam), byte for byte pack's .ktx2 of the same frames.
+    std::string gpu = foamy;
+    gpu.replace(gpu.find("choppiness = 1.3"), 16, "choppiness = 1.3\noutput = \"sea.ktx2\"");
+    writeText(dir.file("gpu.toml"), gpu);
+    const ProcessResult ktx = heightpackRun({"build", dir.file("gpu.toml"), "-q", "-o", dir.file("gpu")});
+    ASSERT_EQ(ktx.code, 0) << ktx.err;
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--displacement", "--foam", "-q", "-o",
+                   dir.file("cli/packed.ktx2")}).code, 0);
+    for (const char* frame : {"0000", "0001", "0002"}) {
+        const auto array = readGpuTexture(dir.file(std::string("gpu/sea.") + frame + ".ktx2"));
+        ASSERT_TRUE(array.ok()) << frame;
+        EXPECT_EQ(array->layerNames, (std::vector<std::string>{"heights", "Dx", "Dy", "Foam"}));
+        EXPECT_EQ(readBytes(dir.file(std::string("gpu/sea.") + frame + ".ktx2")),
+                  readBytes(dir.file(std::string("cli/packed.") + frame + ".ktx2"))) << frame;
+    }
+    EXPECT_EQ(material(dir.file("gpu"))["displacement"][0]["foam"], true);
+
+    if (runProcess({"ninja", "--version"}).code != 0) GTEST_SKIP() << "no ninja to run the plan";
+    const ProcessResult plan = heightpackRun({"build", dir.file("foamy.toml"), "-o", dir.file("planned"), "--plan", "ninja"});
+    ASSERT_EQ(plan.code, 0) << plan.err;
+    writeText(dir.file("plan.ninja"), plan.out);
+    const ProcessResult ninja = runProcess({"ninja", "-C", dir.path().string(), "-f", "plan.ninja", "-j", "3"});
+    ASSERT_EQ(ninja.code, 0) << ninja.out << ninja.err;
+    for (const char* f : {"sea.0000.exr", "sea.0001.exr", "sea.0002.exr", "material.json"})
+        EXPECT_EQ(readBytes(dir.file(std::string("planned/") + f)), readBytes(dir.file(std::string("out/") + f))) << f;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("planned/.heightpack-synth")));
 }
 
 // A bad value of a new key is the manifest's error: one line naming FILE:LINE and the key, exit 3, and

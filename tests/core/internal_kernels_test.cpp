@@ -55,9 +55,10 @@ TEST(ThreadedDft, EqualsOpenCvsTransformAtOddAndEvenSizesOnAnyThreadCount) {
 TEST(ThreadedDft, RealInverseOfAHalfSpectrumInFloatEqualsOpenCvsFullInverse) {
     // A real field's full spectrum (cv::dft, double) is the reference; the half kx = 0 .. w/2 of it, in
     // float, must come back to the unscaled inverse to float rounding, with the same bytes on any threads.
+    // Odd widths have no real last column (the tile's re-synthesis takes maps of any size).
     std::mt19937 random(5);
     std::normal_distribution<double> normal;
-    for (const auto& [w, h] : {std::pair{2, 1}, {4, 4}, {8, 2}, {16, 64}, {64, 16}, {128, 128}}) {
+    for (const auto& [w, h] : {std::pair{2, 1}, {4, 4}, {8, 2}, {16, 64}, {64, 16}, {128, 128}, {3, 5}, {17, 16}, {99, 31}}) {
         cv::Mat field(h, w, CV_64F), full;
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) field.at<double>(y, x) = normal(random);
@@ -79,6 +80,35 @@ TEST(ThreadedDft, RealInverseOfAHalfSpectrumInFloatEqualsOpenCvsFullInverse) {
             for (int x = 0; x < w; ++x)  // no 1/(w h): the field times w h
                 ASSERT_NEAR(one[size_t(y) * w + x], field.at<double>(y, x) * w * h, 1e-5 * w * h) << w << "x" << h;
         for (int threads : {2, 3}) EXPECT_EQ(inverse(threads), one) << w << "x" << h << " on " << threads;
+    }
+}
+
+TEST(ThreadedDft, HalfSpectrumOfARealFieldInFloatEqualsOpenCvsFullTransform) {
+    // cv::dft in double of the whole field is the reference: the float half must match it to float
+    // rounding of the largest value, at odd and even sizes, with the same bytes on any thread count.
+    std::mt19937 random(11);
+    std::normal_distribution<double> normal;
+    for (const auto& [w, h] : {std::pair{1, 1}, {2, 3}, {5, 4}, {16, 64}, {99, 31}, {128, 96}}) {
+        cv::Mat field(h, w, CV_64F), full;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) field.at<double>(y, x) = float(normal(random));
+        cv::dft(field, full, cv::DFT_COMPLEX_OUTPUT);
+        auto half = [&](int threads) {
+            return detail::forwardRealDftToHalf(w, h, threads, [&](int y, float* row) {
+                for (int x = 0; x < w; ++x) row[x] = float(field.at<double>(y, x));
+            });
+        };
+        const std::vector<std::complex<float>> one = half(1);
+        ASSERT_EQ(one.size(), size_t(h) * (w / 2 + 1));
+        const double tolerance = 1e-6 * std::max(1.0, largest(full));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x <= w / 2; ++x) {
+                const cv::Vec2d z = full.at<cv::Vec2d>(y, x);
+                const std::complex<float> got = one[size_t(y) * (w / 2 + 1) + x];
+                ASSERT_NEAR(got.real(), z[0], tolerance) << w << "x" << h << " at " << x << "," << y;
+                ASSERT_NEAR(got.imag(), z[1], tolerance) << w << "x" << h << " at " << x << "," << y;
+            }
+        for (int threads : {2, 3}) EXPECT_EQ(half(threads), one) << w << "x" << h << " on " << threads;
     }
 }
 

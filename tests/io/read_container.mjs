@@ -48,12 +48,13 @@ const sha256 = (data) => createHash('sha256').update(data).digest('hex');
 const vk = {
   109: ['VK_FORMAT_R32G32B32A32_SFLOAT', 'f32', 4], 97: ['VK_FORMAT_R16G16B16A16_SFLOAT', 'f16', 4],
   91: ['VK_FORMAT_R16G16B16A16_UNORM', 'unorm16', 4], 103: ['VK_FORMAT_R32G32_SFLOAT', 'f32', 2],
-  83: ['VK_FORMAT_R16G16_SFLOAT', 'f16', 2], 78: ['VK_FORMAT_R16G16_SNORM', 'snorm16', 2],
+  83: ['VK_FORMAT_R16G16_SFLOAT', 'f16', 2], 77: ['VK_FORMAT_R16G16_UNORM', 'unorm16', 2],
+  78: ['VK_FORMAT_R16G16_SNORM', 'snorm16', 2],
   100: ['VK_FORMAT_R32_SFLOAT', 'f32', 1], 76: ['VK_FORMAT_R16_SFLOAT', 'f16', 1], 70: ['VK_FORMAT_R16_UNORM', 'unorm16', 1],
 };
 const dxgi = {
   R32G32B32A32_FLOAT: ['f32', 4], R16G16B16A16_FLOAT: ['f16', 4], R16G16B16A16_UNORM: ['unorm16', 4],
-  R32G32_FLOAT: ['f32', 2], R16G16_FLOAT: ['f16', 2], R16G16_SNORM: ['snorm16', 2],
+  R32G32_FLOAT: ['f32', 2], R16G16_FLOAT: ['f16', 2], R16G16_UNORM: ['unorm16', 2], R16G16_SNORM: ['snorm16', 2],
   R32_FLOAT: ['f32', 1], R16_FLOAT: ['f16', 1], R16_UNORM: ['unorm16', 1],
 };
 

@@ -6,13 +6,17 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <algorithm>
+#include <cstdio>
 #include <fstream>
+#include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "heightpack/bake/material_sampler.hpp"
+#include "heightpack/core/cascades.hpp"
 #include "support/test_support.hpp"
 #include "viewer_support.hpp"
 
@@ -55,12 +59,15 @@ struct Agreement {
     double worstOver = 0.0;   // metres: the height over the displaced position (sampleSurfaceHeight)
     double range = 0.0;       // of the GPU's heights compared, metres
     double largestShift = 0.0;
+    double largestOfOne = 0.0;  // metres: the largest |height| of the layer compareWithSampler was given alone
     int compared = 0, unconverged = 0, mostSteps = 0;
 };
 
 // Vertices within maxRadius of the camera, placed as viewer/shaders/combine.frag places them (in float).
-// choppy: also compare the shift, and invert it at the vertex's displaced position.
-Agreement compareWithSampler(const GridHeights& g, const WaterSampler& sampler, float maxRadius, bool choppy = false) {
+// choppy: also compare the shift, and invert it at the vertex's displaced position. one: a layer of the
+// sampler whose own share of the heights to measure (largestOfOne).
+Agreement compareWithSampler(const GridHeights& g, const WaterSampler& sampler, float maxRadius, bool choppy = false,
+                             const SampledLayer* one = nullptr) {
     Agreement a;
     float lo = INFINITY, hi = -INFINITY;
     for (int ring = 0; ring < g.rings; ++ring) {
@@ -77,6 +84,8 @@ Agreement compareWithSampler(const GridHeights& g, const WaterSampler& sampler, 
             a.worst = std::max(a.worst, double(std::abs(gpu - cpu)));
             lo = std::min(lo, gpu), hi = std::max(hi, gpu);
             ++a.compared;
+            if (one)
+                a.largestOfOne = std::max(a.largestOfOne, double(std::abs(sampleLayerHeight(sampler, *one, x, y, g.time, d * g.pixelAngle))));
             if (!choppy) continue;
             const std::array<float, 2> shift = sampleWaterShift(sampler, x, y, g.time, d * g.pixelAngle);
             a.worstShift = std::max({a.worstShift, double(std::abs(shift[0] - g.shiftX[at])), double(std::abs(shift[1] - g.shiftY[at]))});
@@ -169,8 +178,8 @@ TEST(GridHeights, ChoppySeasShiftAndStandWhereTheViewerDrawsThem) {
     EXPECT_LT(a.worstShift, 1e-5) << "horizontal shifts";
     EXPECT_EQ(a.unconverged, 0) << "this sea does not fold: every displaced vertex has one point under it";
     EXPECT_LT(a.worstOver, 1e-5) << "heights over the displaced vertex";
-    // Every map of this material in every lookup path (the gather lookup of a 4.x context binds the most
-    // textures): each stage of the program reads at most the 16 samplers OpenGL 3.3 promises it.
+    // Each stage of the program reads at most the 16 samplers OpenGL 3.3 promises it, in the gather lookup
+    // of a 4.x context as in the others (TheFourthTileShadesThePictureWithinTheSamplerLimits asks the context).
     const ViewRun shot = view({dir.file("m/material.json"), "--screenshot", dir.file("shot.png"), "--size", "160x120", "--time",
                                "3.3", "--lookup", "gather-trilinear", "--json"});
     ASSERT_EQ(shot.code, 0) << shot.err;
@@ -183,4 +192,88 @@ TEST(GridHeights, ChoppySeasShiftAndStandWhereTheViewerDrawsThem) {
                 "fragment %d\n",
                 a.compared, a.range, a.largestShift, a.worst, a.worstShift, a.worstOver, a.mostSteps,
                 json["samplers"]["vertex"].get<int>(), json["samplers"]["fragment"].get<int>());
+}
+
+// synth --cascades' seas of three and four tiles (issue 25): every tile displaces the grid at its own tile
+// size and scroll, and the CPU sampler sums the same tiles, so the two agree as for two maps, in every
+// lookup (each binds its own form of the heights to a map's one sampler). The smallest tile's own share
+// of the heights is far above that agreement: a viewer that dropped it would fail.
+TEST(GridHeights, EveryCascadeOfAThreeOrFourTileSeaDisplacesTheGrid) {
+    for (const int cascades : {3, 4}) {
+        SCOPED_TRACE(std::to_string(cascades) + " cascades");
+        ScratchDir dir;
+        std::ofstream(dir.file("m.toml")) << "format = 1\nname = \"m\"\n[[displacement]]\nname = \"sea\"\n"
+                                          << "tile_size = 48.0\nscroll = [0.010, 0.004]\nchoppiness = 0.8\n"
+                                          << "[displacement.synth]\nspectrum = \"pierson-moskowitz\"\nwind = 9.0\nsize = 64\n"
+                                          << "seed = 5\ndisplacement = true\ncascades = " << cascades << "\n";
+        const ProcessResult built = runProcess({HEIGHTPACK_EXE, "build", dir.file("m.toml"), "-q", "-o", dir.file("m")});
+        ASSERT_EQ(built.code, 0) << built.err;
+        auto sampler = loadMaterialSampler(dir.file("m/material.json"));
+        ASSERT_TRUE(sampler) << sampler.error().path << ": " << sampler.error().what;
+        ASSERT_EQ(sampler->layers.size(), size_t(cascades));
+        const std::vector<CascadeBand> bands = cascadeBands(48.0, 64, cascades, 5);
+        for (int c = 0; c < cascades; ++c) {
+            EXPECT_FLOAT_EQ(sampler->layers[c].tileSize, float(bands[c].tileSize)) << "cascade " << c;
+            EXPECT_TRUE(sampler->layers[c].choppy()) << "cascade " << c;
+        }
+
+        // Every lookup: each binds its own form of the heights (packed, plain, gather atlas) to a map's sampler.
+        for (const std::string lookup : {"trilinear", "bilinear", "reference-trilinear", "reference-bilinear", "gather-trilinear"}) {
+            SCOPED_TRACE(lookup);
+            const bool bilinear = lookup.ends_with("bilinear");
+            sampler->filter = bilinear ? LevelFilter::Bilinear : LevelFilter::Trilinear;
+            // Two metres up with a 480-row picture: a pixel near the camera spans a few millimetres, so the
+            // trilinear lookup reads the smallest tile's fine levels there (its coarse ones are flat: the
+            // mip filter removes its short waves, as it should).
+            const ViewRun run = view({dir.file("m/material.json"), "--grid-heights", dir.file("grid.exr"), "--time", "3.3",
+                                      "--camera", "13,-7,2,30,-20", "--lookup", lookup, "--size", "640x480"});
+            ASSERT_EQ(run.code, 0) << run.err;
+            EXPECT_EQ(run.err.find("instead"), std::string::npos) << "the lookup asked for drew: " << run.err;
+            const GridHeights grid = readGridHeights(dir.file("grid.exr"));
+            ASSERT_EQ(grid.segments, 256);
+            // The smallest tile's own share, at the vertices compared: what the GPU would lack without it.
+            const SampledLayer& smallest = sampler->layers.back();
+            const Agreement a = compareWithSampler(grid, *sampler, 100.0f, true, &smallest);
+            EXPECT_GT(a.compared, 10000);
+            EXPECT_LT(a.worst, 1e-5) << "heights at the undisplaced vertex";
+            EXPECT_LT(a.worstShift, 1e-5) << "horizontal shifts";
+            EXPECT_GT(a.largestOfOne, 100 * 1e-5) << "the smallest tile should move the water more than the agreement";
+            std::printf("%d cascades, %s: %d vertices, heights over %.3f m, smallest tile (%.2f m) up to %.4f m; worst "
+                        "difference: height %.3g m, shift %.3g m\n",
+                        cascades, lookup.c_str(), a.compared, a.range, smallest.tileSize, a.largestOfOne, a.worst, a.worstShift);
+        }
+    }
+}
+
+// The picture of a four-tile sea changes when its smallest tile is flattened (--amplitude 1,1,1,0), so
+// the fragment stage, which finds the normals from the heights and shifts, reads the fourth map too; and
+// every stage of the program reads no more samplers than the context allows (the viewer asks GL) nor than
+// the 16 GL 3.3 promises: the count is the program's, the same whichever lookup draws.
+TEST(GridHeights, TheFourthTileShadesThePictureWithinTheSamplerLimits) {
+    ScratchDir dir;
+    std::ofstream(dir.file("m.toml")) << "format = 1\nname = \"m\"\n[[displacement]]\nname = \"sea\"\ntile_size = 48.0\n"
+                                      << "[displacement.synth]\nspectrum = \"pierson-moskowitz\"\nwind = 9.0\nsize = 64\n"
+                                      << "seed = 5\ndisplacement = true\ncascades = 4\n";
+    const ProcessResult built = runProcess({HEIGHTPACK_EXE, "build", dir.file("m.toml"), "-q", "-o", dir.file("m")});
+    ASSERT_EQ(built.code, 0) << built.err;
+    // Close to the water: from farther, the fourth tile's metre-long ripples fall into coarse levels.
+    const std::vector<std::string> shot = {dir.file("m/material.json"), "--size", "240x160", "--time", "3.3", "--camera",
+                                           "13,-7,3,30,-35"};
+    auto flattened = shot;
+    flattened.insert(flattened.end(), {"--amplitude", "1,1,1,0"});
+    const Difference d = compare(screenshot(dir, "all.png", shot), screenshot(dir, "three.png", flattened), 2);
+    EXPECT_GT(d.fractionOver, 0.05) << "the fourth tile's waves shade the water";
+    // The gather lookup of a 4.x context bound the most textures while each lookup had samplers of its own.
+    auto args = shot;
+    args.insert(args.end(), {"--lookup", "gather-trilinear", "--json", "--screenshot", dir.file("json.png")});
+    const ViewRun run = view(args);
+    ASSERT_EQ(run.code, 0) << run.err;
+    const auto samplers = nlohmann::json::parse(run.out)["samplers"];
+    EXPECT_GT(samplers["vertex"].get<int>(), 0);
+    EXPECT_LE(samplers["vertex"].get<int>(), 16);
+    EXPECT_LE(samplers["fragment"].get<int>(), 16);
+    EXPECT_LE(samplers["vertex"].get<int>(), samplers["vertexLimit"].get<int>());
+    EXPECT_LE(samplers["fragment"].get<int>(), samplers["fragmentLimit"].get<int>());
+    std::printf("flattening the fourth tile changes %.1f%% of the channel values by more than 2; samplers %s\n",
+                100 * d.fractionOver, samplers.dump().c_str());
 }

@@ -147,6 +147,16 @@ TEST(Viewer, ExitCodesAreTheDocumentedOnes) {
     const ViewRun badFlag = runProcess({HEIGHTPACK_VIEW_EXE, kExamples + "swell.png", "--no-such-flag"}, headless);
     EXPECT_EQ(badFlag.code, 2) << badFlag.err;
     EXPECT_NE(badFlag.err.find("heightpack-view --help"), std::string::npos) << badFlag.err;
+    // Four maps displace the grid (synth --cascades 4's tiles), and a number per map at most.
+    const ViewRun fiveMaps = runProcess({HEIGHTPACK_VIEW_EXE, kExamples + "swell.png", kExamples + "swell.png",
+                                         kExamples + "swell.png", kExamples + "swell.png", kExamples + "swell.png"},
+                                        headless);
+    EXPECT_EQ(fiveMaps.code, 2) << fiveMaps.err;
+    oneErrorLine(fiveMaps, "at most 4 height maps displace the grid; 5 were given");
+    const ViewRun fiveSizes =
+        runProcess({HEIGHTPACK_VIEW_EXE, kExamples + "swell.png", "--tile-size", "64,16,4,1,0.5"}, headless);
+    EXPECT_EQ(fiveSizes.code, 2) << fiveSizes.err;
+    oneErrorLine(fiveSizes, "--tile-size must be one to four positive lengths");
 
     writeBytes(dir.file("material.json"), {'{', 'n', 'o'});
     const ViewRun badMaterial =

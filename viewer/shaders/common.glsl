@@ -4,19 +4,25 @@
 // The viewer puts "#version 400 core" and HEIGHTPACK_GATHER 1 before this where the context is 4.0 or
 // newer, else "#version 330 core" and HEIGHTPACK_GATHER 0 (and never asks for the gather lookup).
 
-const int kMaxLayers = 2;  // the two largest maps displace the grid (18.2.1)
+// Every map the scene names, up to four: synth --cascades makes as many tiles of one sea. Renderer's
+// kMaxLayers is this number, and the calls in waterHeight and waterShift name each sampler once.
+const int kMaxLayers = 4;
 
 uniform int uLayerCount;
 // Every height texture is in its file's type (32-bit float, half, 16-bit normalised); uLayerDecode maps
 // what they sample back to the file's values. Each is an array texture holding every frame of a map's
-// sequence, frame f in layer f, so blending this frame into the next costs no sampler of its own: the
-// vertex stage reads nine samplers, the fragment stage eleven, of the sixteen GL 3.3 promises a stage.
-uniform sampler2DArray uPacked0, uPacked1;   // RGBA, nearest, mip-mapped: R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1)
-uniform sampler2DArray uPlain0, uPlain1;     // R, GL_LINEAR, mip-mapped: the reference path
+// sequence, frame f in layer f, so blending this frame into the next costs no sampler of its own. One
+// sampler a map holds its heights in whichever form uLookup reads (the renderer binds the packed chain,
+// the plain chain or the gather atlas to it), and one its Dx, Dy: the vertex stage reads nine samplers
+// with the combine target, the fragment stage fifteen with the shading textures and foam coverage, of
+// the sixteen GL 3.3 promises a stage, whatever the lookup.
+//   packed (uLookup 0, 1): RGBA, nearest, mip-mapped: R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1)
+//   reference (2, 3): R, GL_LINEAR, mip-mapped
+//   gather (4, 5): R atlas, one level, nearest (GL 4.0 only)
+uniform sampler2DArray uHeights[kMaxLayers];
 uniform ivec2 uLayerFrame[kMaxLayers];  // the layers of this frame and the next (0, 0 for a single map)
 uniform float uLayerBlend[kMaxLayers];  // how far between this frame and the next (0 for a single map)
 uniform vec4 uLayerDecode[kMaxLayers];  // stored = x + y * sampled for this frame, z + w * sampled for the next
-uniform sampler2DArray uGather0, uGather1;  // R atlases, one level, nearest (gather only)
 uniform vec4 uLayerXform[kMaxLayers];   // tiles per metre, scroll u and v (tiles per second), amplitude (m)
 uniform vec2 uLayerStored[kMaxLayers];  // the stored value of a mid height (subtracted), and 1 if clamp-wrapped
 uniform int uLayerLevels[kMaxLayers];   // mip levels in each layer's chain
@@ -81,27 +87,26 @@ float gatherBilinear(sampler2DArray atlas, int layer, int frame, vec2 uv, int le
 }
 #endif
 
-float levelLookup(sampler2DArray packedTex, sampler2DArray plainTex, sampler2DArray gatherTex, int layer, int frame,
-                  vec2 uv, int level, bool clampMode) {
+// heights: the map's texture for the current lookup (uHeights' comment).
+float levelLookup(sampler2DArray heights, int layer, int frame, vec2 uv, int level, bool clampMode) {
 #if HEIGHTPACK_GATHER
-    if (uLookup >= 4) return gatherBilinear(gatherTex, layer, frame, uv, level, clampMode);
+    if (uLookup >= 4) return gatherBilinear(heights, layer, frame, uv, level, clampMode);
 #endif
-    return uLookup >= 2 ? referenceBilinear(plainTex, frame, uv, level, clampMode)
-                        : packedBilinear(packedTex, layer, frame, uv, level, clampMode);
+    return uLookup >= 2 ? referenceBilinear(heights, frame, uv, level, clampMode)
+                        : packedBilinear(heights, layer, frame, uv, level, clampMode);
 }
 
 // Listing 18-3: one level below the band, the next above it, a blend inside it.
-float layerHeight(sampler2DArray packedTex, sampler2DArray plainTex, sampler2DArray gatherTex, int layer, int frame,
-                  vec2 uv, float lod, bool clampMode) {
+float layerHeight(sampler2DArray heights, int layer, int frame, vec2 uv, float lod, bool clampMode) {
     int last = uLayerLevels[layer] - 1;
-    if (uLookup % 2 == 0) return levelLookup(packedTex, plainTex, gatherTex, layer, frame, uv, 0, clampMode);
+    if (uLookup % 2 == 0) return levelLookup(heights, layer, frame, uv, 0, clampMode);
     lod = clamp(lod, 0.0, float(last));
     int level = min(int(floor(lod)), last);
     float fr = lod - float(level);
-    if (level == last || fr < uBands.x) return levelLookup(packedTex, plainTex, gatherTex, layer, frame, uv, level, clampMode);
-    float coarse = levelLookup(packedTex, plainTex, gatherTex, layer, frame, uv, level + 1, clampMode);
+    if (level == last || fr < uBands.x) return levelLookup(heights, layer, frame, uv, level, clampMode);
+    float coarse = levelLookup(heights, layer, frame, uv, level + 1, clampMode);
     if (fr > uBands.y) return coarse;
-    float fine = levelLookup(packedTex, plainTex, gatherTex, layer, frame, uv, level, clampMode);
+    float fine = levelLookup(heights, layer, frame, uv, level, clampMode);
     return mix(fine, coarse, (fr - uBands.x) / (uBands.y - uBands.x));
 }
 
@@ -118,15 +123,14 @@ vec2 layerUv(int k, vec2 world) {
 // Layer k's height above its mean at xy, seen from distance d: this frame, blended into the next frame
 // of a sequence; lod receives the layer's level of detail. Every lookup is a weighted mean of texels,
 // so a normalised map's scale and offset apply once, after it.
-float layerContribution(int k, sampler2DArray packedTex, sampler2DArray plainTex, sampler2DArray gatherTex, vec2 xy,
-                        float d, out float lod) {
+float layerContribution(int k, sampler2DArray heights, vec2 xy, float d, out float lod) {
     lod = layerLod(k, d);
     vec2 uv = layerUv(k, xy);
     bool clampMode = uLayerStored[k].y > 0.5;
     vec4 decode = uLayerDecode[k];
-    float stored = decode.x + decode.y * layerHeight(packedTex, plainTex, gatherTex, k, uLayerFrame[k].x, uv, lod, clampMode);
+    float stored = decode.x + decode.y * layerHeight(heights, k, uLayerFrame[k].x, uv, lod, clampMode);
     if (uLayerBlend[k] > 0.0) {
-        float next = decode.z + decode.w * layerHeight(packedTex, plainTex, gatherTex, k, uLayerFrame[k].y, uv, lod, clampMode);
+        float next = decode.z + decode.w * layerHeight(heights, k, uLayerFrame[k].y, uv, lod, clampMode);
         stored = mix(stored, next, uLayerBlend[k]);
     }
     return uLayerXform[k].w * (stored - uLayerStored[k].x);
@@ -135,7 +139,7 @@ float layerContribution(int k, sampler2DArray packedTex, sampler2DArray plainTex
 // Tessendorf's choppy waves: maps that carry Dx, Dy move each point sideways as well as up. Their Dx, Dy
 // are packed as the heights are and read with the same lookup, at the same level and LOD band, so a
 // vertex's shift belongs to the very height it is given.
-uniform sampler2DArray uShift0, uShift1;  // layer 2f: Dx, layer 2f + 1: Dy of frame f (RGBA packed)
+uniform sampler2DArray uShifts[kMaxLayers];  // layer 2f: Dx, layer 2f + 1: Dy of frame f (RGBA packed)
 uniform float uLayerChop[kMaxLayers];   // choppiness of each map with Dx, Dy; 0 for a map without them
 
 vec2 packedShiftBilinear(sampler2DArray tex, int layer, int frame, vec2 uv, int level, bool clampMode) {
@@ -175,13 +179,20 @@ vec2 layerShift(int k, sampler2DArray tex, vec2 xy, float d) {
     return uLayerChop[k] * uLayerXform[k].w * D;
 }
 
-bool anyChoppy() { return (uLayerCount > 0 && uLayerChop[0] != 0.0) || (uLayerCount > 1 && uLayerChop[1] != 0.0); }
+bool anyChoppy() {
+    for (int k = 0; k < kMaxLayers; ++k)
+        if (k < uLayerCount && uLayerChop[k] != 0.0) return true;
+    return false;
+}
 
+// GLSL 3.30 indexes an array of samplers with constant expressions only, so each map's call is written out.
 // Where the grid point at xy moves sideways, seen from distance d (the same d as its height).
 vec2 waterShift(vec2 xy, float d) {
     vec2 s = vec2(0.0);
-    if (uLayerCount > 0 && uLayerChop[0] != 0.0) s += layerShift(0, uShift0, xy, d);
-    if (uLayerCount > 1 && uLayerChop[1] != 0.0) s += layerShift(1, uShift1, xy, d);
+    if (uLayerCount > 0 && uLayerChop[0] != 0.0) s += layerShift(0, uShifts[0], xy, d);
+    if (uLayerCount > 1 && uLayerChop[1] != 0.0) s += layerShift(1, uShifts[1], xy, d);
+    if (uLayerCount > 2 && uLayerChop[2] != 0.0) s += layerShift(2, uShifts[2], xy, d);
+    if (uLayerCount > 3 && uLayerChop[3] != 0.0) s += layerShift(3, uShifts[3], xy, d);
     return s;
 }
 
@@ -189,11 +200,11 @@ vec2 waterShift(vec2 xy, float d) {
 float waterHeight(vec2 xy, float d, out float lod0) {
     float h = 0.0;
     lod0 = 0.0;
-    float lod1;
-    if (uLayerCount > 0)
-        h += layerContribution(0, uPacked0, uPlain0, uGather0, xy, d, lod0);
-    if (uLayerCount > 1)
-        h += layerContribution(1, uPacked1, uPlain1, uGather1, xy, d, lod1);
+    float lod;
+    if (uLayerCount > 0) h += layerContribution(0, uHeights[0], xy, d, lod0);
+    if (uLayerCount > 1) h += layerContribution(1, uHeights[1], xy, d, lod);
+    if (uLayerCount > 2) h += layerContribution(2, uHeights[2], xy, d, lod);
+    if (uLayerCount > 3) h += layerContribution(3, uHeights[3], xy, d, lod);
     for (int e = 0; e < kMaxExplosions; ++e) {
         if (e >= uExplosionCount) break;
         float age = uTime - uExplosion[e].z;

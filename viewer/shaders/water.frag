@@ -24,8 +24,8 @@ uniform sampler2D uFoam;
 uniform float uFoamScale;           // tiles per metre
 // Synth's baked foam coverage (pack --foam): every frame of a map's coverage as one R32F array, layer f =
 // frame f as in the heights' arrays (uLayerFrame picks this frame and the next), filtered in hardware (the fragment has derivatives, so a pixel sees its footprint's mean foam).
-uniform sampler2DArray uFoamCoverage0, uFoamCoverage1;
-uniform vec2 uCoverageOn;           // 1 for a map whose baked coverage is shown
+uniform sampler2DArray uFoamCoverage[kMaxLayers];
+uniform float uCoverageOn[kMaxLayers];  // 1 for a map whose baked coverage is shown
 
 layout(location = 0) out vec4 outColour;
 
@@ -123,13 +123,15 @@ void main() {
     vec3 r = reflect(-v, n);
     r.z = abs(r.z);
     vec3 colour = mix(waterColour, sky(r), fresnel);
-    if (uCoverageOn.x > 0.5 || uCoverageOn.y > 0.5) {
-        // Baked foam: where the sea's Jacobian put it. Two maps' coverages combine as independent ones; a
-        // foam texture, when given, still breaks it up, and without one the coverage is the foam.
-        float c0 = uCoverageOn.x > 0.5 ? layerCoverage(0, uFoamCoverage0, vGrid) : 0.0;
-        float c1 = uCoverageOn.y > 0.5 ? layerCoverage(1, uFoamCoverage1, vGrid) : 0.0;
-        float foam = 1.0 - (1.0 - c0) * (1.0 - c1);
-        colour = mix(colour, vec3(0.92), foam * (uHasFoam ? foamPattern(vWorld.xy) : 1.0));
+    // Baked foam: where the sea's Jacobian put it. The maps' coverages combine as independent ones; a foam
+    // texture, when given, still breaks it up, and without one the coverage is the foam.
+    float clear = 1.0;  // the chance that no map's foam covers the point
+    if (uCoverageOn[0] > 0.5) clear *= 1.0 - layerCoverage(0, uFoamCoverage[0], vGrid);
+    if (uCoverageOn[1] > 0.5) clear *= 1.0 - layerCoverage(1, uFoamCoverage[1], vGrid);
+    if (uCoverageOn[2] > 0.5) clear *= 1.0 - layerCoverage(2, uFoamCoverage[2], vGrid);
+    if (uCoverageOn[3] > 0.5) clear *= 1.0 - layerCoverage(3, uFoamCoverage[3], vGrid);
+    if (uCoverageOn[0] > 0.5 || uCoverageOn[1] > 0.5 || uCoverageOn[2] > 0.5 || uCoverageOn[3] > 0.5) {
+        colour = mix(colour, vec3(0.92), (1.0 - clear) * (uHasFoam ? foamPattern(vWorld.xy) : 1.0));
     } else {
         float foam = clamp((vHeight - uFoamRange.x) / max(uFoamRange.y - uFoamRange.x, 1e-4), 0.0, 1.0);
         colour = mix(colour, vec3(0.92), foam * foamPattern(vWorld.xy));

@@ -12,6 +12,7 @@
 #include "heightpack/bake/check_job.hpp"
 #include "heightpack/bake/normal_job.hpp"
 #include "heightpack/bake/pack_job.hpp"
+#include "heightpack/core/foam.hpp"
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
@@ -54,6 +55,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOp
 void appendKeyText(std::string& text, std::string_view prefix, const CheckOptions& options);
 void appendKeyText(std::string& text, std::string_view prefix, const SwellOptions& options);
 void appendKeyText(std::string& text, std::string_view prefix, const SpectrumOptions& options);
+void appendKeyText(std::string& text, std::string_view prefix, const FoamOptions& options);
 
 // appendKeyText into an empty string.
 template <class Options>

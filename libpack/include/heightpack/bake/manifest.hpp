@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "heightpack/bake/material.hpp"
+#include "heightpack/core/foam.hpp"
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
@@ -47,11 +48,17 @@ struct SourcedAsset {
 
 // A sea the build synthesises instead of reading a file ([displacement.synth]): the spectrum (its tile
 // size is the asset's tile_size, or with cascades this cascade's), how many frames of its loop to bake,
-// whether Dx, Dy are synthesised beside the heights, and which cascade of how many this map is.
+// whether Dx, Dy and the loop's foam are synthesised beside the heights, and which cascade of how many
+// this map is.
 struct SynthSource {
     SpectrumOptions spectrum;         // with cascades, cascadeOptions(sea, band): its tile size, band and seed
     int frames = 1;                   // more than one needs spectrum.loopPeriod
     bool displacement = false;        // Dx, Dy too, as `synth --displacement` (kept for an .exr output only)
+    // Foam coverage too, as `synth --foam` (kept for an .exr output only): worked out over the whole loop,
+    // where the surface moved by the asset's choppiness times D folds (synth's --choppiness).
+    bool foam = false;
+    FoamOptions foamOptions;
+    double choppiness = 1.0;          // the lambda of x + lambda D whose Jacobian the foam follows
     int cascade = 0;                  // this map is cascade `cascade` of `cascades` (core/cascades.hpp)
     int cascades = 1;
 };
@@ -63,7 +70,7 @@ struct DisplacementAsset : SourcedAsset {
     // becomes N assets, NAME_c0 ... (outputs NAME_c0.EXT ...), one per cascade.
     std::optional<SynthSource> synth;
     // The key foam (default true): keep the source's foam coverage (synth --foam's Foam channel) in an EXR
-    // output; false leaves it out.
+    // output; false leaves it out. A synthesised map keeps the foam its synth table asks for.
     bool keepFoam = true;
 };
 

@@ -31,6 +31,23 @@ Status checkOutputPath(const std::filesystem::path& path);
 // path can be written (checkWritable: its folder must exist).
 Status writeTextFile(const std::string& path, const std::string& text);
 
+// An exclusive lock on the file at path (created when missing), held from construction to destruction:
+// of the workers that would make one shared file (threads of one build, or a plan's processes run side by
+// side), one makes it while the others wait, then find it made. Advisory (flock), so only workers that
+// take it are kept apart. Where the file cannot be opened or its file system grants no locks, nothing is
+// held (locked() is false) and each worker makes the file for itself: slower, never wrong.
+class FileLock {
+public:
+    explicit FileLock(const std::string& path);
+    ~FileLock();
+    FileLock(const FileLock&) = delete;
+    FileLock& operator=(const FileLock&) = delete;
+    bool locked() const { return fd_ >= 0; }
+
+private:
+    int fd_ = -1;
+};
+
 // Sequences of frames are numbered files: NAME.0000.EXT, NAME.0001.EXT, ... The file frame f of n goes
 // to: path itself when n is 1, else NAME.FFFF.EXT. A path NAME.####.EXT (four '#', as compositing tools
 // write a sequence) means the same as NAME.EXT, for inputs and outputs alike.

@@ -41,8 +41,9 @@ struct NameTable<PixelType> {
 inline const char* pixelTypeName(PixelType type) { return nameOf(type); }
 inline std::optional<PixelType> parsePixelType(std::string_view name) { return parseName<PixelType>(name); }
 
-// The texel formats heightpack writes into KTX2 and DDS, with their Vulkan and DXGI codes.
-enum class TexelFormat { Rgba32F, Rgba16F, Rgba16Unorm, Rg32F, Rg16F, Rg16Snorm, R32F, R16F, R16Unorm };
+// The texel formats heightpack writes into KTX2 and DDS, with their Vulkan and DXGI codes. Rg16Snorm is
+// read only: the format xy normals in uint16 had before they were normalised like every other uint16.
+enum class TexelFormat { Rgba32F, Rgba16F, Rgba16Unorm, Rg32F, Rg16F, Rg16Unorm, Rg16Snorm, R32F, R16F, R16Unorm };
 
 enum class ComponentKind { Float32, Float16, Unorm16, Snorm16 };
 
@@ -64,7 +65,7 @@ std::optional<TexelFormat> texelFormatFromDxgi(std::uint32_t dxgiFormat);
 
 // The format that stores `channels` channels (1, 2, 3 or 4) as `type`. Three channels (RGB normals) go
 // into a four-channel format with alpha 1, since no GPU format listed here has three 16-bit channels.
-// Two channels as uint16 are signed normalised (xy of a normal map, in [-1,1]).
+// uint16 is unsigned normalised for any channel count (xy normals too), to the range the writer records.
 TexelFormat texelFormatFor(int channels, PixelType type);
 PixelType pixelTypeOf(TexelFormat format);
 
