@@ -133,6 +133,8 @@ private:
             {"format", info.format},
             {"pixelType", info.pixelType},
             {"channels", info.channelNames},
+            // An array texture's layers in order (KTX2, DDS); empty for a single texture.
+            {"layers", info.layerNames},
             {"tiled", info.tiled},
             {"tileWidth", info.tileWidth},
             {"tileHeight", info.tileHeight},
@@ -161,6 +163,11 @@ private:
         std::string channels;
         for (const auto& n : info.channelNames) channels += (channels.empty() ? "" : ",") + n;
         std::printf(" %s", channels.c_str());
+        if (!info.layerNames.empty()) {
+            std::string layers;
+            for (const auto& n : info.layerNames) layers.append(layers.empty() ? "" : ", ").append(n);
+            std::printf(", an array of %zu layers: %s", info.layerNames.size(), layers.c_str());
+        }
         if (info.tiled) std::printf(", tiled %dx%d", info.tileWidth, info.tileHeight);
         std::printf("\n");
         // Every heightpack attribute, in the order the file lists them.

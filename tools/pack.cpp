@@ -52,10 +52,10 @@ public:
         cmd->add_option("--emit-plain", options_.plainOutput, "also write the unpacked one-channel mip chain here");
         cmd->add_flag("--displacement", options_.displacement,
                       "keep the input's horizontal displacement (Dx, Dy, as synth --displacement writes): packed "
-                      "beside the heights as layers Dx, Dy of the same .exr");
+                      "beside the heights as layers Dx, Dy of the same .exr, or of the same .ktx2/.dds array texture");
         cmd->add_flag("--foam", options_.foam,
                       "keep the input's foam coverage (its Foam channel, as synth --foam writes it): packed beside the "
-                      "heights as layer Foam of the same .exr");
+                      "heights as layer Foam of the same .exr, or the last layer of the same .ktx2/.dds array texture");
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
@@ -68,6 +68,7 @@ public:
             "  heightpack pack swell.png --layout plain --pixel-type uint16 -o swell_r16.ktx2\n"
             "  heightpack pack sea.####.exr --displacement -o sea_packed.exr\n"
             "  heightpack pack sea.####.exr --displacement --foam -o sea_packed.exr\n"
+            "  heightpack pack sea.####.exr --displacement --foam --pixel-type half -o sea.ktx2   (one array: heights, Dx, Dy, Foam)\n"
             "Texel (i,j) of every level holds R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1), wrapped or clamped.\n");
         return cmd;
     }
@@ -156,7 +157,8 @@ private:
         const int channels = layoutChannels(r.layout);
         if (common_.json) {
             const nlohmann::json stored =
-                storedChainJson(r.levelSizes, channels, r.pixelType, r.lookupError, options_.heightRange);
+                storedChainJson(r.levelSizes, channels, r.pixelType, r.lookupError, options_.heightRange, "stored",
+                                1 + (options_.displacement ? 2 : 0) + (options_.foam ? 1 : 0));
             const nlohmann::json doc = {
                 {"command", "pack"},
                 {"input", r.input},

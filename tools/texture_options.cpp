@@ -69,13 +69,14 @@ PixelType requestedPixelType(const std::string& pixelType) {
 }
 
 nlohmann::json storedChainJson(const std::vector<std::pair<int, int>>& levelSizes, int channels, PixelType type,
-                               const std::vector<double>& lookupError, double metresPerUnit, const char* units) {
+                               const std::vector<double>& lookupError, double metresPerUnit, const char* units,
+                               int layers) {
     const double toUnits = metresPerUnit > 0.0 ? metresPerUnit : 1.0;
     nlohmann::json levels = nlohmann::json::array();
     size_t total = 0;
     double worst = 0.0;
     for (size_t i = 0; i < levelSizes.size(); ++i) {
-        const size_t bytes = gpuBytes(levelSizes[i].first, levelSizes[i].second, channels, type);
+        const size_t bytes = gpuBytes(levelSizes[i].first, levelSizes[i].second, channels, type) * size_t(layers);
         const double error = i < lookupError.size() ? lookupError[i] * toUnits : 0.0;
         total += bytes;
         worst = std::max(worst, error);

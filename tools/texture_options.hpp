@@ -28,10 +28,11 @@ PixelType requestedPixelType(const std::string& pixelType);
 
 // --json's account of a chain as stored: per level its GPU bytes and worst lookup error (in metres when
 // metresPerUnit > 0, else in `units`: "stored", or "normal" for normal maps), and the totals. channels
-// as the texture stores them.
+// as the texture stores them, in each of `layers` layers (the heights, Dx, Dy, foam: an array's layers,
+// or an EXR's, each uploaded as its own texture).
 nlohmann::json storedChainJson(const std::vector<std::pair<int, int>>& levelSizes, int channels, PixelType type,
                                const std::vector<double>& lookupError, double metresPerUnit,
-                               const char* units = "stored");
+                               const char* units = "stored", int layers = 1);
 // "half, worst lookup error 1.2e-05 m" for a summary line.
 std::string storedChainText(PixelType type, const std::vector<double>& lookupError, double metresPerUnit);
 

@@ -200,21 +200,20 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
         PackOptions pack = packOptions(d.settings, version);
         pack.scale = static_cast<float>(d.layer.heightScale);
         pack.offset = static_cast<float>(d.layer.heightOffset);
-        // The manifest decided the container from the output's name (settings.container is always set).
-        const bool intoExr = d.settings.container.value_or(Container::Exr) == Container::Exr;
+        // Dx, Dy (and foam) go wherever the output's container puts them: an EXR's further channels, a
+        // KTX2's or DDS's further array layers.
         if (d.synth) {
             // displacement = true synthesises Dx, Dy and keeps them as a file's would be kept (below).
-            pack.displacement = d.synth->displacement && d.layer.choppiness > 0 && intoExr;
+            pack.displacement = d.synth->displacement && d.layer.choppiness > 0;
             // foam = true synthesises the loop's foam and keeps it as a file's would be (below).
-            pack.foam = d.synth->foam && intoExr;
+            pack.foam = d.synth->foam;
             addSynthSteps(steps, d, pack);
         } else {
             // Dx, Dy ride along when the source has them (synth's displacement), unless choppiness turns them
-            // off, into an EXR (a KTX2 or DDS texel has four channels, not twelve). Judged from the header, so
-            // a painted map's key stays what it was.
-            pack.displacement = d.layer.choppiness > 0 && hasDisplacement(d.frames.front()) && intoExr;
+            // off. Judged from the header, so a painted map's key stays what it was.
+            pack.displacement = d.layer.choppiness > 0 && hasDisplacement(d.frames.front());
             // Foam likewise, unless foam = false.
-            pack.foam = d.keepFoam && hasFoam(d.frames.front()) && intoExr;
+            pack.foam = d.keepFoam && hasFoam(d.frames.front());
             addSourcedSteps(steps, d, d.layer.name, "displacement", m.threshold, pack, makePacked);
         }
     }

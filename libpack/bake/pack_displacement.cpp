@@ -4,6 +4,7 @@
 #include <cassert>
 
 #include "heightpack/core/pack.hpp"
+#include "heightpack/io/attributes.hpp"
 
 #include "job_steps.hpp"
 
@@ -28,8 +29,8 @@ Result<DisplacementMaps> packDisplacement(Image d, const SourceInfo& source, con
 
 std::vector<CompanionChain> companionsOf(const DisplacementMaps* d, const std::vector<Image>* foam) {
     std::vector<CompanionChain> companions;
-    if (d) companions.insert(companions.end(), {{"Dx", &d->plainX}, {"Dy", &d->plainY}});
-    if (foam) companions.push_back({"Foam", foam});
+    if (d) companions.insert(companions.end(), {{layerName::dx, &d->plainX}, {layerName::dy, &d->plainY}});
+    if (foam) companions.push_back({layerName::foam, foam});
     return companions;
 }
 
@@ -69,6 +70,28 @@ void fillPlainWithCompanions(MipChainSource& content, const std::vector<Image>& 
                 dst[stride * t + 1 + c] = (*companions[c].levels)[level].pixels[begin + t];
         }
     };
+}
+
+void fillArrayWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
+                             std::vector<CompanionChain> companions, Wrap wrap, bool packed) {
+    content.channelNames = packed ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"Y"};
+    content.layerNames = {layerName::heights};
+    for (const CompanionChain& c : companions) content.layerNames.push_back(c.name);
+    content.fillRows = nullptr;
+    content.fillLayerRows = [&heights, companions = std::move(companions), wrap, packed](int layer, int level, int y0,
+                                                                                        int rows, float* dst) {
+        // Each layer packed (or copied) alone, exactly as the EXR's layer of the same name.
+        const Image& chain = layer == 0 ? heights[level] : (*companions[size_t(layer) - 1].levels)[level];
+        if (packed) packNeighbour4Rows(chain, wrap, y0, rows, dst);
+        else std::copy_n(chain.row(y0), size_t(rows) * chain.width, dst);
+    };
+}
+
+void fillWithCompanions(MipChainSource& content, Container container, const std::vector<Image>& heights,
+                        std::vector<CompanionChain> companions, Wrap wrap, bool packed) {
+    if (container != Container::Exr) fillArrayWithCompanions(content, heights, std::move(companions), wrap, packed);
+    else if (packed) fillPackedWithCompanions(content, heights, std::move(companions), wrap);
+    else fillPlainWithCompanions(content, heights, std::move(companions));
 }
 
 }  // namespace detail

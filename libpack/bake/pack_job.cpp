@@ -1,9 +1,11 @@
 #include "heightpack/bake/pack_job.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <optional>
-#include <tuple>
+#include <string>
+#include <vector>
 
 #include "heightpack/bake/pack_displacement.hpp"
 #include "heightpack/bake/pack_foam.hpp"
@@ -92,17 +94,6 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         if (!twin) return twin.error();
         twinOutput = *twin;
     }
-    // A KTX2 or DDS texture holds four channels: heights with Dx, Dy need twelve, with foam eight (or more).
-    const bool gpuOutput = packedOutput->container != Container::Exr;
-    const bool gpuPlain = twinOutput && twinOutput->container != Container::Exr;
-    for (const auto& [asked, what, channels] : {std::tuple{options.displacement, "displacement", "twelve"},
-                                                std::tuple{options.foam, "foam", "eight"}})
-        if (asked && (gpuOutput || gpuPlain))
-            return withFix(inconsistentOptions(gpuOutput ? output : options.plainOutput,
-                                               std::string("a KTX2 or DDS texture holds at most four channels; heights with ") +
-                                                   (std::string(what) == "foam" ? "foam" : "Dx, Dy") + " need " + channels,
-                                               std::string("write the ") + what + " to an .exr"),
-                           Fix::CompanionsNeedExr, {what});
     if (twinOutput) {
         if (std::filesystem::path(options.plainOutput).lexically_normal() ==
             std::filesystem::path(output).lexically_normal())
@@ -127,18 +118,31 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     Image heights = std::move(loaded->heights);
     progress("load", 1.0);
     report.loadSeconds = secondsSince(start);
-    std::optional<DisplacementMaps> displacement;
+    // Dx, Dy and foam: layers of the same EXR (channels NAME.R ...) or of the same KTX2 or DDS array.
+    std::optional<Image> d, f;
     if (options.displacement) {
-        auto d = loadDisplacement(input, options.load);
-        if (!d) return d.error();
+        auto loadedD = loadDisplacement(input, options.load);
+        if (!loadedD) return loadedD.error();
+        d = std::move(*loadedD);
+    }
+    if (options.foam) {
+        auto loadedF = loadFoam(input, options.load);
+        if (!loadedF) return loadedF.error();
+        f = std::move(*loadedF);
+    }
+    // The hash covers every channel the file is made from: the heights, then Dx, Dy, then the foam.
+    std::vector<const Image*> hashed = {&heights};
+    if (d) hashed.push_back(&*d);
+    if (f) hashed.push_back(&*f);
+    if (hashed.size() > 1) report.sourceHash = hashPixels(hashed);
+    std::optional<DisplacementMaps> displacement;
+    if (d) {
         auto maps = packDisplacement(std::move(*d), report.source, withoutPacking(options));
         if (!maps) return maps.error();
         displacement = std::move(*maps);
     }
     std::optional<std::vector<Image>> foam;
-    if (options.foam) {
-        auto f = loadFoam(input, options.load);
-        if (!f) return f.error();
+    if (f) {
         auto chain = foamChain(std::move(*f), report.source, options);
         if (!chain) return chain.error();
         foam = std::move(*chain);
@@ -168,9 +172,6 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     writeOptions.progress = [&](double f) { progress("write", twinOutput ? f * 0.8 : f); };
 
     const Wrap wrap = options.mip.wrap;
-    MipChainSource content;
-    content.width = chain[0].width;
-    content.height = chain[0].height;
     const auto fillPacked = [&](int level, int y0, int rows, float* dst) {
         packNeighbour4Rows(chain[level], wrap, y0, rows, dst);
     };
@@ -178,41 +179,47 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         const Image& l = chain[level];
         std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width, dst);
     };
-    content.channelNames = packed ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"Y"};
-    content.fillRows = packed ? decltype(content.fillRows)(fillPacked) : decltype(content.fillRows)(fillPlain);
-    content.attributes = heightAttributes(options.layout, options, report.source, report.sourceHash);
+    // What an output holds: the heights packed (or plain), and Dx, Dy and foam as its container holds
+    // them (an EXR's further channels, a KTX2's or DDS's further layers).
+    const auto contentFor = [&](const TextureOutput& out, bool packedChain) {
+        MipChainSource c;
+        c.width = chain[0].width;
+        c.height = chain[0].height;
+        c.attributes = heightAttributes(packedChain ? options.layout : Layout::Plain, options, report.source, report.sourceHash);
+        if (!companions.empty()) {
+            detail::fillWithCompanions(c, out.container, chain, companions, wrap, packedChain);
+        } else {
+            c.channelNames = packedChain ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"Y"};
+            c.fillRows = packedChain ? decltype(c.fillRows)(fillPacked) : decltype(c.fillRows)(fillPlain);
+        }
+        return c;
+    };
+    MipChainSource content = contentFor(*packedOutput, packed);
 
-    // The pixel type, given or chosen, and its lookup error: the same for both outputs, since a packed
-    // texel holds copies of the plain chain's values.
+    // The pixel type, given or chosen, and its lookup error: judged over every chain written (the heights,
+    // Dx, Dy, foam), the same for both outputs, since a packed texel holds copies of the plain chains' values.
     std::vector<TextureOutput> outputs = {*packedOutput};
     if (twinOutput) outputs.push_back(*twinOutput);
-    auto stored = detail::chooseStorage(outputs, content, chain, wrap, writeOptions);
+    std::vector<const std::vector<Image>*> chains = {&chain};
+    for (const CompanionChain& c : companions) chains.push_back(c.levels);
+    auto stored = detail::chooseStorage(outputs, content, chains, wrap, writeOptions);
     if (!stored) return stored.error();
     writeOptions.storage.pixelType = stored->pixelType;
-    // Dx, Dy and foam add values the plan did not see: then the writer plans again.
-    if (companions.empty()) writeOptions.planned = TextureWriteOptions::Planned{stored->pixelType, stored->normalisation};
+    writeOptions.planned = TextureWriteOptions::Planned{stored->pixelType, stored->normalisation};
     report.pixelType = stored->pixelType;
     report.lookupError = stored->lookupError;
     const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*stored);
-    content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
-    // Dx, Dy and foam join after the storage is chosen: the choice and its error are the heights'.
-    if (!companions.empty()) {
-        if (packed)
-            detail::fillPackedWithCompanions(content, chain, companions, wrap);
-        else
-            detail::fillPlainWithCompanions(content, chain, companions);
-    }
-    if (displacement) content.attributes.push_back(attribute(attr::displacement, packed ? "neighbour4" : "plain"));
-    if (foam) content.attributes.push_back(attribute(attr::foam, packed ? "neighbour4" : "plain"));
+    const auto record = [&](MipChainSource& c, bool packedChain) {
+        c.attributes.insert(c.attributes.end(), errors.begin(), errors.end());
+        const char* laidOut = packedChain ? "neighbour4" : "plain";
+        if (displacement) c.attributes.push_back(attribute(attr::displacement, laidOut));
+        if (foam) c.attributes.push_back(attribute(attr::foam, laidOut));
+    };
+    record(content, packed);
     if (Status s = writeTexture(*packedOutput, content, writeOptions); !s) return s.error();
     if (twinOutput) {
-        content.channelNames = {"Y"};
-        content.fillRows = fillPlain;
-        content.attributes = heightAttributes(Layout::Plain, options, report.source, report.sourceHash);
-        content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
-        if (!companions.empty()) detail::fillPlainWithCompanions(content, chain, companions);
-        if (displacement) content.attributes.push_back(attribute(attr::displacement, "plain"));
-        if (foam) content.attributes.push_back(attribute(attr::foam, "plain"));
+        content = contentFor(*twinOutput, false);
+        record(content, false);
         writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
         if (Status s = writeTexture(*twinOutput, content, writeOptions); !s) return s.error();
     }

@@ -15,12 +15,13 @@ double StoredChain::worst() const {
 namespace {
 
 Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
-                            const std::vector<Image>& chain, Wrap wrap, TextureWriteOptions options, PixelType type) {
+                            const std::vector<const std::vector<Image>*>& chains, Wrap wrap, TextureWriteOptions options,
+                            PixelType type) {
     options.storage.pixelType = type;
     StoredChain stored;
     stored.pixelType = type;
     if (type == PixelType::Float) {  // the float chain itself; the writer still judges the container
-        stored.lookupError.assign(chain.size(), 0.0);
+        stored.lookupError.assign(chains.front()->size(), 0.0);
         return stored;
     }
     auto storage = planTexelStorage(outputs.front(), content, options);
@@ -30,24 +31,30 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Mip
     options.planned = TextureWriteOptions::Planned{type, storage->normalisation};
     for (size_t i = 1; i < outputs.size(); ++i)
         if (auto other = planTexelStorage(outputs[i], content, options); !other) return other.error();
-    stored.lookupError = worstLookupError(chain, wrap, storage->storeAndRead, options.threads);
+    for (const std::vector<Image>* chain : chains) {
+        const std::vector<double> errors = worstLookupError(*chain, wrap, storage->storeAndRead, options.threads);
+        if (stored.lookupError.empty()) stored.lookupError = errors;
+        for (size_t level = 0; level < errors.size(); ++level)
+            stored.lookupError[level] = std::max(stored.lookupError[level], errors[level]);
+    }
     return stored;
 }
 
 }  // namespace
 
 Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
-                                  const std::vector<Image>& chain, Wrap wrap, const TextureWriteOptions& options) {
+                                  const std::vector<const std::vector<Image>*>& chains, Wrap wrap,
+                                  const TextureWriteOptions& options) {
     const double tolerance = options.storage.tolerance;
-    if (!(tolerance > 0.0)) return measure(outputs, content, chain, wrap, options, options.storage.pixelType);
+    if (!(tolerance > 0.0)) return measure(outputs, content, chains, wrap, options, options.storage.pixelType);
     std::optional<StoredChain> best;
     for (const PixelType type : {PixelType::Half, PixelType::Uint16}) {  // two bytes a component
-        auto candidate = measure(outputs, content, chain, wrap, options, type);
+        auto candidate = measure(outputs, content, chains, wrap, options, type);
         if (!candidate || candidate->worst() > tolerance) continue;
         if (!best || candidate->worst() < best->worst()) best = std::move(*candidate);
     }
     if (best) return *best;
-    return measure(outputs, content, chain, wrap, options, PixelType::Float);
+    return measure(outputs, content, chains, wrap, options, PixelType::Float);
 }
 
 std::vector<ExrAttribute> lookupErrorAttributes(const StoredChain& stored) {

@@ -1,14 +1,16 @@
 // DDS files with the DX10 extended header (Microsoft's "DDS file layout" and DDS_HEADER_DXT10), written
 // and read by heightpack itself: magic "DDS ", the 124-byte DDS_HEADER (pixel format FourCC "DX10"), the
-// 20-byte DDS_HEADER_DXT10 (DXGI format, TEXTURE2D, array size 1), then every level, level 0 first,
-// rows tightly packed.
+// 20-byte DDS_HEADER_DXT10 (DXGI format, TEXTURE2D, array size: 1, or the layers of an array), then each
+// layer's every level, level 0 first, rows tightly packed (an array: layer 0's whole chain, then layer 1's).
 //
 // DDS has no key/value store. What heightpack records goes into nine of the header's eleven reserved
 // words (dwReserved1; NVIDIA's tools use words 9 and 10, which stay zero):
 //   [0] 'HPCK'  [1] record version 1  [2] layout (1 neighbour4, 2 plain, 3 normal, 4 fresnel, 5 normalXY,
 //       0 other)
 //   [3] wrap (1 periodic, 2 clamp)  [4] heightScale  [5] heightOffset (floats, when [6] bit 0)
-//   [6] flags: bit 0 height scale/offset present, bit 1 normalisation present
+//   [6] flags: bit 0 height scale/offset present, bit 1 normalisation present, bit 2 an array's layers
+//       Dx, Dy follow the heights, bit 3 an array's last layer is Foam (so the layers are, in this fixed
+//       order, heights, then Dx, Dy, then Foam: the order heightpack:layers names in a KTX2)
 //   [7] normalised offset  [8] normalised scale (uint16: value = offset + scale * u / 65535)
 // Everything else the EXR header and KTX2 key/values carry (filter, source, hash, version, ...) is lost.
 #include <algorithm>
@@ -16,6 +18,8 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
@@ -51,6 +55,17 @@ constexpr std::array<const char*, 5> kLayouts = {"neighbour4", "plain", "normal"
 // The record's wrap codes, 1 and up, in this order (the names come from Wrap's table).
 constexpr std::array<const char*, 2> kWraps = {nameOf(Wrap::Periodic), nameOf(Wrap::Clamp)};
 
+// Record flags.
+constexpr std::uint32_t kScaleOffsetFlag = 1, kNormalisationFlag = 2, kDisplacementFlag = 4, kFoamFlag = 8;
+
+// The layers the record's flags name, in their fixed order.
+std::vector<std::string> recordedLayers(std::uint32_t flags) {
+    std::vector<std::string> names = {layerName::heights};
+    if (flags & kDisplacementFlag) names.insert(names.end(), {layerName::dx, layerName::dy});
+    if (flags & kFoamFlag) names.emplace_back(layerName::foam);
+    return names;
+}
+
 std::uint32_t floatBits(float v) {
     std::uint32_t u;
     std::memcpy(&u, &v, 4);
@@ -74,10 +89,20 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     if (Status s = checkWritable(path); !s) return s;
     if (options.storage.supercompression != Supercompression::None)
         return cannotWrite(path, "DDS has no supercompression", "write it uncompressed, or as KTX2");
+    // An array's layers: only the fixed order the record's flags can name.
+    std::uint32_t layerFlags = 0;
+    for (const std::string& n : content.layerNames) {
+        if (n == layerName::dx) layerFlags |= kDisplacementFlag;
+        if (n == layerName::foam) layerFlags |= kFoamFlag;
+    }
+    if (!content.layerNames.empty() && content.layerNames != recordedLayers(layerFlags))
+        return Error{ErrorKind::Internal, path, "internal error: a DDS records only the layers heights, Dx, Dy, Foam, in that order",
+                     "please report this"};
     auto planned = detail::planEncoding(path, content, options);
     if (!planned) return planned.error();
     const detail::EncodePlan& plan = *planned;
     const TexelFormatInfo& f = plan.format;
+    const int layers = content.layerCount();
 
     std::array<std::uint32_t, 1 + 31 + 5> h{};  // magic, DDS_HEADER, DDS_HEADER_DXT10
     std::uint32_t* header = h.data() + 1;
@@ -96,11 +121,12 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     reserved[3] = codeOf(kWraps, findAttribute(text, attr::wrap.name));
     for (const ExrAttribute& a : content.attributes) {
         if (!std::holds_alternative<float>(a.value)) continue;
-        if (a.name == attr::heightScale.name) reserved[4] = floatBits(std::get<float>(a.value)), reserved[6] |= 1;
-        if (a.name == attr::heightOffset.name) reserved[5] = floatBits(std::get<float>(a.value)), reserved[6] |= 1;
+        if (a.name == attr::heightScale.name) reserved[4] = floatBits(std::get<float>(a.value)), reserved[6] |= kScaleOffsetFlag;
+        if (a.name == attr::heightOffset.name) reserved[5] = floatBits(std::get<float>(a.value)), reserved[6] |= kScaleOffsetFlag;
     }
+    reserved[6] |= layerFlags;
     if (plan.normalisation) {
-        reserved[6] |= 2;
+        reserved[6] |= kNormalisationFlag;
         reserved[7] = floatBits(plan.normalisation->offset);
         reserved[8] = floatBits(plan.normalisation->scale);
     }
@@ -113,7 +139,7 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     dx10[0] = f.dxgiFormat;
     dx10[1] = kTexture2D;
     dx10[2] = 0;  // not a cube map
-    dx10[3] = 1;  // array size
+    dx10[3] = static_cast<std::uint32_t>(layers);  // array size
     dx10[4] = 0;  // alpha mode unknown: alpha holds heights or a normal's w, not coverage
 
     TemporaryFile temp(path);
@@ -124,14 +150,15 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     if (!file) return failed("creating the file");
     if (std::fwrite(h.data(), 4, h.size(), file.get()) != h.size()) return failed("writing the header");
     long long rowsTotal = 0, rowsDone = 0;
-    for (int level = 0; level < plan.levels; ++level) rowsTotal += detail::levelSide(content.height, level);
+    for (int level = 0; level < plan.levels; ++level) rowsTotal += detail::levelSide(content.height, level) * layers;
     detail::BandEncoder encoder(path, content, plan, options.threads);
     const std::vector<std::uint8_t>& bytes = encoder.bytes();
-    for (int level = 0; level < plan.levels; ++level) {
+    for (int pass = 0; pass < layers * plan.levels; ++pass) {  // each layer's whole chain in turn
+        const int layer = pass / plan.levels, level = pass % plan.levels;
         const int lh = detail::levelSide(content.height, level);
         for (int y0 = 0; y0 < lh; y0 += kBandRows) {
             const int rows = std::min(kBandRows, lh - y0);
-            if (Status s = encoder.encode(level, y0, rows); !s) return s;
+            if (Status s = encoder.encode(level, y0, rows, layer); !s) return s;
             if (std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) return failed("writing a level");
             rowsDone += rows;
             if (options.progress) options.progress(double(rowsDone) / double(rowsTotal));
@@ -163,7 +190,9 @@ Result<GpuTexture> readDds(const std::string& path) {
     if (!format) return corrupt("DXGI format " + std::to_string(word(31)) + " is not one heightpack writes");
     t.format = *format;
     const TexelFormatInfo& f = texelFormatInfo(t.format);
-    if (word(32) != kTexture2D || word(34) > 1 || (word(33) & 0x4)) return corrupt("it is not a single 2D texture");
+    if (word(32) != kTexture2D || (word(33) & 0x4)) return corrupt("it is not a 2D texture or array");
+    if (word(34) > 64) return corrupt("it lists " + std::to_string(word(34)) + " layers, more than heightpack writes");
+    const int layers = word(34) > 1 ? int(word(34)) : 1;
     const std::uint32_t height = word(2), width = word(3);
     if (width == 0 || height == 0 || width > 65536 || height > 65536) return corrupt("its size is out of range");
     t.width = int(width);
@@ -171,29 +200,48 @@ Result<GpuTexture> readDds(const std::string& path) {
     const int levels = (word(1) & kMipMapCount) && word(6) > 0 ? int(std::min<std::uint32_t>(word(6), 64)) : 1;
     if (levels > fullChainLevels(t.width, t.height)) return corrupt("it lists more levels than its size allows");
 
+    std::uint32_t flags = 0;  // the record's, when it has one
     if (word(7) == kRecord && word(8) == 1) {
-        const std::uint32_t layout = word(9), wrap = word(10), flags = word(13);
+        const std::uint32_t layout = word(9), wrap = word(10);
+        flags = word(13);
         if (layout >= 1 && layout <= kLayouts.size()) t.keyValues.emplace_back(attr::layout.name, kLayouts[layout - 1]);
         if (wrap >= 1 && wrap <= kWraps.size()) t.keyValues.emplace_back(attr::wrap.name, kWraps[wrap - 1]);
-        if (flags & 1) {
+        if (flags & kScaleOffsetFlag) {
             t.keyValues.emplace_back(attr::heightScale.name, floatText(bitsFloat(word(11))));
             t.keyValues.emplace_back(attr::heightOffset.name, floatText(bitsFloat(word(12))));
         }
-        if ((flags & 2) && f.kind == ComponentKind::Unorm16) {
+        if ((flags & kNormalisationFlag) && f.kind == ComponentKind::Unorm16) {
             t.normalisation = Normalisation{bitsFloat(word(14)), bitsFloat(word(15))};
             t.keyValues.emplace_back(attr::normalisedOffset.name, floatText(t.normalisation->offset));
             t.keyValues.emplace_back(attr::normalisedScale.name, floatText(t.normalisation->scale));
         }
     }
+    if (layers > 1) {
+        // The layers the flags name, when they are this many; the attributes a KTX2 holding the same
+        // layers records: the companions laid out as the heights are.
+        const std::vector<std::string> recorded = recordedLayers(flags);
+        const bool named = int(recorded.size()) == layers;
+        t.layerNames = named ? recorded : layerNamesOf("", layers);
+        t.keyValues.emplace_back(attr::layers.name, layerList(t.layerNames));
+        const std::string heights = findAttribute(t.keyValues, attr::layout);
+        if (named && (flags & kDisplacementFlag)) t.keyValues.emplace_back(attr::displacement.name, heights);
+        if (named && (flags & kFoamFlag)) t.keyValues.emplace_back(attr::foam.name, heights);
+    }
+    // Each layer's chain in turn; gathered level by level, as a KTX2 level holds its layers.
+    t.levelBytes.resize(size_t(levels));
     size_t at = kDataStart;
-    for (int level = 0; level < levels; ++level) {
+    for (int pass = 0; pass < layers * levels; ++pass) {
+        const int level = pass % levels;
         const int w = levelSide(t.width, level), h = levelSide(t.height, level);
         const size_t n = size_t(w) * h * f.bytesPerTexel();
         if (n > b.size() - at) return corrupt("level " + std::to_string(level) + " is truncated");
-        t.levelBytes.emplace_back(b.begin() + std::ptrdiff_t(at), b.begin() + std::ptrdiff_t(at + n));
-        t.levels.push_back(decodeLevel(f, b.data() + at, w, h, t.normalisation));
+        t.levelBytes[size_t(level)].insert(t.levelBytes[size_t(level)].end(), b.begin() + std::ptrdiff_t(at),
+                                           b.begin() + std::ptrdiff_t(at + n));
         at += n;
     }
+    for (int level = 0; level < levels; ++level)
+        t.levels.push_back(decodeLayers(f, t.levelBytes[size_t(level)].data(), levelSide(t.width, level),
+                                        levelSide(t.height, level), layers, t.normalisation));
     return t;
 }
 

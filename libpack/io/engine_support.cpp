@@ -1,7 +1,9 @@
 // The loaders' behaviour behind every entry is cited in README, "Which engine loads what".
 #include "heightpack/io/engine_support.hpp"
 
+#include <string>
 #include <string_view>
+#include <utility>
 
 namespace heightpack {
 
@@ -139,6 +141,29 @@ EngineVerdict godot(FileKind c, Texel t, bool mipmappedExr, bool png16) {
     return verdict(EngineSupport::Unknown, "not a container heightpack knows Godot's loaders for");
 }
 
+// An array texture (the heights, Dx, Dy, foam as layers of one texture) in a loader that takes its format.
+EngineVerdict arrayOf(Engine engine, FileKind c, EngineVerdict single) {
+    if (single.support == EngineSupport::Refuses || single.support == EngineSupport::Unknown) return single;
+    switch (engine) {
+        case Engine::ThreeJs:  // only KTX2 gets here
+            return verdict(EngineSupport::Partial,
+                           "KTX2Loader makes a 2D DataTexture of an uncompressed file whatever its layerCount (arrays only "
+                           "for Basis files): layer 0, the heights, loads; the other layers stay unused in each level's data");
+        case Engine::Babylon:  // only DDS RGBA float or half gets here
+            return verdict(EngineSupport::Partial,
+                           "its DDS loader reads no array size: layer 0, the heights, loads as a 2D texture (with invertY = false)");
+        case Engine::Godot:
+            if (c == FileKind::Ktx2)
+                return verdict(EngineSupport::Refuses, "its KTX2 loader refuses array textures", "DDS of the same format");
+            return verdict(single.support, "its DDS loader makes a Texture2DArray of a DX10 array, the file's mip levels and all" +
+                                               (single.support == EngineSupport::Partial ? "; " + single.why : std::string()),
+                           single.alternative);
+        case Engine::Unreal:
+        case Engine::Unity: break;
+    }
+    return single;
+}
+
 }  // namespace
 
 EngineVerdict engineSupport(Engine engine, const TextureHeader& header, int levels) {
@@ -152,14 +177,15 @@ EngineVerdict engineSupport(Engine engine, const TextureHeader& header, int leve
         return verdict(EngineSupport::Unknown, "a texel format heightpack does not write: no entry for it");
     const bool mipmappedExr = c == FileKind::Exr && levels > 1;
     const bool png16 = c == FileKind::Png && header.pixelType == "uint16";
+    EngineVerdict single;
     switch (engine) {
-        case Engine::ThreeJs: return threeJs(c, texel, mipmappedExr, png16);
-        case Engine::Babylon: return babylon(c, texel, c == FileKind::Exr && header.tiled, png16);
-        case Engine::Unreal: return unreal(c, texel, mipmappedExr, png16);
-        case Engine::Unity: return unity(c, texel, mipmappedExr, png16);
-        case Engine::Godot: return godot(c, texel, mipmappedExr, png16);
+        case Engine::ThreeJs: single = threeJs(c, texel, mipmappedExr, png16); break;
+        case Engine::Babylon: single = babylon(c, texel, c == FileKind::Exr && header.tiled, png16); break;
+        case Engine::Unreal: single = unreal(c, texel, mipmappedExr, png16); break;
+        case Engine::Unity: single = unity(c, texel, mipmappedExr, png16); break;
+        case Engine::Godot: single = godot(c, texel, mipmappedExr, png16); break;
     }
-    return {};
+    return header.layerNames.empty() ? single : arrayOf(engine, c, std::move(single));
 }
 
 }  // namespace heightpack

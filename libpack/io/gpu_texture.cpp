@@ -2,6 +2,9 @@
 // writeDds, chosen by writeTexture from the container its caller decided).
 #include "heightpack/io/gpu_texture.hpp"
 
+#include <algorithm>
+#include <string>
+
 #include "texel_encode.hpp"
 
 namespace heightpack {
@@ -29,7 +32,17 @@ Result<TextureFile> readGpuTextureFile(const std::string& path) {
     if (texture->supercompression == Supercompression::Zstd) file.format += " zstd";
     file.pixelType = pixelTypeName(pixelTypeOf(texture->format));
     static const char* names[] = {"R", "G", "B", "A"};
-    for (int c = 0; c < f.channels; ++c) file.channelNames.push_back(names[c]);
+    file.layerNames = texture->layerNames;
+    for (size_t layer = 0; layer < std::max<size_t>(1, file.layerNames.size()); ++layer) {
+        // An array's channels as pack names an EXR's: the heights' R, G, B, A (Y when plain), then
+        // NAME.R ... (NAME when plain) for each further layer.
+        if (!file.layerNames.empty() && f.channels == 1) {
+            file.channelNames.push_back(layer == 0 ? "Y" : file.layerNames[layer]);
+            continue;
+        }
+        const std::string prefix = layer == 0 ? "" : file.layerNames[layer] + ".";
+        for (int c = 0; c < f.channels; ++c) file.channelNames.push_back(prefix + names[c]);
+    }
     file.attributes = texture->keyValues;
     file.levels = std::move(texture->levels);
     return file;

@@ -116,7 +116,10 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
         LevelInfo level;
         level.width = image.width;
         level.height = image.height;
-        level.gpuBytes = image.texelCount() * size_t(image.channels == 3 ? 4 : image.channels) *
+        // Per layer of an array: each stored in the texture's format.
+        const size_t layers = std::max<size_t>(1, file->layerNames.size());
+        const int perLayer = image.channels / int(layers);
+        level.gpuBytes = image.texelCount() * layers * size_t(perLayer == 3 ? 4 : perLayer) *
                          componentBytes(file->pixelType);
         const size_t index = info.levels.size();
         if (floatTexels) level.lookupError = 0.0;  // the float chain itself

@@ -1,11 +1,12 @@
 // KTX 2.0 files (Khronos KTX File Format Specification 2.0), written and read by heightpack itself:
 // Debian 12 has no libktx. The layout, in file order:
-//   identifier, header (vkFormat, typeSize, size, levelCount, supercompressionScheme), index (DFD, key/
+//   identifier, header (vkFormat, typeSize, size, layerCount, levelCount, supercompressionScheme), index (DFD, key/
 //   value data, no supercompression global data), level index (level 0 first), the Data Format Descriptor
 //   (one basic descriptor block, a sample per channel), key/value data (sorted by key, each entry padded
 //   to 4 bytes), then the levels' data, smallest level first, each aligned to lcm(texel size, 4) (1 when
-//   supercompressed). With Zstandard each level is one zstd frame; uncompressedByteLength is its size
-//   once inflated.
+//   supercompressed). An array's level holds every layer's image of that level, layer 0 first, and its
+//   layers' names are the key heightpack:layers. With Zstandard each level is one zstd frame (all its
+//   layers); uncompressedByteLength is its size once inflated.
 #include <zstd.h>
 
 #include <algorithm>
@@ -117,12 +118,13 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
         keyValues.emplace_back(kOffsetKey, detail::floatText(plan.normalisation->offset));
         keyValues.emplace_back(kScaleKey, detail::floatText(plan.normalisation->scale));
     }
+    if (!content.layerNames.empty()) keyValues.emplace_back(attr::layers.name, detail::layerList(content.layerNames));
     keyValues.emplace_back("KTXwriter", options.writer.empty() ? std::string("heightpack") : options.writer);
     // By convention the option of Khronos' `ktx` tool that gives the same supercompression: data in the
     // file, not a hint naming a flag of heightpack's (the marker tells floor_rules.sh so).
     if (zstd) keyValues.emplace_back("KTXwriterScParams", "--zstd " + std::to_string(options.storage.zstdLevel));  // floor_rules: data
 
-    const int levels = plan.levels;
+    const int levels = plan.levels, layers = content.layerCount();
     const std::vector<std::uint8_t> dfd = dataFormatDescriptor(f);
     const std::vector<std::uint8_t> kvd = keyValueData(keyValues);
     const size_t dfdOffset = kHeaderBytes + 24 * size_t(levels);
@@ -135,7 +137,7 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
     size_t at = dataStart;
     for (int level = levels - 1; level >= 0; --level) {
         rawLength[level] = std::uint64_t(detail::levelSide(content.width, level)) *
-                           detail::levelSide(content.height, level) * f.bytesPerTexel();
+                           detail::levelSide(content.height, level) * f.bytesPerTexel() * layers;
         at = alignUp(at, alignment);
         offset[level] = at;
         length[level] = rawLength[level];
@@ -149,7 +151,7 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
         put32(h, static_cast<std::uint32_t>(content.width));
         put32(h, static_cast<std::uint32_t>(content.height));
         put32(h, 0);  // pixelDepth: a 2D texture
-        put32(h, 0);  // layerCount: not an array
+        put32(h, content.layerNames.empty() ? 0 : static_cast<std::uint32_t>(layers));  // 0: not an array
         put32(h, 1);  // faceCount
         put32(h, static_cast<std::uint32_t>(levels));
         put32(h, zstd ? kSupercompressionZstd : 0);
@@ -184,7 +186,7 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
         return Error{ErrorKind::Internal, path, "internal error: Zstandard could not be set up", "please report this"};
     std::vector<std::uint8_t> packed(zstd ? ZSTD_CStreamOutSize() : 0);
     long long rowsTotal = 0, rowsDone = 0;
-    for (int level = 0; level < levels; ++level) rowsTotal += detail::levelSide(content.height, level);
+    for (int level = 0; level < levels; ++level) rowsTotal += detail::levelSide(content.height, level) * layers;
     size_t position = head.size();
     detail::BandEncoder encoder(path, content, plan, options.threads);
     const std::vector<std::uint8_t>& bytes = encoder.bytes();
@@ -197,15 +199,17 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
         // Each level one frame that records its size, as readers expect to allocate from it.
         if (zstd && ZSTD_isError(ZSTD_CCtx_setPledgedSrcSize(cctx.get(), rawLength[level])))
             return Error{ErrorKind::Internal, path, "internal error: Zstandard refused a level's size", "please report this"};
-        for (int y0 = 0; y0 < h; y0 += kBandRows) {
+        const int bandsPerLayer = (h + kBandRows - 1) / kBandRows;
+        for (int band = 0; band < layers * bandsPerLayer; ++band) {  // each layer's bands in turn
+            const int layer = band / bandsPerLayer, y0 = band % bandsPerLayer * kBandRows;
             const int rows = std::min(kBandRows, h - y0);
-            if (Status s = encoder.encode(level, y0, rows); !s) return s;
+            if (Status s = encoder.encode(level, y0, rows, layer); !s) return s;
             if (!zstd) {
                 if (!write(bytes.data(), bytes.size())) return failed("writing a level");
                 position += bytes.size();
             } else {
                 ZSTD_inBuffer in{bytes.data(), bytes.size(), 0};
-                const bool last = y0 + rows == h;
+                const bool last = layer + 1 == layers && y0 + rows == h;
                 for (bool done = false; !done;) {
                     ZSTD_outBuffer out{packed.data(), packed.size(), 0};
                     const size_t left = ZSTD_compressStream2(cctx.get(), &out, &in, last ? ZSTD_e_end : ZSTD_e_continue);
@@ -260,7 +264,9 @@ Result<GpuTexture> readKtx2(const std::string& path) {
     t.format = *format;
     const TexelFormatInfo& f = texelFormatInfo(t.format);
     if (width == 0 || height == 0 || width > 65536 || height > 65536) return corrupt("its size is out of range");
-    if (depth != 0 || layers != 0 || faces != 1) return corrupt("it is not a single 2D texture");
+    if (depth != 0 || faces != 1) return corrupt("it is not a 2D texture or array");
+    if (layers > 64) return corrupt("it lists " + std::to_string(layers) + " layers, more than heightpack writes");
+    const int layerCount = layers > 1 ? int(layers) : 1;
     if (scheme != 0 && scheme != kSupercompressionZstd)
         return corrupt("supercompression scheme " + std::to_string(scheme) + " is not supported");
     t.supercompression = scheme == kSupercompressionZstd ? Supercompression::Zstd : Supercompression::None;
@@ -286,6 +292,7 @@ Result<GpuTexture> readKtx2(const std::string& path) {
         t.keyValues.emplace_back(std::string(kv.substr(0, nul)), std::move(value));
         at = alignUp(at + 4 + n, 4);
     }
+    if (layerCount > 1) t.layerNames = layerNamesOf(findAttribute(t.keyValues, attr::layers), layerCount);
     const std::string off = findAttribute(t.keyValues, kOffsetKey), scale = findAttribute(t.keyValues, kScaleKey);
     if (f.kind == ComponentKind::Unorm16 && !off.empty() && !scale.empty()) {
         try {
@@ -299,7 +306,7 @@ Result<GpuTexture> readKtx2(const std::string& path) {
         const std::uint8_t* e = b.data() + kHeaderBytes + 24 * size_t(level);
         const std::uint64_t offset = get64(e), length = get64(e + 8), raw = get64(e + 16);
         const int w = levelSide(t.width, level), h = levelSide(t.height, level);
-        const std::uint64_t expected = std::uint64_t(w) * h * f.bytesPerTexel();
+        const std::uint64_t expected = std::uint64_t(w) * h * f.bytesPerTexel() * layerCount;
         if (offset > b.size() || length > b.size() - offset)
             return corrupt("level " + std::to_string(level) + " lies past the end of the file");
         if (raw != expected) return corrupt("level " + std::to_string(level) + " has the wrong size");
@@ -316,7 +323,7 @@ Result<GpuTexture> readKtx2(const std::string& path) {
             if (length != expected) return corrupt("level " + std::to_string(level) + " has the wrong size");
             bytes.assign(b.begin() + std::ptrdiff_t(offset), b.begin() + std::ptrdiff_t(offset + length));
         }
-        t.levels.push_back(decodeLevel(f, bytes.data(), w, h, t.normalisation));
+        t.levels.push_back(decodeLayers(f, bytes.data(), w, h, layerCount, t.normalisation));
         t.levelBytes.push_back(std::move(bytes));
     }
     return t;

@@ -13,7 +13,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <new>
 #include <optional>
+#include <vector>
 
 #include "heightpack/io/attributes.hpp"
 
@@ -300,13 +302,18 @@ Status checkReadable(const std::string& path) {
     return Done{};
 }
 
-std::string hashPixels(const Image& image) {
-    const XXH64_hash_t h = XXH3_64bits(image.pixels.data(), image.pixels.size() * sizeof(float));
+std::string hashPixels(const Image& image) { return hashPixels(std::vector<const Image*>{&image}); }
+
+std::string hashPixels(const std::vector<const Image*>& images) {
+    XXH3_state_t* state = XXH3_createState();
+    if (!state) throw std::bad_alloc();
+    XXH3_64bits_reset(state);
+    for (const Image* image : images) XXH3_64bits_update(state, image->pixels.data(), image->pixels.size() * sizeof(float));
+    const XXH64_hash_t h = XXH3_64bits_digest(state);
+    XXH3_freeState(state);
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
     return text;
 }
-
-
 
 }  // namespace heightpack

@@ -13,8 +13,11 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "heightpack/core/parallel.hpp"
+#include "heightpack/io/attributes.hpp"
 
 namespace heightpack::detail {
 
@@ -25,12 +28,12 @@ void putLe(std::uint8_t* dst, T value) {
     std::memcpy(dst, &value, sizeof value);  // every target heightpack builds for is little-endian
 }
 
-// Fills rows of level into band (sourceChannels floats a texel), in parallel.
-void fillBand(const MipChainSource& content, int level, int y0, int rows, int width, int channels, int threads,
-              std::vector<float>& band) {
+// Fills rows of a layer's level into band (sourceChannels floats a texel), in parallel.
+void fillBand(const MipChainSource& content, int layer, int level, int y0, int rows, int width, int channels,
+              int threads, std::vector<float>& band) {
     band.resize(size_t(rows) * width * channels);
     parallelFor(rows, threads, [&](int a, int b) {
-        content.fillRows(level, y0 + a, b - a, band.data() + size_t(a) * width * channels);
+        fillLayerRows(content, layer, level, y0 + a, b - a, band.data() + size_t(a) * width * channels);
     });
 }
 
@@ -159,6 +162,11 @@ Error notFinite(const std::string& path, int level) {
 
 }  // namespace
 
+void fillLayerRows(const MipChainSource& content, int layer, int level, int y0, int rows, float* dst) {
+    if (content.layerNames.empty()) content.fillRows(level, y0, rows, dst);
+    else content.fillLayerRows(layer, level, y0, rows, dst);
+}
+
 int fullChainLevels(int width, int height) {
     int levels = 1;
     while ((width >> levels) > 0 || (height >> levels) > 0) ++levels;
@@ -178,14 +186,16 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
         return plan;
     }
 
-    // One pass over the chain: the range (uint16) and what a half cannot hold.
+    // One pass over the chain, every layer of an array: the range (uint16: one normalisation for the
+    // whole texture, as a DDS header has room for one) and what a half cannot hold.
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     std::vector<float> band;
-    for (int level = 0; level < plan.levels; ++level) {
+    for (int pass = 0; pass < content.layerCount() * plan.levels; ++pass) {
+        const int layer = pass / plan.levels, level = pass % plan.levels;
         const int w = levelSide(content.width, level), h = levelSide(content.height, level);
         for (int y0 = 0; y0 < h; y0 += kBandRows) {
             const int rows = std::min(kBandRows, h - y0);
-            fillBand(content, level, y0, rows, w, plan.sourceChannels, options.threads, band);
+            fillBand(content, layer, level, y0, rows, w, plan.sourceChannels, options.threads, band);
             // The band's rows scanned on all threads: each its range and its first value that cannot be
             // stored; the first such value in row order is the one reported, whatever the thread count.
             std::vector<Scan> scans(static_cast<size_t>(rows));
@@ -201,8 +211,10 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
                 if (scan.bad != SIZE_MAX) {
                     const float v = band[scan.bad];
                     if (!std::isfinite(v)) return notFinite(path, level);
+                    const std::string where =
+                        content.layerNames.empty() ? "" : "layer " + content.layerNames[size_t(layer)] + ", ";
                     return badInput(path,
-                                    "level " + std::to_string(level) + " holds " + floatText(v) +
+                                    where + "level " + std::to_string(level) + " holds " + floatText(v) +
                                         ", beyond the largest half float (65504); nothing was written",
                                     "store float or uint16 pixels, or scale the heights down");
                 }
@@ -230,7 +242,7 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
     return plan;
 }
 
-Status BandEncoder::encode(int level, int y0, int rows) {
+Status BandEncoder::encode(int level, int y0, int rows, int layer) {
     const int w = levelSide(content_.width, level);
     const int from = plan_.sourceChannels;
     const size_t rowValues = size_t(w) * from, rowBytes = size_t(w) * plan_.format.bytesPerTexel();
@@ -242,7 +254,7 @@ Status BandEncoder::encode(int level, int y0, int rows) {
     parallelFor(rows, threads_, [&](int a, int b) {
         float* values = direct ? reinterpret_cast<float*>(bytes_.data() + size_t(a) * rowBytes)
                                : band_.data() + size_t(a) * rowValues;
-        content_.fillRows(level, y0 + a, b - a, values);
+        fillLayerRows(content_, layer, level, y0 + a, b - a, values);
         for (int r = a; r < b; ++r) {
             const float* row = values + size_t(r - a) * rowValues;
             finite[size_t(r)] = allFinite(row, rowValues);
@@ -299,6 +311,39 @@ Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int 
         }
     }
     return image;
+}
+
+Image decodeLayers(const TexelFormatInfo& format, const std::uint8_t* bytes, int width, int height, int layers,
+                   const std::optional<Normalisation>& normalisation) {
+    if (layers == 1) return decodeLevel(format, bytes, width, height, normalisation);
+    const int c = format.channels;
+    const size_t texels = size_t(width) * height, layerBytes = texels * format.bytesPerTexel();
+    Image all(width, height, c * layers);
+    for (int layer = 0; layer < layers; ++layer) {
+        const Image one = decodeLevel(format, bytes + layer * layerBytes, width, height, normalisation);
+        for (size_t t = 0; t < texels; ++t)
+            std::copy_n(one.pixels.data() + t * c, c, all.pixels.data() + (t * layers + layer) * c);
+    }
+    return all;
+}
+
+std::vector<std::string> layerNamesOf(const std::string& recorded, int layers) {
+    std::vector<std::string> names;
+    for (size_t at = 0; !recorded.empty() && at <= recorded.size();) {
+        const size_t comma = std::min(recorded.find(',', at), recorded.size());
+        names.push_back(recorded.substr(at, comma - at));
+        at = comma + 1;
+    }
+    if (int(names.size()) == layers) return names;
+    names = {layerName::heights};
+    for (int i = 1; i < layers; ++i) names.push_back("layer" + std::to_string(i));
+    return names;
+}
+
+std::string layerList(const std::vector<std::string>& names) {
+    std::string list;
+    for (const std::string& n : names) list.append(list.empty() ? "" : ",").append(n);
+    return list;
 }
 
 std::string floatText(float value) {

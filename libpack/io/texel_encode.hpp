@@ -29,6 +29,9 @@ inline int levelSide(int size, int level) { return size >> level > 0 ? size >> l
 // Levels of a full chain down to 1x1 (ROUND_DOWN, as the EXR writer).
 int fullChainLevels(int width, int height);
 
+// Fills rows of a level of content's layer: fillLayerRows for an array, fillRows (layer 0) otherwise.
+void fillLayerRows(const MipChainSource& content, int layer, int level, int y0, int rows, float* dst);
+
 struct EncodePlan {
     TexelFormatInfo format{};
     int sourceChannels = 0;
@@ -48,8 +51,9 @@ class BandEncoder {
 public:
     BandEncoder(const std::string& path, const MipChainSource& content, const EncodePlan& plan, int threads)
         : path_(path), content_(content), plan_(plan), threads_(threads) {}
-    // Fills rows [y0, y0 + rows) of level and encodes them into bytes(), rows * width * texel bytes.
-    Status encode(int level, int y0, int rows);
+    // Fills rows [y0, y0 + rows) of level (of layer, in an array) and encodes them into bytes(), rows *
+    // width * texel bytes.
+    Status encode(int level, int y0, int rows, int layer = 0);
     const std::vector<std::uint8_t>& bytes() const { return bytes_; }
 
 private:
@@ -93,6 +97,17 @@ float storeAndRead(const EncodePlan& plan, float value);
 // Decodes a level's bytes (little-endian) into a float image of the format's channels.
 Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int width, int height,
                   const std::optional<Normalisation>& normalisation);
+
+// Decodes a level that holds `layers` images of width x height one after the other (an array's level, as
+// a KTX2 stores it) into one image whose texel holds every layer's channels in turn, layer 0's first.
+Image decodeLayers(const TexelFormatInfo& format, const std::uint8_t* bytes, int width, int height, int layers,
+                   const std::optional<Normalisation>& normalisation);
+
+// The names of an array's `layers` layers from their recorded list (heightpack:layers, comma-separated);
+// "layer1", "layer2", ... after the first ("heights") where nothing, or a list of another length, is recorded.
+std::vector<std::string> layerNamesOf(const std::string& recorded, int layers);
+// names comma-separated, as heightpack:layers records them.
+std::string layerList(const std::vector<std::string>& names);
 
 // A float as text that reads back to the same float.
 std::string floatText(float value);

@@ -28,6 +28,9 @@ Status writeTexture(const TextureOutput& output, const MipChainSource& content, 
     const std::string& path = output.path;
     if (output.container == Container::Ktx2) return writeKtx2(path, content, options);
     if (output.container == Container::Dds) return writeDds(path, content, options);
+    // An EXR has no texture arrays: a caller writes an EXR's layers as channels NAME.R ... of one texture.
+    if (!content.layerNames.empty())
+        return Error{ErrorKind::Internal, path, "internal error: an EXR has no texture arrays", "please report this"};
     if (Status s = exrTakes(path, options); !s) return s;
     ExrWriteOptions exr;
     exr.compression = options.storage.exrCompression;

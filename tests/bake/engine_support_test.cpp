@@ -13,6 +13,7 @@
 #include "heightpack/io/image_write.hpp"
 #include "heightpack/io/info.hpp"
 
+#include "support/exr_levels.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -74,6 +75,37 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
             EXPECT_EQ(v.support, c.expected[e]) << c.output << " in " << nameOf(engines[e]) << ": " << v.why;
             EXPECT_FALSE(v.why.empty());
             // A refusal names a format the engine does load.
+            if (v.support == Refuses) {
+                EXPECT_FALSE(v.alternative.empty()) << c.output << " in " << nameOf(engines[e]);
+            }
+        }
+    }
+    // Array textures (pack --displacement --foam into KTX2 and DDS): three.js and Babylon.js load layer 0
+    // alone, Godot refuses a KTX2 array and loads a DDS one as a Texture2DArray (README's table, rows
+    // "array").
+    const Image y = makeImage(64, 64, smoothWave), d = makeImage(64, 64, [](int x, int) { return x / 64.0f - 0.5f; });
+    writeChannels(dir.file("sea.exr"), {"Y", "Dx", "Dy", "Foam"}, {&y, &d, &d, &y});
+    struct ArrayCase {
+        std::string output;
+        PixelType type;
+        std::string format;
+        std::vector<EngineSupport> expected;
+    };
+    for (const ArrayCase& c : {ArrayCase{"array.ktx2", PixelType::Float, "ktx2 VK_FORMAT_R32G32B32A32_SFLOAT", {Partial, Refuses, Refuses, Refuses, Refuses}},
+                               ArrayCase{"array.dds", PixelType::Half, "dds DXGI_FORMAT_R16G16B16A16_FLOAT", {Refuses, Partial, Unknown, Unknown, Loads}},
+                               ArrayCase{"array16.dds", PixelType::Uint16, "dds DXGI_FORMAT_R16G16B16A16_UNORM", {Refuses, Refuses, Unknown, Unknown, Partial}}}) {
+        PackOptions options;
+        options.displacement = options.foam = true;
+        options.storage.pixelType = c.type;
+        const auto made = packHeightMap(dir.file("sea.exr"), dir.file(c.output), options);
+        ASSERT_TRUE(made) << c.output << ": " << made.error().what;
+        const auto header = readTextureLayout(dir.file(c.output));
+        ASSERT_TRUE(header) << c.output;
+        EXPECT_EQ(header->format, c.format) << c.output;
+        EXPECT_EQ(header->layerNames.size(), 4u) << c.output;
+        for (size_t e = 0; e < std::size(engines); ++e) {
+            const EngineVerdict v = engineSupport(engines[e], *header, static_cast<int>(header->levelSizes.size()));
+            EXPECT_EQ(v.support, c.expected[e]) << c.output << " in " << nameOf(engines[e]) << ": " << v.why;
             if (v.support == Refuses) {
                 EXPECT_FALSE(v.alternative.empty()) << c.output << " in " << nameOf(engines[e]);
             }

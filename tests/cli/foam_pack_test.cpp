@@ -89,10 +89,10 @@ TEST(PackFoam, RefusesWhatCannotHoldIt) {
     EXPECT_EQ(none.err.rfind("heightpack: error: " + dir.file("sea.exr") + ": ", 0), 0u) << none.err;
     EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
     EXPECT_NE(none.err.find("Foam"), std::string::npos) << none.err;
-    // Four channels of a KTX2 or DDS texel cannot hold the heights with their foam: a usage error.
+    // A KTX2 or DDS output holds foam as an array layer: the input is judged the same way.
     for (const char* output : {"s.ktx2", "s.dds"}) {
         const ProcessResult gpu = heightpackRun({"pack", dir.file("sea.exr"), "--foam", "-o", dir.file(output)});
-        EXPECT_EQ(gpu.code, 2) << gpu.err;
+        EXPECT_EQ(gpu.code, 3) << gpu.err;
         EXPECT_EQ(std::count(gpu.err.begin(), gpu.err.end(), '\n'), 1) << gpu.err;
     }
     EXPECT_EQ(dir.listing(), (std::vector<std::string>{"sea.exr"}));

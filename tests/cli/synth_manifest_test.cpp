@@ -1,8 +1,9 @@
 // A manifest that bakes a whole sea (issue 15, point 7): [displacement.synth] with displacement = true
-// gives the texture `heightpack synth --displacement` then `pack --displacement` give, with foam = true
-// (issue 25) what `synth --foam` then `pack --foam` give, and with cascades = N the N tiles of `synth
-// --cascades`, each a layer of material.json at core's tile size. Each is checked against the command
-// line run on the same parameters, texel by texel, at every level.
+// A manifest that bakes a whole sea (issue 15, point 7): [displacement.synth] with displacement = true
+// gives the texture `heightpack synth --displacement` then `pack --displacement` give (an EXR's layers or
+// a KTX2 array's), with foam = true (issue 25) what `synth --foam` then `pack --foam` give, and with
+// cascades = N the N tiles of `synth --cascades`, each a layer of material.json at core's tile size. Each
+// is checked against the command line run on the same parameters, texel by texel, at every level.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include <fstream>
 
 #include "heightpack/core/cascades.hpp"
+#include "heightpack/io/gpu_texture.hpp"
 
 #include "support/exr_levels.hpp"
 #include "support/heightpack_process.hpp"
@@ -90,15 +92,26 @@ TEST(SynthManifest, DisplacementIsWhatSynthThenPackMake) {
     EXPECT_EQ(sea["loopPeriod"], 6.0);
     EXPECT_EQ(sea["tileSize"], 48.0);
 
-    // A .ktx2 holds four channels: the same manifest packs the heights alone there, and says so.
+    // A .ktx2 holds them as an array texture: layers heights, Dx, Dy, each level the very bytes pack
+    // --displacement writes into a .ktx2 of the same sea.
     std::string gpu = kChoppy;
     gpu.replace(gpu.find("choppiness = 0.8"), 16, "output = \"sea.ktx2\"");
     writeText(dir.file("gpu.toml"), gpu);
     const ProcessResult ktx = heightpackRun({"build", dir.file("gpu.toml"), "-q", "-o", dir.file("gpu")});
     ASSERT_EQ(ktx.code, 0) << ktx.err;
-    const nlohmann::json flat = material(dir.file("gpu"))["displacement"][0];
-    EXPECT_EQ(flat["texture"]["file"], "sea.ktx2");
-    EXPECT_FALSE(flat.contains("horizontalDisplacement"));
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--displacement", "-q", "-o", dir.file("cli/packed.ktx2")}).code, 0);
+    for (const char* frame : {"0000", "0001"}) {
+        auto built = readGpuTexture(dir.file(std::string("gpu/sea.") + frame + ".ktx2"));
+        auto single = readGpuTexture(dir.file(std::string("cli/packed.") + frame + ".ktx2"));
+        ASSERT_TRUE(built.ok() && single.ok()) << frame;
+        EXPECT_EQ(built->layerNames, (std::vector<std::string>{"heights", "Dx", "Dy"}));
+        EXPECT_EQ(built->layerNames, single->layerNames);
+        ASSERT_EQ(built->levelBytes.size(), 7u);
+        EXPECT_TRUE(built->levelBytes == single->levelBytes) << frame;
+    }
+    const nlohmann::json choppy = material(dir.file("gpu"))["displacement"][0];
+    EXPECT_EQ(choppy["texture"]["file"], "sea.ktx2");
+    EXPECT_EQ(choppy["horizontalDisplacement"], true);
 }
 
 // cascades = 3: three layers sea_c0..2, at the tile sizes core's cascadeBands plans, scrolling at the
@@ -208,6 +221,22 @@ TEST(SynthManifest, FoamIsWhatSynthThenPackMake) {
         EXPECT_FALSE(std::filesystem::exists(dir.file(std::string(folder) + "/.heightpack-synth"))) << folder;
     }
     EXPECT_EQ(material(dir.file("out"))["displacement"][0]["horizontalDisplacement"], true);
+    // Into a .ktx2: one array texture (heights, Dx, Dy, Foam), byte for byte pack's .ktx2 of the same frames.
+    std::string gpu = foamy;
+    gpu.replace(gpu.find("choppiness = 1.3"), 16, "choppiness = 1.3\noutput = \"sea.ktx2\"");
+    writeText(dir.file("gpu.toml"), gpu);
+    const ProcessResult ktx = heightpackRun({"build", dir.file("gpu.toml"), "-q", "-o", dir.file("gpu")});
+    ASSERT_EQ(ktx.code, 0) << ktx.err;
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--displacement", "--foam", "-q", "-o",
+                   dir.file("cli/packed.ktx2")}).code, 0);
+    for (const char* frame : {"0000", "0001", "0002"}) {
+        const auto array = readGpuTexture(dir.file(std::string("gpu/sea.") + frame + ".ktx2"));
+        ASSERT_TRUE(array.ok()) << frame;
+        EXPECT_EQ(array->layerNames, (std::vector<std::string>{"heights", "Dx", "Dy", "Foam"}));
+        EXPECT_EQ(readBytes(dir.file(std::string("gpu/sea.") + frame + ".ktx2")),
+                  readBytes(dir.file(std::string("cli/packed.") + frame + ".ktx2"))) << frame;
+    }
+    EXPECT_EQ(material(dir.file("gpu"))["displacement"][0]["foam"], true);
 
     if (runProcess({"ninja", "--version"}).code != 0) GTEST_SKIP() << "no ninja to run the plan";
     const ProcessResult plan = heightpackRun({"build", dir.file("foamy.toml"), "-o", dir.file("planned"), "--plan", "ninja"});

@@ -1,6 +1,8 @@
 // The tests' independent reader of the KTX2 and DDS files heightpack writes. Prints one JSON document:
-// the format, level 0's size, the key/values, and per level its size, the SHA-256 of its bytes (as
-// stored, after inflating) and its values decoded to numbers.
+// the format, level 0's size, the layer count (1 unless an array texture), the key/values, and per level
+// its size, the SHA-256 of its bytes (as stored, after inflating) and its values decoded to numbers. An
+// array's level holds every layer's image in turn, layer 0 first (as a KTX2 level stores them; a DDS
+// stores each layer's whole chain in turn, gathered here level by level).
 //   node read_container.mjs FILE.ktx2 NPM_DIR   KTX2 through ktx-parse (npm); zstd levels through the
 //                                               zstd command-line tool (Debian's zstd package)
 //   node read_container.mjs FILE.dds NPM_DIR    DDS: the header through nvddsinfo (NVIDIA Texture Tools,
@@ -77,7 +79,8 @@ if (file.toLowerCase().endsWith('.ktx2')) {
   });
   console.log(JSON.stringify({
     reader: 'ktx-parse', format: name, channels, typeSize: ktx.typeSize, width: ktx.pixelWidth,
-    height: ktx.pixelHeight, levelCount: ktx.levelCount, supercompressionScheme: ktx.supercompressionScheme,
+    height: ktx.pixelHeight, layerCount: Math.max(1, ktx.layerCount), levelCount: ktx.levelCount,
+    supercompressionScheme: ktx.supercompressionScheme,
     dfd: {
       colorModel: dfd.colorModel, colorPrimaries: dfd.colorPrimaries, transferFunction: dfd.transferFunction,
       bytesPlane0: dfd.bytesPlane[0],
@@ -94,19 +97,33 @@ if (file.toLowerCase().endsWith('.ktx2')) {
   const format = field(/DXGI Format: \d+ \((\w+)\)/);
   const [kind, channels] = dxgi[format] ?? ['f32', 1];
   const texelBytes = (kind === 'f32' ? 4 : 2) * channels;
-  let at = 4 + 124 + 20;  // magic, DDS_HEADER, DDS_HEADER_DXT10; then level 0 first, rows packed
-  const levels = [];
-  for (let i = 0; i < levelCount; ++i) {
-    const w = Math.max(1, width >> i), h = Math.max(1, height >> i);
-    const data = bytes.subarray(at, at + w * h * texelBytes);
-    if (data.byteLength !== w * h * texelBytes) throw new Error(`level ${i} is truncated`);
-    levels.push({ width: w, height: h, byteLength: data.byteLength, sha256: sha256(data), values: decode(data, kind) });
-    at += data.byteLength;
+  // DDS_HEADER_DXT10 (after the magic and the 124-byte header): dxgiFormat, resourceDimension, miscFlag,
+  // arraySize, miscFlags2. nvddsinfo prints the array size too: both must agree.
+  const layerCount = Math.max(1, bytes.readUInt32LE(4 + 124 + 12));
+  const printedArraySize = info.match(/Array size: (\d+)/m);
+  if (printedArraySize && Math.max(1, Number(printedArraySize[1])) !== layerCount)
+    throw new Error(`nvddsinfo prints array size ${printedArraySize[1]}, the header holds ${layerCount}`);
+  let at = 4 + 124 + 20;  // magic, DDS_HEADER, DDS_HEADER_DXT10; then each layer's chain, level 0 first, rows packed
+  const parts = Array.from({ length: levelCount }, () => []);
+  for (let layer = 0; layer < layerCount; ++layer) {
+    for (let i = 0; i < levelCount; ++i) {
+      const w = Math.max(1, width >> i), h = Math.max(1, height >> i);
+      const data = bytes.subarray(at, at + w * h * texelBytes);
+      if (data.byteLength !== w * h * texelBytes) throw new Error(`layer ${layer} level ${i} is truncated`);
+      parts[i].push(data);
+      at += data.byteLength;
+    }
   }
   if (at !== bytes.byteLength) throw new Error(`${bytes.byteLength - at} bytes after the last level`);
+  const levels = parts.map((layers, i) => {
+    const data = Buffer.concat(layers);
+    return { width: Math.max(1, width >> i), height: Math.max(1, height >> i), byteLength: data.byteLength,
+             sha256: sha256(data), values: decode(data, kind) };
+  });
   // heightpack's record in dwReserved1 (README, "GPU containers"): 'HPCK', version 1, then the layout
-  // code and the wrap code, and with flag bit 1 (word 6) a uint16 file's normalised offset and scale
-  // (words 7 and 8, floats). Read from the header's bytes as documented, not through heightpack.
+  // code and the wrap code, and in word 6 the flags: bit 1 the uint16 normalisation in words 7 and 8,
+  // bits 2 and 3 the layers after the heights (Dx, Dy; Foam). Read from the header's bytes as
+  // documented, not through heightpack.
   const keyValues = {};
   const header = new DataView(bytes.buffer, bytes.byteOffset + 4, 124);
   const reserved = (i) => header.getUint32(4 * (7 + i), true);
@@ -115,11 +132,16 @@ if (file.toLowerCase().endsWith('.ktx2')) {
     const wraps = [undefined, 'periodic', 'clamp'];
     if (layouts[reserved(2)]) keyValues['heightpack:layout'] = layouts[reserved(2)];
     if (wraps[reserved(3)]) keyValues['heightpack:wrap'] = wraps[reserved(3)];
-    if (reserved(6) & 2) {
+    const flags = reserved(6);
+    if (flags & 2) {  // the uint16 normalisation: value = offset + scale * u / 65535, two floats
       keyValues['heightpack:normalisedOffset'] = String(header.getFloat32(4 * (7 + 7), true));
       keyValues['heightpack:normalisedScale'] = String(header.getFloat32(4 * (7 + 8), true));
     }
+    if (layerCount > 1) {
+      const names = ['heights', ...(flags & 4 ? ['Dx', 'Dy'] : []), ...(flags & 8 ? ['Foam'] : [])];
+      if (names.length === layerCount) keyValues['heightpack:layers'] = names.join(',');
+    }
   }
   console.log(JSON.stringify({ reader: 'nvddsinfo', format: `DXGI_FORMAT_${format}`, channels, width, height,
-                               levelCount, keyValues, levels }));
+                               layerCount, levelCount, keyValues, levels }));
 }

@@ -47,4 +47,16 @@ std::vector<Level> readLevels(const std::string& path) {
     return levels;
 }
 
+void writeChannels(const std::string& path, const std::vector<std::string>& names, const std::vector<const Image*>& channels) {
+    ASSERT_EQ(names.size(), channels.size());
+    const Image& first = *channels.front();
+    OIIO::ImageSpec spec(first.width, first.height, int(names.size()), OIIO::TypeDesc::FLOAT);
+    spec.channelnames = names;
+    std::vector<float> pixels;
+    for (size_t i = 0; i < first.texelCount(); ++i)
+        for (const Image* c : channels) pixels.push_back(c->pixels[i]);
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close()) << path;
+}
+
 }  // namespace heightpack::test

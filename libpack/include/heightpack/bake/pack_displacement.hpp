@@ -3,12 +3,14 @@
 // reads the height, with the same two lerps.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "heightpack/bake/pack_job.hpp"
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/exr_write.hpp"
+#include "heightpack/io/pixel_type.hpp"
 
 namespace heightpack {
 
@@ -25,8 +27,9 @@ struct DisplacementMaps {
 // apply), mip-mapped with options.mip, and packed when options.layout is Neighbour4.
 Result<DisplacementMaps> packDisplacement(Image d, const SourceInfo& source, const PackOptions& options);
 
-// A chain written beside the heights in the same EXR: its layer name (Dx, Dy, Foam) and its plain levels,
-// one channel each, the sizes of the heights' levels.
+// A chain written beside the heights in the same file (an EXR's further channels, a KTX2's or DDS's
+// further array layers): its layer name (Dx, Dy, Foam: see layerName in attributes.hpp) and its plain
+// levels, one channel each, the sizes of the heights' levels.
 struct CompanionChain {
     std::string name;
     const std::vector<Image>* levels = nullptr;
@@ -47,6 +50,13 @@ void fillPackedWithCompanions(MipChainSource& content, const std::vector<Image>&
 // Makes content the plain chain with its companions: channels Y, then each companion's NAME.
 void fillPlainWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
                              std::vector<CompanionChain> companions);
+// Makes content an array texture (KTX2, DDS): layer "heights", then one layer per companion, each packed
+// (or, when not packed, plain: channel Y) exactly as the EXR's layers are.
+void fillArrayWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
+                             std::vector<CompanionChain> companions, Wrap wrap, bool packed);
+// The one of the three that container holds: an EXR's channels, a KTX2's or DDS's layers.
+void fillWithCompanions(MipChainSource& content, Container container, const std::vector<Image>& heights,
+                        std::vector<CompanionChain> companions, Wrap wrap, bool packed);
 
 }  // namespace detail
 

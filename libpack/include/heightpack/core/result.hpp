@@ -39,8 +39,8 @@ enum class Fix {
     AddFoam,                // foam coverage asked of a map without it: make the map with its Foam channel
                             // (a synthesised EXR with foam), or leave the foam out
     OnePlainChain,          // a second plain chain asked beside a plain layout's output: ask for it once
-    CompanionsNeedExr,      // displacement or foam asked of a KTX2 or DDS output (four channels at most):
-                            // write an EXR; fixArgs: {"displacement" or "foam"}
+    CompanionsNeedExr,      // displacement or foam asked of synth's flat output that is no EXR (a PNG or
+                            // TIFF has no further channels): write an EXR; fixArgs: {"displacement" or "foam"}
     RgbNormals,             // xy normals asked where only rgb fit; fixArgs: {"png"} (an 8-bit PNG has no mip
                             // levels) or {"alpha"} (two channels leave no alpha)
     VarianceNeedsLevels,    // slope variance in alpha asked of a one-level PNG: write a mip-mapped texture

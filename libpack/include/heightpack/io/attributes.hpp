@@ -53,6 +53,11 @@ inline constexpr AttributeKey<std::string> displacement{"heightpack:displacement
 // holds it packed as the heights are (Foam.R = F(i,j), Foam.G = F(i+1,j), ...), "plain" when channel Foam
 // holds it unpacked. Absent: the file holds no foam.
 inline constexpr AttributeKey<std::string> foam{"heightpack:foam"};
+// Array textures (KTX2 layerCount, DDS arraySize): the layers' names in order, comma-separated, e.g.
+// "heights,Dx,Dy,Foam" (names in layerName below). Each layer is a whole texture of the file's format,
+// laid out as the file's layout (heights), displacement (Dx, Dy) and foam (Foam) attributes say. A KTX2
+// records it as a key/value; a DDS in its header's record (see dds.cpp); readers report it either way.
+inline constexpr AttributeKey<std::string> layers{"heightpack:layers"};
 // 16-bit normalised textures (KTX2, DDS): value = normalisedOffset + normalisedScale * u / 65535.
 inline constexpr AttributeKey<float> normalisedOffset{"heightpack:normalisedOffset"};
 inline constexpr AttributeKey<float> normalisedScale{"heightpack:normalisedScale"};
@@ -114,6 +119,15 @@ inline constexpr AttributeKey<std::string> tileMatch{"heightpack:tileMatch"};  /
 // Seam previews.
 inline constexpr AttributeKey<float> threshold{"heightpack:threshold"};
 }  // namespace attr
+
+// The layers heightpack writes into an array texture, in this order when present: the heights, the
+// horizontal displacement's Dx and Dy, the foam coverage (the companions keep their EXR layers' names).
+namespace layerName {
+inline constexpr const char* heights = "heights";
+inline constexpr const char* dx = "Dx";
+inline constexpr const char* dy = "Dy";
+inline constexpr const char* foam = "Foam";
+}  // namespace layerName
 
 // The word a header holds for an enum value: its table name, except that a variance normal map has
 // always said "slopeVariance" in its header (the manifest and material.json say "variance").

@@ -48,7 +48,8 @@ struct EngineVerdict {
 };
 
 // The verdict for a file whose header is `header` (as readTextureLayout or readFileInfo give it: its
-// format names the container and, for KTX2 and DDS, the texel format) with `levels` mip levels.
+// format names the container and, for KTX2 and DDS, the texel format; its layerNames an array texture)
+// with `levels` mip levels.
 EngineVerdict engineSupport(Engine engine, const TextureHeader& header, int levels);
 
 }  // namespace heightpack

@@ -39,6 +39,13 @@ struct MipChainSource {
     // Writes `rows` rows of level `level` starting at y0 into dst (levelWidth * channels floats a row).
     std::function<void(int level, int y0, int rows, float* dst)> fillRows;
     std::vector<ExrAttribute> attributes;
+    // An array texture (KTX2 layerCount, DDS arraySize; an EXR has none and holds layers as channels
+    // NAME.R ... instead): each layer's name in order, every layer of the same size and of channelNames,
+    // its rows filled by fillLayerRows(layer, level, y0, rows, dst) as fillRows fills a single texture's.
+    // Empty: a single texture, filled by fillRows.
+    std::vector<std::string> layerNames;
+    std::function<void(int layer, int level, int y0, int rows, float* dst)> fillLayerRows;
+    int layerCount() const { return layerNames.empty() ? 1 : static_cast<int>(layerNames.size()); }
 };
 
 struct ExrWriteOptions {

@@ -1,7 +1,8 @@
 // GPU containers an engine loads as they are: KTX2 (Khronos KTX 2.0) and DDS (DX10 extended header).
 // Both take the same description as the EXR writer (MipChainSource: level-0 size, channels, rows on
 // demand, the heightpack:* attributes), write every mip level in the chosen pixel type, and appear
-// atomically. KTX2 carries the attributes as key/values; DDS has no key/value store, so it records only
+// atomically; both write texture arrays (MipChainSource::layerNames: heights, Dx, Dy, foam as layers of
+// one texture). KTX2 carries the attributes as key/values; DDS has no key/value store, so it records only
 // a few of them in its header's reserved words (see dds.cpp).
 #pragma once
 
@@ -64,8 +65,15 @@ struct GpuTexture {
     Supercompression supercompression = Supercompression::None;
     int width = 0;
     int height = 0;
-    std::vector<std::vector<std::uint8_t>> levelBytes;  // level 0 first, as stored (after inflating)
-    std::vector<Image> levels;  // level 0 first; half widened, 16-bit normalised mapped back to values
+    // An array texture: its layers' names, in order (heightpack:layers, or as the DDS record implies);
+    // empty for a single texture.
+    std::vector<std::string> layerNames;
+    // Level 0 first, as stored (after inflating); an array's level holds each layer's image in turn,
+    // layer 0 first, as a KTX2 level does (a DDS stores each layer's whole chain in turn: reordered).
+    std::vector<std::vector<std::uint8_t>> levelBytes;
+    // Level 0 first; half widened, 16-bit normalised mapped back to values. An array's texel holds every
+    // layer's channels in turn, layer 0's first (16 channels for four RGBA layers).
+    std::vector<Image> levels;
     std::optional<Normalisation> normalisation;  // how uint16 texels were mapped, when recorded
     Attributes keyValues;  // KTX2: every key/value, in file order; DDS: what its header records
 };

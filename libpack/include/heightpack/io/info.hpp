@@ -41,6 +41,10 @@ struct TextureHeader {
     std::string format;     // OpenImageIO's format name
     std::string pixelType;  // of the file's channels: "float", "half", "uint16", ...
     std::vector<std::string> channelNames;
+    // An array texture's layers (KTX2, DDS), in order; empty for a single texture. Its channels are then
+    // named as the EXR holding the same layers names them: the heights' R, G, B, A (Y when plain), then
+    // each further layer's NAME.R ... (NAME when plain).
+    std::vector<std::string> layerNames;
     bool tiled = false;
     int tileWidth = 0;
     int tileHeight = 0;

@@ -85,5 +85,8 @@ Status checkFinite(const Image& image, const std::string& path, int channel = 0,
 
 // A 64-bit hash (XXH3) of an image's texel values, as 16 hex digits; identical pixels give the same hash.
 std::string hashPixels(const Image& image);
+// The same over several images' values in turn (the heights, then the channels kept beside them): the
+// hash of their concatenation, so one image gives hashPixels(image).
+std::string hashPixels(const std::vector<const Image*>& images);
 
 }  // namespace heightpack
