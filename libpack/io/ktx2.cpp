@@ -30,6 +30,7 @@ namespace {
 
 constexpr std::uint8_t kIdentifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
 constexpr std::uint32_t kSupercompressionZstd = 2;
+constexpr std::uint64_t kZstdMostBlockBytes = 128 << 10;  // ZSTD_BLOCKSIZE_MAX
 constexpr size_t kHeaderBytes = 80;  // identifier + header + index
 constexpr const char* kOffsetKey = attr::normalisedOffset.name;
 constexpr const char* kScaleKey = attr::normalisedScale.name;
@@ -315,6 +316,11 @@ Result<GpuTexture> readKtx2(const std::string& path) {
             const unsigned long long size = ZSTD_getFrameContentSize(b.data() + offset, length);
             if (size != expected && size != ZSTD_CONTENTSIZE_UNKNOWN)
                 return corrupt("level " + std::to_string(level) + " is not a Zstandard frame of the level's size");
+            // Nor more than its frame can hold, checked before the level is allocated (a frame that does not
+            // state its size could claim terabytes): a Zstandard block inflates to at most 128 KiB, and the
+            // smallest (a run) takes 4 bytes.
+            if (expected / kZstdMostBlockBytes > length / 4 + 1)
+                return corrupt("level " + std::to_string(level) + " claims more than its Zstandard frame can hold");
             bytes.resize(expected);
             const size_t got = ZSTD_decompress(bytes.data(), bytes.size(), b.data() + offset, length);
             if (ZSTD_isError(got) || got != expected)

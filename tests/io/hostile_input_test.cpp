@@ -4,12 +4,14 @@
 // JPEG that made OpenImageIO's IPTC parser read past its buffer is the regression test for that.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <zstd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "heightpack/io/info.hpp"
+#include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/read.hpp"
 
 #include "support/test_support.hpp"
@@ -112,6 +114,40 @@ TEST_F(HostileHeaders, ATinyFileClaimingAHugeImageIsRefusedFromItsHeader) {
     // tiff_huge_alloc.tif's shape: a valid TIFF header claiming hundreds of channels in a few hundred bytes.
     const std::string why = refusal(readBytes(kHostile + "tiff_huge_alloc.tif"), "huge.tif");
     EXPECT_NE(why.find("bytes can hold"), std::string::npos) << why;
+}
+
+TEST_F(HostileHeaders, AKtx2LevelClaimingMoreThanItsZstandardFrameCanHoldIsRefusedBeforeItIsAllocated) {
+    // A 65536^2 RGBA float level (64 GiB) whose zstd frame does not state its size (a stream flushed before
+    // its end) and holds 64 bytes: refused from the header, where the level used to be allocated first.
+    std::vector<unsigned char> frame(1024);
+    {
+        ZSTD_CCtx* c = ZSTD_createCCtx();
+        std::vector<unsigned char> raw(64, 7);
+        ZSTD_inBuffer in{raw.data(), raw.size(), 0};
+        ZSTD_outBuffer out{frame.data(), frame.size(), 0};
+        ASSERT_FALSE(ZSTD_isError(ZSTD_compressStream2(c, &out, &in, ZSTD_e_flush)));
+        ZSTD_inBuffer none{nullptr, 0, 0};
+        ASSERT_EQ(ZSTD_compressStream2(c, &out, &none, ZSTD_e_end), 0u);
+        frame.resize(out.pos);
+        ZSTD_freeCCtx(c);
+    }
+    ASSERT_EQ(ZSTD_getFrameContentSize(frame.data(), frame.size()), ZSTD_CONTENTSIZE_UNKNOWN);
+    std::vector<unsigned char> b = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+    auto put32 = [&](uint32_t v) { for (int i = 0; i < 4; ++i) b.push_back((v >> (8 * i)) & 0xff); };
+    auto put64 = [&](uint64_t v) { for (int i = 0; i < 8; ++i) b.push_back((v >> (8 * i)) & 0xff); };
+    const uint32_t side = 65536;
+    for (uint32_t v : {109u /* R32G32B32A32_SFLOAT */, 4u, side, side, 0u, 0u, 1u, 1u, 2u /* zstd */, 0u, 0u, 0u, 0u}) put32(v);
+    put64(0);
+    put64(0);
+    put64(104);  // the level: after the 80-byte header and the 24-byte index
+    put64(frame.size());
+    put64(uint64_t(side) * side * 16);
+    b.insert(b.end(), frame.begin(), frame.end());
+    writeBytes(dir.file("huge.ktx2"), b);
+    auto texture = readGpuTextureFile(dir.file("huge.ktx2"));
+    ASSERT_FALSE(texture);
+    EXPECT_EQ(texture.error().kind, ErrorKind::BadInput);
+    EXPECT_NE(texture.error().what.find("more than its Zstandard frame can hold"), std::string::npos) << texture.error().what;
 }
 
 // Dropping a JPEG's metadata segments changes no pixel: heightpack's heights are OpenImageIO's decode of
