@@ -147,23 +147,34 @@ Profiles profilesOf(const Grid& g, bool squared, int threads) {
     return p;
 }
 
-// A summed-area table of q tiled 2x2, so that the sum over any circular square is four lookups.
+// A summed-area table of q, so that the sum over any circular square is at most four rectangles of four
+// lookups each. Made on all threads: the rows' running sums, then the columns' (each sum in one order).
 struct TiledSums {
     int w, h;
-    std::vector<double> sat;
-    explicit TiledSums(const Grid& q) : w(q.w), h(q.h), sat(size_t(2 * q.w + 1) * (2 * q.h + 1), 0.0) {
-        for (int y = 0; y < 2 * h; ++y) {
-            const double* row = &q.v[size_t(y < h ? y : y - h) * w];  // no modulo per texel
-            for (int x = 0; x < 2 * w; ++x) at(x + 1, y + 1) = row[x < w ? x : x - w] + at(x, y + 1) + at(x + 1, y) - at(x, y);
-        }
+    std::vector<double> sat;  // (w + 1) x (h + 1): sat(x, y) is the sum over [0, x) x [0, y)
+    TiledSums(const Grid& q, int threads) : w(q.w), h(q.h), sat(size_t(q.w + 1) * (q.h + 1), 0.0) {
+        parallelFor(h, threads, [&](int begin, int end) {
+            for (int y = begin; y < end; ++y) {
+                double* row = &sat[size_t(y + 1) * (w + 1)];
+                for (int x = 0; x < w; ++x) row[x + 1] = row[x] + q.at(x, y);
+            }
+        });
+        constexpr int kColumns = 64;
+        parallelFor((w + kColumns) / kColumns, threads, [&](int begin, int end) {
+            for (int y = 1; y <= h; ++y)
+                for (int x = begin * kColumns; x < std::min(w + 1, end * kColumns); ++x) at(x, y) += at(x, y - 1);
+        });
     }
-    double& at(int x, int y) { return sat[size_t(y) * (2 * w + 1) + x]; }
-    double at(int x, int y) const { return sat[size_t(y) * (2 * w + 1) + x]; }
-    // The sum over the side x side square whose corner is (x0, y0), both taken modulo the tile.
+    double& at(int x, int y) { return sat[size_t(y) * (w + 1) + x]; }
+    double at(int x, int y) const { return sat[size_t(y) * (w + 1) + x]; }
+    double rectangle(int x0, int y0, int x1, int y1) const { return at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0); }
+    // The sum over the side x side square (side at most the tile's) whose corner is (x0, y0), both taken
+    // modulo the tile: the parts before and after each wrap line.
     double square(int x0, int y0, int side) const {
         x0 = (x0 % w + w) % w;
         y0 = (y0 % h + h) % h;
-        return at(x0 + side, y0 + side) - at(x0, y0 + side) - at(x0 + side, y0) + at(x0, y0);
+        const int xEnd = std::min(w, x0 + side), xWrap = x0 + side - xEnd, yEnd = std::min(h, y0 + side), yWrap = y0 + side - yEnd;
+        return rectangle(x0, y0, xEnd, yEnd) + rectangle(0, y0, xWrap, yEnd) + rectangle(x0, 0, xEnd, yWrap) + rectangle(0, 0, xWrap, yWrap);
     }
 };
 
@@ -327,7 +338,7 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
         for (size_t i = size_t(begin) * q.w; i < size_t(end) * q.w; ++i)
             q.v[i] = sd > 1e-12 ? ((q.v[i] - mean) / sd) * ((q.v[i] - mean) / sd) : 0.0;
     });
-    const TiledSums sums(q);
+    const TiledSums sums(q, options.threads);
     const Profiles profiles = profilesOf(q, false, options.threads);
     look.blobs = std::max({ringScore(profiles.columns, reachX, 0.05), ringScore(profiles.rows, reachY, 0.05),
                            cornerScore(sums, std::max(2, std::min(w, h) / 32)), cornerScore(sums, std::max(2, std::min(w, h) / 16))});
