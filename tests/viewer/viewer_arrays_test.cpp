@@ -222,3 +222,43 @@ TEST(ViewerArrays, AManifestsArraysOpenFromMaterialJsonAndDrawAsItsExr) {
         EXPECT_EQ(p.max, 0) << container;
     }
 }
+
+// A looping sequence of arrays plays as the EXR sequence does: at a time between two frames the grid blends
+// both, each decoded with its own file's range (uint16 frames are normalised one by one).
+TEST(ViewerArrays, ASequenceOfArraysBlendsItsFramesAsTheExrSequence) {
+    ScratchDir dir;
+    const ProcessResult synth = runProcess({HEIGHTPACK_EXE, "synth", "--wind", "14m/s", "--tile-size", "32m", "--size", "64",
+                                            "--frames", "2", "--loop", "8s", "--displacement", "--foam", "-q", "-o",
+                                            dir.file("seq.exr")});
+    ASSERT_EQ(synth.code, 0) << synth.err;
+    for (const std::string out : {"seq_float.exr", "seq_float.ktx2", "seq_uint16.ktx2"}) {
+        const std::string type = out.substr(4, out.find('.') - 4);
+        const ProcessResult pack = runProcess({HEIGHTPACK_EXE, "pack", dir.file("seq.exr"), "--displacement", "--foam",
+                                               "--pixel-type", type, "-q", "-o", dir.file(out)});
+        ASSERT_EQ(pack.code, 0) << out << ": " << pack.err;
+    }
+    double rounding = 0;  // the worst recorded lookup error of the uint16 frames
+    for (const char* frame : {"seq_uint16.0000.ktx2", "seq_uint16.0001.ktx2"}) {
+        auto ktx2 = readGpuTexture(dir.file(frame));
+        ASSERT_TRUE(ktx2);
+        rounding = std::max(rounding, std::stod(findAttribute(ktx2->keyValues, attr::maxLookupError)));
+    }
+    // t = 2.5 s of the 8 s loop: 62% of the way from frame 0 to frame 1.
+    const auto sequenceGrid = [&](const std::string& sequence) {
+        const ViewRun run = viewWithoutDisplay({dir.file(sequence), "--time", "2.5", "--camera", "10,6,5,30,-25", "--tile-size",
+                                                "32", "--amplitude", "1", "--choppiness", "1.5", "--size", "160x120",
+                                                "--grid-heights", dir.file("grid.exr")});
+        EXPECT_EQ(run.code, 0) << sequence << ": " << run.err;
+        return readGridHeights(dir.file("grid.exr"));
+    };
+    const GridHeights exr = sequenceGrid("seq_float.####.exr");
+    const GridDifference same = differ(exr, sequenceGrid("seq_float.####.ktx2"));
+    const GridDifference uint16 = differ(exr, sequenceGrid("seq_uint16.####.ktx2"));
+    std::printf("sequence: float KTX2 within %g m and %g m, uint16 KTX2 within %.3g m and %.3g m (recorded %.3g) of the EXR's\n",
+                same.height, same.shift, uint16.height, uint16.shift, rounding);
+    EXPECT_EQ(same.height, 0.0);
+    EXPECT_EQ(same.shift, 0.0);
+    EXPECT_LE(uint16.height, 2 * rounding * 1.001 + 1e-6);
+    EXPECT_LE(uint16.shift, 1.5 * rounding * 1.001 + 1e-6);
+    EXPECT_GT(uint16.height, 0.0) << "uint16 rounds: a grid equal to the float one would mean the test compared nothing";
+}
