@@ -4,6 +4,7 @@
 // array draws what the EXR of its type draws, pixel for pixel, and its grid (--grid-heights, the GPU's
 // heights and shifts of every vertex) is the EXR's. The EXR's own picture changes when its foam or its
 // shift is left out, and its Dx differs from its Dy, so an array whose layers were dropped or swapped fails.
+// Plain arrays (--layout plain) give the packed one's grid, and a sequence of arrays blends as the EXRs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -44,6 +45,12 @@ void packSea(const ScratchDir& dir) {
                                                    "--pixel-type", type, "-q", "-o", out});
             ASSERT_EQ(pack.code, 0) << out << ": " << pack.err;
         }
+    // And plain (one channel a layer, packed in the viewer as it packs a plain file's heights), in float.
+    for (const std::string ext : {"ktx2", "dds"}) {
+        const ProcessResult pack = runProcess({HEIGHTPACK_EXE, "pack", dir.file("sea.exr"), "--displacement", "--foam",
+                                               "--layout", "plain", "-q", "-o", dir.file("sea_plain." + ext)});
+        ASSERT_EQ(pack.code, 0) << pack.err;
+    }
 }
 
 // One camera and time, close over the choppy, foamy water; the map at 32 m a tile as synthesised.
@@ -171,6 +178,11 @@ TEST(ViewerArrays, EveryArraysGridStandsAndShiftsAsItsExrs) {
             EXPECT_EQ(same.height, 0.0) << map << ": the EXR of its type";
             EXPECT_EQ(same.shift, 0.0) << map << ": the EXR of its type";
         }
+    }
+    for (const std::string map : {"sea_plain.ktx2", "sea_plain.dds"}) {
+        const GridDifference d = differ(exrFloat, grid(dir, map));
+        EXPECT_EQ(d.height, 0.0) << map << ": packed in the viewer, the values pack wrote";
+        EXPECT_EQ(d.shift, 0.0) << map;
     }
 }
 
