@@ -5,21 +5,14 @@
 
 #include <epoxy/gl.h>
 
-#include <vector>
-
-#include "heightpack/core/image.hpp"
+#include "scene.hpp"
 
 namespace heightpack::view {
 
-// One frame's packed Dx and Dy chains (the same levels).
-struct ShiftFrame {
-    const std::vector<Image>* x = nullptr;
-    const std::vector<Image>* y = nullptr;
-};
-
-// A GL_TEXTURE_2D_ARRAY of RGBA32F layers, two per frame, nearest: the shader does the filtering from one
-// texelFetch per layer, as for the heights. Every frame must hold the same levels.
-GLuint uploadShiftArray(const std::vector<ShiftFrame>& frames);
+// A GL_TEXTURE_2D_ARRAY of the frames' packed Dx, Dy in the type they were stored in (RGBA32F, RGBA16F or
+// RGBA16: the shader applies each frame's shiftX.decode), two layers per frame, nearest: the shader does
+// the filtering from one texelFetch per layer, as for the heights. 0 for a map without Dx, Dy.
+GLuint uploadShiftArray(const HeightLayer& layer);
 
 // A 1x1 two-layer array of zeros, bound to the samplers of maps without Dx, Dy.
 GLuint uploadZeroShift();

@@ -6,15 +6,14 @@
 
 #include <epoxy/gl.h>
 
-#include <vector>
-
-#include "heightpack/core/image.hpp"
 #include "scene.hpp"
 
 namespace heightpack::view {
 
-// A GL_TEXTURE_2D_ARRAY, R32F, one layer per frame of layer (every frame's foam: the same levels and
-// sizes), trilinear, repeating or clamped to the edge as the map's wrap says. 0 for a map without foam.
+// A GL_TEXTURE_2D_ARRAY, one channel in the type the frames' foam was stored in (R32F, R16F or R16: the
+// shader applies each frame's foam.decode after filtering, which is linear in the texels), one layer per
+// frame of layer (every frame's foam: the same levels and sizes), trilinear, repeating or clamped to the
+// edge as the map's wrap says. 0 for a map without foam.
 GLuint uploadFoamCoverage(const HeightLayer& layer);
 
 }  // namespace heightpack::view

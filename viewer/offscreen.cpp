@@ -57,7 +57,8 @@ PassTimes benchFrames(const ViewerOptions& o, const RenderSettings& settings, Re
 
 nlohmann::ordered_json bytesJson(const TextureBytes& b) {
     return {{"packed", b.packed}, {"plain", b.plain}, {"gather", b.gather},          {"normals", b.normals},
-            {"fresnel", b.fresnel}, {"foam", b.foam}, {"foamCoverage", b.foamCoverage}, {"total", b.total()}};
+            {"fresnel", b.fresnel}, {"foam", b.foam}, {"foamCoverage", b.foamCoverage}, {"shift", b.shift},
+            {"total", b.total()}};
 }
 
 // The samplers the water program's vertex and fragment stages read (Renderer::samplers), each at most 16,
@@ -104,8 +105,8 @@ void printBench(const ViewerOptions& o, const Renderer& renderer, const ContextI
         std::printf("  lookup %-20s water %8.3f / %8.3f   combine %8.3f / %8.3f\n", lookupName(lookup), t.water, t.waterWall,
                     t.combine, t.combineWall);
     std::printf("GPU bytes: packed %lld, plain %lld, gather %lld, normals %lld, Fresnel %lld, foam %lld, foam coverage %lld, "
-                "total %lld\n",
-                b.packed, b.plain, b.gather, b.normals, b.fresnel, b.foam, b.foamCoverage, b.total());
+                "Dx and Dy %lld, total %lld\n",
+                b.packed, b.plain, b.gather, b.normals, b.fresnel, b.foam, b.foamCoverage, b.shift, b.total());
 }
 
 // One two-pass frame, and the combine pass's heights and horizontal shifts with what places them: the

@@ -96,7 +96,7 @@ bool Renderer::init(std::string& error, bool gather) {
     HeightLayer none;  // a 1x1 one-frame array of no foam, bound to the samplers of maps without it
     none.foam = true;
     none.frames.resize(1);
-    none.frames[0].foam = {Image(1, 1, 1, 0.0f)};
+    none.frames[0].foam = storeFloats({Image(1, 1, 1, 0.0f)});
     zeroCoverage_ = uploadFoamCoverage(none);
     glGetIntegerv(GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, &samplerLimits_.vertex);
     glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &samplerLimits_.fragment);
@@ -203,9 +203,12 @@ void Renderer::bindLayers(GLuint program, const RenderSettings& s, float time) {
         }
         glUniform2i(glGetUniformLocation(program, indexed("uLayerFrame", k).c_str()), current, next);
         glUniform1f(glGetUniformLocation(program, indexed("uLayerBlend", k).c_str()), blend);
-        const Normalisation a = has ? l->decode[size_t(current)] : Normalisation{};
-        const Normalisation b = has ? l->decode[size_t(next)] : Normalisation{};
-        glUniform4f(glGetUniformLocation(program, indexed("uLayerDecode", k).c_str()), a.offset, a.scale, b.offset, b.scale);
+        const LayerTextures::FrameDecode identity, &a = has ? l->decode[size_t(current)] : identity,
+                                                   &b = has ? l->decode[size_t(next)] : identity;
+        using D = LayerTextures::FrameDecode;
+        for (auto [name, part] : {std::pair{"uLayerDecode", &D::heights}, {"uShiftDecode", &D::shift}, {"uCoverageDecode", &D::foam}})
+            glUniform4f(glGetUniformLocation(program, indexed(name, k).c_str()), (a.*part).offset, (a.*part).scale,
+                        (b.*part).offset, (b.*part).scale);
     }
     // A program without one of these arrays (the combine pass reads no coverage) finds location -1: a no-op.
     glUniform1iv(glGetUniformLocation(program, "uHeights"), kMaxLayers, heights);
@@ -275,7 +278,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
         set(tiledProgram_, "uMap", int(kTiledMap));
         set(tiledProgram_, "uTiles", glm::vec2(s.tiles));
         set(tiledProgram_, "uRange", glm::vec2(scene_->layers[0].minStored, scene_->layers[0].maxStored));
-        const Normalisation d = layers_[0].decode[0];
+        const Normalisation d = layers_[0].decode[0].heights;
         set(tiledProgram_, "uDecode", glm::vec2(d.offset, d.scale));
         set(tiledProgram_, "uSeamLines", int(s.seamLines));
         set(tiledProgram_, "uViewport", glm::vec2(width, height));

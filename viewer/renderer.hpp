@@ -122,8 +122,9 @@ struct TextureBytes {
     long long plain = 0;    // one-channel chains (the reference lookup)
     long long gather = 0;   // one-channel atlases (the gather lookup), with a 4.0 context only
     long long normals = 0, fresnel = 0, foam = 0;
-    long long foamCoverage = 0;  // baked foam coverage (R32F arrays, every frame of every map with it)
-    long long total() const { return packed + plain + gather + normals + fresnel + foam + foamCoverage; }
+    long long foamCoverage = 0;  // baked foam coverage (one-channel arrays, every frame of every map with it)
+    long long shift = 0;    // packed Dx, Dy chains, every frame of every map with them
+    long long total() const { return packed + plain + gather + normals + fresnel + foam + foamCoverage + shift; }
 };
 
 class Renderer {
@@ -171,7 +172,13 @@ private:
     struct LayerTextures {
         GLuint packed = 0, plain = 0, gather = 0;
         GLuint shift = 0;                   // Dx, Dy, two layers a frame (displacement_gl.hpp), or 0
-        std::vector<Normalisation> decode;  // per frame: sampled texels to the file's values, the same for all three
+        // Per frame: sampled texels to the file's values. heights: the same for the packed and plain
+        // chains and the atlas; shift, foam: for Dx, Dy and the coverage (an array texture's layers share
+        // its type and normalisation; an EXR's go up as floats).
+        struct FrameDecode {
+            Normalisation heights, shift, foam;
+        };
+        std::vector<FrameDecode> decode;
         int frames = 1;
         GLuint foamCoverage = 0;            // every frame's baked foam, one array layer each (foam_gl.hpp), or 0
         int levels = 0;

@@ -96,13 +96,15 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
                       frame.packed.height != layer.frames[0].packed.height))
             return badInput(files[f], "differs in size from the sequence's first frame", "make every frame the same size");
         // The frames share one array texture on the GPU: one texel type for all.
-        if (f > 0 && (frame.packed.kind != layer.frames[0].packed.kind || frame.plain.kind != layer.frames[0].plain.kind))
+        const HeightFrame& first = f > 0 ? layer.frames[0] : frame;
+        if (frame.packed.kind != first.packed.kind || frame.plain.kind != first.plain.kind ||
+            frame.shiftX.kind != first.shiftX.kind || frame.foam.kind != first.foam.kind)
             return badInput(files[f], "differs in pixel type from the sequence's first frame",
                             "write every frame with the same pixel type");
-        if (f > 0 && frame.shiftX.empty() != layer.frames[0].shiftX.empty())
+        if (f > 0 && frame.shiftX.levels.empty() != layer.frames[0].shiftX.levels.empty())
             return badInput(files[f], "differs from the sequence's first frame in holding Dx, Dy",
                             "make every frame with the displacement, or none");
-        if (f > 0 && frame.foam.empty() != layer.frames[0].foam.empty())
+        if (f > 0 && frame.foam.levels.empty() != layer.frames[0].foam.levels.empty())
             return badInput(files[f], "differs from the sequence's first frame in holding foam",
                             "make every frame with foam, or none");
         layer.frames.push_back(std::move(frame));
@@ -117,8 +119,8 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
         layer.minStored = std::min(layer.minStored, frame.minStored);
         layer.maxStored = std::max(layer.maxStored, frame.maxStored);
     }
-    layer.horizontal = !layer.frames[0].shiftX.empty();
-    layer.foam = !layer.frames[0].foam.empty();
+    layer.horizontal = !layer.frames[0].shiftX.levels.empty();
+    layer.foam = !layer.frames[0].foam.levels.empty();
     // Waves move about the map's mean: the 1x1 level of the first frame, whatever the map's units.
     layer.midStored = layer.frames[0].meanStored;
     return layer;

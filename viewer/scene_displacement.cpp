@@ -4,6 +4,7 @@
 
 #include "heightpack/bake/pack_displacement.hpp"
 #include "heightpack/core/pack.hpp"
+#include "heightpack/io/attributes.hpp"
 #include "heightpack/io/displacement_read.hpp"
 
 namespace heightpack::view {
@@ -12,6 +13,13 @@ Status takeDisplacement(const std::string& path, ViewerTexture& file, Wrap wrap,
     const std::string stored = findAttribute(file.attributes, attr::displacement);
     if (stored.empty()) return Done{};
     const bool packed = stored == "neighbour4";
+    if (!file.layers.empty()) {  // an array texture: its layers Dx, Dy as stored
+        const StoredChain *x = file.layer(layerName::dx), *y = file.layer(layerName::dy);
+        if (!x || !y) return badInput(path, "records a displacement but has no layers Dx and Dy", "pack it again");
+        frame.shiftX = packed ? *x : packStoredNeighbour4(*x, wrap);
+        frame.shiftY = packed ? *y : packStoredNeighbour4(*y, wrap);
+        return Done{};
+    }
     const auto index = [&](const std::string& name) {
         const auto it = std::find(file.channelNames.begin(), file.channelNames.end(), name);
         return it == file.channelNames.end() ? -1 : static_cast<int>(it - file.channelNames.begin());
@@ -26,12 +34,15 @@ Status takeDisplacement(const std::string& path, ViewerTexture& file, Wrap wrap,
                 return badInput(path, "records a displacement but has no channel " + n, "pack it again");
             out->push_back(index(n));
         }
+    std::vector<Image> shiftX, shiftY;
     for (Image& level : file.levels) {
-        Image shiftX = selectChannels(level, x), shiftY = selectChannels(level, y);
-        frame.shiftX.push_back(packed ? std::move(shiftX) : packNeighbour4(shiftX, wrap));
-        frame.shiftY.push_back(packed ? std::move(shiftY) : packNeighbour4(shiftY, wrap));
+        Image levelX = selectChannels(level, x), levelY = selectChannels(level, y);
+        shiftX.push_back(packed ? std::move(levelX) : packNeighbour4(levelX, wrap));
+        shiftY.push_back(packed ? std::move(levelY) : packNeighbour4(levelY, wrap));
         level = selectChannels(level, h);
     }
+    frame.shiftX = storeFloats(shiftX);
+    frame.shiftY = storeFloats(shiftY);
     file.stored.reset();  // its texels hold all twelve (or three) channels
     return Done{};
 }
@@ -43,8 +54,8 @@ Status packDisplacementOf(const std::string& path, const LoadOptions& load, cons
     if (!d) return d.error();
     auto maps = packDisplacement(std::move(*d), source, pack);
     if (!maps) return maps.error();
-    frame.shiftX = std::move(maps->packedX);
-    frame.shiftY = std::move(maps->packedY);
+    frame.shiftX = storeFloats(maps->packedX);
+    frame.shiftY = storeFloats(maps->packedY);
     return Done{};
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "heightpack/bake/pack_foam.hpp"
+#include "heightpack/io/attributes.hpp"
 #include "heightpack/io/foam_read.hpp"
 
 namespace heightpack::view {
@@ -10,6 +11,12 @@ namespace heightpack::view {
 Status takeFoam(const std::string& path, ViewerTexture& file, HeightFrame& frame) {
     const std::string stored = findAttribute(file.attributes, attr::foam);
     if (stored.empty()) return Done{};
+    if (!file.layers.empty()) {  // an array texture: its layer Foam as stored, F(i, j) of a packed one
+        const StoredChain* foam = file.layer(layerName::foam);
+        if (!foam) return badInput(path, "records foam but has no layer Foam", "pack it again");
+        frame.foam = foam->channels == 1 ? *foam : firstChannel(*foam);
+        return Done{};
+    }
     const std::string name = stored == "neighbour4" ? "Foam.R" : "Foam";
     const auto at = std::find(file.channelNames.begin(), file.channelNames.end(), name);
     if (at == file.channelNames.end()) return badInput(path, "records foam but has no channel " + name, "pack it again");
@@ -23,15 +30,12 @@ Status takeFoam(const std::string& path, ViewerTexture& file, HeightFrame& frame
         kept.push_back(static_cast<int>(c));
         keptNames.push_back(n);
     }
+    std::vector<Image> coverage;
     for (Image& level : file.levels) {
-        Image coverage(level.width, level.height, 1), rest(level.width, level.height, static_cast<int>(kept.size()));
-        for (size_t t = 0; t < level.texelCount(); ++t) {
-            coverage.pixels[t] = level.pixels[t * level.channels + foam];
-            for (size_t c = 0; c < kept.size(); ++c) rest.pixels[t * kept.size() + c] = level.pixels[t * level.channels + kept[c]];
-        }
-        frame.foam.push_back(std::move(coverage));
-        level = std::move(rest);
+        coverage.push_back(selectChannels(level, {foam}));
+        level = selectChannels(level, kept);
     }
+    frame.foam = storeFloats(coverage);
     file.channelNames = std::move(keptNames);
     file.stored.reset();  // its texels hold the Foam channels too
     return Done{};
@@ -44,7 +48,7 @@ Status foamChainOf(const std::string& path, const LoadOptions& load, const Sourc
     if (!coverage) return coverage.error();
     auto chain = foamChain(std::move(*coverage), source, pack);
     if (!chain) return chain.error();
-    frame.foam = std::move(*chain);
+    frame.foam = storeFloats(*chain);
     return Done{};
 }
 

@@ -44,17 +44,16 @@ std::string Renderer::uploadLayers(const Scene& scene) {
                    " array layers, over GL_MAX_ARRAY_TEXTURE_LAYERS " + std::to_string(maxLayers) + " here";
         LayerTextures t;
         std::vector<const StoredChain*> packed, plain;
-        std::vector<ShiftFrame> shifts;
         for (const HeightFrame& frame : layer.frames) {
             packed.push_back(&frame.packed);
             plain.push_back(&frame.plain);
-            t.decode.push_back(frame.plain.decode);
-            if (layer.horizontal) shifts.push_back({&frame.shiftX, &frame.shiftY});
+            // Dx and Dy of one file share a decode: an EXR's are floats, an array's layers one normalisation.
+            t.decode.push_back({frame.plain.decode, frame.shiftX.decode, frame.foam.decode});
         }
         // Packed and gather: nearest, since the shader filters. Plain: GL_LINEAR, the reference.
         t.packed = uploadStoredArray(packed, false, layer.wrap);
         t.plain = uploadStoredArray(plain, true, layer.wrap);
-        if (layer.horizontal) t.shift = uploadShiftArray(shifts);
+        t.shift = uploadShiftArray(layer);
         if (gather_ && gatherProblem_.empty()) {
             std::vector<GatherAtlas> atlases;
             for (const HeightFrame& frame : layer.frames) atlases.push_back(buildGatherAtlas(frame.plain, layer.wrap));
@@ -110,10 +109,10 @@ std::string Renderer::upload(const Scene& scene) {
     bytes_.normals = view::textureBytes(normalTexture_);
     bytes_.fresnel = view::textureBytes(fresnelTexture_);
     bytes_.foam = view::textureBytes(foamTexture_);
-    // R32F: four bytes a texel of every level of every frame (textureBytes reads 2D textures, not arrays).
-    for (const HeightLayer& layer : scene.layers)
-        for (const HeightFrame& frame : layer.frames)
-            for (const Image& level : frame.foam) bytes_.foamCoverage += static_cast<long long>(level.texelCount()) * 4;
+    for (const LayerTextures& l : layers_) {
+        bytes_.foamCoverage += view::textureBytes(l.foamCoverage, GL_TEXTURE_2D_ARRAY);
+        bytes_.shift += view::textureBytes(l.shift, GL_TEXTURE_2D_ARRAY);
+    }
     checkGl("Renderer::upload");
     return {};
 }

@@ -1,9 +1,44 @@
 #include "texture_reader.hpp"
 
+#include <numeric>
+
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/pixel_type.hpp"
 
 namespace heightpack::view {
+
+namespace {
+
+// Layer `layer` of an array's stored chain: each level holds every layer's image in turn (GpuTexture's
+// levelBytes, a DDS's reordered so), so a layer is one slice of each level.
+StoredChain layerOf(const StoredChain& array, int layer) {
+    StoredChain one = array;
+    for (size_t l = 0; l < array.levels.size(); ++l) {
+        const size_t bytes = size_t(array.levelWidth(int(l))) * size_t(array.levelHeight(int(l))) * size_t(array.bytesPerTexel());
+        const auto first = array.levels[l].begin() + static_cast<std::ptrdiff_t>(bytes * size_t(layer));
+        one.levels[l].assign(first, first + static_cast<std::ptrdiff_t>(bytes));
+    }
+    return one;
+}
+
+// Splits an array texture into layer 0 (levels, stored) and its further layers (ViewerTexture::layers).
+void splitLayers(ViewerTexture& texture, const std::vector<std::string>& names) {
+    const StoredChain array = std::move(*texture.stored);
+    for (size_t n = 1; n < names.size(); ++n) texture.layers.push_back({names[n], layerOf(array, int(n))});
+    texture.stored = layerOf(array, 0);
+    // A decoded texel holds every layer's channels in turn, layer 0's first.
+    std::vector<int> heights(size_t(array.channels));
+    std::iota(heights.begin(), heights.end(), 0);
+    for (Image& level : texture.levels) level = selectChannels(level, heights);
+}
+
+}  // namespace
+
+const StoredChain* ViewerTexture::layer(const std::string& name) const {
+    for (const Layer& l : layers)
+        if (l.name == name) return &l.texels;
+    return nullptr;
+}
 
 Result<ViewerTexture> readViewerTexture(const std::string& path) {
     ViewerTexture texture;
@@ -13,6 +48,7 @@ Result<ViewerTexture> readViewerTexture(const std::string& path) {
         texture.levels = std::move(gpu->levels);
         texture.attributes = std::move(gpu->keyValues);
         texture.stored = storeGpuTexture(*gpu);
+        if (gpu->layerNames.size() > 1) splitLayers(texture, gpu->layerNames);
         return texture;
     }
     auto file = readTextureFile(path, true);

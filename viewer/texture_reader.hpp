@@ -19,6 +19,16 @@ struct ViewerTexture {
     std::optional<StoredChain> stored;  // KTX2, DDS and half EXR: the texels as stored
     Attributes attributes;              // the EXR header, KTX2 key/values, or what a DDS header records
     std::vector<std::string> channelNames;  // of levels' channels, where the file names them (EXR)
+    // A KTX2 or DDS array texture (pack --displacement, --foam) is split into its layers: levels and stored
+    // then hold layer 0, the heights, alone, as a texture without the other layers has them, and each
+    // further layer (Dx, Dy, Foam) is here by name, its texels as stored, so it goes to the GPU in the
+    // file's type as the heights do. Empty for any other file.
+    struct Layer {
+        std::string name;
+        StoredChain texels;
+    };
+    std::vector<Layer> layers;
+    const StoredChain* layer(const std::string& name) const;
     // An 8- or 16-bit integer image read through OpenImageIO (a painted PNG): values in [0, 1] that stand
     // for something else (a normal's 0.5 + 0.5 n, an sRGB colour). KTX2 and DDS normalised texels are
     // already mapped back through their recorded scale and offset, so this is false for them.

@@ -3,7 +3,6 @@
 // the shader put it and asks loadMaterialSampler's sampler for the same point, time and footprint; with
 // choppy maps, it also asks for the height over the vertex's displaced position, which the sampler finds
 // by inverting the shift.
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,34 +23,6 @@ using namespace heightpack;
 using namespace heightpack::test;
 
 namespace {
-
-struct GridHeights {
-    int segments = 0, rings = 0;
-    std::vector<float> heights, shiftX, shiftY;  // ring-major: channels Y, Dx, Dy
-    float cameraX = 0, cameraY = 0, cameraZ = 0, pixelAngle = 0, innerRadius = 0, ringScale = 0, waterLevel = 0, time = 0;
-};
-
-GridHeights readGridHeights(const std::string& path) {
-    GridHeights g;
-    auto in = OIIO::ImageInput::open(path);
-    EXPECT_TRUE(in) << path;
-    if (!in) return g;
-    const OIIO::ImageSpec& spec = in->spec();
-    g.segments = spec.width;
-    g.rings = spec.height;
-    for (auto [name, values] : {std::pair{"Y", &g.heights}, std::pair{"Dx", &g.shiftX}, std::pair{"Dy", &g.shiftY}}) {
-        const int channel = spec.channelindex(name);
-        EXPECT_GE(channel, 0) << path << " has no channel " << name;
-        if (channel < 0) return g;
-        values->resize(size_t(g.segments) * g.rings);
-        EXPECT_TRUE(in->read_image(0, 0, channel, channel + 1, OIIO::TypeDesc::FLOAT, values->data()));
-    }
-    auto number = [&](const char* name) { return spec.get_float_attribute(std::string("heightpack:") + name, NAN); };
-    g.cameraX = number("cameraX"), g.cameraY = number("cameraY"), g.cameraZ = number("cameraZ");
-    g.pixelAngle = number("pixelAngle"), g.innerRadius = number("gridInnerRadius"), g.ringScale = number("gridRingScale");
-    g.waterLevel = number("waterLevel"), g.time = number("time");
-    return g;
-}
 
 struct Agreement {
     double worst = 0.0;       // metres: heights at the vertex's undisplaced position

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 extern char** environ;
 
@@ -73,6 +74,28 @@ Difference compare(const Picture& a, const Picture& b, int tolerance) {
     }
     d.fractionOver = double(over) / std::max<size_t>(1, a.rgb.size());
     return d;
+}
+
+GridHeights readGridHeights(const std::string& path) {
+    GridHeights g;
+    auto in = OIIO::ImageInput::open(path);
+    EXPECT_TRUE(in) << path;
+    if (!in) return g;
+    const OIIO::ImageSpec& spec = in->spec();
+    g.segments = spec.width;
+    g.rings = spec.height;
+    for (auto [name, values] : {std::pair{"Y", &g.heights}, std::pair{"Dx", &g.shiftX}, std::pair{"Dy", &g.shiftY}}) {
+        const int channel = spec.channelindex(name);
+        EXPECT_GE(channel, 0) << path << " has no channel " << name;
+        if (channel < 0) return g;
+        values->resize(size_t(g.segments) * g.rings);
+        EXPECT_TRUE(in->read_image(0, 0, channel, channel + 1, OIIO::TypeDesc::FLOAT, values->data()));
+    }
+    auto number = [&](const char* name) { return spec.get_float_attribute(std::string("heightpack:") + name, NAN); };
+    g.cameraX = number("cameraX"), g.cameraY = number("cameraY"), g.cameraZ = number("cameraZ");
+    g.pixelAngle = number("pixelAngle"), g.innerRadius = number("gridInnerRadius"), g.ringScale = number("gridRingScale");
+    g.waterLevel = number("waterLevel"), g.time = number("time");
+    return g;
 }
 
 }  // namespace heightpack::test

@@ -39,6 +39,16 @@ struct Difference {
 
 Difference compare(const Picture& a, const Picture& b, int tolerance);
 
+// What --grid-heights writes: the height and horizontal shift of every grid vertex as the GPU computed them,
+// with the camera, grid radii and time that place each vertex.
+struct GridHeights {
+    int segments = 0, rings = 0;
+    std::vector<float> heights, shiftX, shiftY;  // ring-major: channels Y, Dx, Dy
+    float cameraX = 0, cameraY = 0, cameraZ = 0, pixelAngle = 0, innerRadius = 0, ringScale = 0, waterLevel = 0, time = 0;
+};
+
+GridHeights readGridHeights(const std::string& path);
+
 inline const std::string kExamples = std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/";
 
 }  // namespace heightpack::test

@@ -141,6 +141,7 @@ float layerContribution(int k, sampler2DArray heights, vec2 xy, float d, out flo
 // vertex's shift belongs to the very height it is given.
 uniform sampler2DArray uShifts[kMaxLayers];  // layer 2f: Dx, layer 2f + 1: Dy of frame f (RGBA packed)
 uniform float uLayerChop[kMaxLayers];   // choppiness of each map with Dx, Dy; 0 for a map without them
+uniform vec4 uShiftDecode[kMaxLayers];  // as uLayerDecode, for Dx and Dy (the type their file stored them in)
 
 vec2 packedShiftBilinear(sampler2DArray tex, int layer, int frame, vec2 uv, int level, bool clampMode) {
     vec2 size = levelSize(layer, level);
@@ -174,8 +175,10 @@ vec2 layerShift(int k, sampler2DArray tex, vec2 xy, float d) {
     float lod = layerLod(k, d);
     vec2 uv = layerUv(k, xy);
     bool clampMode = uLayerStored[k].y > 0.5;
-    vec2 D = layerShiftAt(tex, k, uLayerFrame[k].x, uv, lod, clampMode);
-    if (uLayerBlend[k] > 0.0) D = mix(D, layerShiftAt(tex, k, uLayerFrame[k].y, uv, lod, clampMode), uLayerBlend[k]);
+    vec4 decode = uShiftDecode[k];  // after the lookup, a weighted mean of texels, as for the heights
+    vec2 D = decode.x + decode.y * layerShiftAt(tex, k, uLayerFrame[k].x, uv, lod, clampMode);
+    if (uLayerBlend[k] > 0.0)
+        D = mix(D, decode.z + decode.w * layerShiftAt(tex, k, uLayerFrame[k].y, uv, lod, clampMode), uLayerBlend[k]);
     return uLayerChop[k] * uLayerXform[k].w * D;
 }
 

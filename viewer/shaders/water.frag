@@ -22,9 +22,11 @@ uniform vec2 uFoamRange;            // H0, Hmax
 uniform bool uHasFoam;
 uniform sampler2D uFoam;
 uniform float uFoamScale;           // tiles per metre
-// Synth's baked foam coverage (pack --foam): every frame of a map's coverage as one R32F array, layer f =
-// frame f as in the heights' arrays (uLayerFrame picks this frame and the next), filtered in hardware (the fragment has derivatives, so a pixel sees its footprint's mean foam).
+// Synth's baked foam coverage (pack --foam): every frame of a map's coverage as one one-channel array in
+// its file's type, layer f = frame f as in the heights' arrays (uLayerFrame picks this frame and the next),
+// filtered in hardware (the fragment has derivatives, so a pixel sees its footprint's mean foam).
 uniform sampler2DArray uFoamCoverage[kMaxLayers];
+uniform vec4 uCoverageDecode[kMaxLayers];  // as uLayerDecode, for the coverage: applied after the filtering
 uniform float uCoverageOn[kMaxLayers];  // 1 for a map whose baked coverage is shown
 
 layout(location = 0) out vec4 outColour;
@@ -70,8 +72,10 @@ vec3 normalFromMap(vec2 xy, vec3 base) {
 // to the point u carries), at the map's tile size and scroll, this frame blended into the next.
 float layerCoverage(int k, sampler2DArray coverage, vec2 u) {
     vec2 uv = layerUv(k, u);
-    float c = texture(coverage, vec3(uv, float(uLayerFrame[k].x))).r;
-    if (uLayerBlend[k] > 0.0) c = mix(c, texture(coverage, vec3(uv, float(uLayerFrame[k].y))).r, uLayerBlend[k]);
+    vec4 decode = uCoverageDecode[k];
+    float c = decode.x + decode.y * texture(coverage, vec3(uv, float(uLayerFrame[k].x))).r;
+    if (uLayerBlend[k] > 0.0)
+        c = mix(c, decode.z + decode.w * texture(coverage, vec3(uv, float(uLayerFrame[k].y))).r, uLayerBlend[k]);
     return clamp(c, 0.0, 1.0);  // a sharp filter's ringing can leave 0..1 in the mip levels
 }
 
