@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <future>
+#include <memory>
 #include <optional>
 #include <utility>
 
@@ -92,7 +93,7 @@ struct Storage {
 // judging(asStored, bits) is told of each candidate, as stored, as its judging starts.
 Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, const Storage& storage,
                   TileReport& report, std::optional<ChainSeams>& judged, std::optional<TileLook>& looked,
-                  const std::function<void(const Image& asStored, int bits)>& judging) {
+                  const std::function<void(std::shared_ptr<const Image> asStored, int bits)>& judging) {
     report.methodUsed = nameOf(options.method);
     report.crossfadeWidth = options.width;
     switch (options.method) {
@@ -121,8 +122,9 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         if (!c.storable || span(range) > maxSpan) return false;
         SeamOptions stored = seamOptions;
         stored.quantum = Storage::quantum(c.bits);
-        const Image asStored = Storage::rounded(candidate, c.bits, options.mip.threads);
-        judging(asStored, c.bits);
+        const auto shared = std::make_shared<const Image>(Storage::rounded(candidate, c.bits, options.mip.threads));
+        const Image& asStored = *shared;
+        judging(shared, c.bits);
         judged = measureChainSeams(seamChain(asStored, options.mip), options.threshold, stored);
         if (!judged->tiles() || !lookRequired) return judged->tiles();
         if (!lookOptions.sourceEcho) lookOptions.sourceEcho = sourceEchoOf(map, options.mip.threads);
@@ -233,13 +235,13 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     // leaves a core idle at times): the one that passes is then written at once. (A candidate that does
     // not pass costs its compression on the side.)
     std::future<std::pair<PreparedPixels, int>> compressing;
-    auto judging = [&](const Image& asStored, int bits) {
+    auto judging = [&](std::shared_ptr<const Image> asStored, int bits) {
         if (ext != ".png" || bits == 32) return;
-        compressing = std::async(std::launch::async, [&output, stored = asStored, bits, threads = options.mip.threads] {
+        compressing = std::async(std::launch::async, [&output, stored = std::move(asStored), bits, threads = options.mip.threads] {
             FlatImageOptions o;
             o.bits = bits;
             o.threads = threads;
-            return std::pair(preparePixels(output, stored, o), bits);
+            return std::pair(preparePixels(output, *stored, o), bits);
         });
     };
     Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, storage, report, judged, looked, judging);
