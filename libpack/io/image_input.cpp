@@ -71,6 +71,12 @@ OpenedImage::~OpenedImage() {
     input_.reset();  // the reader goes before the bytes it reads
 }
 
+std::vector<unsigned char> OpenedImage::releaseBytes() {
+    input_.reset();  // the reader goes before the bytes it reads
+    proxy_.reset();
+    return std::move(bytes_);
+}
+
 Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits) {
     auto read = readInputBytes(path);
     if (!read) return read.error();

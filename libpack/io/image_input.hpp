@@ -45,6 +45,9 @@ public:
     OIIO::ImageInput& operator*() const { return *input_; }
     // The file's bytes, read once: decoders of heightpack's own (png_fast.hpp) take them from here.
     const std::vector<unsigned char>& bytes() const { return bytes_; }
+    // Closes the reader and hands over the file's bytes, for a decoder that frees them as it goes. The
+    // image is closed afterwards: open the file again to read it through OpenImageIO.
+    std::vector<unsigned char> releaseBytes();
 
 private:
     friend Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits);

@@ -203,11 +203,18 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     };
 
     if (!luma && src.format == "png" && spec.nchannels <= 2) {
-        if (auto fast = detail::decodeGreyPng(in.bytes(), spec.width, spec.height, channel, options.threads)) {
-            out.heights = std::move(*fast);
-            unmap(out.heights);
-            src.decoder = "heightpack-png";
-            return out;  // integer samples: always finite
+        if (const auto plan = detail::planGreyPng(in.bytes(), spec.width, spec.height, channel)) {
+            if (auto fast = detail::decodeGreyPng(in.releaseBytes(), *plan, options.threads)) {
+                out.heights = std::move(*fast);
+                unmap(out.heights);
+                src.decoder = "heightpack-png";
+                return out;  // integer samples: always finite
+            }
+            // Valid chunks around data that does not inflate: OpenImageIO reads the file again and says
+            // what is wrong with it.
+            auto reopened = detail::openImage(path, detail::sizeLimitsOf(options));
+            if (!reopened) return reopened.error();
+            in = std::move(*reopened);
         }
     }
     src.decoder = "openimageio";

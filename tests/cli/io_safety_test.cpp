@@ -17,6 +17,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
@@ -402,6 +403,35 @@ TEST(IoSafety, FastPngDecoderFollowsChunkOrder) {
             EXPECT_EQ(run.code, 3) << run.err;
             expectOneLineError(run, dir.file(name));
         }
+    }
+}
+
+// The fast PNG path takes the file's bytes and frees them as it inflates: a PNG whose chunks are whole
+// (every CRC right) around image data that does not inflate, or whose rows name no PNG filter, is read
+// again by OpenImageIO and refused as any damaged PNG is, naming the file.
+TEST(IoSafety, FastPngDataThatDoesNotDecodeIsReadAgainAndRefused) {
+    ScratchDir dir;
+    std::vector<unsigned char> cut = greyStream(16, 16, ramp);
+    cut.resize(cut.size() / 2);  // a zlib stream that ends early
+    std::vector<unsigned char> raw;
+    for (int y = 0; y < 16; ++y) {
+        raw.push_back(9);  // filter types stop at 4
+        for (int x = 0; x < 16; ++x) raw.push_back(static_cast<unsigned char>(ramp(x, y)));
+    }
+    std::vector<unsigned char> badFilter(compressBound(static_cast<uLong>(raw.size())));
+    uLongf n = static_cast<uLongf>(badFilter.size());
+    compress(badFilter.data(), &n, raw.data(), static_cast<uLong>(raw.size()));
+    badFilter.resize(n);
+    for (const auto& [name, stream] : {std::pair{"cut.png", cut}, std::pair{"filter.png", badFilter}}) {
+        PngBuilder png;
+        png.header(16, 16, 8);
+        png.chunk("IDAT", stream);
+        png.chunk("IEND", {});
+        writeBytes(dir.file(name), png.bytes);
+        const ProcessResult run = hp({"pack", dir.file(name), "-o", dir.file("o.exr")});
+        EXPECT_EQ(run.code, 3) << name << ": " << run.err;
+        expectOneLineError(run, dir.file(name));
+        EXPECT_FALSE(fs::exists(dir.file("o.exr"))) << name;
     }
 }
 

@@ -19,7 +19,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (width == 0 || height == 0 || width > 4096 || height > 4096 || uint64_t(width) * height > (1u << 20)) return 0;
     const std::vector<unsigned char> file(data, data + size);
     for (int channel = 0; channel < 2; ++channel) {
-        const auto image = heightpack::detail::decodeGreyPng(file, int(width), int(height), channel, 1);
+        const auto plan = heightpack::detail::planGreyPng(file, int(width), int(height), channel);
+        if (!plan) continue;
+        const auto image = heightpack::detail::decodeGreyPng(file, *plan, 1);
         if (image && (image->width != int(width) || image->height != int(height) || image->channels != 1)) __builtin_trap();
     }
     return 0;

@@ -345,6 +345,49 @@ TEST(Io, FastPngDecoderMatchesOpenImageIOExactly) {
     }
 }
 
+TEST(Io, FastPngDecoderReadsThinAndTinyMapsAsOpenImageIODoes) {
+    // The fast decoder inflates the rows into the float image's own memory and turns them into floats
+    // front to back, in batches, a row that would overwrite its own bytes alone (16-bit grey + alpha rows
+    // are held apart). Thin and tiny shapes reach every case; libpng, through OpenImageIO, is the
+    // reference, and the thread count changes nothing.
+    ScratchDir dir;
+    struct Shape { int w, h; };
+    int n = 0;
+    for (const Shape shape : {Shape{1, 1}, Shape{1, 57}, Shape{57, 1}, Shape{2, 3}, Shape{5, 300}, Shape{300, 5}}) {
+        for (const OIIO::TypeDesc type : {OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT16}) {
+            for (int channels = 1; channels <= 2; ++channels) {
+                const Image values = randomImage(shape.w * channels, shape.h, unsigned(n + 1));
+                const std::string path = dir.file("t" + std::to_string(n++) + ".png");
+                auto out = OIIO::ImageOutput::create(path);
+                OIIO::ImageSpec spec(shape.w, shape.h, channels, type);
+                if (channels == 2) {
+                    spec.channelnames = {"Y", "A"};
+                    spec.alpha_channel = 1;
+                    spec.attribute("oiio:UnassociatedAlpha", 1);
+                }
+                ASSERT_TRUE(out->open(path, spec));
+                ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, values.pixels.data()));
+                ASSERT_TRUE(out->close());
+                OIIO::ImageSpec asStored;  // grey as stored, not multiplied by alpha
+                asStored.attribute("oiio:UnassociatedAlpha", 1);
+                auto in = OIIO::ImageInput::open(path, &asStored);
+                ASSERT_TRUE(in);
+                std::vector<float> reference(size_t(shape.w) * shape.h);
+                ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, reference.data()));
+                for (const int threads : {1, 3}) {
+                    LoadOptions o;
+                    o.threads = threads;
+                    auto fast = loadHeightMap(path, o);
+                    ASSERT_TRUE(fast.ok()) << fast.error().what;
+                    EXPECT_EQ(fast->source.decoder, "heightpack-png") << path;
+                    EXPECT_EQ(fast->heights.pixels, reference) << shape.w << "x" << shape.h << " " << type << " "
+                                                              << channels << " channels, " << threads << " threads";
+                }
+            }
+        }
+    }
+}
+
 TEST(Io, DamagedPngsFallBackToOpenImageIOAndAreRefused) {
     ScratchDir dir;
     writeImage(dir.file("good.png"), randomImage(64, 64, 2), OIIO::TypeDesc::UINT16);
