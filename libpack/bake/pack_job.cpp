@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "heightpack/bake/pack_displacement.hpp"
@@ -38,7 +40,7 @@ Result<PackedMaps> plainChain(Image heights, const SourceInfo& source, const Pac
     maps.resized = *resized;
     if (options.scale != 1.0f || options.offset != 0.0f)
         for (float& v : heights.pixels) v = options.offset + options.scale * v;
-    maps.plain = generateMipChain(heights, options.mip);
+    maps.plain = generateMipChain(std::move(heights), options.mip);  // level 0 is the heights, not a copy
     if (options.progress) options.progress("mip", 1.0);
     return maps;
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "heightpack/core/parallel.hpp"
 
@@ -70,42 +72,60 @@ AxisTaps computeTaps(int srcSize, int dstSize, Filter filter, Wrap wrap) {
     return taps;
 }
 
+// One row of filtering along x: in (srcWidth texels of c channels) -> out (dstWidth texels).
+void filterRow(const float* in, int c, int dstWidth, const AxisTaps& taps, float* out) {
+    for (int x = 0; x < dstWidth; ++x) {
+        const int* idx = &taps.index[taps.first[x]];
+        const float* wt = &taps.weight[taps.first[x]];
+        for (int ch = 0; ch < c; ++ch) {
+            float acc = 0.0f;
+            for (int k = 0; k < taps.count[x]; ++k) acc += wt[k] * in[idx[k] * c + ch];
+            out[x * c + ch] = acc;
+        }
+    }
+}
+
+// Row y of filtering src along y into out (a whole source row's values). Whole rows at a time, so the
+// inner loop is a contiguous multiply-add that the compiler vectorises.
+void filterColumns(const Image& src, int y, const AxisTaps& taps, float* out) {
+    const size_t rowLength = static_cast<size_t>(src.width) * src.channels;
+    std::fill(out, out + rowLength, 0.0f);
+    for (int k = 0; k < taps.count[y]; ++k) {
+        const float wt = taps.weight[taps.first[y] + k];
+        const float* in = src.row(taps.index[taps.first[y] + k]);
+        for (size_t i = 0; i < rowLength; ++i) out[i] += wt * in[i];
+    }
+}
+
 // Filters along x: src (W x H) -> dst (dstWidth x H).
 Image resampleRows(const Image& src, int dstWidth, const AxisTaps& taps, int threads) {
     Image dst(dstWidth, src.height, src.channels);
-    const int c = src.channels;
     parallelFor(src.height, threads, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-            const float* in = src.row(y);
-            float* out = dst.row(y);
-            for (int x = 0; x < dstWidth; ++x) {
-                const int* idx = &taps.index[taps.first[x]];
-                const float* wt = &taps.weight[taps.first[x]];
-                for (int ch = 0; ch < c; ++ch) {
-                    float acc = 0.0f;
-                    for (int k = 0; k < taps.count[x]; ++k) acc += wt[k] * in[idx[k] * c + ch];
-                    out[x * c + ch] = acc;
-                }
-            }
-        }
+        for (int y = y0; y < y1; ++y) filterRow(src.row(y), src.channels, dstWidth, taps, dst.row(y));
     });
     return dst;
 }
 
-// Filters along y: src (W x H) -> dst (W x dstHeight). Whole rows at a time, so the inner loop is a
-// contiguous multiply-add that the compiler vectorises.
+// Filters along y: src (W x H) -> dst (W x dstHeight).
 Image resampleColumns(const Image& src, int dstHeight, const AxisTaps& taps, int threads) {
     Image dst(src.width, dstHeight, src.channels);
-    const size_t rowLength = static_cast<size_t>(src.width) * src.channels;
     parallelFor(dstHeight, threads, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) filterColumns(src, y, taps, dst.row(y));
+    });
+    return dst;
+}
+
+// Filters along y, then along x, one destination row at a time: each thread filters a row along y into
+// a row of its own and that row along x, so the image between the two passes (half the source, for a
+// mip level) is never held. The same sums in the same order as resampleRows(resampleColumns(src)).
+Image resampleBoth(const Image& src, int dstWidth, int dstHeight, const AxisTaps& rowTaps,
+                   const AxisTaps& columnTaps, int threads) {
+    Image dst(dstWidth, dstHeight, src.channels);
+    parallelFor(dstHeight, threads, [&](int y0, int y1) {
+        std::vector<float> filtered(static_cast<size_t>(src.width) * src.channels);
         for (int y = y0; y < y1; ++y) {
-            float* out = dst.row(y);
-            std::fill(out, out + rowLength, 0.0f);
-            for (int k = 0; k < taps.count[y]; ++k) {
-                const float wt = taps.weight[taps.first[y] + k];
-                const float* in = src.row(taps.index[taps.first[y] + k]);
-                for (size_t i = 0; i < rowLength; ++i) out[i] += wt * in[i];
-            }
+            filterColumns(src, y, columnTaps, filtered.data());
+            filterRow(filtered.data(), src.channels, dstWidth, rowTaps, dst.row(y));
         }
     });
     return dst;
@@ -141,16 +161,12 @@ double filterWeight(Filter filter, double x) {
 Image resample(const Image& src, int width, int height, const MipOptions& options) {
     assert(width > 0 && height > 0 && !src.empty());
     // Columns first: that pass streams whole rows and vectorises, so it takes the larger share of work.
-    auto columns = [&](const Image& in) {
-        return resampleColumns(in, height, computeTaps(src.height, height, options.filter, options.wrap),
-                               options.threads);
-    };
-    auto rows = [&](const Image& in) {
-        return resampleRows(in, width, computeTaps(src.width, width, options.filter, options.wrap),
-                            options.threads);
-    };
-    if (height != src.height) return width != src.width ? rows(columns(src)) : columns(src);
-    return width != src.width ? rows(src) : src;
+    auto columnTaps = [&] { return computeTaps(src.height, height, options.filter, options.wrap); };
+    auto rowTaps = [&] { return computeTaps(src.width, width, options.filter, options.wrap); };
+    if (height != src.height && width != src.width)
+        return resampleBoth(src, width, height, rowTaps(), columnTaps(), options.threads);
+    if (height != src.height) return resampleColumns(src, height, columnTaps(), options.threads);
+    return width != src.width ? resampleRows(src, width, rowTaps(), options.threads) : src;
 }
 
 bool isPowerOfTwo(int n) { return n > 0 && (n & (n - 1)) == 0; }
@@ -168,11 +184,15 @@ int mipLevelCount(int width, int height) {
 }
 
 std::vector<Image> generateMipChain(const Image& level0, const MipOptions& options) {
+    return generateMipChain(Image(level0), options);
+}
+
+std::vector<Image> generateMipChain(Image&& level0, const MipOptions& options) {
     assert(isPowerOfTwo(level0.width) && isPowerOfTwo(level0.height));
     const int levels = mipLevelCount(level0.width, level0.height);
     std::vector<Image> chain;
     chain.reserve(levels);
-    chain.push_back(level0);
+    chain.push_back(std::move(level0));
     for (int level = 1; level < levels; ++level) {
         const Image& above = chain.back();
         // Each level is made from the one above (not from level 0): the filter at ratio 2 has a fixed

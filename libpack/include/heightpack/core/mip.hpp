@@ -55,6 +55,8 @@ int nextPowerOfTwo(int n);
 // The full mip chain of level0 (whose sides must be powers of two, not necessarily equal): level L is
 // max(1, W >> L) x max(1, H >> L), each made from the level above with the filter and wrap mode.
 std::vector<Image> generateMipChain(const Image& level0, const MipOptions& options);
+// The same, taking level0 as the chain's first level rather than copying it.
+std::vector<Image> generateMipChain(Image&& level0, const MipOptions& options);
 inline std::vector<Image> generateMipChain(const Image& level0, Filter filter) {
     MipOptions options;
     options.filter = filter;
