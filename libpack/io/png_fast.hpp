@@ -29,8 +29,8 @@ std::optional<GreyPngPlan> planGreyPng(const std::vector<unsigned char>& file, i
 // Decodes the planned sample of every pixel as floats, converted exactly as OpenImageIO converts (8-bit:
 // v * (1/255.f), 16-bit: v * (1/65535.f)). Takes the file's bytes (planGreyPng's, unchanged) and frees
 // them once inflated, so that no more than the bytes and the floats are held at once. Nothing when the
-// image data does not inflate or unfilter (a damaged stream under valid CRCs). threads: for the conversion
-// to float (0 = all cores); the result does not depend on it.
+// image data does not inflate or unfilter (a damaged stream under valid CRCs). threads: for undoing the
+// row filters and the conversion to float (0 = all cores); the result does not depend on it.
 std::optional<Image> decodeGreyPng(std::vector<unsigned char> file, const GreyPngPlan& plan, int threads);
 
 }  // namespace heightpack::detail
