@@ -235,8 +235,10 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     // leaves a core idle at times): the one that passes is then written at once. (A candidate that does
     // not pass costs its compression on the side.)
     std::future<std::pair<PreparedPixels, int>> compressing;
+    std::shared_ptr<const Image> compressed;  // the candidate being compressed
     auto judging = [&](std::shared_ptr<const Image> asStored, int bits) {
         if (ext != ".png" || bits == 32) return;
+        compressed = asStored;
         compressing = std::async(std::launch::async, [&output, stored = std::move(asStored), bits, threads = options.mip.threads] {
             FlatImageOptions o;
             o.bits = bits;
@@ -297,9 +299,9 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     FlatImageOptions flat;
     flat.bits = report.bits;
     flat.threads = options.mip.threads;
-    if (compressing.valid()) {  // the last candidate judged is the result
+    if (compressing.valid()) {  // used only where the candidate compressed is the result, as stored
         auto [prepared, bits] = compressing.get();
-        if (bits == report.bits) flat.prepared = std::move(prepared);
+        if (bits == report.bits && compressed->pixels == result.pixels) flat.prepared = std::move(prepared);
     }
     flat.attributes = {
         attribute(attr::tileMethod, report.methodUsed),
