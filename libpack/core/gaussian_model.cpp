@@ -152,7 +152,7 @@ Field sampleOf(const GaussianModel& model, uint64_t seed, int threads) {
                 if (ownPartner) half[size_t(pr) * columns + q] = std::complex<float>(std::conj(z));
             }
     });
-    Field sample(w, h);
+    Field sample(w, h, Field::unset);  // every row written by the inverse
     detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) {
         std::copy(row, row + w, sample.v.begin() + ptrdiff_t(y) * w);
     });
@@ -192,7 +192,7 @@ Field topBottomSmoothField(const Field& f, int threads) {
     std::vector<std::complex<float>> half(size_t(h) * columns);
     forSmoothSpectrum(w, h, [&](int x, int y) { return f.at(x, y); }, {.leftRight = false, .topBottom = true}, columns, threads,
                       [&](int r, int q, Complex s) { half[size_t(r) * columns + q] = std::complex<float>(s * scale); });
-    Field out(w, h);
+    Field out(w, h, Field::unset);  // every row written by the inverse
     detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) {
         std::copy(row, row + w, out.v.begin() + ptrdiff_t(y) * w);
     });

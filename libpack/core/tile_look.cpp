@@ -37,7 +37,7 @@ HalfSpectrum spectrumOf(const Image& map, int threads) {
 
 // The real field of a half spectrum (overwritten), scaled by 1/(w h) as the inverse of spectrumOf.
 Grid fieldOf(HalfSpectrum& half, int threads) {
-    Grid out(half.w, half.h);
+    Grid out(half.w, half.h, Grid::unset);  // every row written by the inverse
     const double scale = 1.0 / (double(half.w) * half.h);
     detail::inverseRealDftOfHalf(half.values.data(), half.w, half.h, threads, [&](int y, const float* row) {
         double* to = &out.v[size_t(y) * half.w];
@@ -208,7 +208,7 @@ Image halved(const Image& map, int threads) {
 // circular): the smooth part is the field's statistics, what stays in the ratio is fine structure.
 struct Spectra {
     Grid power, smooth;
-    Spectra(int w, int h) : power(w, h), smooth(w, h) {}
+    Spectra(int w, int h) : power(w, h, Grid::unset), smooth(w, h, Grid::unset) {}  // both written in full
 };
 
 Spectra spectraOf(const HalfSpectrum& spectrum, int threads) {
@@ -223,17 +223,17 @@ Spectra spectraOf(const HalfSpectrum& spectrum, int threads) {
                 power.at(x, y) = (x == 0 && y == 0) ? 0.0 : std::norm(std::complex<double>(z));
             }
     });
-    // Smoothed over 5x5 frequency bins (a box, three times each way, circular). The neighbours' indices
-    // are wrapped once per line, not per texel; the sums add in the same order.
-    smooth = power;
-    Grid next(w, h);
+    // Smoothed over 5x5 frequency bins (a box, three times each way, circular), the first pass from the
+    // power itself. The neighbours' indices are wrapped once per line, not per texel; the sums add in the
+    // same order.
+    Grid next(w, h, Grid::unset);
     std::vector<int> wrapX(size_t(w) + 4), wrapY(size_t(h) + 4);
     for (int i = -2; i < w + 2; ++i) wrapX[i + 2] = (i + w) % w;
     for (int i = -2; i < h + 2; ++i) wrapY[i + 2] = (i + h) % h;
     for (int pass = 0; pass < 3; ++pass) {
         parallelFor(h, threads, [&](int begin, int end) {
             for (int y = begin; y < end; ++y) {
-                const double* row = &smooth.v[size_t(y) * w];
+                const double* row = &(pass == 0 ? power : smooth).v[size_t(y) * w];
                 for (int x = 0; x < w; ++x) {
                     double sum = 0;
                     for (int d = 0; d < 5; ++d) sum += row[wrapX[x + d]];

@@ -8,6 +8,7 @@
 #include <complex>
 #include <memory>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -95,15 +96,23 @@ double quantisationNoise(size_t n, Runs runs) {
 // from integer samples: no sort), else from the sorted values.
 double quantisationNoise(const std::vector<float>& values, double quantum, int threads) {
     const size_t n = values.size();
-    if (quantum > 0) {
-        const auto [low, high] = std::minmax_element(values.begin(), values.end());
-        const double inverse = 1 / quantum, first = std::round(*low * inverse), levels = std::round(*high * inverse) - first + 1;
+    if (quantum > 0 && n > 0) {
         // Counted in fixed chunks, each its own histogram, summed in order: the same on any thread count.
         constexpr int kChunks = 16;
         constexpr double kMostLevels = 1 << 17;  // 8- and 16-bit samples, and some headroom
+        const size_t chunk = (n + kChunks - 1) / kChunks;
+        std::vector<float> lows(kChunks, values[0]), highs(kChunks, values[0]);
+        parallelFor(kChunks, threads, [&](int begin, int end) {
+            for (int c = begin; c < end; ++c)
+                for (size_t i = size_t(c) * chunk; i < std::min(n, size_t(c + 1) * chunk); ++i) {
+                    lows[c] = std::min(lows[c], values[i]);
+                    highs[c] = std::max(highs[c], values[i]);
+                }
+        });
+        const float low = *std::min_element(lows.begin(), lows.end()), high = *std::max_element(highs.begin(), highs.end());
+        const double inverse = 1 / quantum, first = std::round(low * inverse), levels = std::round(high * inverse) - first + 1;
         std::vector<std::vector<size_t>> counts(levels <= kMostLevels ? kChunks : 0);
         std::vector<char> whole(kChunks, 1);
-        const size_t chunk = (n + kChunks - 1) / kChunks;
         parallelFor(int(counts.size()), threads, [&](int begin, int end) {
             for (int c = begin; c < end; ++c) {
                 counts[c].assign(size_t(levels), 0);
@@ -149,9 +158,11 @@ void resynthesiseLines(Field& field, const GaussianModel& model, const Field& sa
     auto set = [&](int u, int v) -> double& { return across ? field.at(u, v) : field.at(v, u); };
     const int first = w - band / 2 - context;  // the strip's first line, modulo w
     auto column = [&](int local) { return ((first + local) % w + w) % w; };
-    double mean = 0;
-    for (double value : field.v) mean += value;  // in memory order (across the lines is a stride for Y)
-    mean /= double(field.v.size());
+    std::vector<double> rowSums(size_t(field.h), 0.0);  // per row on all threads, then summed in order
+    parallelFor(field.h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y) rowSums[y] = std::accumulate(&field.v[size_t(y) * field.w], &field.v[size_t(y) * field.w] + field.w, 0.0);
+    });
+    const double mean = std::accumulate(rowSums.begin(), rowSums.end(), 0.0) / double(field.v.size());
     const cv::Mat covHat = detail::lineCovarianceSpectra(model.power, axis, strip, threads);
     auto cov = [&](int dx, int ky) {
         const cv::Vec2d z = covHat.at<cv::Vec2d>(ky, std::abs(dx));
@@ -184,8 +195,11 @@ void resynthesiseLines(Field& field, const GaussianModel& model, const Field& sa
             }
         }
     });
-    cv::Mat values;
-    cv::dft(kriged, values, cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    cv::Mat values(band, h, CV_64F);
+    parallelFor(band, threads, [&](int begin, int end) {  // each row alone: any split gives the same rows
+        cv::Mat rows = values.rowRange(begin, end);
+        cv::dft(kriged.rowRange(begin, end), rows, cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    });
     for (int m = 0; m < band; ++m) {
         const int x = column(c + m);
         for (int y = 0; y < h; ++y) set(x, y) = mean + at(sample, x, y) + values.at<double>(m, y);
@@ -226,27 +240,39 @@ double largeScaleSigma(int bandX, int bandY, int w, int h) { return std::max(0.5
 struct Resynthesiser::State {
     const Image& map;
     int threads;
-    std::vector<float> values;
+    std::vector<float> dequantised;  // the map with its quantisation undone, where it has terraces
+    const std::vector<float>* values = &map.pixels;  // the values modelled: the map's or those
     double noise = 0;
     std::optional<GaussianModel> model;
     double correlationX = 0, correlationY = 0;
     double sigma = -1;
     std::vector<float> smooth;
     std::optional<detail::Gaussianiser> ranks;
+    Field gaussian{0, 0};  // the ranks' Gaussians as a field (moved out of ranks)
     State(const Image& m, int t) : map(m), threads(t) {}
     // The large scales at sigma and the ranks of the values less them, unless they are at sigma already.
     void useSigma(double newSigma, int w, int h) {
         if (newSigma == sigma) return;
         sigma = newSigma;
         ranks.reset();
-        smooth = detail::largeScaleField(values, w, h, sigma, threads);
-        std::vector<float> corrected(values.size());
+        smooth = detail::largeScaleField(*values, w, h, sigma, threads);
+        detail::Buffer<float> corrected(values->size());
         parallelFor(h, threads, [&](int begin, int end) {
-            for (size_t i = size_t(begin) * w; i < size_t(end) * w; ++i) corrected[i] = values[i] - smooth[i];
+            for (size_t i = size_t(begin) * w; i < size_t(end) * w; ++i) corrected[i] = (*values)[i] - smooth[i];
         });
         ranks.emplace(corrected, threads);
+        gaussian = Field(w, h, std::move(ranks->gaussian));
     }
 };
+
+// A copy of f made on all threads (each value written once, so no serial zeroing first).
+Field copyOf(const Field& f, int threads) {
+    Field out(f.w, f.h, Field::unset);
+    parallelFor(f.h, threads, [&](int begin, int end) {
+        std::copy(f.v.begin() + ptrdiff_t(begin) * f.w, f.v.begin() + ptrdiff_t(end) * f.w, out.v.begin() + ptrdiff_t(begin) * f.w);
+    });
+    return out;
+}
 
 Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : state_(std::make_unique<State>(map, threads)) {
     const int w = map.width, h = map.height;
@@ -257,11 +283,13 @@ Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : st
     //    Gaussianisation serves the model and every attempt whose bands ask no larger sigma.
     State& s = *state_;
     const bool terraced = quantum > 0 && detail::hasTerraces(map, threads);
-    s.values = terraced ? detail::dequantised(map, quantum, threads) : map.pixels;
-    s.noise = quantisationNoise(s.values, terraced ? 0.0 : quantum, threads);
+    if (terraced) {
+        s.dequantised = detail::dequantised(map, quantum, threads);
+        s.values = &s.dequantised;
+    }
+    s.noise = quantisationNoise(*s.values, terraced ? 0.0 : quantum, threads);
     s.useSigma(largeScaleSigma(0, 0, w, h), w, h);
-    const Field g(w, h, s.ranks->gaussian);
-    s.model.emplace(detail::modelOf(g, s.noise, threads));
+    s.model.emplace(detail::modelOf(s.gaussian, s.noise, threads));
     s.correlationX = slopeCorrelationLength(s.model->lagX);
     s.correlationY = slopeCorrelationLength(s.model->lagY);
 }
@@ -284,7 +312,7 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
     //    blurred apart, mirrored). Beyond the bands this is the whole change.
     s.useSigma(largeScaleSigma(result.bandX, result.bandY, w, h), w, h);
     const detail::Gaussianiser& ranks = *s.ranks;
-    Field g(w, h, ranks.gaussian);
+    Field g = copyOf(s.gaussian, threads);
     const Field sample = detail::sampleOf(*s.model, seed, threads);
     // 3. and 4. The bands, left/right first, then top/bottom.
     const int contextX = std::clamp(result.bandX / 2, 4, 32), contextY = std::clamp(result.bandY / 2, 4, 32);

@@ -232,5 +232,13 @@ TEST(StableOrder, EqualsStdStableSortWithTiesNegativesAndSignedZeros) {
         std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) { return values[a] < values[b]; });
         EXPECT_EQ(detail::stableOrder(values, 1), expected) << trial;
         EXPECT_EQ(detail::stableOrder(values, 3), expected) << trial;
+        // The Gaussianiser's sorted values come back from the sort's keys: the values in order (-0 as +0,
+        // which compares equal), every bit of every other value kept.
+        const detail::Gaussianiser ranks(values, 2);
+        ASSERT_EQ(ranks.sorted.size(), n);
+        for (size_t i = 0; i < n; ++i) {
+            const float want = values[expected[i]];
+            ASSERT_TRUE(want == 0.0f ? ranks.sorted[i] == 0.0f : std::memcmp(&ranks.sorted[i], &want, sizeof want) == 0) << trial << " " << i;
+        }
     }
 }
