@@ -127,7 +127,7 @@ GaussianModel modelOf(const Field& g, double noise, int threads) {
     return model;
 }
 
-Field sampleOf(const GaussianModel& model, uint64_t seed, int threads) {
+StripField sampleOf(const GaussianModel& model, uint64_t seed, int reachX, int reachY, int threads) {
     const int w = model.power.cols, h = model.power.rows, columns = w / 2 + 1;
     // The sample's spectrum: sqrt(power) times complex white noise of unit variance, Hermitian so the sample
     // is real. Its covariance is the model's: (1/n^2) sum of power e^(2 pi i k.d). Only the half kx <= w/2
@@ -152,10 +152,8 @@ Field sampleOf(const GaussianModel& model, uint64_t seed, int threads) {
                 if (ownPartner) half[size_t(pr) * columns + q] = std::complex<float>(std::conj(z));
             }
     });
-    Field sample(w, h, Field::unset);  // every row written by the inverse
-    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) {
-        std::copy(row, row + w, sample.v.begin() + ptrdiff_t(y) * w);
-    });
+    StripField sample(w, h, reachX, reachY);
+    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) { sample.setRow(y, row); });
     return sample;
 }
 
@@ -185,17 +183,15 @@ cv::Mat lineCovarianceSpectra(const cv::Mat& power, Axis axis, int strip, int th
     return out;
 }
 
-Field topBottomSmoothField(const Field& f, int threads) {
+StripField topBottomSmoothField(const Field& f, int reachX, int threads) {
     // In floats, from the half spectrum (see sampleOf): the field is only set aside and added back.
     const int w = f.w, h = f.h, columns = w / 2 + 1;
     const double scale = 1.0 / (double(w) * h);
     std::vector<std::complex<float>> half(size_t(h) * columns);
     forSmoothSpectrum(w, h, [&](int x, int y) { return f.at(x, y); }, {.leftRight = false, .topBottom = true}, columns, threads,
                       [&](int r, int q, Complex s) { half[size_t(r) * columns + q] = std::complex<float>(s * scale); });
-    Field out(w, h, Field::unset);  // every row written by the inverse
-    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) {
-        std::copy(row, row + w, out.v.begin() + ptrdiff_t(y) * w);
-    });
+    StripField out(w, h, reachX, 0);
+    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) { out.setRow(y, row); });
     return out;
 }
 
