@@ -33,6 +33,9 @@ std::vector<std::complex<float>> forwardRealDftToHalf(int w, int h, int threads,
 // then columns split in fixed blocks, so the values do not depend on the thread count.
 void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads,
                           const std::function<void(int y, const float* row)>& take);
+// The rows go to take in blocks of this many (rows y with the same y / kInverseRowBlock), a block's rows in
+// order and on one thread: a sum kept per block and added up in block order is the same on any thread count.
+constexpr int kInverseRowBlock = 8;
 
 // Several fields from one half spectrum S: field f is the real field of S(kx, ky) * factor[kx], a factor
 // that depends on kx alone (i kx for d/dx, say), so one column pass serves them all and each costs only
