@@ -112,7 +112,7 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         case TileMethod::Mirror: return mirrorTile(map);
         case TileMethod::Periodic: break;
     }
-    const double maxSpan = 1.5 * span(sampleRange(map, options.mip.threads));
+    const double maxSpan = 1.5 * (double(report.inputHigh) - report.inputLow);  // the caller measured the map
     bool lookRequired = true;
     LookOptions lookOptions{&map, options.mip.threads, std::nullopt};
     auto acceptable = [&](const Image& candidate) {
