@@ -115,13 +115,27 @@ GaussianModel modelOf(const Field& g, double noise, int threads) {
                 model.power.at<double>(r, q) = std::max(std::norm(a) - floor, 0.0);
             }
     });
-    std::vector<double> marginalX(w, 0.0), marginalY(h, 0.0);
-    for (int r = 0; r < h; ++r)
-        for (int q = 0; q < w; ++q) {
-            const double p = model.power.at<double>(r, q);
-            marginalX[q] += p;
-            marginalY[r] += p;
+    // The power summed along each axis on all threads: each row's sum in order; the columns' per fixed
+    // block of rows, the blocks then in order (the same on any thread count).
+    constexpr int kRows = 64;
+    const int blocks = (h + kRows - 1) / kRows;
+    std::vector<double> marginalX(w, 0.0), marginalY(h, 0.0), blockX(size_t(blocks) * w, 0.0);
+    parallelFor(blocks, threads, [&](int begin, int end) {
+        for (int b = begin; b < end; ++b) {
+            double* columnSums = &blockX[size_t(b) * w];
+            for (int r = b * kRows; r < std::min(h, (b + 1) * kRows); ++r) {
+                const double* row = model.power.ptr<double>(r);
+                double sum = 0;
+                for (int q = 0; q < w; ++q) {
+                    sum += row[q];
+                    columnSums[q] += row[q];
+                }
+                marginalY[r] = sum;
+            }
         }
+    });
+    for (int b = 0; b < blocks; ++b)
+        for (int q = 0; q < w; ++q) marginalX[q] += blockX[size_t(b) * w + q];
     model.lagX = lagsOf(std::move(marginalX), n);
     model.lagY = lagsOf(std::move(marginalY), n);
     return model;
