@@ -160,6 +160,26 @@ Gaussianiser::Gaussianiser(std::span<const float> values, int threads) : sorted(
     });
 }
 
+void Gaussianiser::back(const double* g, float* out, size_t count) const {
+    // In groups: every place of a group found (and its sorted values asked of memory) before any is read,
+    // so the misses of a group overlap instead of each waiting on the last.
+    constexpr size_t kGroup = 16;
+    const double top = double(sorted.size() - 1);
+    for (size_t start = 0; start < count; start += kGroup) {
+        const size_t n = std::min(kGroup, count - start);
+        double pos[kGroup];
+        for (size_t k = 0; k < n; ++k) {
+            pos[k] = std::clamp(normalCdf(g[start + k]) * sorted.size() - 0.5, 0.0, top);
+            __builtin_prefetch(&sorted[static_cast<size_t>(pos[k])]);
+        }
+        for (size_t k = 0; k < n; ++k) {
+            const size_t i = static_cast<size_t>(pos[k]);
+            const size_t j = std::min(i + 1, sorted.size() - 1);
+            out[start + k] = static_cast<float>(sorted[i] + (double(sorted[j]) - sorted[i]) * (pos[k] - i));
+        }
+    }
+}
+
 float Gaussianiser::back(double g) const {
     const double pos = std::clamp(normalCdf(g) * sorted.size() - 0.5, 0.0, double(sorted.size() - 1));
     const size_t i = static_cast<size_t>(pos);

@@ -372,11 +372,19 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
     };
     result.map = Image(w, h, 1);
     parallelFor(h, threads, [&](int begin, int end) {
-        for (int y = begin; y < end; ++y)
+        std::vector<double> gaussians(static_cast<size_t>(w));
+        std::vector<float> values(static_cast<size_t>(w));
+        for (int y = begin; y < end; ++y) {
+            int count = 0;  // the row's texels in the bands, their Gaussians gathered and taken back at once
+            for (int x = 0; x < w; ++x)
+                if (inBand(x, y)) gaussians[count++] = g.at(x, y);
+            ranks.back(gaussians.data(), values.data(), size_t(count));
+            count = 0;
             for (int x = 0; x < w; ++x) {
                 const size_t i = size_t(y) * w + x;
-                result.map.pixels[i] = inBand(x, y) ? ranks.back(g.at(x, y)) : map.pixels[i] - s.smooth[i];
+                result.map.pixels[i] = inBand(x, y) ? values[count++] : map.pixels[i] - s.smooth[i];
             }
+        }
     });
     detail::easeIntoRange(result.map, map, threads);
     return result;
