@@ -59,6 +59,53 @@ void transformRows(const cv::Mat& in, cv::Mat& out, int flags, int threads) {
     });
 }
 
+// The row pass of an inverse real DFT: the half spectrum's rows, once through the column pass, as
+// row(y, buffer) gives them (a pointer to w/2 + 1 complex values, in buffer or elsewhere), times each
+// field's factor and transformed to real rows in blocks; a block's rows are all got before any goes to a take.
+// Column 0 and (w even) column w/2 are real by then (each is the transform of a Hermitian column), so a row
+// is OpenCV's packed real spectrum (CCS) Re0, Re1, Im1, ..., Re(w/2 - 1), Im(w/2 - 1), Re(w/2) (w odd:
+// Re0, Re1, Im1, ..., Re(w/2), Im(w/2)): w floats, copied (times each field's factor) into a block of
+// rows and transformed to real rows together. Every field's rows come from the one column pass.
+template <typename RowOf>
+void rowPass(int w, int h, int threads, const std::vector<HalfSpectrumRows>& fields, const RowOf& rowOf) {
+    const bool even = w % 2 == 0;  // an even row has a real last column (w/2), an odd one none
+    const int columns = w / 2 + 1;
+    for (const HalfSpectrumRows& field : fields) CV_Assert(field.factor.empty() || int(field.factor.size()) == columns);
+    parallelFor((h + kFloatBlock - 1) / kFloatBlock, threads, [&](int begin, int end) {
+        cv::Mat packed(kFloatBlock, w, CV_32F), real(kFloatBlock, w, CV_32F);
+        std::vector<std::complex<float>> buffer(size_t(kFloatBlock) * columns);
+        const std::complex<float>* rows[kFloatBlock];
+        for (int block = begin; block < end; ++block) {
+            const int y0 = block * kFloatBlock, count = std::min(kFloatBlock, h - y0);
+            for (int i = 0; i < count; ++i) rows[i] = rowOf(y0 + i, buffer.data() + size_t(i) * columns);
+            for (const HalfSpectrumRows& field : fields) {
+                for (int i = 0; i < count; ++i) {
+                    const std::complex<float>* from = rows[i];
+                    float* to = packed.ptr<float>(i);
+                    if (field.factor.empty()) {
+                        const float* values = reinterpret_cast<const float*>(from);
+                        to[0] = values[0];
+                        std::copy(values + 2, values + w + (even ? 0 : 1), to + 1);
+                        if (even) to[w - 1] = values[w];
+                        continue;
+                    }
+                    const std::complex<float>* factor = field.factor.data();
+                    to[0] = (from[0] * factor[0]).real();
+                    for (int q = 1; q < (even ? w / 2 : columns); ++q) {
+                        const std::complex<float> z = from[q] * factor[q];
+                        to[2 * q - 1] = z.real();
+                        to[2 * q] = z.imag();
+                    }
+                    if (even) to[w - 1] = (from[w / 2] * factor[w / 2]).real();
+                }
+                cv::Mat out = real.rowRange(0, count);
+                cv::dft(packed.rowRange(0, count), out, cv::DFT_INVERSE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);
+                for (int i = 0; i < count; ++i) field.take(y0 + i, out.ptr<float>(i));
+            }
+        }
+    });
+}
+
 }  // namespace
 
 cv::Mat forwardDft(const cv::Mat& field, int threads) {
@@ -105,45 +152,56 @@ void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads,
 
 void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads, const std::vector<HalfSpectrumRows>& fields) {
     CV_Assert(w >= 2 && h >= 1);
-    const bool even = w % 2 == 0;  // an even row has a real last column (w/2), an odd one none
-    const int columns = w / 2 + 1;
-    for (const HalfSpectrumRows& field : fields) CV_Assert(field.factor.empty() || int(field.factor.size()) == columns);
-    cv::Mat spectrum(h, columns, CV_32FC2, half);
+    cv::Mat spectrum(h, w / 2 + 1, CV_32FC2, half);
     transformColumns<cv::Vec2f>(spectrum, spectrum, cv::DFT_INVERSE, threads);
-    // Column 0 and (w even) column w/2 are now real (each is the transform of a Hermitian column), so a row
-    // is OpenCV's packed real spectrum (CCS) Re0, Re1, Im1, ..., Re(w/2 - 1), Im(w/2 - 1), Re(w/2) (w odd:
-    // Re0, Re1, Im1, ..., Re(w/2), Im(w/2)): w floats,
-    // copied (times each field's factor) into a block of rows and transformed to real rows together. The
-    // columns' result is only read here, so every field's rows come from the one column pass.
-    parallelFor((h + kFloatBlock - 1) / kFloatBlock, threads, [&](int begin, int end) {
-        cv::Mat packed(kFloatBlock, w, CV_32F), real(kFloatBlock, w, CV_32F);
+    // The columns' result is only read from here on: a row is handed over where it lies.
+    rowPass(w, h, threads, fields, [&](int y, std::complex<float>*) -> const std::complex<float>* {
+        return reinterpret_cast<const std::complex<float>*>(spectrum.ptr<cv::Vec2f>(y));
+    });
+}
+
+void inverseRealDftOfHalf(int w, int h, int threads, const HalfSpectrumSource& give, const HalfSpectrumScratch& scratch,
+                          const std::vector<HalfSpectrumRows>& fields) {
+    CV_Assert(w >= 2 && w % 2 == 0 && h >= 1 && scratch.first && scratch.stride >= 1 && scratch.lastColumn);
+    const int columns = w / 2 + 1;
+    const size_t stride = size_t(scratch.stride);
+    // Complex q < w/2 of row y as two floats of scratch.first; q = w/2 in lastColumn[y].
+    auto at = [&](int y, int q) { return scratch.first + (size_t(y) * w + 2 * size_t(q)) * stride; };
+    // The column pass, as transformColumns's: a block of columns gathered (from give) into lines, each line
+    // transformed, the result put back into the scratch.
+    parallelFor((columns + kFloatBlock - 1) / kFloatBlock, threads, [&](int begin, int end) {
+        cv::Mat padded(kFloatBlock, h + int(64 / sizeof(cv::Vec2f)), CV_32FC2);
+        cv::Mat lines = padded.colRange(0, h);
+        std::complex<float> values[kFloatBlock];
         for (int block = begin; block < end; ++block) {
-            const int y0 = block * kFloatBlock, count = std::min(kFloatBlock, h - y0);
-            for (const HalfSpectrumRows& field : fields) {
-                for (int i = 0; i < count; ++i) {
-                    const std::complex<float>* from = reinterpret_cast<const std::complex<float>*>(spectrum.ptr<cv::Vec2f>(y0 + i));
-                    float* to = packed.ptr<float>(i);
-                    if (field.factor.empty()) {
-                        const float* values = reinterpret_cast<const float*>(from);
-                        to[0] = values[0];
-                        std::copy(values + 2, values + w + (even ? 0 : 1), to + 1);
-                        if (even) to[w - 1] = values[w];
-                        continue;
-                    }
-                    const std::complex<float>* factor = field.factor.data();
-                    to[0] = (from[0] * factor[0]).real();
-                    for (int q = 1; q < (even ? w / 2 : columns); ++q) {
-                        const std::complex<float> z = from[q] * factor[q];
-                        to[2 * q - 1] = z.real();
-                        to[2 * q] = z.imag();
-                    }
-                    if (even) to[w - 1] = (from[w / 2] * factor[w / 2]).real();
-                }
-                cv::Mat rows = real.rowRange(0, count);
-                cv::dft(packed.rowRange(0, count), rows, cv::DFT_INVERSE | cv::DFT_ROWS | cv::DFT_REAL_OUTPUT);
-                for (int i = 0; i < count; ++i) field.take(y0 + i, rows.ptr<float>(i));
+            const int x0 = block * kFloatBlock, count = std::min(kFloatBlock, columns - x0);
+            cv::Mat gathered = lines.rowRange(0, count);
+            for (int y = 0; y < h; ++y) {
+                give(y, x0, count, values);
+                for (int i = 0; i < count; ++i) gathered.ptr<cv::Vec2f>(i)[y] = {values[i].real(), values[i].imag()};
             }
+            cv::dft(gathered, gathered, cv::DFT_INVERSE | cv::DFT_ROWS);
+            for (int y = 0; y < h; ++y)
+                for (int i = 0; i < count; ++i) {
+                    const cv::Vec2f z = gathered.ptr<cv::Vec2f>(i)[y];
+                    if (x0 + i == w / 2) {
+                        scratch.lastColumn[y] = {z[0], z[1]};
+                    } else {
+                        float* to = at(y, x0 + i);
+                        to[0] = z[0], to[stride] = z[1];
+                    }
+                }
         }
+    });
+    // Each row copied out of the scratch before its block's rows go to any take: a take may write over
+    // the scratch rows of its own block (the sea's heights are written where their spectrum was).
+    rowPass(w, h, threads, fields, [&](int y, std::complex<float>* row) -> const std::complex<float>* {
+        for (int q = 0; q < w / 2; ++q) {
+            const float* from = at(y, q);
+            row[q] = {from[0], from[stride]};
+        }
+        row[w / 2] = scratch.lastColumn[y];
+        return row;
     });
 }
 
