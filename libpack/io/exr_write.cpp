@@ -1,32 +1,30 @@
 // Writing tiled, mip-mapped float EXRs, and flat scanline ones (ZIP, on the OpenEXRCore path below).
 // For the tiled files, two paths that produce the same standard file layout:
-// - none / zip / zips: our own tile loop on OpenEXRCore. Tiles are packed and deflated on all threads
-//   (libdeflate, in EXR's ZIP tile format: bytes split, delta predictor, zlib stream), then written in
-//   file order by one thread, so the bytes never depend on the thread count. This is where heightpack
-//   beats a general texture maker: OpenEXR 3.1 deflates with zlib, several times slower.
-// - rle / piz: OpenEXR's C++ TiledOutputFile, which implements those codecs.
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfStandardAttributes.h>
-#include <OpenEXR/ImfStringAttribute.h>
-#include <OpenEXR/ImfTiledOutputFile.h>
+// - none / zip / zips: our own tile loop on OpenEXRCore. Rows of tiles are packed and deflated on all
+//   threads, a row per worker (libdeflate, in EXR's ZIP tile format: bytes split, delta predictor, zlib
+//   stream), and written in file order as they are done, so the bytes never depend on the thread count.
+//   This is where heightpack beats a general texture maker: OpenEXR 3.1 deflates with zlib, several
+//   times slower.
+// - rle / piz: OpenEXR's C++ TiledOutputFile, which implements those codecs (exr_write_imf.cpp).
 #include <Imath/half.h>
 #include <OpenEXR/openexr.h>
 #include <libdeflate.h>
 
 #include <algorithm>
 #include <cassert>
-#include <cmath>
+#include <condition_variable>
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <numeric>
+#include <vector>
 
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
 
+#include "exr_write_imf.hpp"
 #include "text.hpp"
 
 namespace heightpack {
@@ -40,19 +38,12 @@ constexpr int kDeflateLevel = 4;
 // 194.6 MB against 194.2 MB at level 4, in about 17% less time (float noise barely compresses).
 constexpr int kScanlineDeflateLevel = 1;
 
-
 int levelSize(int size, int level) { return std::max(1, size >> level); }
 
-// The last guard before bytes reach a file: an output never holds NaN or infinity. Whatever let one
-// through (an option or input check missing) is a bug, reported as one.
-Status requireFinite(const std::string& path, const float* values, size_t count, int level) {
-    for (size_t i = 0; i < count; ++i)
-        if (!std::isfinite(values[i]))
-            return Error{ErrorKind::Internal, path,
-                         "internal error: level " + std::to_string(level) + " holds a non-finite value; nothing was written",
-                         "please report this with the command line"};
-    return Done{};
-}
+// One row of tiles of one level of a tiled file: the rows [y0, y0 + rows) of a level `width` wide.
+struct TileRow {
+    int level = 0, y0 = 0, rows = 0, width = 0, tilesX = 0;
+};
 
 // ---- The OpenEXRCore path ----
 
@@ -179,41 +170,96 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
 
     int levels = 0;
     if ((rv = exr_get_tile_levels(ctxt, part, &levels, nullptr))) return fail("counting levels", rv);
+    // Every row of tiles of every level, in file order: the jobs.
     const int ts = options.tileSize;
-    long long rowsTotal = 0, rowsDone = 0;
-    for (int level = 0; level < levels; ++level) rowsTotal += levelSize(content.height, level);
-
-    std::vector<float> band;
-    std::vector<std::vector<unsigned char>> tiles;
+    std::vector<TileRow> jobs;
     for (int level = 0; level < levels; ++level) {
         const int w = levelSize(content.width, level), h = levelSize(content.height, level);
-        const int tilesX = (w + ts - 1) / ts, tilesY = (h + ts - 1) / ts;
-        band.resize(size_t(w) * ts * channels);
-        tiles.resize(tilesX);
-        for (int ty = 0; ty < tilesY; ++ty) {
-            const int y0 = ty * ts, rows = std::min(ts, h - y0);
-            parallelFor(rows, options.threads, [&](int a, int b) {
-                content.fillRows(level, y0 + a, b - a, band.data() + size_t(a) * w * channels);
-            });
-            if (Status s = requireFinite(finalPath, band.data(), size_t(w) * rows * channels, level); !s) return s;
-            parallelFor(tilesX, options.threads, [&](int a, int b) {
-                std::vector<unsigned char> raw, scratch;
-                libdeflate_compressor* compressor = zip ? libdeflate_alloc_compressor(kDeflateLevel) : nullptr;
-                for (int tx = a; tx < b; ++tx) {
-                    const int x0 = tx * ts;
-                    packTile(band.data(), w, channels, nameOrder, x0, std::min(ts, w - x0), rows, options.half,
-                             zip ? raw : tiles[tx]);
-                    if (zip) zipTile(raw, scratch, tiles[tx], compressor);
+        for (int y0 = 0; y0 < h; y0 += ts) jobs.push_back({level, y0, std::min(ts, h - y0), w, (w + ts - 1) / ts});
+    }
+    const size_t bandFloats = size_t(content.width) * std::min(ts, content.height) * channels;
+
+    // Each worker takes the next row of tiles, fills, checks, packs and deflates it alone, then writes every
+    // row done in file order that is next to write (under the lock): no thread waits at the end of each row
+    // for the slowest tile, the serial parts (the check, the writes) overlap the other workers' deflating.
+    // A row is taken only while it is fewer than `window` rows ahead of the next to write, so at most that
+    // many rows of tiles wait in memory, each as its tiles' bytes end to end (not a deflate bound a tile); the
+    // rows' buffers are a ring, reused from row to row.
+    const int workers = std::min<int>(resolveThreadCount(options.threads), int(jobs.size()));
+    const int window = 2 * workers;
+    struct Slot {
+        std::vector<unsigned char> bytes;
+        std::vector<size_t> ends;  // where each tile's bytes end
+        Status status = Done{};
+        bool ready = false;
+    };
+    std::vector<Slot> ring(static_cast<size_t>(window));
+    std::mutex lock;
+    std::condition_variable changed;
+    size_t taken = 0, written = 0;
+    bool stop = false;
+    Status outcome = Done{};
+    const long long rowsTotal = std::accumulate(jobs.begin(), jobs.end(), 0LL, [](long long n, const TileRow& j) { return n + j.rows; });
+    long long rowsDone = 0;
+    // Writes the rows done in order from `written` on; called with the lock held.
+    auto writeReady = [&] {
+        currentErrors = &errors;  // OpenEXRCore reports on the thread that writes
+        for (; written < jobs.size() && ring[written % window].ready && !stop; ++written) {
+            Slot& slot = ring[written % window];
+            const TileRow& job = jobs[written];
+            slot.ready = false;
+            if (!slot.status) {
+                outcome = slot.status, stop = true;
+                break;
+            }
+            for (int tx = 0; tx < job.tilesX; ++tx) {
+                const size_t begin = tx > 0 ? slot.ends[tx - 1] : 0;
+                if ((rv = exr_write_tile_chunk(ctxt, part, tx, job.y0 / ts, job.level, job.level, slot.bytes.data() + begin,
+                                               slot.ends[tx] - begin))) {
+                    outcome = fail("writing a tile", rv), stop = true;
+                    break;
                 }
-                libdeflate_free_compressor(compressor);
-            });
-            for (int tx = 0; tx < tilesX; ++tx)
-                if ((rv = exr_write_tile_chunk(ctxt, part, tx, ty, level, level, tiles[tx].data(), tiles[tx].size())))
-                    return fail("writing a tile", rv);
-            rowsDone += rows;
+            }
+            if (stop) break;
+            rowsDone += job.rows;
             if (options.progress) options.progress(double(rowsDone) / rowsTotal);
         }
-    }
+    };
+    parallelFor(workers, workers, [&](int, int) {
+        std::vector<float> band(bandFloats);
+        std::vector<unsigned char> raw, scratch, tile;
+        std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> compressor(
+            zip ? libdeflate_alloc_compressor(kDeflateLevel) : nullptr, libdeflate_free_compressor);
+        for (;;) {
+            size_t j = 0;
+            {
+                std::unique_lock<std::mutex> held(lock);
+                changed.wait(held, [&] { return stop || taken == jobs.size() || taken < written + window; });
+                if (stop || taken == jobs.size()) return;
+                j = taken++;
+            }
+            const TileRow& job = jobs[j];
+            Slot& slot = ring[j % window];
+            content.fillRows(job.level, job.y0, job.rows, band.data());
+            slot.status = detail::requireFinite(finalPath, band.data(), size_t(job.width) * job.rows * channels, job.level);
+            slot.bytes.clear();
+            slot.ends.clear();
+            for (int tx = 0; tx < job.tilesX && slot.status; ++tx) {
+                const int x0 = tx * ts;
+                packTile(band.data(), job.width, channels, nameOrder, x0, std::min(ts, job.width - x0), job.rows,
+                         options.half, zip ? raw : tile);
+                if (zip) zipTile(raw, scratch, tile, compressor.get());
+                slot.bytes.insert(slot.bytes.end(), tile.begin(), tile.end());
+                slot.ends.push_back(slot.bytes.size());
+            }
+            std::lock_guard<std::mutex> held(lock);
+            slot.ready = true;
+            writeReady();
+            changed.notify_all();
+        }
+    });
+    currentErrors = &errors;
+    if (!outcome) return outcome;
     guard.release();
     if ((rv = exr_finish(&ctxt))) return fail("finishing the file", rv);
     return Done{};
@@ -275,7 +321,7 @@ Status writeScanlineWithCore(const std::string& finalPath, const std::string& pa
             for (int i = a; i < b; ++i) {
                 const int y0 = (first + i) * linesPerBlock, rows = std::min(linesPerBlock, content.height - y0);
                 const float* band = content.pixels + size_t(y0) * content.width * channels;
-                failed[i] = requireFinite(finalPath, band, size_t(content.width) * rows * channels, 0);
+                failed[i] = detail::requireFinite(finalPath, band, size_t(content.width) * rows * channels, 0);
                 if (!failed[i]) continue;
                 packTile(band, content.width, channels, nameOrder, 0, content.width, rows, half, zip ? raw : packed[i]);
                 if (zip) zipTile(raw, scratch, packed[i], compressor);
@@ -293,77 +339,6 @@ Status writeScanlineWithCore(const std::string& finalPath, const std::string& pa
     return Done{};
 }
 
-// ---- The OpenEXR C++ path (rle, piz) ----
-
-Imf::Compression toImf(Compression compression) {
-    switch (compression) {
-        case Compression::None: return Imf::NO_COMPRESSION;
-        case Compression::Rle: return Imf::RLE_COMPRESSION;
-        case Compression::Zips: return Imf::ZIPS_COMPRESSION;
-        case Compression::Zip: return Imf::ZIP_COMPRESSION;
-        case Compression::Piz: return Imf::PIZ_COMPRESSION;
-    }
-    return Imf::ZIP_COMPRESSION;
-}
-
-Status writeWithImf(const std::string& finalPath, const std::string& path, const MipChainSource& content,
-                    const ExrWriteOptions& options) {
-    Imf::Header header(content.width, content.height);
-    header.compression() = toImf(options.compression);
-    header.setTileDescription(
-        Imf::TileDescription(options.tileSize, options.tileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
-    const Imf::PixelType type = options.half ? Imf::HALF : Imf::FLOAT;
-    for (const std::string& name : content.channelNames) header.channels().insert(name, Imf::Channel(type));
-    for (const ExrAttribute& a : content.attributes) {
-        if (const auto* s = std::get_if<std::string>(&a.value))
-            header.insert(a.name, Imf::StringAttribute(*s));
-        else
-            header.insert(a.name, Imf::FloatAttribute(std::get<float>(a.value)));
-    }
-    try {
-        Imf::TiledOutputFile file(path.c_str(), header);
-        const int channels = static_cast<int>(content.channelNames.size());
-        const size_t texelBytes = sizeof(float) * channels;
-        long long rowsTotal = 0, rowsDone = 0;
-        for (int level = 0; level < file.numLevels(); ++level) rowsTotal += file.levelHeight(level);
-        std::vector<float> band;
-        std::vector<Imath::half> halves;
-        for (int level = 0; level < file.numLevels(); ++level) {
-            const int w = file.levelWidth(level), h = file.levelHeight(level);
-            band.resize(static_cast<size_t>(w) * options.tileSize * channels);
-            if (options.half) halves.resize(band.size());
-            for (int ty = 0; ty < file.numYTiles(level); ++ty) {
-                const int y0 = ty * options.tileSize;
-                const int rows = std::min(options.tileSize, h - y0);
-                content.fillRows(level, y0, rows, band.data());
-                if (Status s = requireFinite(finalPath, band.data(), size_t(w) * rows * channels, level); !s) return s;
-                Imf::FrameBuffer frame;
-                if (options.half) {
-                    for (size_t i = 0; i < size_t(w) * rows * channels; ++i) halves[i] = Imath::half(band[i]);
-                    const size_t halfTexel = sizeof(Imath::half) * channels;
-                    for (int c = 0; c < channels; ++c)
-                        frame.insert(content.channelNames[c],
-                                     Imf::Slice::Make(Imf::HALF, halves.data() + c, IMATH_NAMESPACE::V2i(0, y0), w,
-                                                      rows, halfTexel, halfTexel * w));
-                }
-                for (int c = 0; c < channels && !options.half; ++c) {
-                    frame.insert(content.channelNames[c],
-                                 Imf::Slice::Make(Imf::FLOAT, band.data() + c, IMATH_NAMESPACE::V2i(0, y0), w, rows,
-                                                  texelBytes, texelBytes * w));
-                }
-                file.setFrameBuffer(frame);
-                // A whole row of tiles per call lets OpenEXR compress them on its thread pool.
-                file.writeTiles(0, file.numXTiles(level) - 1, ty, ty, level);
-                rowsDone += rows;
-                if (options.progress) options.progress(double(rowsDone) / rowsTotal);
-            }
-        }
-    } catch (const std::exception& e) {
-        return cannotWrite(finalPath, "writing failed: " + detail::firstLine(e.what()), "check free disk space and permissions");
-    }
-    return Done{};
-}
-
 }  // namespace
 
 Status writeTiledExr(const std::string& path, const MipChainSource& content, const ExrWriteOptions& options) {
@@ -376,7 +351,7 @@ Status writeTiledExr(const std::string& path, const MipChainSource& content, con
     const bool core = options.compression == Compression::None || options.compression == Compression::Zip ||
                       options.compression == Compression::Zips;
     Status written = core ? writeWithCore(path, temp.path(), content, options)
-                          : writeWithImf(path, temp.path(), content, options);
+                          : detail::writeTiledWithImf(path, temp.path(), content, options);
     if (!written) return written;
     return temp.commit();
 }
