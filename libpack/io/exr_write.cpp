@@ -1,5 +1,5 @@
-// Writing tiled, mip-mapped float EXRs, and flat scanline ones (ZIP, on the OpenEXRCore path below).
-// For the tiled files, two paths that produce the same standard file layout:
+// Writing tiled, mip-mapped float EXRs (flat scanline ones: exr_scanline.cpp, on the helpers here), on two
+// paths that produce the same standard file layout:
 // - none / zip / zips: our own tile loop on OpenEXRCore. Rows of tiles are packed and deflated on all
 //   threads, a row per worker (libdeflate, in EXR's ZIP tile format: bytes split, delta predictor, zlib
 //   stream), and written in file order as they are done, so the bytes never depend on the thread count.
@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cassert>
 #include <condition_variable>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -24,32 +25,14 @@
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
 
-#include "exr_write_imf.hpp"
+#include "exr_write_parts.hpp"
 #include "text.hpp"
 
 namespace heightpack {
 
+namespace detail {
+
 namespace {
-
-// libdeflate's level 4: on the 4096^2 benchmark map, 68.5 MB against 72.0 MB from OpenEXR's own zip
-// (zlib level 4), in about half the CPU time. Fixed, so outputs are reproducible.
-constexpr int kDeflateLevel = 4;
-// A flat scanline file (synth's maps) at level 1: on synth's 4096^2 map with displacement and foam,
-// 194.6 MB against 194.2 MB at level 4, in about 17% less time (float noise barely compresses).
-constexpr int kScanlineDeflateLevel = 1;
-
-int levelSize(int size, int level) { return std::max(1, size >> level); }
-
-// One row of tiles of one level of a tiled file: the rows [y0, y0 + rows) of a level `width` wide.
-struct TileRow {
-    int level = 0, y0 = 0, rows = 0, width = 0, tilesX = 0;
-};
-
-// ---- The OpenEXRCore path ----
-
-struct CoreErrors {
-    std::string last;
-};
 
 // The errors of the write under way on this thread. OpenEXRCore 3.1 calls the handler while it holds the
 // context's lock, so asking the context for its user data there waits on that lock forever.
@@ -59,8 +42,15 @@ extern "C" void rememberCoreError(exr_const_context_t, exr_result_t code, const 
     if (currentErrors) currentErrors->last = msg ? msg : exr_get_default_error_message(code);
 }
 
-// Starts writing path, with errors remembered in errors and attribute names over 31 characters allowed
-// (heightpack:significantWaveHeight has 32; OpenEXR's C++ library sets the same flag by itself).
+}  // namespace
+
+void reportCoreErrorsTo(CoreErrors& errors) { currentErrors = &errors; }
+
+Status coreFailure(const std::string& finalPath, const CoreErrors& errors, const char* step, exr_result_t rv) {
+    const std::string why = errors.last.empty() ? exr_get_default_error_message(rv) : errors.last;
+    return cannotWrite(finalPath, std::string(step) + " failed: " + firstLine(why), "check free disk space and permissions");
+}
+
 exr_result_t startWrite(exr_context_t* ctxt, const std::string& path, CoreErrors& errors) {
     currentErrors = &errors;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -70,8 +60,6 @@ exr_result_t startWrite(exr_context_t* ctxt, const std::string& path, CoreErrors
     return rv;
 }
 
-// Packs one tile's texels in EXR's uncompressed tile layout: line by line, and within a line each
-// channel's run of floats (or halves), channels in name order.
 void packTile(const float* band, int levelWidth, int channels, const std::vector<int>& nameOrder, int x0,
               int tileWidth, int rows, bool half, std::vector<unsigned char>& raw) {
     if (half) {
@@ -93,8 +81,6 @@ void packTile(const float* band, int levelWidth, int channels, const std::vector
     }
 }
 
-// EXR's ZIP tile compression (as ImfZip.cpp): split even and odd bytes, delta-code them, deflate as a
-// zlib stream. Leaves the raw bytes when compression would not make them smaller, as EXR requires.
 void zipTile(std::vector<unsigned char>& raw, std::vector<unsigned char>& scratch, std::vector<unsigned char>& out,
              libdeflate_compressor* compressor) {
     const size_t n = raw.size();
@@ -128,7 +114,6 @@ exr_result_t addAttributes(exr_context_t ctxt, int part, const std::vector<ExrAt
     return EXR_ERR_SUCCESS;
 }
 
-// The channels' order in the file (EXR sorts them by name), as indices into names.
 std::vector<int> fileOrder(const std::vector<std::string>& names) {
     std::vector<int> order(names.size());
     std::iota(order.begin(), order.end(), 0);
@@ -136,16 +121,52 @@ std::vector<int> fileOrder(const std::vector<std::string>& names) {
     return order;
 }
 
+}  // namespace detail
+
+namespace {
+
+// libdeflate's level 4: on the 4096^2 benchmark map, 68.5 MB against 72.0 MB from OpenEXR's own zip
+// (zlib level 4), in about half the CPU time. Fixed, so outputs are reproducible.
+constexpr int kDeflateLevel = 4;
+
+int levelSize(int size, int level) { return std::max(1, size >> level); }
+
+// One row of tiles of one level of a tiled file: the rows [y0, y0 + rows) of a level `width` wide.
+struct TileRow {
+    int level = 0, y0 = 0, rows = 0, width = 0, tilesX = 0;
+};
+
+// The same layout as packTile's, each line's channel runs taken straight from content.fillRun; fails,
+// naming the level, on a value that is not finite. half: raw holds halves (via values), else floats.
+Status runTile(const MipChainSource& content, const TileRow& job, int x0, int tileWidth, const std::vector<int>& nameOrder,
+               bool half, const std::string& finalPath, std::vector<float>& values, std::vector<unsigned char>& raw) {
+    const size_t count = size_t(job.rows) * nameOrder.size() * tileWidth;
+    if (half)
+        values.resize(count);
+    else
+        raw.resize(count * sizeof(float));
+    float* const first = half ? values.data() : reinterpret_cast<float*>(raw.data());
+    float* out = first;
+    for (int r = 0; r < job.rows; ++r)
+        for (int c : nameOrder) {
+            content.fillRun(job.level, job.y0 + r, x0, tileWidth, c, out);
+            out += tileWidth;
+        }
+    if (Status finite = detail::requireFinite(finalPath, first, count, job.level); !finite) return finite;
+    if (half) {
+        raw.resize(count * sizeof(std::uint16_t));
+        std::uint16_t* bits = reinterpret_cast<std::uint16_t*>(raw.data());
+        for (size_t i = 0; i < count; ++i) bits[i] = Imath::half(values[i]).bits();
+    }
+    return Done{};
+}
+
 Status writeWithCore(const std::string& finalPath, const std::string& path, const MipChainSource& content,
                      const ExrWriteOptions& options) {
-    CoreErrors errors;
+    detail::CoreErrors errors;
     exr_context_t ctxt = nullptr;
-    auto fail = [&](const char* step, exr_result_t rv) -> Status {
-        const std::string why = errors.last.empty() ? exr_get_default_error_message(rv) : errors.last;
-        return cannotWrite(finalPath, std::string(step) + " failed: " + detail::firstLine(why),
-                           "check free disk space and permissions");
-    };
-    exr_result_t rv = startWrite(&ctxt, path, errors);
+    auto fail = [&](const char* step, exr_result_t rv) { return detail::coreFailure(finalPath, errors, step, rv); };
+    exr_result_t rv = detail::startWrite(&ctxt, path, errors);
     std::unique_ptr<exr_context_t, void (*)(exr_context_t*)> guard(&ctxt, [](exr_context_t* c) { exr_finish(c); });
     if (rv != EXR_ERR_SUCCESS) return fail("opening the file", rv);
 
@@ -162,11 +183,11 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
     for (const std::string& name : content.channelNames)
         if ((rv = exr_add_channel(ctxt, part, name.c_str(), options.half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1)))
             return fail("adding a channel", rv);
-    if ((rv = addAttributes(ctxt, part, content.attributes))) return fail("adding an attribute", rv);
+    if ((rv = detail::addAttributes(ctxt, part, content.attributes))) return fail("adding an attribute", rv);
     if ((rv = exr_write_header(ctxt))) return fail("writing the header", rv);
 
     const int channels = static_cast<int>(content.channelNames.size());
-    const std::vector<int> nameOrder = fileOrder(content.channelNames);
+    const std::vector<int> nameOrder = detail::fileOrder(content.channelNames);
 
     int levels = 0;
     if ((rv = exr_get_tile_levels(ctxt, part, &levels, nullptr))) return fail("counting levels", rv);
@@ -201,9 +222,11 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
     Status outcome = Done{};
     const long long rowsTotal = std::accumulate(jobs.begin(), jobs.end(), 0LL, [](long long n, const TileRow& j) { return n + j.rows; });
     long long rowsDone = 0;
-    // Writes the rows done in order from `written` on; called with the lock held.
+    EarlyWriteback writeback(path);
+    // Writes the rows done in order from `written` on, called with the lock held; returns the bytes written.
     auto writeReady = [&] {
-        currentErrors = &errors;  // OpenEXRCore reports on the thread that writes
+        detail::reportCoreErrorsTo(errors);  // OpenEXRCore reports on the thread that writes
+        size_t bytes = 0;
         for (; written < jobs.size() && ring[written % window].ready && !stop; ++written) {
             Slot& slot = ring[written % window];
             const TileRow& job = jobs[written];
@@ -221,12 +244,15 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
                 }
             }
             if (stop) break;
+            bytes += slot.bytes.size();
             rowsDone += job.rows;
             if (options.progress) options.progress(double(rowsDone) / rowsTotal);
         }
+        return bytes;
     };
+    const bool runs = bool(content.fillRun);
     parallelFor(workers, workers, [&](int, int) {
-        std::vector<float> band(bandFloats);
+        std::vector<float> band(runs ? 0 : bandFloats), values;
         std::vector<unsigned char> raw, scratch, tile;
         std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> compressor(
             zip ? libdeflate_alloc_compressor(kDeflateLevel) : nullptr, libdeflate_free_compressor);
@@ -240,100 +266,37 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
             }
             const TileRow& job = jobs[j];
             Slot& slot = ring[j % window];
-            content.fillRows(job.level, job.y0, job.rows, band.data());
-            slot.status = detail::requireFinite(finalPath, band.data(), size_t(job.width) * job.rows * channels, job.level);
+            slot.status = Done{};
+            if (!runs) {
+                content.fillRows(job.level, job.y0, job.rows, band.data());
+                slot.status = detail::requireFinite(finalPath, band.data(), size_t(job.width) * job.rows * channels, job.level);
+            }
             slot.bytes.clear();
             slot.ends.clear();
             for (int tx = 0; tx < job.tilesX && slot.status; ++tx) {
-                const int x0 = tx * ts;
-                packTile(band.data(), job.width, channels, nameOrder, x0, std::min(ts, job.width - x0), job.rows,
-                         options.half, zip ? raw : tile);
-                if (zip) zipTile(raw, scratch, tile, compressor.get());
+                const int x0 = tx * ts, tileWidth = std::min(ts, job.width - x0);
+                std::vector<unsigned char>& laidOut = zip ? raw : tile;
+                if (runs)
+                    slot.status = runTile(content, job, x0, tileWidth, nameOrder, options.half, finalPath, values, laidOut);
+                else
+                    detail::packTile(band.data(), job.width, channels, nameOrder, x0, tileWidth, job.rows, options.half, laidOut);
+                if (!slot.status) break;
+                if (zip) detail::zipTile(raw, scratch, tile, compressor.get());
                 slot.bytes.insert(slot.bytes.end(), tile.begin(), tile.end());
                 slot.ends.push_back(slot.bytes.size());
             }
-            std::lock_guard<std::mutex> held(lock);
-            slot.ready = true;
-            writeReady();
-            changed.notify_all();
+            size_t bytes = 0;
+            {
+                std::lock_guard<std::mutex> held(lock);
+                slot.ready = true;
+                bytes = writeReady();
+                changed.notify_all();
+            }
+            writeback.wrote(bytes);  // the disk writes start here, outside the lock
         }
     });
-    currentErrors = &errors;
+    detail::reportCoreErrorsTo(errors);
     if (!outcome) return outcome;
-    guard.release();
-    if ((rv = exr_finish(&ctxt))) return fail("finishing the file", rv);
-    return Done{};
-}
-
-// The flat scanline file: blocks of rows (16 for ZIP and None, 1 for ZIPS), a batch of blocks packed (and
-// deflated) on all threads, then written in order by one thread. It replaced OpenImageIO's writer (zlib
-// through OpenEXR 3.1), which took about 40% of `synth`'s time; the file holds the same channels, types
-// and attributes.
-Status writeScanlineWithCore(const std::string& finalPath, const std::string& path, const ScanlineExrContent& content,
-                             bool half, int threads, Compression compression) {
-    CoreErrors errors;
-    exr_context_t ctxt = nullptr;
-    auto fail = [&](const char* step, exr_result_t rv) -> Status {
-        const std::string why = errors.last.empty() ? exr_get_default_error_message(rv) : errors.last;
-        return cannotWrite(finalPath, std::string(step) + " failed: " + detail::firstLine(why),
-                           "check free disk space and permissions");
-    };
-    exr_result_t rv = startWrite(&ctxt, path, errors);
-    std::unique_ptr<exr_context_t, void (*)(exr_context_t*)> guard(&ctxt, [](exr_context_t* c) { exr_finish(c); });
-    if (rv != EXR_ERR_SUCCESS) return fail("opening the file", rv);
-
-    const bool zip = compression != Compression::None;
-    int part = 0;
-    if ((rv = exr_add_part(ctxt, nullptr, EXR_STORAGE_SCANLINE, &part)) ||
-        (rv = exr_initialize_required_attr_simple(ctxt, part, content.width, content.height,
-                                                  !zip ? EXR_COMPRESSION_NONE
-                                                  : compression == Compression::Zips ? EXR_COMPRESSION_ZIPS
-                                                                                     : EXR_COMPRESSION_ZIP)))
-        return fail("describing the file", rv);
-    // pLinear 0 (OpenEXRCore calls it "logarithmic"): what OpenImageIO wrote, Imf::Channel's default.
-    for (const std::string& name : content.channelNames)
-        if ((rv = exr_add_channel(ctxt, part, name.c_str(), half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT,
-                                  EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1)))
-            return fail("adding a channel", rv);
-    if ((rv = addAttributes(ctxt, part, content.attributes))) return fail("adding an attribute", rv);
-    if ((rv = exr_write_header(ctxt))) return fail("writing the header", rv);
-
-    const int channels = static_cast<int>(content.channelNames.size());
-    const std::vector<int> nameOrder = fileOrder(content.channelNames);
-    int linesPerBlock = 0;
-    if ((rv = exr_get_scanlines_per_chunk(ctxt, part, &linesPerBlock))) return fail("describing the file", rv);
-    const int blocks = (content.height + linesPerBlock - 1) / linesPerBlock;
-    // Enough blocks a batch to keep the threads busy, few enough that the compressed batch stays small.
-    const int batch = 64;
-    // The batch's blocks are reserved here, on this thread: a worker's own allocations would come from its
-    // own arena, new memory beside the caller's freed heap (16 MB more at 4096^2, 4 float channels).
-    std::vector<std::vector<unsigned char>> packed(batch);
-    libdeflate_compressor* sizing = libdeflate_alloc_compressor(kScanlineDeflateLevel);
-    const size_t rawBlock = size_t(linesPerBlock) * content.width * channels * (half ? 2 : 4);
-    for (std::vector<unsigned char>& block : packed) block.reserve(zip ? libdeflate_zlib_compress_bound(sizing, rawBlock) : rawBlock);
-    libdeflate_free_compressor(sizing);
-    for (int first = 0; first < blocks; first += batch) {
-        const int count = std::min(batch, blocks - first);
-        std::vector<Status> failed(count, Done{});
-        parallelFor(count, threads, [&](int a, int b) {
-            std::vector<unsigned char> raw, scratch;
-            libdeflate_compressor* compressor = zip ? libdeflate_alloc_compressor(kScanlineDeflateLevel) : nullptr;
-            for (int i = a; i < b; ++i) {
-                const int y0 = (first + i) * linesPerBlock, rows = std::min(linesPerBlock, content.height - y0);
-                const float* band = content.pixels + size_t(y0) * content.width * channels;
-                failed[i] = detail::requireFinite(finalPath, band, size_t(content.width) * rows * channels, 0);
-                if (!failed[i]) continue;
-                packTile(band, content.width, channels, nameOrder, 0, content.width, rows, half, zip ? raw : packed[i]);
-                if (zip) zipTile(raw, scratch, packed[i], compressor);
-            }
-            libdeflate_free_compressor(compressor);
-        });
-        for (int i = 0; i < count; ++i) {
-            if (!failed[i]) return failed[i];
-            if ((rv = exr_write_scanline_chunk(ctxt, part, (first + i) * linesPerBlock, packed[i].data(), packed[i].size())))
-                return fail("writing rows", rv);
-        }
-    }
     guard.release();
     if ((rv = exr_finish(&ctxt))) return fail("finishing the file", rv);
     return Done{};
@@ -353,18 +316,6 @@ Status writeTiledExr(const std::string& path, const MipChainSource& content, con
     Status written = core ? writeWithCore(path, temp.path(), content, options)
                           : detail::writeTiledWithImf(path, temp.path(), content, options);
     if (!written) return written;
-    return temp.commit();
-}
-
-Status writeScanlineExr(const std::string& path, const ScanlineExrContent& content, bool half, int threads,
-                        Compression compression) {
-    assert(content.width > 0 && content.height > 0 && !content.channelNames.empty() && content.pixels);
-    if (Status writable = checkWritable(path); !writable) return writable;
-    if (lowerExtension(path) != ".exr")
-        return cannotWrite(path, "is not an .exr name, but the file would be an EXR", "name the output .exr");
-    TemporaryFile temp(path);
-    if (Status written = writeScanlineWithCore(path, temp.path(), content, half, threads, compression); !written)
-        return written;
     return temp.commit();
 }
 

@@ -36,6 +36,15 @@ MipChainSource numberedChain(int width, int height) {
     return content;
 }
 
+// The same source with its runs too (MipChainSource::fillRun), which the writer then takes instead of rows.
+MipChainSource withRuns(MipChainSource content) {
+    const int width = content.width;
+    content.fillRun = [width](int level, int y, int x0, int count, int channel, float* dst) {
+        for (int x = x0; x < x0 + count; ++x) *dst++ = valueAt(level, x, y, channel);
+    };
+    return content;
+}
+
 }  // namespace
 
 TEST(TiledExrWriter, EveryRowOfEveryLevelIsWrittenInPlaceOnAnyThreadCount) {
@@ -82,7 +91,7 @@ TEST(TiledExrWriter, EveryRowOfEveryLevelIsWrittenInPlaceOnAnyThreadCount) {
 
 TEST(TiledExrWriter, TheFirstNonFiniteLevelInFileOrderIsNamedOnAnyThreadCount) {
     // Levels 1 and 3 hold an infinity (level 1 in its last row, which a worker may reach after level 3's):
-    // the refusal names level 1 whatever the thread count, and no file is left behind.
+    // the refusal names level 1 whatever the thread count, from rows or from runs, and no file is left.
     ScratchDir dir;
     MipChainSource content = numberedChain(128, 128);
     const auto numbered = content.fillRows;
@@ -92,14 +101,43 @@ TEST(TiledExrWriter, TheFirstNonFiniteLevelInFileOrderIsNamedOnAnyThreadCount) {
         if ((level == 1 || level == 3) && y0 + rows - 1 == last)
             dst[size_t(rows - 1) * (128 >> level) * 2] = std::numeric_limits<float>::infinity();
     };
-    for (int threads : {1, 2, 4}) {
-        ExrWriteOptions options;
-        options.tileSize = 16;
-        options.threads = threads;
-        const Status written = writeTiledExr(dir.file("inf.exr"), content, options);
-        ASSERT_FALSE(written.ok());
-        EXPECT_EQ(written.error().kind, ErrorKind::Internal);
-        EXPECT_NE(written.error().what.find("level 1 "), std::string::npos) << threads << ": " << written.error().what;
-        EXPECT_TRUE(dir.listing().empty()) << threads;
-    }
+    MipChainSource runs = withRuns(content);
+    const auto numberedRun = runs.fillRun;
+    runs.fillRun = [numberedRun](int level, int y, int x0, int count, int channel, float* dst) {
+        numberedRun(level, y, x0, count, channel, dst);
+        if ((level == 1 || level == 3) && y == (128 >> level) - 1 && x0 == 0 && channel == 0)
+            dst[0] = std::numeric_limits<float>::infinity();
+    };
+    for (const MipChainSource* source : {&content, &runs})
+        for (int threads : {1, 2, 4}) {
+            ExrWriteOptions options;
+            options.tileSize = 16;
+            options.threads = threads;
+            const Status written = writeTiledExr(dir.file("inf.exr"), *source, options);
+            ASSERT_FALSE(written.ok());
+            EXPECT_EQ(written.error().kind, ErrorKind::Internal);
+            EXPECT_NE(written.error().what.find("level 1 "), std::string::npos) << threads << ": " << written.error().what;
+            EXPECT_TRUE(dir.listing().empty()) << threads;
+        }
+}
+
+TEST(TiledExrWriter, ChannelRunsGiveTheBytesThatRowsGive) {
+    // A source that also gives each channel's runs is written from them (no band of interleaved rows):
+    // the file must be the one written from its rows, float or half, deflated or not, on any thread count.
+    ScratchDir dir;
+    const MipChainSource rows = numberedChain(96, 160), runs = withRuns(rows);
+    for (Compression compression : {Compression::Zip, Compression::None})
+        for (bool half : {false, true}) {
+            ExrWriteOptions options;
+            options.compression = compression;
+            options.tileSize = 32;
+            options.half = half;
+            options.threads = 1;
+            ASSERT_TRUE(writeTiledExr(dir.file("rows.exr"), rows, options).ok());
+            for (int threads : {1, 3}) {
+                options.threads = threads;
+                ASSERT_TRUE(writeTiledExr(dir.file("runs.exr"), runs, options).ok());
+                EXPECT_EQ(readBytes(dir.file("runs.exr")), readBytes(dir.file("rows.exr"))) << half << " " << threads;
+            }
+        }
 }
