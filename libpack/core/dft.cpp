@@ -106,6 +106,49 @@ void rowPass(int w, int h, int threads, const std::vector<HalfSpectrumRows>& fie
     });
 }
 
+// inverseRealDftOfHalf through a scratch of floats `Stride` apart (0: scratch.stride, known at run time only).
+template <int Stride>
+void inverseThroughScratch(int w, int h, int threads, const HalfSpectrumSource& give, const HalfSpectrumScratch& scratch,
+                           const std::vector<HalfSpectrumRows>& fields) {
+    const int columns = w / 2 + 1, half = w / 2;
+    const size_t stride = Stride > 0 ? size_t(Stride) : size_t(scratch.stride);
+    // Float j of row y (j < w: complex j / 2's real part, or imaginary) in scratch.first; complex w/2 of row
+    // y in lastColumn[y].
+    auto row = [&](int y) { return scratch.first + size_t(y) * w * stride; };
+    // The column pass, as transformColumns's: a block of columns gathered (from give) into lines, each line
+    // transformed, the result put back into the scratch.
+    parallelFor((columns + kFloatBlock - 1) / kFloatBlock, threads, [&](int begin, int end) {
+        cv::Mat padded(kFloatBlock, h + int(64 / sizeof(cv::Vec2f)), CV_32FC2);
+        cv::Mat lines = padded.colRange(0, h);
+        const size_t lineStride = padded.step1() / 2;  // complex values from one line to the next
+        for (int block = begin; block < end; ++block) {
+            const int x0 = block * kFloatBlock, count = std::min(kFloatBlock, columns - x0);
+            const int inside = std::min(count, half - x0);  // the block's columns below w/2
+            cv::Mat gathered = lines.rowRange(0, count);
+            const cv::Vec2f* first = gathered.ptr<cv::Vec2f>(0);
+            give(x0, count, reinterpret_cast<std::complex<float>*>(gathered.ptr<cv::Vec2f>(0)), lineStride);
+            cv::dft(gathered, gathered, cv::DFT_INVERSE | cv::DFT_ROWS);
+            for (int y = 0; y < h; ++y) {
+                float* to = row(y) + 2 * size_t(x0) * stride;
+                for (int i = 0; i < inside; ++i) {
+                    const cv::Vec2f z = first[i * lineStride + y];
+                    to[2 * i * stride] = z[0], to[(2 * i + 1) * stride] = z[1];
+                }
+                if (inside < count) scratch.lastColumn[y] = {first[inside * lineStride + y][0], first[inside * lineStride + y][1]};
+            }
+        }
+    });
+    // Each row copied out of the scratch before its block's rows go to any take: a take may write over
+    // the scratch rows of its own block (the sea's heights are written where their spectrum was).
+    rowPass(w, h, threads, fields, [&](int y, std::complex<float>* out) -> const std::complex<float>* {
+        const float* from = row(y);
+        float* to = reinterpret_cast<float*>(out);
+        for (int j = 0; j < w; ++j) to[j] = from[j * stride];
+        out[half] = scratch.lastColumn[y];
+        return out;
+    });
+}
+
 }  // namespace
 
 cv::Mat forwardDft(const cv::Mat& field, int threads) {
@@ -163,46 +206,11 @@ void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads, 
 void inverseRealDftOfHalf(int w, int h, int threads, const HalfSpectrumSource& give, const HalfSpectrumScratch& scratch,
                           const std::vector<HalfSpectrumRows>& fields) {
     CV_Assert(w >= 2 && w % 2 == 0 && h >= 1 && scratch.first && scratch.stride >= 1 && scratch.lastColumn);
-    const int columns = w / 2 + 1;
-    const size_t stride = size_t(scratch.stride);
-    // Complex q < w/2 of row y as two floats of scratch.first; q = w/2 in lastColumn[y].
-    auto at = [&](int y, int q) { return scratch.first + (size_t(y) * w + 2 * size_t(q)) * stride; };
-    // The column pass, as transformColumns's: a block of columns gathered (from give) into lines, each line
-    // transformed, the result put back into the scratch.
-    parallelFor((columns + kFloatBlock - 1) / kFloatBlock, threads, [&](int begin, int end) {
-        cv::Mat padded(kFloatBlock, h + int(64 / sizeof(cv::Vec2f)), CV_32FC2);
-        cv::Mat lines = padded.colRange(0, h);
-        std::complex<float> values[kFloatBlock];
-        for (int block = begin; block < end; ++block) {
-            const int x0 = block * kFloatBlock, count = std::min(kFloatBlock, columns - x0);
-            cv::Mat gathered = lines.rowRange(0, count);
-            for (int y = 0; y < h; ++y) {
-                give(y, x0, count, values);
-                for (int i = 0; i < count; ++i) gathered.ptr<cv::Vec2f>(i)[y] = {values[i].real(), values[i].imag()};
-            }
-            cv::dft(gathered, gathered, cv::DFT_INVERSE | cv::DFT_ROWS);
-            for (int y = 0; y < h; ++y)
-                for (int i = 0; i < count; ++i) {
-                    const cv::Vec2f z = gathered.ptr<cv::Vec2f>(i)[y];
-                    if (x0 + i == w / 2) {
-                        scratch.lastColumn[y] = {z[0], z[1]};
-                    } else {
-                        float* to = at(y, x0 + i);
-                        to[0] = z[0], to[stride] = z[1];
-                    }
-                }
-        }
-    });
-    // Each row copied out of the scratch before its block's rows go to any take: a take may write over
-    // the scratch rows of its own block (the sea's heights are written where their spectrum was).
-    rowPass(w, h, threads, fields, [&](int y, std::complex<float>* row) -> const std::complex<float>* {
-        for (int q = 0; q < w / 2; ++q) {
-            const float* from = at(y, q);
-            row[q] = {from[0], from[stride]};
-        }
-        row[w / 2] = scratch.lastColumn[y];
-        return row;
-    });
+    // A plane (stride 1) and an interleaved image of four channels (synth's) get their own copy loops, the
+    // stride known to the compiler so that they vectorise.
+    if (scratch.stride == 1) return inverseThroughScratch<1>(w, h, threads, give, scratch, fields);
+    if (scratch.stride == 4) return inverseThroughScratch<4>(w, h, threads, give, scratch, fields);
+    inverseThroughScratch<0>(w, h, threads, give, scratch, fields);
 }
 
 void solvePeriodicPoisson(const cv::Mat& rhs, cv::Mat& out, int threads) {

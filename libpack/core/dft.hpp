@@ -48,17 +48,14 @@ struct HalfSpectrumRows {
 };
 void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads, const std::vector<HalfSpectrumRows>& fields);
 
-// The same without a half spectrum of its own: give(r, q0, count, out) writes the values of row r at columns
-// q0 .. q0 + count - 1 of the half spectrum to transform (w even: w/2 + 1 columns) into out, once per row and
-// block of columns, from any thread; the column pass's result is kept in `scratch` for the row pass. Each
-// block's rows are read from the scratch before any of them goes to a take, so a take may write over the
-// scratch rows of its own block: the scratch can be the storage of the last field itself (the sea's
-// heights in their interleaved image), and no spectrum-sized buffer is needed. The same values as the
-// overload above given the same spectrum.
-using HalfSpectrumSource = std::function<void(int r, int q0, int count, std::complex<float>* out)>;
-// Complex value q < w/2 of row r as the floats first[(r w + 2q) stride] (real) and first[(r w + 2q + 1)
-// stride] (imaginary): w floats a row, as a field of w x h floats spaced `stride` apart holds; the last
-// column (q = w/2) in lastColumn[r], h values.
+// The same without a half spectrum of its own: give(q0, count, lines, lineStride) writes columns q0 ..
+// q0 + count - 1 of the half spectrum to transform (w even: w/2 + 1 columns), every row r of column q0 + i
+// at lines[i * lineStride + r], once per block of columns, from any thread; the column pass's result is
+// kept in `scratch` for the row pass. Each block's rows are read from the scratch before any of them goes
+// to a take, so a take may write over the scratch rows of its own block: the scratch can be the storage
+// of the last field itself (the sea's heights in their interleaved image), and no spectrum-sized buffer
+// is needed. The same values as the overload above given the same spectrum.
+using HalfSpectrumSource = std::function<void(int q0, int count, std::complex<float>* lines, size_t lineStride)>;
 struct HalfSpectrumScratch {
     float* first = nullptr;
     int stride = 1;

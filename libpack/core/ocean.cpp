@@ -123,19 +123,23 @@ void Ocean::fieldsInto(double t, const SeaFieldTargets& to, double choppiness, i
         scratch = {ownScratch.data(), 1, lastColumn.data()};
     }
     auto source = [&](auto passConstant) -> detail::HalfSpectrumSource {
-        return [spectrum, n, columns, dk](int r, int q0, int count, std::complex<float>* out) {
+        return [spectrum, n, columns, dk](int q0, int count, std::complex<float>* lines, size_t lineStride) {
             constexpr ColumnPass pass = decltype(passConstant)::value;
-            const std::complex<float>* from = spectrum + size_t(r) * columns;
-            if constexpr (pass == Plain) {
-                std::copy(from + q0, from + q0 + count, out);
-            } else {
-                const float ky = float(signedBin(r, n) * dk);
-                for (int q = q0; q < q0 + count; ++q) {
-                    const float kx = float(q * dk), k2 = kx * kx + ky * ky;
-                    const float inverse = k2 > 0.0f ? 1.0f / std::sqrt(k2) : 0.0f;
-                    if constexpr (pass == OverK) out[q - q0] = from[q] * inverse;
-                    if constexpr (pass == MinusKy2OverK) out[q - q0] = from[q] * (-ky * ky * inverse);
-                    if constexpr (pass == KyOverK) out[q - q0] = from[q] * (ky * inverse);
+            for (int r = 0; r < n; ++r) {
+                const std::complex<float>* from = spectrum + size_t(r) * columns;
+                std::complex<float>* to = lines + r;
+                if constexpr (pass == Plain) {
+                    for (int q = q0; q < q0 + count; ++q) to[(q - q0) * lineStride] = from[q];
+                } else {
+                    const float ky = float(signedBin(r, n) * dk);
+                    for (int q = q0; q < q0 + count; ++q) {
+                        const float kx = float(q * dk), k2 = kx * kx + ky * ky;
+                        const float inverse = k2 > 0.0f ? 1.0f / std::sqrt(k2) : 0.0f;
+                        std::complex<float>& z = to[(q - q0) * lineStride];
+                        if constexpr (pass == OverK) z = from[q] * inverse;
+                        if constexpr (pass == MinusKy2OverK) z = from[q] * (-ky * ky * inverse);
+                        if constexpr (pass == KyOverK) z = from[q] * (ky * inverse);
+                    }
                 }
             }
         };

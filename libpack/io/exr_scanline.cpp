@@ -14,6 +14,7 @@
 #include "heightpack/io/files.hpp"
 
 #include "exr_write_parts.hpp"
+#include "ordered_writes.hpp"
 
 namespace heightpack {
 
@@ -25,10 +26,9 @@ namespace {
 // about 17% less time (float noise barely compresses).
 constexpr int kScanlineDeflateLevel = 1;
 
-// The flat scanline file: blocks of rows (16 for ZIP and None, 1 for ZIPS), a batch of blocks packed (and
-// deflated) on all threads, then written in order by one thread. It replaced OpenImageIO's writer (zlib
-// through OpenEXR 3.1), which took about 40% of `synth`'s time; the file holds the same channels, types
-// and attributes.
+// The flat scanline file: blocks of rows (16 for ZIP and None, 1 for ZIPS), packed (and deflated) on all
+// threads and written in order. It replaced OpenImageIO's writer (zlib through OpenEXR 3.1), which took
+// about 40% of `synth`'s time; the file holds the same channels, types and attributes.
 Status writeScanlineWithCore(const std::string& finalPath, const std::string& path, const ScanlineExrContent& content,
                              bool half, int threads, Compression compression) {
     CoreErrors errors;
@@ -59,39 +59,47 @@ Status writeScanlineWithCore(const std::string& finalPath, const std::string& pa
     int linesPerBlock = 0;
     if ((rv = exr_get_scanlines_per_chunk(ctxt, part, &linesPerBlock))) return fail("describing the file", rv);
     const int blocks = (content.height + linesPerBlock - 1) / linesPerBlock;
-    EarlyWriteback writeback(path);
-    // Enough blocks a batch to keep the threads busy, few enough that the compressed batch stays small.
-    const int batch = 64;
-    // The batch's blocks are reserved here, on this thread: a worker's own allocations would come from its
-    // own arena, new memory beside the caller's freed heap (16 MB more at 4096^2, 4 float channels).
-    std::vector<std::vector<unsigned char>> packed(batch);
+    // A block is a piece: a worker checks, packs (and deflates) it, and the blocks reach the file in order
+    // as they are done (ordered_writes.hpp), the writes overlapping the packing of the blocks after. The
+    // ring of blocks waiting is reserved here, on this thread: a worker's own allocations would come from
+    // its own arena, new memory beside the caller's freed heap.
+    const int workers = std::min(resolveThreadCount(threads), blocks);
+    const size_t window = 2 * size_t(workers);
+    std::vector<std::vector<unsigned char>> packed(window);
     libdeflate_compressor* sizing = libdeflate_alloc_compressor(kScanlineDeflateLevel);
     const size_t rawBlock = size_t(linesPerBlock) * content.width * channels * (half ? 2 : 4);
     for (std::vector<unsigned char>& block : packed) block.reserve(zip ? libdeflate_zlib_compress_bound(sizing, rawBlock) : rawBlock);
     libdeflate_free_compressor(sizing);
-    for (int first = 0; first < blocks; first += batch) {
-        const int count = std::min(batch, blocks - first);
-        std::vector<Status> failed(count, Done{});
-        parallelFor(count, threads, [&](int a, int b) {
-            std::vector<unsigned char> raw, scratch;
-            libdeflate_compressor* compressor = zip ? libdeflate_alloc_compressor(kScanlineDeflateLevel) : nullptr;
-            for (int i = a; i < b; ++i) {
-                const int y0 = (first + i) * linesPerBlock, rows = std::min(linesPerBlock, content.height - y0);
-                const float* band = content.pixels + size_t(y0) * content.width * channels;
-                failed[i] = requireFinite(finalPath, band, size_t(content.width) * rows * channels, 0);
-                if (!failed[i]) continue;
-                packTile(band, content.width, channels, nameOrder, 0, content.width, rows, half, zip ? raw : packed[i]);
-                if (zip) zipTile(raw, scratch, packed[i], compressor);
-            }
-            libdeflate_free_compressor(compressor);
-        });
-        for (int i = 0; i < count; ++i) {
-            if (!failed[i]) return failed[i];
-            if ((rv = exr_write_scanline_chunk(ctxt, part, (first + i) * linesPerBlock, packed[i].data(), packed[i].size())))
-                return fail("writing rows", rv);
-            writeback.wrote(packed[i].size());
-        }
+    struct Worker {
+        std::vector<unsigned char> raw, scratch;
+        std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> compressor{nullptr, libdeflate_free_compressor};
+    };
+    std::vector<Worker> own(static_cast<size_t>(workers));
+    for (Worker& w : own) {
+        if (!zip) continue;
+        w.compressor.reset(libdeflate_alloc_compressor(kScanlineDeflateLevel));
+        w.raw.reserve(rawBlock);
+        w.scratch.reserve(rawBlock);
     }
+    auto make = [&](size_t block, size_t slot, int worker) -> Status {
+        const int y0 = int(block) * linesPerBlock, rows = std::min(linesPerBlock, content.height - y0);
+        const float* band = content.pixels + size_t(y0) * content.width * channels;
+        if (Status s = requireFinite(finalPath, band, size_t(content.width) * rows * channels, 0); !s) return s;
+        Worker& w = own[size_t(worker)];
+        packTile(band, content.width, channels, nameOrder, 0, content.width, rows, half, zip ? w.raw : packed[slot]);
+        if (zip) zipTile(w.raw, w.scratch, packed[slot], w.compressor.get());
+        return Done{};
+    };
+    auto write = [&](size_t block, size_t slot) -> Result<size_t> {
+        reportCoreErrorsTo(errors);  // OpenEXRCore reports on the thread that writes
+        if (exr_result_t r = exr_write_scanline_chunk(ctxt, part, int(block) * linesPerBlock, packed[slot].data(), packed[slot].size()))
+            return fail("writing rows", r).error();
+        return packed[slot].size();
+    };
+    EarlyWriteback writeback(path);
+    const Status made = makeAndWriteInOrder(size_t(blocks), workers, window, writeback, make, write);
+    reportCoreErrorsTo(errors);
+    if (!made) return made;
     guard.release();
     if ((rv = exr_finish(&ctxt))) return fail("finishing the file", rv);
     return Done{};

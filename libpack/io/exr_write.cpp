@@ -12,12 +12,10 @@
 
 #include <algorithm>
 #include <cassert>
-#include <condition_variable>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <numeric>
 #include <vector>
 
@@ -26,6 +24,7 @@
 #include "heightpack/io/files.hpp"
 
 #include "exr_write_parts.hpp"
+#include "ordered_writes.hpp"
 #include "text.hpp"
 
 namespace heightpack {
@@ -200,103 +199,73 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
     }
     const size_t bandFloats = size_t(content.width) * std::min(ts, content.height) * channels;
 
-    // Each worker takes the next row of tiles, fills, checks, packs and deflates it alone, then writes every
-    // row done in file order that is next to write (under the lock): no thread waits at the end of each row
-    // for the slowest tile, the serial parts (the check, the writes) overlap the other workers' deflating.
-    // A row is taken only while it is fewer than `window` rows ahead of the next to write, so at most that
-    // many rows of tiles wait in memory, each as its tiles' bytes end to end (not a deflate bound a tile); the
-    // rows' buffers are a ring, reused from row to row.
+    // A row of tiles is a piece: a worker fills, checks, packs and deflates it alone, and the rows reach the
+    // file in order as they are done (ordered_writes.hpp). At most 2 rows a worker wait in memory, each as
+    // its tiles' bytes end to end (not a deflate bound a tile), in a ring of buffers reused row after row.
     const int workers = std::min<int>(resolveThreadCount(options.threads), int(jobs.size()));
-    const int window = 2 * workers;
-    struct Slot {
+    const size_t window = 2 * size_t(workers);
+    struct Row {
         std::vector<unsigned char> bytes;
         std::vector<size_t> ends;  // where each tile's bytes end
-        Status status = Done{};
-        bool ready = false;
     };
-    std::vector<Slot> ring(static_cast<size_t>(window));
-    std::mutex lock;
-    std::condition_variable changed;
-    size_t taken = 0, written = 0;
-    bool stop = false;
-    Status outcome = Done{};
+    struct Worker {
+        std::vector<float> band, values;
+        std::vector<unsigned char> raw, scratch, tile;
+        std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> compressor{nullptr, libdeflate_free_compressor};
+    };
+    std::vector<Row> ring(window);
+    std::vector<Worker> own(static_cast<size_t>(workers));
+    const bool runs = bool(content.fillRun);
+    for (Worker& w : own) {
+        if (!runs) w.band.resize(bandFloats);
+        if (zip) w.compressor.reset(libdeflate_alloc_compressor(kDeflateLevel));
+    }
     const long long rowsTotal = std::accumulate(jobs.begin(), jobs.end(), 0LL, [](long long n, const TileRow& j) { return n + j.rows; });
     long long rowsDone = 0;
     EarlyWriteback writeback(path);
-    // Writes the rows done in order from `written` on, called with the lock held; returns the bytes written.
-    auto writeReady = [&] {
-        detail::reportCoreErrorsTo(errors);  // OpenEXRCore reports on the thread that writes
-        size_t bytes = 0;
-        for (; written < jobs.size() && ring[written % window].ready && !stop; ++written) {
-            Slot& slot = ring[written % window];
-            const TileRow& job = jobs[written];
-            slot.ready = false;
-            if (!slot.status) {
-                outcome = slot.status, stop = true;
-                break;
-            }
-            for (int tx = 0; tx < job.tilesX; ++tx) {
-                const size_t begin = tx > 0 ? slot.ends[tx - 1] : 0;
-                if ((rv = exr_write_tile_chunk(ctxt, part, tx, job.y0 / ts, job.level, job.level, slot.bytes.data() + begin,
-                                               slot.ends[tx] - begin))) {
-                    outcome = fail("writing a tile", rv), stop = true;
-                    break;
-                }
-            }
-            if (stop) break;
-            bytes += slot.bytes.size();
-            rowsDone += job.rows;
-            if (options.progress) options.progress(double(rowsDone) / rowsTotal);
+    auto make = [&](size_t j, size_t slot, int worker) -> Status {
+        const TileRow& job = jobs[j];
+        Row& row = ring[slot];
+        Worker& w = own[size_t(worker)];
+        if (!runs) {
+            content.fillRows(job.level, job.y0, job.rows, w.band.data());
+            if (Status s = detail::requireFinite(finalPath, w.band.data(), size_t(job.width) * job.rows * channels, job.level); !s)
+                return s;
         }
-        return bytes;
+        row.bytes.clear();
+        row.ends.clear();
+        for (int tx = 0; tx < job.tilesX; ++tx) {
+            const int x0 = tx * ts, tileWidth = std::min(ts, job.width - x0);
+            std::vector<unsigned char>& laidOut = zip ? w.raw : w.tile;
+            if (runs) {
+                if (Status s = runTile(content, job, x0, tileWidth, nameOrder, options.half, finalPath, w.values, laidOut); !s)
+                    return s;
+            } else {
+                detail::packTile(w.band.data(), job.width, channels, nameOrder, x0, tileWidth, job.rows, options.half, laidOut);
+            }
+            if (zip) detail::zipTile(w.raw, w.scratch, w.tile, w.compressor.get());
+            row.bytes.insert(row.bytes.end(), w.tile.begin(), w.tile.end());
+            row.ends.push_back(row.bytes.size());
+        }
+        return Done{};
     };
-    const bool runs = bool(content.fillRun);
-    parallelFor(workers, workers, [&](int, int) {
-        std::vector<float> band(runs ? 0 : bandFloats), values;
-        std::vector<unsigned char> raw, scratch, tile;
-        std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> compressor(
-            zip ? libdeflate_alloc_compressor(kDeflateLevel) : nullptr, libdeflate_free_compressor);
-        for (;;) {
-            size_t j = 0;
-            {
-                std::unique_lock<std::mutex> held(lock);
-                changed.wait(held, [&] { return stop || taken == jobs.size() || taken < written + window; });
-                if (stop || taken == jobs.size()) return;
-                j = taken++;
-            }
-            const TileRow& job = jobs[j];
-            Slot& slot = ring[j % window];
-            slot.status = Done{};
-            if (!runs) {
-                content.fillRows(job.level, job.y0, job.rows, band.data());
-                slot.status = detail::requireFinite(finalPath, band.data(), size_t(job.width) * job.rows * channels, job.level);
-            }
-            slot.bytes.clear();
-            slot.ends.clear();
-            for (int tx = 0; tx < job.tilesX && slot.status; ++tx) {
-                const int x0 = tx * ts, tileWidth = std::min(ts, job.width - x0);
-                std::vector<unsigned char>& laidOut = zip ? raw : tile;
-                if (runs)
-                    slot.status = runTile(content, job, x0, tileWidth, nameOrder, options.half, finalPath, values, laidOut);
-                else
-                    detail::packTile(band.data(), job.width, channels, nameOrder, x0, tileWidth, job.rows, options.half, laidOut);
-                if (!slot.status) break;
-                if (zip) detail::zipTile(raw, scratch, tile, compressor.get());
-                slot.bytes.insert(slot.bytes.end(), tile.begin(), tile.end());
-                slot.ends.push_back(slot.bytes.size());
-            }
-            size_t bytes = 0;
-            {
-                std::lock_guard<std::mutex> held(lock);
-                slot.ready = true;
-                bytes = writeReady();
-                changed.notify_all();
-            }
-            writeback.wrote(bytes);  // the disk writes start here, outside the lock
+    auto write = [&](size_t j, size_t slot) -> Result<size_t> {
+        detail::reportCoreErrorsTo(errors);  // OpenEXRCore reports on the thread that writes
+        const TileRow& job = jobs[j];
+        const Row& row = ring[slot];
+        for (int tx = 0; tx < job.tilesX; ++tx) {
+            const size_t begin = tx > 0 ? row.ends[tx - 1] : 0;
+            if (exr_result_t r = exr_write_tile_chunk(ctxt, part, tx, job.y0 / ts, job.level, job.level, row.bytes.data() + begin,
+                                                      row.ends[tx] - begin))
+                return fail("writing a tile", r).error();
         }
-    });
+        rowsDone += job.rows;
+        if (options.progress) options.progress(double(rowsDone) / rowsTotal);
+        return row.bytes.size();
+    };
+    const Status made = detail::makeAndWriteInOrder(jobs.size(), workers, window, writeback, make, write);
     detail::reportCoreErrorsTo(errors);
-    if (!outcome) return outcome;
+    if (!made) return made;
     guard.release();
     if ((rv = exr_finish(&ctxt))) return fail("finishing the file", rv);
     return Done{};

@@ -197,8 +197,9 @@ TEST(ThreadedDft, HalfSpectrumGivenAsItGoesEqualsTheStoredOneWithTheLastFieldAsS
         for (int threads : {1, 3}) {
             std::vector<float> image(size_t(w) * h * 3, 7.0f);  // channel 0 the scratch, then plain; 1: dx; 2 untouched
             std::vector<std::complex<float>> lastColumn(h);
-            const detail::HalfSpectrumSource give = [&](int r, int q0, int count, std::complex<float>* out) {
-                std::copy_n(spectrum.begin() + ptrdiff_t(size_t(r) * columns + q0), count, out);
+            const detail::HalfSpectrumSource give = [&](int q0, int count, std::complex<float>* lines, size_t lineStride) {
+                for (int r = 0; r < h; ++r)
+                    for (int i = 0; i < count; ++i) lines[i * lineStride + r] = spectrum[size_t(r) * columns + q0 + i];
             };
             detail::inverseRealDftOfHalf(w, h, threads, give, {image.data(), 3, lastColumn.data()},
                                          {{ikx, into(image, 3, 1)}, {{}, into(image, 3, 0)}});
