@@ -123,7 +123,7 @@ void Ocean::fieldsInto(double t, const SeaFieldTargets& to, double choppiness, i
         scratch = {ownScratch.data(), 1, lastColumn.data()};
     }
     auto source = [&](auto passConstant) -> detail::HalfSpectrumSource {
-        return [spectrum, n, columns, dk](int q0, int count, std::complex<float>* lines, size_t lineStride) {
+        return [&](int q0, int count, std::complex<float>* lines, size_t lineStride) {
             constexpr ColumnPass pass = decltype(passConstant)::value;
             for (int r = 0; r < n; ++r) {
                 const std::complex<float>* from = spectrum + size_t(r) * columns;
