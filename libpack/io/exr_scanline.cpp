@@ -86,6 +86,8 @@ Status writeScanlineWithCore(const std::string& finalPath, const std::string& pa
         const float* band = content.pixels + size_t(y0) * content.width * channels;
         if (Status s = requireFinite(finalPath, band, size_t(content.width) * rows * channels, 0); !s) return s;
         Worker& w = own[size_t(worker)];
+        packed[slot].clear();
+        w.raw.clear();
         packTile(band, content.width, channels, nameOrder, 0, content.width, rows, half, zip ? w.raw : packed[slot]);
         if (zip) zipTile(w.raw, w.scratch, packed[slot], w.compressor.get());
         return Done{};

@@ -60,27 +60,28 @@ exr_result_t startWrite(exr_context_t* ctxt, const std::string& path, CoreErrors
 }
 
 void packTile(const float* band, int levelWidth, int channels, const std::vector<int>& nameOrder, int x0,
-              int tileWidth, int rows, bool half, std::vector<unsigned char>& raw) {
+              int tileWidth, int rows, bool half, std::vector<unsigned char>& out) {
+    const size_t start = out.size(), count = size_t(rows) * channels * tileWidth;
     if (half) {
-        raw.resize(size_t(rows) * channels * tileWidth * sizeof(std::uint16_t));
-        std::uint16_t* out = reinterpret_cast<std::uint16_t*>(raw.data());
+        out.resize(start + count * sizeof(std::uint16_t));
+        std::uint16_t* to = reinterpret_cast<std::uint16_t*>(out.data() + start);
         for (int r = 0; r < rows; ++r) {
             const float* line = band + (size_t(r) * levelWidth + x0) * channels;
             for (int c : nameOrder)
-                for (int x = 0; x < tileWidth; ++x) *out++ = Imath::half(line[size_t(x) * channels + c]).bits();
+                for (int x = 0; x < tileWidth; ++x) *to++ = Imath::half(line[size_t(x) * channels + c]).bits();
         }
         return;
     }
-    raw.resize(size_t(rows) * channels * tileWidth * sizeof(float));
-    float* out = reinterpret_cast<float*>(raw.data());
+    out.resize(start + count * sizeof(float));
+    float* to = reinterpret_cast<float*>(out.data() + start);
     for (int r = 0; r < rows; ++r) {
         const float* line = band + (size_t(r) * levelWidth + x0) * channels;
         for (int c : nameOrder)
-            for (int x = 0; x < tileWidth; ++x) *out++ = line[size_t(x) * channels + c];
+            for (int x = 0; x < tileWidth; ++x) *to++ = line[size_t(x) * channels + c];
     }
 }
 
-void zipTile(std::vector<unsigned char>& raw, std::vector<unsigned char>& scratch, std::vector<unsigned char>& out,
+void zipTile(const std::vector<unsigned char>& raw, std::vector<unsigned char>& scratch, std::vector<unsigned char>& out,
              libdeflate_compressor* compressor) {
     const size_t n = raw.size();
     scratch.resize(n);
@@ -95,12 +96,16 @@ void zipTile(std::vector<unsigned char>& raw, std::vector<unsigned char>& scratc
     for (size_t i = 1; i < evens; ++i) even[i] = static_cast<unsigned char>(in[2 * i] - in[2 * i - 2] + 128);
     if (odds > 0) odd[0] = static_cast<unsigned char>(in[1] - in[2 * (evens - 1)] + 128);  // after the last even
     for (size_t i = 1; i < odds; ++i) odd[i] = static_cast<unsigned char>(in[2 * i + 1] - in[2 * i - 1] + 128);
-    out.resize(libdeflate_zlib_compress_bound(compressor, n));
-    const size_t packed = libdeflate_zlib_compress(compressor, scratch.data(), n, out.data(), out.size());
-    if (packed == 0 || packed >= n)
-        out.swap(raw);
-    else
-        out.resize(packed);
+    // Deflated straight onto the end of out (no copy of the tile's bytes afterwards).
+    const size_t start = out.size();
+    out.resize(start + libdeflate_zlib_compress_bound(compressor, n));
+    const size_t packed = libdeflate_zlib_compress(compressor, scratch.data(), n, out.data() + start, out.size() - start);
+    if (packed == 0 || packed >= n) {
+        out.resize(start);
+        out.insert(out.end(), raw.begin(), raw.end());
+    } else {
+        out.resize(start + packed);
+    }
 }
 
 exr_result_t addAttributes(exr_context_t ctxt, int part, const std::vector<ExrAttribute>& attributes) {
@@ -135,26 +140,26 @@ struct TileRow {
     int level = 0, y0 = 0, rows = 0, width = 0, tilesX = 0;
 };
 
-// The same layout as packTile's, each line's channel runs taken straight from content.fillRun; fails,
-// naming the level, on a value that is not finite. half: raw holds halves (via values), else floats.
+// The same layout as packTile's, appended to out, each line's channel runs taken straight from
+// content.fillRun; fails, naming the level, on a value that is not finite. half: halves (via values).
 Status runTile(const MipChainSource& content, const TileRow& job, int x0, int tileWidth, const std::vector<int>& nameOrder,
-               bool half, const std::string& finalPath, std::vector<float>& values, std::vector<unsigned char>& raw) {
-    const size_t count = size_t(job.rows) * nameOrder.size() * tileWidth;
+               bool half, const std::string& finalPath, std::vector<float>& values, std::vector<unsigned char>& out) {
+    const size_t count = size_t(job.rows) * nameOrder.size() * tileWidth, start = out.size();
     if (half)
         values.resize(count);
     else
-        raw.resize(count * sizeof(float));
-    float* const first = half ? values.data() : reinterpret_cast<float*>(raw.data());
-    float* out = first;
+        out.resize(start + count * sizeof(float));
+    float* const first = half ? values.data() : reinterpret_cast<float*>(out.data() + start);
+    float* to = first;
     for (int r = 0; r < job.rows; ++r)
         for (int c : nameOrder) {
-            content.fillRun(job.level, job.y0 + r, x0, tileWidth, c, out);
-            out += tileWidth;
+            content.fillRun(job.level, job.y0 + r, x0, tileWidth, c, to);
+            to += tileWidth;
         }
     if (Status finite = detail::requireFinite(finalPath, first, count, job.level); !finite) return finite;
     if (half) {
-        raw.resize(count * sizeof(std::uint16_t));
-        std::uint16_t* bits = reinterpret_cast<std::uint16_t*>(raw.data());
+        out.resize(start + count * sizeof(std::uint16_t));
+        std::uint16_t* bits = reinterpret_cast<std::uint16_t*>(out.data() + start);
         for (size_t i = 0; i < count; ++i) bits[i] = Imath::half(values[i]).bits();
     }
     return Done{};
@@ -210,7 +215,7 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
     };
     struct Worker {
         std::vector<float> band, values;
-        std::vector<unsigned char> raw, scratch, tile;
+        std::vector<unsigned char> raw, scratch;
         std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> compressor{nullptr, libdeflate_free_compressor};
     };
     std::vector<Row> ring(window);
@@ -236,15 +241,16 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
         row.ends.clear();
         for (int tx = 0; tx < job.tilesX; ++tx) {
             const int x0 = tx * ts, tileWidth = std::min(ts, job.width - x0);
-            std::vector<unsigned char>& laidOut = zip ? w.raw : w.tile;
+            // Laid out onto the row's bytes, or into raw to be deflated onto them.
+            std::vector<unsigned char>& laidOut = zip ? w.raw : row.bytes;
+            if (zip) w.raw.clear();
             if (runs) {
                 if (Status s = runTile(content, job, x0, tileWidth, nameOrder, options.half, finalPath, w.values, laidOut); !s)
                     return s;
             } else {
                 detail::packTile(w.band.data(), job.width, channels, nameOrder, x0, tileWidth, job.rows, options.half, laidOut);
             }
-            if (zip) detail::zipTile(w.raw, w.scratch, w.tile, w.compressor.get());
-            row.bytes.insert(row.bytes.end(), w.tile.begin(), w.tile.end());
+            if (zip) detail::zipTile(w.raw, w.scratch, row.bytes, w.compressor.get());
             row.ends.push_back(row.bytes.size());
         }
         return Done{};

@@ -43,16 +43,16 @@ exr_result_t addAttributes(exr_context_t ctxt, int part, const std::vector<ExrAt
 // The channels' order in the file (EXR sorts them by name), as indices into names.
 std::vector<int> fileOrder(const std::vector<std::string>& names);
 
-// Packs one tile's texels in EXR's uncompressed tile layout: line by line, and within a line each
+// Appends one tile's texels to out in EXR's uncompressed tile layout: line by line, and within a line each
 // channel's run of floats (or halves), channels in name order. band holds the tile's rows, levelWidth
 // texels of `channels` interleaved floats each; the tile starts at texel x0.
 void packTile(const float* band, int levelWidth, int channels, const std::vector<int>& nameOrder, int x0,
-              int tileWidth, int rows, bool half, std::vector<unsigned char>& raw);
+              int tileWidth, int rows, bool half, std::vector<unsigned char>& out);
 
-// EXR's ZIP tile compression (as ImfZip.cpp): split even and odd bytes, delta-code them, deflate as a
-// zlib stream into out. Leaves the raw bytes (swapped into out) when compression would not make them
-// smaller, as EXR requires.
-void zipTile(std::vector<unsigned char>& raw, std::vector<unsigned char>& scratch, std::vector<unsigned char>& out,
+// EXR's ZIP tile compression (as ImfZip.cpp) of raw, appended to out: even and odd bytes split and
+// delta-coded (in scratch), deflated as a zlib stream; the raw bytes themselves when compression would not
+// make them smaller, as EXR requires.
+void zipTile(const std::vector<unsigned char>& raw, std::vector<unsigned char>& scratch, std::vector<unsigned char>& out,
              libdeflate_compressor* compressor);
 
 }  // namespace heightpack::detail
