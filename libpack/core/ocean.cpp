@@ -127,15 +127,15 @@ void Ocean::fieldsInto(double t, const SeaFieldTargets& to, double choppiness, i
             constexpr ColumnPass pass = decltype(passConstant)::value;
             for (int r = 0; r < n; ++r) {
                 const std::complex<float>* from = spectrum + size_t(r) * columns;
-                std::complex<float>* to = lines + r;
+                std::complex<float>* rowOfLines = lines + r;  // row r of line i at rowOfLines[i * lineStride]
                 if constexpr (pass == Plain) {
-                    for (int q = q0; q < q0 + count; ++q) to[(q - q0) * lineStride] = from[q];
+                    for (int q = q0; q < q0 + count; ++q) rowOfLines[(q - q0) * lineStride] = from[q];
                 } else {
                     const float ky = float(signedBin(r, n) * dk);
                     for (int q = q0; q < q0 + count; ++q) {
                         const float kx = float(q * dk), k2 = kx * kx + ky * ky;
                         const float inverse = k2 > 0.0f ? 1.0f / std::sqrt(k2) : 0.0f;
-                        std::complex<float>& z = to[(q - q0) * lineStride];
+                        std::complex<float>& z = rowOfLines[(q - q0) * lineStride];
                         if constexpr (pass == OverK) z = from[q] * inverse;
                         if constexpr (pass == MinusKy2OverK) z = from[q] * (-ky * ky * inverse);
                         if constexpr (pass == KyOverK) z = from[q] * (ky * inverse);
