@@ -263,11 +263,13 @@ Spectra spectraOf(const HalfSpectrum& spectrum, int threads) {
     for (int i = -2; i < h + 2; ++i) wrapY[i + 2] = (i + h) % h;
     for (int pass = 0; pass < 3; ++pass) {
         parallelFor(h, threads, [&](int begin, int end) {
+            std::vector<double> padded(size_t(w) + 4);  // the row with its wrapped neighbours: no gather
             for (int y = begin; y < end; ++y) {
                 const double* row = &(pass == 0 ? power : smooth).v[size_t(y) * w];
+                for (int i = 0; i < w + 4; ++i) padded[i] = row[wrapX[i]];
                 for (int x = 0; x < w; ++x) {
                     double sum = 0;
-                    for (int d = 0; d < 5; ++d) sum += row[wrapX[x + d]];
+                    for (int d = 0; d < 5; ++d) sum += padded[x + d];
                     next.at(x, y) = sum / 5;
                 }
             }
