@@ -18,6 +18,7 @@
 #include "counter_normals.hpp"
 #include "dft.hpp"
 #include "gaussianise.hpp"
+#include "strip_field.hpp"
 
 using namespace heightpack;
 
@@ -282,4 +283,34 @@ TEST(StableOrder, EqualsStdStableSortWithTiesNegativesAndSignedZeros) {
             ASSERT_TRUE(want == 0.0f ? ranks.sorted[i] == 0.0f : std::memcmp(&ranks.sorted[i], &want, sizeof want) == 0) << trial << " " << i;
         }
     }
+}
+
+TEST(StripField, KeepsTheTexelsNearTheWrapLinesOnceEach) {
+    // A 37 x 23 field kept within 5 columns of the left/right wrap line and 3 rows of the top/bottom one:
+    // each kept texel reads back what its row gave (a texel in both strips from its row's copy), a write
+    // to one reads back, and exactly the texels within reach are kept.
+    const int w = 37, h = 23, reachX = 5, reachY = 3;
+    detail::StripField strips(w, h, reachX, reachY);
+    std::vector<double> full(size_t(w) * h);
+    for (size_t i = 0; i < full.size(); ++i) full[i] = 0.25 * double(i) - 7;
+    for (int y = 0; y < h; ++y) strips.setRow(y, &full[size_t(y) * w]);
+    int kept = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const bool near = x < reachX || x >= w - reachX || y < reachY || y >= h - reachY;
+            ASSERT_EQ(strips.keeps(x, y), near) << x << " " << y;
+            if (!near) continue;
+            ++kept;
+            EXPECT_EQ(strips.at(x, y), full[size_t(y) * w + x]) << x << " " << y;
+        }
+    EXPECT_EQ(kept, w * h - (w - 2 * reachX) * (h - 2 * reachY));
+    EXPECT_EQ(int(strips.columns().size()), 2 * reachX);
+    strips.at(1, 1) = 99.5;  // in both strips
+    const detail::StripField& view = strips;
+    EXPECT_EQ(view.at(1, 1), 99.5);
+    // A reach past the middle keeps everything.
+    detail::StripField all(w, h, w, 0);
+    for (int y = 0; y < h; ++y) all.setRow(y, &full[size_t(y) * w]);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) EXPECT_EQ(all.at(x, y), full[size_t(y) * w + x]);
 }
