@@ -12,13 +12,19 @@
 #  3. per example map, layout and pixel type: the GPU bytes of the whole chain and the worst packed-
 #     lookup error (pack --json), heights with the example manifest's amplitude as --height (ripple:
 #     stored units), and ripple's normal map in rgb and xy (normal units).
-#   tests/bench/bench_containers.sh [BUILD_DIR] [RUNS] [SIZE] [SECTIONS]   (SECTIONS: default "1 2 3")
+#  4. issue 24's peak memory of pack (float; the default zip EXR, .ktx2, .dds) above start-up, the peak of
+#     `heightpack info` on a 16x16 map, in MiB and bytes a texel (at most 8 at 8192^2), medians of RUNS.
+#  With OLD_HEIGHTPACK (an older binary), sections 2 and 4 also run it, alternating, on float: its ratios
+#  to the same floors and its peak, for a before and after measured side by side.
+#   tests/bench/bench_containers.sh [BUILD_DIR] [RUNS] [SIZE] [SECTIONS] [OLD_HEIGHTPACK]
+#   (SECTIONS: default "1 2 3 4")
 # Needs jq, and heightpack_make_bench_map (configure with -DHEIGHTPACK_BUILD_BENCHMARKS=ON).
 set -euo pipefail
 build=${1:-build}
 runs=${2:-5}
 size=${3:-4096}
-sections=${4:-1 2 3}
+sections=${4:-1 2 3 4}
+old=${5:-}
 section() { [[ " $sections " == *" $1 "* ]]; }
 hp="$build/heightpack"
 make_map="$build/tests/bench/heightpack_make_bench_map"
@@ -26,6 +32,7 @@ examples="$(dirname "$0")/../../examples/maps"
 [ -x "$hp" ] || { echo "bench_containers: no $hp; build first (cmake --build $build)" >&2; exit 2; }
 [ -x "$make_map" ] || { echo "bench_containers: no $make_map; configure with -DHEIGHTPACK_BUILD_BENCHMARKS=ON" >&2; exit 2; }
 command -v jq >/dev/null || { echo "bench_containers: needs jq (apt-get install jq)" >&2; exit 2; }
+[ -z "$old" ] || [ -x "$old" ] || { echo "bench_containers: no older binary $old" >&2; exit 2; }
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/bench_containers.XXXXXX")
 trap 'rm -rf "$work"' EXIT
@@ -66,8 +73,13 @@ echo
 echo "2. whole pack runs, ${size}x${size}, median of $runs alternating runs (wall s, CPU s, peak MiB)"
 printf '%-5s %-7s %8s %8s %8s %10s %10s\n' container type wall CPU MiB "wall ratio" "CPU ratio"
 for ext in ktx2 dds; do
-  for log in float half uint16 read cp cpsync; do : >"$work/$log"; done
+  for log in float half uint16 read cp cpsync old; do : >"$work/$log"; done
   for ((i = 0; i < runs; i++)); do
+    if [ -n "$old" ]; then
+      rm -f "$work/old.$ext"
+      sync
+      measure "$work/old" "$old" pack "$work/in.png" -q -o "$work/old.$ext"
+    fi
     for type in float half uint16; do
       rm -f "$work/$type.$ext"
       sync
@@ -98,8 +110,44 @@ for ext in ktx2 dds; do
   synced_cpu=$(awk -v a="$rc" -v b="$sc" 'BEGIN { print a + b }')
   printf '%-5s %-7s %8.2f %8.2f %8d %10s %10s  (info + cp and sync %.2f s; float / floor on disk)\n' "$ext" "floor+s" \
     "$synced_wall" "$synced_cpu" "$rm" "$(ratio "$fw" "$synced_wall")" "$(ratio "$fc" "$synced_cpu")" "$sw"
+  if [ -n "$old" ]; then
+    read -r ow oc om < <(medians "$work/old")
+    printf '%-5s %-7s %8.2f %8.2f %8d %10s %10s  (older binary, float / floor; / floor on disk %s wall)\n' "$ext" old \
+      "$ow" "$oc" "$om" "$(ratio "$ow" "$floor_wall")" "$(ratio "$oc" "$floor_cpu")" "$(ratio "$ow" "$synced_wall")"
+  fi
 done
 echo "(issue 24: half and uint16 at most 1.00 of float; float at most 1.30 of its floor)"
+fi
+
+if section 4; then
+echo
+echo "4. peak memory of pack above start-up, ${size}x${size} float, median of $runs runs"
+"$make_map" 16 16 "$work/tiny.png"
+: >"$work/startup"
+for ((i = 0; i < runs; i++)); do measure "$work/startup" "$hp" info "$work/tiny.png"; done
+read -r _ _ startup < <(medians "$work/startup")
+perTexel() { awk -v m="$(($1 - startup))" -v n="$size" 'BEGIN { print m * 1048576 / (n * n) }'; }
+for ext in exr ktx2 dds; do
+  : >"$work/peak"
+  : >"$work/oldpeak"
+  for ((i = 0; i < runs; i++)); do
+    rm -f "$work/peak.$ext"
+    measure "$work/peak" "$hp" pack "$work/in.png" -q -o "$work/peak.$ext"
+    if [ -n "$old" ]; then
+      rm -f "$work/peak.$ext"
+      measure "$work/oldpeak" "$old" pack "$work/in.png" -q -o "$work/peak.$ext"
+    fi
+  done
+  read -r _ _ peak < <(medians "$work/peak")
+  printf '%-5s %6d MiB, %6d MiB above start-up (%d MiB): %5.2f bytes a texel\n' "$ext" "$peak" \
+    "$((peak - startup))" "$startup" "$(perTexel "$peak")"
+  if [ -n "$old" ]; then
+    read -r _ _ oldpeak < <(medians "$work/oldpeak")
+    printf '%-5s %6d MiB, %6d MiB above start-up: %5.2f bytes a texel (older binary)\n' "$ext" "$oldpeak" \
+      "$((oldpeak - startup))" "$(perTexel "$oldpeak")"
+  fi
+done
+echo "(issue 24: at most 8 bytes a texel above start-up at 8192^2)"
 fi
 
 section 3 || exit 0
