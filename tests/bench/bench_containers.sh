@@ -14,8 +14,10 @@
 #     stored units), and ripple's normal map in rgb and xy (normal units).
 #  4. issue 24's peak memory of pack (float; the default zip EXR, .ktx2, .dds) above start-up, the peak of
 #     `heightpack info` on a 16x16 map, in MiB and bytes a texel (at most 8 at 8192^2), medians of RUNS.
-#  With OLD_HEIGHTPACK (an older binary), sections 2 and 4 also run it, alternating, on float: its ratios
-#  to the same floors and its peak, for a before and after measured side by side.
+#  With OLD_HEIGHTPACK (an older binary), sections 2 and 4 also run it, alternating: in section 2 every
+#  pixel type, each run just before this build's of the same type (float: its ratios to the same floors;
+#  half and uint16: to its own float), in section 4 float (its peak), for a before and after measured
+#  side by side.
 #   tests/bench/bench_containers.sh [BUILD_DIR] [RUNS] [SIZE] [SECTIONS] [OLD_HEIGHTPACK]
 #   (SECTIONS: default "1 2 3 4")
 # Needs jq, and heightpack_make_bench_map (configure with -DHEIGHTPACK_BUILD_BENCHMARKS=ON).
@@ -71,16 +73,16 @@ fi
 if section 2; then
 echo
 echo "2. whole pack runs, ${size}x${size}, median of $runs alternating runs (wall s, CPU s, peak MiB)"
-printf '%-5s %-7s %8s %8s %8s %10s %10s\n' container type wall CPU MiB "wall ratio" "CPU ratio"
+printf '%-5s %-10s %8s %8s %8s %10s %10s\n' container type wall CPU MiB "wall ratio" "CPU ratio"
 for ext in ktx2 dds; do
-  for log in float half uint16 read cp cpsync old; do : >"$work/$log"; done
+  for log in float half uint16 read cp cpsync old_float old_half old_uint16; do : >"$work/$log"; done
   for ((i = 0; i < runs; i++)); do
-    if [ -n "$old" ]; then
-      rm -f "$work/old.$ext"
-      sync
-      measure "$work/old" "$old" pack "$work/in.png" -q -o "$work/old.$ext"
-    fi
     for type in float half uint16; do
+      if [ -n "$old" ]; then
+        rm -f "$work/old.$ext"
+        sync
+        measure "$work/old_$type" "$old" pack "$work/in.png" --pixel-type "$type" -q -o "$work/old.$ext"
+      fi
       rm -f "$work/$type.$ext"
       sync
       measure "$work/$type" "$hp" pack "$work/in.png" --pixel-type "$type" -q -o "$work/$type.$ext"
@@ -97,23 +99,28 @@ for ext in ktx2 dds; do
   read -r fw fc fm < <(medians "$work/float")
   for type in float half uint16; do
     read -r w c m < <(medians "$work/$type")
-    printf '%-5s %-7s %8.2f %8.2f %8d %10s %10s\n' "$ext" "$type" "$w" "$c" "$m" "$(ratio "$w" "$fw")" "$(ratio "$c" "$fc")"
+    printf '%-5s %-10s %8.2f %8.2f %8d %10s %10s\n' "$ext" "$type" "$w" "$c" "$m" "$(ratio "$w" "$fw")" "$(ratio "$c" "$fc")"
   done
   read -r rw rc rm < <(medians "$work/read")
   read -r cw cc cm < <(medians "$work/cp")
   floor_wall=$(awk -v a="$rw" -v b="$cw" 'BEGIN { print a + b }')
   floor_cpu=$(awk -v a="$rc" -v b="$cc" 'BEGIN { print a + b }')
-  printf '%-5s %-7s %8.2f %8.2f %8d %10s %10s  (info %.2f s + cp %.2f s; float / floor)\n' "$ext" floor \
+  printf '%-5s %-10s %8.2f %8.2f %8d %10s %10s  (info %.2f s + cp %.2f s; float / floor)\n' "$ext" floor \
     "$floor_wall" "$floor_cpu" "$rm" "$(ratio "$fw" "$floor_wall")" "$(ratio "$fc" "$floor_cpu")" "$rw" "$cw"
   read -r sw sc sm < <(medians "$work/cpsync")
   synced_wall=$(awk -v a="$rw" -v b="$sw" 'BEGIN { print a + b }')
   synced_cpu=$(awk -v a="$rc" -v b="$sc" 'BEGIN { print a + b }')
-  printf '%-5s %-7s %8.2f %8.2f %8d %10s %10s  (info + cp and sync %.2f s; float / floor on disk)\n' "$ext" "floor+s" \
+  printf '%-5s %-10s %8.2f %8.2f %8d %10s %10s  (info + cp and sync %.2f s; float / floor on disk)\n' "$ext" "floor+s" \
     "$synced_wall" "$synced_cpu" "$rm" "$(ratio "$fw" "$synced_wall")" "$(ratio "$fc" "$synced_cpu")" "$sw"
   if [ -n "$old" ]; then
-    read -r ow oc om < <(medians "$work/old")
-    printf '%-5s %-7s %8.2f %8.2f %8d %10s %10s  (older binary, float / floor; / floor on disk %s wall)\n' "$ext" old \
+    read -r ow oc om < <(medians "$work/old_float")
+    printf '%-5s %-10s %8.2f %8.2f %8d %10s %10s  (older binary, float / floor; / floor on disk %s wall)\n' "$ext" old \
       "$ow" "$oc" "$om" "$(ratio "$ow" "$floor_wall")" "$(ratio "$oc" "$floor_cpu")" "$(ratio "$ow" "$synced_wall")"
+    for type in half uint16; do
+      read -r w c m < <(medians "$work/old_$type")
+      printf '%-5s %-10s %8.2f %8.2f %8d %10s %10s  (older binary, / its float)\n' "$ext" "old $type" "$w" "$c" "$m" \
+        "$(ratio "$w" "$ow")" "$(ratio "$c" "$oc")"
+    done
   fi
 done
 echo "(issue 24: half and uint16 at most 1.00 of float; float at most 1.30 of its floor)"
