@@ -67,7 +67,10 @@ Status planBands(const std::string& path, int fd, const std::vector<std::uint8_t
             if (!writeAllAt(fd, zeros.data(), zeros.size(), end)) return cannotWriteBecause(path, "writing padding");
         }
         const size_t rowBytes = size_t(w) * texelBytes;
-        const int bandRows = int(std::clamp<size_t>(kBandBytes / rowBytes, 1, size_t(h)));
+        // A band's rows are filled as floats first (but for float texels, filled in place): the larger
+        // of the two sizes a band.
+        const size_t filledBytes = std::max(rowBytes, size_t(w) * size_t(plan.sourceChannels) * sizeof(float));
+        const int bandRows = int(std::clamp<size_t>(kBandBytes / filledBytes, 1, size_t(h)));
         for (int y0 = 0; y0 < h; y0 += bandRows)
             bands.push_back({image.layer, image.level, y0, std::min(bandRows, h - y0),
                              image.offset + std::uint64_t(y0) * rowBytes});
