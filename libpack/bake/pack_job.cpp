@@ -181,6 +181,13 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         const Image& l = chain[level];
         std::copy(l.row(y0), l.row(y0) + static_cast<size_t>(rows) * l.width, dst);
     };
+    // One channel of a row, for writers that take the channels apart (EXR tiles): copies of the levels' rows.
+    const auto runPacked = [&](int level, int y, int x0, int count, int channel, float* dst) {
+        packNeighbour4Run(chain[level], wrap, y, x0, count, channel, dst);
+    };
+    const auto runPlain = [&](int level, int y, int x0, int count, int, float* dst) {
+        std::copy_n(chain[level].row(y) + x0, count, dst);
+    };
     // What an output holds: the heights packed (or plain), and Dx, Dy and foam as its container holds
     // them (an EXR's further channels, a KTX2's or DDS's further layers).
     const auto contentFor = [&](const TextureOutput& out, bool packedChain) {
@@ -193,6 +200,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         } else {
             c.channelNames = packedChain ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"Y"};
             c.fillRows = packedChain ? decltype(c.fillRows)(fillPacked) : decltype(c.fillRows)(fillPlain);
+            c.fillRun = packedChain ? decltype(c.fillRun)(runPacked) : decltype(c.fillRun)(runPlain);
         }
         return c;
     };

@@ -83,7 +83,8 @@ Image firstChannels(const Image& image, int count, int threads) {
 
 // One tile: every frame computed, then foam over the loop, then the numbers, then the files. Each frame's
 // fields are transformed straight into its interleaved image, the one the file is written from, and the
-// amplitudes are let go before writing: with displacement and foam, 24 bytes a texel at the peak.
+// amplitudes are let go before writing: with displacement and foam, 20 bytes a texel at the peak (the image
+// and the half spectrum; the transforms work in the heights' channel until the heights are written last).
 Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptions& s, const SynthOptions& options,
                                   int cascade, int count, const ProgressFn& progress, StagedOutputs* staged) {
     const bool metres = lowerExtension(output) == ".exr";

@@ -89,11 +89,12 @@ struct Storage {
 // the crossfade width and over a fifth of the tile, judged by their seams alone (the shell warns when their
 // look does not pass). No candidate may stretch the height span past 1.5x the input's. The last is returned
 // when none passes, and the caller writes nothing. `judged` (and `looked`, when the look was judged) is the
-// verdict on the returned candidate as stored, so the caller need not judge it again.
-// judging(asStored, bits) is told of each candidate, as stored, as its judging starts.
+// verdict on the returned candidate as stored, and `stored` that candidate as stored, so the caller need
+// not round or judge it again. judging(asStored, bits) is told of each candidate, as stored, as its
+// judging starts.
 Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, const Storage& storage,
                   TileReport& report, std::optional<ChainSeams>& judged, std::optional<TileLook>& looked,
-                  const std::function<void(std::shared_ptr<const Image> asStored, int bits)>& judging) {
+                  std::shared_ptr<Image>& stored, const std::function<void(std::shared_ptr<const Image> asStored, int bits)>& judging) {
     report.methodUsed = nameOf(options.method);
     report.crossfadeWidth = options.width;
     switch (options.method) {
@@ -111,21 +112,22 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         case TileMethod::Mirror: return mirrorTile(map);
         case TileMethod::Periodic: break;
     }
-    const double maxSpan = 1.5 * span(sampleRange(map, options.mip.threads));
+    const double maxSpan = 1.5 * (double(report.inputHigh) - report.inputLow);  // the caller measured the map
     bool lookRequired = true;
     LookOptions lookOptions{&map, options.mip.threads, std::nullopt};
     auto acceptable = [&](const Image& candidate) {
         judged.reset();
         looked.reset();
+        stored.reset();
         const SampleRange range = sampleRange(candidate, options.mip.threads);
         const Storage::Choice c = storage.choose(candidate, range, false);
         if (!c.storable || span(range) > maxSpan) return false;
-        SeamOptions stored = seamOptions;
-        stored.quantum = Storage::quantum(c.bits);
-        const auto shared = std::make_shared<const Image>(Storage::rounded(candidate, c.bits, options.mip.threads));
-        const Image& asStored = *shared;
-        judging(shared, c.bits);
-        judged = measureChainSeams(seamChain(asStored, options.mip), options.threshold, stored);
+        SeamOptions storedSeams = seamOptions;
+        storedSeams.quantum = Storage::quantum(c.bits);
+        stored = std::make_shared<Image>(Storage::rounded(candidate, c.bits, options.mip.threads));
+        const Image& asStored = *stored;
+        judging(stored, c.bits);
+        judged = measureChainSeams(seamChain(asStored, options.mip), options.threshold, storedSeams);
         if (!judged->tiles() || !lookRequired) return judged->tiles();
         if (!lookOptions.sourceEcho) lookOptions.sourceEcho = sourceEchoOf(map, options.mip.threads);
         looked = measureTileLook(asStored, lookOptions);
@@ -236,6 +238,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     // not pass costs its compression on the side.)
     std::future<std::pair<PreparedPixels, int>> compressing;
     std::shared_ptr<const Image> compressed;  // the candidate being compressed
+    std::shared_ptr<Image> judgedStored;      // the result as stored, where applyMethod judged it so
     auto judging = [&](std::shared_ptr<const Image> asStored, int bits) {
         if (ext != ".png" || bits == 32) return;
         compressed = asStored;
@@ -246,7 +249,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
             return std::pair(preparePixels(output, *stored, o), bits);
         });
     };
-    Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, storage, report, judged, looked, judging);
+    Image result = report.alreadyTiled ? map : applyMethod(map, options, seamOptions, storage, report, judged, looked, judgedStored, judging);
     if (report.alreadyTiled) report.methodUsed = "none";
     progress("tile", 1.0);
     report.width = result.width;
@@ -271,8 +274,14 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
                        Fix::WriteFloat);
     }
     // Judge what will be stored: rounded to the type (Periodic's candidates were judged so already, with
-    // the same type: the same rounding and quantum).
-    result = Storage::rounded(std::move(result), report.bits, options.mip.threads);
+    // the same choice of type: the same rounding and quantum). A grey PNG's pixels compressed while judging
+    // are used only where the candidate compressed is that result as stored.
+    std::optional<PreparedPixels> prepared;
+    if (compressing.valid()) {
+        auto [pixels, bits] = compressing.get();
+        if (bits == report.bits && judgedStored && compressed.get() == judgedStored.get()) prepared = std::move(pixels);
+    }
+    result = judged && judgedStored ? std::move(*judgedStored) : Storage::rounded(std::move(result), report.bits, options.mip.threads);
     if (judged) {
         report.after = std::move(*judged);
     } else {
@@ -299,10 +308,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     FlatImageOptions flat;
     flat.bits = report.bits;
     flat.threads = options.mip.threads;
-    if (compressing.valid()) {  // used only where the candidate compressed is the result, as stored
-        auto [prepared, bits] = compressing.get();
-        if (bits == report.bits && compressed->pixels == result.pixels) flat.prepared = std::move(prepared);
-    }
+    if (prepared) flat.prepared = std::move(*prepared);
     flat.attributes = {
         attribute(attr::tileMethod, report.methodUsed),
         attribute(attr::source, std::filesystem::path(input).filename().string()),

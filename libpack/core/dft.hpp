@@ -33,6 +33,9 @@ std::vector<std::complex<float>> forwardRealDftToHalf(int w, int h, int threads,
 // then columns split in fixed blocks, so the values do not depend on the thread count.
 void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads,
                           const std::function<void(int y, const float* row)>& take);
+// The rows go to take in blocks of this many (rows y with the same y / kInverseRowBlock), a block's rows in
+// order and on one thread: a sum kept per block and added up in block order is the same on any thread count.
+constexpr int kInverseRowBlock = 8;
 
 // Several fields from one half spectrum S: field f is the real field of S(kx, ky) * factor[kx], a factor
 // that depends on kx alone (i kx for d/dx, say), so one column pass serves them all and each costs only
@@ -44,6 +47,22 @@ struct HalfSpectrumRows {
     std::function<void(int y, const float* row)> take;
 };
 void inverseRealDftOfHalf(std::complex<float>* half, int w, int h, int threads, const std::vector<HalfSpectrumRows>& fields);
+
+// The same without a half spectrum of its own: give(q0, count, lines, lineStride) writes columns q0 ..
+// q0 + count - 1 of the half spectrum to transform (w even: w/2 + 1 columns), every row r of column q0 + i
+// at lines[i * lineStride + r], once per block of columns, from any thread; the column pass's result is
+// kept in `scratch` for the row pass. Each block's rows are read from the scratch before any of them goes
+// to a take, so a take may write over the scratch rows of its own block: the scratch can be the storage
+// of the last field itself (the sea's heights in their interleaved image), and no spectrum-sized buffer
+// is needed. The same values as the overload above given the same spectrum.
+using HalfSpectrumSource = std::function<void(int q0, int count, std::complex<float>* lines, size_t lineStride)>;
+struct HalfSpectrumScratch {
+    float* first = nullptr;
+    int stride = 1;
+    std::complex<float>* lastColumn = nullptr;
+};
+void inverseRealDftOfHalf(int w, int h, int threads, const HalfSpectrumSource& give, const HalfSpectrumScratch& scratch,
+                          const std::vector<HalfSpectrumRows>& fields);
 
 // The zero-mean periodic field (CV_64F, written to out as inverseDft writes) whose five-point Laplacian is
 // rhs, for Moisan's periodic + smooth decomposition: rhs's spectrum divided by the Laplacian's symbol

@@ -115,19 +115,33 @@ GaussianModel modelOf(const Field& g, double noise, int threads) {
                 model.power.at<double>(r, q) = std::max(std::norm(a) - floor, 0.0);
             }
     });
-    std::vector<double> marginalX(w, 0.0), marginalY(h, 0.0);
-    for (int r = 0; r < h; ++r)
-        for (int q = 0; q < w; ++q) {
-            const double p = model.power.at<double>(r, q);
-            marginalX[q] += p;
-            marginalY[r] += p;
+    // The power summed along each axis on all threads: each row's sum in order; the columns' per fixed
+    // block of rows, the blocks then in order (the same on any thread count).
+    constexpr int kRows = 64;
+    const int blocks = (h + kRows - 1) / kRows;
+    std::vector<double> marginalX(w, 0.0), marginalY(h, 0.0), blockX(size_t(blocks) * w, 0.0);
+    parallelFor(blocks, threads, [&](int begin, int end) {
+        for (int b = begin; b < end; ++b) {
+            double* columnSums = &blockX[size_t(b) * w];
+            for (int r = b * kRows; r < std::min(h, (b + 1) * kRows); ++r) {
+                const double* row = model.power.ptr<double>(r);
+                double sum = 0;
+                for (int q = 0; q < w; ++q) {
+                    sum += row[q];
+                    columnSums[q] += row[q];
+                }
+                marginalY[r] = sum;
+            }
         }
+    });
+    for (int b = 0; b < blocks; ++b)
+        for (int q = 0; q < w; ++q) marginalX[q] += blockX[size_t(b) * w + q];
     model.lagX = lagsOf(std::move(marginalX), n);
     model.lagY = lagsOf(std::move(marginalY), n);
     return model;
 }
 
-Field sampleOf(const GaussianModel& model, uint64_t seed, int threads) {
+StripField sampleOf(const GaussianModel& model, uint64_t seed, int reachX, int reachY, int threads) {
     const int w = model.power.cols, h = model.power.rows, columns = w / 2 + 1;
     // The sample's spectrum: sqrt(power) times complex white noise of unit variance, Hermitian so the sample
     // is real. Its covariance is the model's: (1/n^2) sum of power e^(2 pi i k.d). Only the half kx <= w/2
@@ -152,10 +166,8 @@ Field sampleOf(const GaussianModel& model, uint64_t seed, int threads) {
                 if (ownPartner) half[size_t(pr) * columns + q] = std::complex<float>(std::conj(z));
             }
     });
-    Field sample(w, h);
-    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) {
-        std::copy(row, row + w, sample.v.begin() + ptrdiff_t(y) * w);
-    });
+    StripField sample(w, h, reachX, reachY);
+    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) { sample.setRow(y, row); });
     return sample;
 }
 
@@ -185,17 +197,15 @@ cv::Mat lineCovarianceSpectra(const cv::Mat& power, Axis axis, int strip, int th
     return out;
 }
 
-Field topBottomSmoothField(const Field& f, int threads) {
+StripField topBottomSmoothField(const Field& f, int reachX, int threads) {
     // In floats, from the half spectrum (see sampleOf): the field is only set aside and added back.
     const int w = f.w, h = f.h, columns = w / 2 + 1;
     const double scale = 1.0 / (double(w) * h);
     std::vector<std::complex<float>> half(size_t(h) * columns);
     forSmoothSpectrum(w, h, [&](int x, int y) { return f.at(x, y); }, {.leftRight = false, .topBottom = true}, columns, threads,
                       [&](int r, int q, Complex s) { half[size_t(r) * columns + q] = std::complex<float>(s * scale); });
-    Field out(w, h);
-    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) {
-        std::copy(row, row + w, out.v.begin() + ptrdiff_t(y) * w);
-    });
+    StripField out(w, h, reachX, 0);
+    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) { out.setRow(y, row); });
     return out;
 }
 

@@ -12,6 +12,7 @@
 #include "heightpack/core/image.hpp"
 
 #include "field.hpp"
+#include "strip_field.hpp"
 
 namespace heightpack::detail {
 
@@ -37,8 +38,9 @@ std::vector<std::complex<float>> periodicHalfSpectrum(const Image& map, int thre
 GaussianModel modelOf(const Field& g, double noise, int threads);
 
 // A field with the model's covariance (asymptotic discrete spot noise: sqrt(power) times complex white
-// noise), drawn per frequency from (seed, index) alone: the same on any number of threads.
-Field sampleOf(const GaussianModel& model, uint64_t seed, int threads);
+// noise), drawn per frequency from (seed, index) alone: the same on any number of threads. Only its strips
+// within reachX columns and reachY rows of the wrap lines are kept.
+StripField sampleOf(const GaussianModel& model, uint64_t seed, int reachX, int reachY, int threads);
 
 // The covariance between lines du apart (du < strip), per frequency k along them (k up to half their
 // length), as a (length / 2 + 1) x strip CV_64FC2 matrix: covHat(k, du) = the sum along the lines of
@@ -47,7 +49,8 @@ cv::Mat lineCovarianceSpectra(const cv::Mat& power, Axis axis, int strip, int th
 
 // Moisan's smooth field of the jumps across f's top/bottom wrap line alone: periodic in both directions,
 // harmonic but at that line, where it carries the jump. Taking it off makes f wrap top to bottom without
-// touching the left/right wrap line, as the left/right band's Fourier treatment along y needs.
-Field topBottomSmoothField(const Field& f, int threads);
+// touching the left/right wrap line, as the left/right band's Fourier treatment along y needs. Only its
+// columns within reachX of the left/right wrap line are kept.
+StripField topBottomSmoothField(const Field& f, int reachX, int threads);
 
 }  // namespace heightpack::detail

@@ -5,31 +5,44 @@
 #include <cstdint>
 #include <cstring>
 #include <numbers>
+#include <span>
 #include <utility>
 
 #include "heightpack/core/parallel.hpp"
 
 namespace heightpack::detail {
 
-std::vector<uint32_t> stableOrder(const std::vector<float>& values, int threads) {
+namespace {
+
+// A float's bits as an unsigned key that sorts as the float does (negatives flipped, positives with the
+// sign bit set); -0 counts as +0, as comparison has it.
+uint32_t keyOf(float v) {
+    uint32_t u;
+    const float canonical = v == 0.0f ? 0.0f : v;
+    std::memcpy(&u, &canonical, sizeof u);
+    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+}
+
+float valueOfKey(uint32_t key) {
+    const uint32_t u = (key & 0x80000000u) ? (key & 0x7fffffffu) : ~key;
+    float v;
+    std::memcpy(&v, &u, sizeof v);
+    return v;
+}
+
+}  // namespace
+
+Buffer<uint64_t> sortedItems(std::span<const float> values, int threads) {
     const size_t n = values.size();
-    // A float's bits as an unsigned key that sorts as the float does (negatives flipped, positives with
-    // the sign bit set); -0 counts as +0, as comparison has it.
-    auto key = [](float v) {
-        uint32_t u;
-        const float canonical = v == 0.0f ? 0.0f : v;
-        std::memcpy(&u, &canonical, sizeof u);
-        return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
-    };
     // The items in a fixed number of chunks: each pass counts digits per chunk on any thread, then each
     // chunk scatters its items, in order, from its own start in each bucket. A stable sort has one result,
-    // so the thread count cannot change it.
+    // so the thread count cannot change it. Both arrays are first written by the chunks (no serial zeroing).
     constexpr int kChunks = 64, kBits = 11, kBuckets = 1 << kBits;
     const size_t chunkSize = (n + kChunks - 1) / kChunks;
     auto chunkRange = [&](int c) { return std::pair<size_t, size_t>(std::min(n, c * chunkSize), std::min(n, (c + 1) * chunkSize)); };
-    std::vector<uint64_t> items(n), scratch(n);  // key << 32 | index
+    Buffer<uint64_t> items(n), scratch(n);  // key << 32 | index
     parallelFor(kChunks, threads, [&](int begin, int end) {
-        for (size_t i = chunkRange(begin).first; i < chunkRange(end - 1).second; ++i) items[i] = uint64_t(key(values[i])) << 32 | i;
+        for (size_t i = chunkRange(begin).first; i < chunkRange(end - 1).second; ++i) items[i] = uint64_t(keyOf(values[i])) << 32 | i;
     });
     std::vector<size_t> counts(size_t(kChunks) * kBuckets);
     for (int shift = 32; shift < 64; shift += kBits) {
@@ -63,9 +76,14 @@ std::vector<uint32_t> stableOrder(const std::vector<float>& values, int threads)
         });
         items.swap(scratch);
     }
-    std::vector<uint32_t> order(n);
-    parallelFor(kChunks, threads, [&](int begin, int end) {
-        for (size_t i = chunkRange(begin).first; i < chunkRange(end - 1).second; ++i) order[i] = static_cast<uint32_t>(items[i]);
+    return items;
+}
+
+std::vector<uint32_t> stableOrder(std::span<const float> values, int threads) {
+    const Buffer<uint64_t> items = sortedItems(values, threads);
+    std::vector<uint32_t> order(items.size());
+    parallelFor(static_cast<int>((items.size() + 65535) / 65536), threads, [&](int begin, int end) {
+        for (size_t i = size_t(begin) * 65536; i < std::min(items.size(), size_t(end) * 65536); ++i) order[i] = static_cast<uint32_t>(items[i]);
     });
     return order;
 }
@@ -109,14 +127,16 @@ double inverseNormalCdf(double p) {
     return x - u / (1 + x * u / 2);
 }
 
-Gaussianiser::Gaussianiser(const std::vector<float>& values, int threads) : sorted(values.size()), gaussian(values.size()) {
+Gaussianiser::Gaussianiser(std::span<const float> values, int threads) : sorted(values.size()), gaussian(values.size()) {
     const size_t n = values.size();
     if (n == 0) return;
-    // The order of (value, index) pairs, by value then index: a stable radix sort of the values' bits,
-    // which keeps the index order of equal values (and is ~10x std::sort's time on millions of texels).
-    const std::vector<uint32_t> order = stableOrder(values, threads);
+    // The (value, index) pairs by value then index: a stable radix sort of the values' bits, which keeps
+    // the index order of equal values (and is ~10x std::sort's time on millions of texels). The sorted
+    // values come back from the keys, in order, rather than gathered from all over the input.
+    const Buffer<uint64_t> items = sortedItems(values, threads);
+    auto indexAt = [&](size_t k) { return static_cast<uint32_t>(items[k]); };
     parallelFor(static_cast<int>((n + 65535) / 65536), threads, [&](int begin, int end) {
-        for (size_t i = size_t(begin) * 65536; i < std::min(n, size_t(end) * 65536); ++i) sorted[i] = values[order[i]];
+        for (size_t i = size_t(begin) * 65536; i < std::min(n, size_t(end) * 65536); ++i) sorted[i] = valueOfKey(uint32_t(items[i] >> 32));
     });
     // Runs of equal values share their mid-rank's quantile; the quantiles are computed on all threads.
     // Acklam's approximation alone: its error (1.15e-9 relative) is far below the spacing of neighbouring
@@ -134,10 +154,30 @@ Gaussianiser::Gaussianiser(const std::vector<float>& values, int threads) : sort
             size_t stop = start + 1;
             while (stop < n && sorted[stop] == sorted[start]) ++stop;
             const double g = acklamQuantile((0.5 * double(start + stop - 1) + 0.5) / double(n));
-            for (size_t k = start; k < stop; ++k) gaussian[order[k]] = g;
+            for (size_t k = start; k < stop; ++k) gaussian[indexAt(k)] = g;
             start = stop;
         }
     });
+}
+
+void Gaussianiser::back(const double* g, float* out, size_t count) const {
+    // In groups: every place of a group found (and its sorted values asked of memory) before any is read,
+    // so the misses of a group overlap instead of each waiting on the last.
+    constexpr size_t kGroup = 16;
+    const double top = double(sorted.size() - 1);
+    for (size_t start = 0; start < count; start += kGroup) {
+        const size_t n = std::min(kGroup, count - start);
+        double pos[kGroup];
+        for (size_t k = 0; k < n; ++k) {
+            pos[k] = std::clamp(normalCdf(g[start + k]) * sorted.size() - 0.5, 0.0, top);
+            __builtin_prefetch(&sorted[static_cast<size_t>(pos[k])]);
+        }
+        for (size_t k = 0; k < n; ++k) {
+            const size_t i = static_cast<size_t>(pos[k]);
+            const size_t j = std::min(i + 1, sorted.size() - 1);
+            out[start + k] = static_cast<float>(sorted[i] + (double(sorted[j]) - sorted[i]) * (pos[k] - i));
+        }
+    }
 }
 
 float Gaussianiser::back(double g) const {

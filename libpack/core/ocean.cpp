@@ -1,6 +1,6 @@
 // The Ocean class of spectrum.hpp: random amplitudes over half the DFT grid (the other half follows by
 // Hermitian symmetry, the sea being real), evolved in time and turned into heights, displacement and its
-// Jacobian by real inverse DFTs in float (dft.hpp), one field at a time through one scratch spectrum.
+// Jacobian by real inverse DFTs in float (dft.hpp), one column pass at a time through the heights' storage.
 #include <cassert>
 #include <cmath>
 #include <numbers>
@@ -106,34 +106,43 @@ void Ocean::fieldsInto(double t, const SeaFieldTargets& to, double choppiness, i
     // so that fields sharing the first share one column pass (dft.hpp): D(k) = i k/|k| h(k) (a crest pulls
     // its neighbours in: x + D compresses it, as a Gerstner wave does) and its derivatives, i kx or i ky
     // once more. Four column passes for six fields:
-    //   h                      heights
     //   h / k       then  i kx: Dx,  -kx^2: Dxx
     //   -ky^2 h / k            Dyy
     //   ky h / k    then  i: Dy,     -kx: Dxy
+    //   h                      heights
     // The Jacobian (1 + c Dxx)(1 + c Dyy) - c^2 Dxy^2 is built up in its target in that order. k = 0
-    // carries nothing. The column multiplier's loop is compiled for each pass alone (a constant).
+    // carries nothing. Each column pass reads h(k, t) times its multiplier as it goes (the loop compiled
+    // for each pass alone) and keeps its result in the heights' storage, which the heights, last, write
+    // over: no spectrum-sized scratch (4 bytes a texel) beside the image. Without heights, a plane of its own.
     enum ColumnPass { Plain, OverK, MinusKy2OverK, KyOverK };
-    std::vector<std::complex<float>> scratch(cells);
-    auto fill = [&](auto passConstant) {
-        constexpr ColumnPass pass = decltype(passConstant)::value;
-        parallelFor(n, threads, [&](int begin, int end) {
-            for (int r = begin; r < end; ++r) {
+    std::vector<float> ownScratch;
+    std::vector<std::complex<float>> lastColumn(n);
+    detail::HalfSpectrumScratch scratch{to.heights.first, to.heights.stride, lastColumn.data()};
+    if (!scratch.first) {
+        ownScratch.resize(size_t(n) * n);
+        scratch = {ownScratch.data(), 1, lastColumn.data()};
+    }
+    auto source = [&](auto passConstant) -> detail::HalfSpectrumSource {
+        return [&](int q0, int count, std::complex<float>* lines, size_t lineStride) {
+            constexpr ColumnPass pass = decltype(passConstant)::value;
+            for (int r = 0; r < n; ++r) {
                 const std::complex<float>* from = spectrum + size_t(r) * columns;
-                std::complex<float>* row = scratch.data() + size_t(r) * columns;
+                std::complex<float>* rowOfLines = lines + r;  // row r of line i at rowOfLines[i * lineStride]
                 if constexpr (pass == Plain) {
-                    std::copy(from, from + columns, row);
+                    for (int q = q0; q < q0 + count; ++q) rowOfLines[(q - q0) * lineStride] = from[q];
                 } else {
                     const float ky = float(signedBin(r, n) * dk);
-                    for (int q = 0; q < columns; ++q) {
+                    for (int q = q0; q < q0 + count; ++q) {
                         const float kx = float(q * dk), k2 = kx * kx + ky * ky;
                         const float inverse = k2 > 0.0f ? 1.0f / std::sqrt(k2) : 0.0f;
-                        if constexpr (pass == OverK) row[q] = from[q] * inverse;
-                        if constexpr (pass == MinusKy2OverK) row[q] = from[q] * (-ky * ky * inverse);
-                        if constexpr (pass == KyOverK) row[q] = from[q] * (ky * inverse);
+                        std::complex<float>& z = rowOfLines[(q - q0) * lineStride];
+                        if constexpr (pass == OverK) z = from[q] * inverse;
+                        if constexpr (pass == MinusKy2OverK) z = from[q] * (-ky * ky * inverse);
+                        if constexpr (pass == KyOverK) z = from[q] * (ky * inverse);
                     }
                 }
             }
-        });
+        };
     };
     // Row-pass factors (of kx = q dk) and where each field's rows go.
     std::vector<std::complex<float>> ikx(columns), minusKx2(columns), minusKx(columns), i(columns, {0.0f, 1.0f});
@@ -150,32 +159,28 @@ void Ocean::fieldsInto(double t, const SeaFieldTargets& to, double choppiness, i
         };
     };
     auto store = [](float& texel, double v) { texel = float(v); };
+    auto transform = [&](auto passConstant, const std::vector<detail::HalfSpectrumRows>& rows) {
+        detail::inverseRealDftOfHalf(n, n, threads, source(passConstant), scratch, rows);
+    };
     using std::integral_constant;
     using Rows = std::vector<detail::HalfSpectrumRows>;
-    if (to.heights.first) {
-        fill(integral_constant<ColumnPass, Plain>{});
-        detail::inverseRealDftOfHalf(scratch.data(), n, n, threads, Rows{{{}, into(to.heights, n, store)}});
-    }
     if (to.displacementX.first || to.jacobian.first) {
         Rows rows;
         if (to.displacementX.first) rows.push_back({ikx, into(to.displacementX, n, store)});
         if (to.jacobian.first) rows.push_back({minusKx2, into(to.jacobian, n, [c](float& j, double xx) { j = float(1 + c * xx); })});
-        fill(integral_constant<ColumnPass, OverK>{});
-        detail::inverseRealDftOfHalf(scratch.data(), n, n, threads, rows);
+        transform(integral_constant<ColumnPass, OverK>{}, rows);
     }
-    if (to.jacobian.first) {
-        fill(integral_constant<ColumnPass, MinusKy2OverK>{});
-        detail::inverseRealDftOfHalf(scratch.data(), n, n, threads,
-                                     Rows{{{}, into(to.jacobian, n, [c](float& j, double yy) { j = float(double(j) * (1 + c * yy)); })}});
-    }
+    if (to.jacobian.first)
+        transform(integral_constant<ColumnPass, MinusKy2OverK>{},
+                  Rows{{{}, into(to.jacobian, n, [c](float& j, double yy) { j = float(double(j) * (1 + c * yy)); })}});
     if (to.displacementY.first || to.jacobian.first) {
         Rows rows;
         if (to.displacementY.first) rows.push_back({i, into(to.displacementY, n, store)});
         if (to.jacobian.first)
             rows.push_back({minusKx, into(to.jacobian, n, [c](float& j, double xy) { j = float(double(j) - c * c * xy * xy); })});
-        fill(integral_constant<ColumnPass, KyOverK>{});
-        detail::inverseRealDftOfHalf(scratch.data(), n, n, threads, rows);
+        transform(integral_constant<ColumnPass, KyOverK>{}, rows);
     }
+    if (to.heights.first) transform(integral_constant<ColumnPass, Plain>{}, Rows{{{}, into(to.heights, n, store)}});
 }
 
 SeaFields Ocean::fields(double t, const SeaFieldSet& which, double choppiness, int threads) const {

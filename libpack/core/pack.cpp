@@ -23,6 +23,15 @@ void packNeighbour4Rows(const Image& level, Wrap wrap, int y0, int rows, float* 
     }
 }
 
+void packNeighbour4Run(const Image& level, Wrap wrap, int y, int x0, int count, int channel, float* dst) {
+    assert(level.channels == 1 && channel >= 0 && channel < 4 && x0 >= 0 && count >= 0 && x0 + count <= level.width);
+    const float* row = level.row(channel >= 2 ? wrapIndex(y + 1, level.height, wrap) : y);
+    const int w = level.width, from = x0 + (channel & 1);  // G and A: the texel to the right
+    const int inside = std::min(count, w - from);
+    std::copy_n(row + from, inside, dst);
+    if (inside < count) dst[inside] = row[wrapIndex(w, w, wrap)];  // only the last can step past the edge
+}
+
 Image packNeighbour4(const Image& level, Wrap wrap) {
     Image packed(level.width, level.height, 4);
     packNeighbour4Rows(level, wrap, 0, level.height, packed.pixels.data());

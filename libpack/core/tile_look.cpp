@@ -37,7 +37,7 @@ HalfSpectrum spectrumOf(const Image& map, int threads) {
 
 // The real field of a half spectrum (overwritten), scaled by 1/(w h) as the inverse of spectrumOf.
 Grid fieldOf(HalfSpectrum& half, int threads) {
-    Grid out(half.w, half.h);
+    Grid out(half.w, half.h, Grid::unset);  // every row written by the inverse
     const double scale = 1.0 / (double(half.w) * half.h);
     detail::inverseRealDftOfHalf(half.values.data(), half.w, half.h, threads, [&](int y, const float* row) {
         double* to = &out.v[size_t(y) * half.w];
@@ -48,9 +48,10 @@ Grid fieldOf(HalfSpectrum& half, int threads) {
 
 double gaussianGain(double f, double sigma) { return std::exp(-2 * std::numbers::pi * std::numbers::pi * sigma * sigma * f * f); }
 
-// The map filtered periodically with a difference of Gaussians of sigmas fine < coarse (texels): a band
-// pass. Each Gaussian's gain is the product of its gains along x and y, so no exponential per texel.
-Grid bandPassed(const HalfSpectrum& spectrum, double fine, double coarse, int threads) {
+// The spectrum of the map filtered periodically with a difference of Gaussians of sigmas fine < coarse
+// (texels): a band pass. Each Gaussian's gain is the product of its gains along x and y, so no exponential
+// per texel.
+HalfSpectrum bandPassSpectrum(const HalfSpectrum& spectrum, double fine, double coarse, int threads) {
     const int h = spectrum.h, w = spectrum.w, columns = spectrum.columns;
     auto gains = [](int count, int n, double sigma) {
         std::vector<double> g(count);
@@ -65,6 +66,11 @@ Grid bandPassed(const HalfSpectrum& spectrum, double fine, double coarse, int th
             for (int x = 0; x < columns; ++x)
                 s.values[size_t(y) * columns + x] = spectrum.at(x, y) * float(fineX[x] * fineY[y] - coarseX[x] * coarseY[y]);
     });
+    return s;
+}
+
+Grid bandPassed(const HalfSpectrum& spectrum, double fine, double coarse, int threads) {
+    HalfSpectrum s = bandPassSpectrum(spectrum, fine, coarse, threads);
     return fieldOf(s, threads);
 }
 
@@ -120,14 +126,14 @@ double ringScore(const std::vector<double>& profile, int reach, double floor) {
     return worst;
 }
 
-// The means of g's columns and of its rows (of g squared where asked), on all threads: each mean sums in
+// The means of g's columns and of its rows, on all threads: each mean sums in
 // one fixed order, so the thread count cannot change it.
 struct Profiles {
     std::vector<double> columns, rows;
 };
-Profiles profilesOf(const Grid& g, bool squared, int threads) {
+Profiles profilesOf(const Grid& g, int threads) {
     Profiles p{std::vector<double>(g.w, 0.0), std::vector<double>(g.h, 0.0)};
-    auto value = [&](int x, int y) { return squared ? g.at(x, y) * g.at(x, y) : g.at(x, y); };
+    auto value = [&](int x, int y) { return g.at(x, y); };
     parallelFor(g.h, threads, [&](int begin, int end) {
         for (int y = begin; y < end; ++y) {
             double sum = 0;
@@ -144,6 +150,31 @@ Profiles profilesOf(const Grid& g, bool squared, int threads) {
             for (int x = x0; x < x1; ++x) p.columns[x] /= g.h;
         }
     });
+    return p;
+}
+
+// The profiles (as profilesOf) of the square of bandPassed(spectrum, fine, coarse), taken from the
+// inverse's rows as they come: no field is stored. The columns are summed per block of rows (each block's rows in order, on one thread),
+// the blocks then in order: the same on any thread count.
+Profiles energyProfiles(const HalfSpectrum& spectrum, double fine, double coarse, int threads) {
+    HalfSpectrum s = bandPassSpectrum(spectrum, fine, coarse, threads);
+    const int w = s.w, h = s.h, blocks = (h + detail::kInverseRowBlock - 1) / detail::kInverseRowBlock;
+    const double scale = 1.0 / (double(w) * h);
+    std::vector<double> blockColumns(size_t(blocks) * w, 0.0);
+    Profiles p{std::vector<double>(w, 0.0), std::vector<double>(h, 0.0)};
+    detail::inverseRealDftOfHalf(s.values.data(), w, h, threads, [&](int y, const float* row) {
+        double* columns = &blockColumns[size_t(y / detail::kInverseRowBlock) * w];
+        double sum = 0;
+        for (int x = 0; x < w; ++x) {
+            const double v = row[x] * scale;
+            sum += v * v;
+            columns[x] += v * v;
+        }
+        p.rows[y] = sum / w;
+    });
+    for (int b = 0; b < blocks; ++b)
+        for (int x = 0; x < w; ++x) p.columns[x] += blockColumns[size_t(b) * w + x];
+    for (double& c : p.columns) c /= h;
     return p;
 }
 
@@ -208,7 +239,7 @@ Image halved(const Image& map, int threads) {
 // circular): the smooth part is the field's statistics, what stays in the ratio is fine structure.
 struct Spectra {
     Grid power, smooth;
-    Spectra(int w, int h) : power(w, h), smooth(w, h) {}
+    Spectra(int w, int h) : power(w, h, Grid::unset), smooth(w, h, Grid::unset) {}  // both written in full
 };
 
 Spectra spectraOf(const HalfSpectrum& spectrum, int threads) {
@@ -223,20 +254,22 @@ Spectra spectraOf(const HalfSpectrum& spectrum, int threads) {
                 power.at(x, y) = (x == 0 && y == 0) ? 0.0 : std::norm(std::complex<double>(z));
             }
     });
-    // Smoothed over 5x5 frequency bins (a box, three times each way, circular). The neighbours' indices
-    // are wrapped once per line, not per texel; the sums add in the same order.
-    smooth = power;
-    Grid next(w, h);
+    // Smoothed over 5x5 frequency bins (a box, three times each way, circular), the first pass from the
+    // power itself. The neighbours' indices are wrapped once per line, not per texel; the sums add in the
+    // same order.
+    Grid next(w, h, Grid::unset);
     std::vector<int> wrapX(size_t(w) + 4), wrapY(size_t(h) + 4);
     for (int i = -2; i < w + 2; ++i) wrapX[i + 2] = (i + w) % w;
     for (int i = -2; i < h + 2; ++i) wrapY[i + 2] = (i + h) % h;
     for (int pass = 0; pass < 3; ++pass) {
         parallelFor(h, threads, [&](int begin, int end) {
+            std::vector<double> padded(size_t(w) + 4);  // the row with its wrapped neighbours: no gather
             for (int y = begin; y < end; ++y) {
-                const double* row = &smooth.v[size_t(y) * w];
+                const double* row = &(pass == 0 ? power : smooth).v[size_t(y) * w];
+                for (int i = 0; i < w + 4; ++i) padded[i] = row[wrapX[i]];
                 for (int x = 0; x < w; ++x) {
                     double sum = 0;
-                    for (int d = 0; d < 5; ++d) sum += row[wrapX[x + d]];
+                    for (int d = 0; d < 5; ++d) sum += padded[x + d];
                     next.at(x, y) = sum / 5;
                 }
             }
@@ -313,7 +346,7 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
     //        detail is far coarser than a texel, and a frame is a loss or excess of its contrast).
     for (double fine = 1.0; fine == 1.0 || 2 * fine <= std::max(w, h) / 32.0; fine *= 2) {
         const double coarse = 2 * fine;
-        const Profiles energy = profilesOf(bandPassed(spectrum, fine, coarse, options.threads), true, options.threads);
+        const Profiles energy = energyProfiles(spectrum, fine, coarse, options.threads);
         look.frame = std::max({look.frame, ringScore(energy.columns, reachX, 0.0), ringScore(energy.rows, reachY, 0.0)});
     }
     // Blobs: the squared standardised band-pass at the scale of a blob, 1/128 to 1/32 of the tile (the
@@ -339,7 +372,7 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
             q.v[i] = sd > 1e-12 ? ((q.v[i] - mean) / sd) * ((q.v[i] - mean) / sd) : 0.0;
     });
     const TiledSums sums(q, options.threads);
-    const Profiles profiles = profilesOf(q, false, options.threads);
+    const Profiles profiles = profilesOf(q, options.threads);
     look.blobs = std::max({ringScore(profiles.columns, reachX, 0.05), ringScore(profiles.rows, reachY, 0.05),
                            cornerScore(sums, std::max(2, std::min(w, h) / 32)), cornerScore(sums, std::max(2, std::min(w, h) / 16))});
     // Echo, less the source's own (of its periodic component: its seams would echo along their lines).

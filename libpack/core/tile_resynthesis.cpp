@@ -8,6 +8,7 @@
 #include <complex>
 #include <memory>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "gaussianise.hpp"
 #include "range.hpp"
 #include "smoothing.hpp"
+#include "strip_field.hpp"
 
 namespace heightpack {
 
@@ -30,6 +32,7 @@ using Complex = std::complex<double>;
 using detail::Axis;
 using detail::Field;
 using detail::GaussianModel;
+using detail::StripField;
 
 // Rows of a (rows x length) complex spectrum, one row per input sequence: seq(r, i) for i in [0, length).
 template <class Get>
@@ -46,15 +49,23 @@ cv::Mat rowSpectra(int rows, int length, Get seq) {
 // and NaNs on every call, which keeps the loops from vectorising (twice the time of the whole solve).
 void choleskySolve(std::vector<Complex>& a, std::vector<Complex>& b, int n) {
     // a[i n + k] times the conjugate of a[j n + k], summed over k < count.
+    // Four partial sums (k modulo 4), added in a fixed order at the end: one running sum waits on each
+    // add's latency, which was most of the solve's time.
     auto rowProduct = [&](int i, int j, int count) {
         const double* p = reinterpret_cast<const double*>(&a[size_t(i) * n]);
         const double* q = reinterpret_cast<const double*>(&a[size_t(j) * n]);
-        double re = 0, im = 0;
-        for (int k = 0; k < count; ++k) {
-            re += p[2 * k] * q[2 * k] + p[2 * k + 1] * q[2 * k + 1];
-            im += p[2 * k + 1] * q[2 * k] - p[2 * k] * q[2 * k + 1];
+        double re[4] = {0, 0, 0, 0}, im[4] = {0, 0, 0, 0};
+        int k = 0;
+        for (; k + 4 <= count; k += 4)
+            for (int l = 0; l < 4; ++l) {
+                re[l] += p[2 * (k + l)] * q[2 * (k + l)] + p[2 * (k + l) + 1] * q[2 * (k + l) + 1];
+                im[l] += p[2 * (k + l) + 1] * q[2 * (k + l)] - p[2 * (k + l)] * q[2 * (k + l) + 1];
+            }
+        for (; k < count; ++k) {
+            re[0] += p[2 * k] * q[2 * k] + p[2 * k + 1] * q[2 * k + 1];
+            im[0] += p[2 * k + 1] * q[2 * k] - p[2 * k] * q[2 * k + 1];
         }
-        return Complex(re, im);
+        return Complex((re[0] + re[1]) + (re[2] + re[3]), (im[0] + im[1]) + (im[2] + im[3]));
     };
     for (int j = 0; j < n; ++j) {
         const double d = std::sqrt(std::max(a[size_t(j) * n + j].real() - rowProduct(j, j, j).real(), 1e-300));
@@ -95,15 +106,27 @@ double quantisationNoise(size_t n, Runs runs) {
 // from integer samples: no sort), else from the sorted values.
 double quantisationNoise(const std::vector<float>& values, double quantum, int threads) {
     const size_t n = values.size();
-    if (quantum > 0) {
-        const auto [low, high] = std::minmax_element(values.begin(), values.end());
-        const double inverse = 1 / quantum, first = std::round(*low * inverse), levels = std::round(*high * inverse) - first + 1;
+    if (quantum > 0 && n > 0) {
         // Counted in fixed chunks, each its own histogram, summed in order: the same on any thread count.
         constexpr int kChunks = 16;
         constexpr double kMostLevels = 1 << 17;  // 8- and 16-bit samples, and some headroom
+        const size_t chunk = (n + kChunks - 1) / kChunks;
+        std::vector<float> lows(kChunks, values[0]), highs(kChunks, values[0]);
+        parallelFor(kChunks, threads, [&](int begin, int end) {
+            for (int c = begin; c < end; ++c) {  // in locals: the chunks' entries share a cache line
+                float low = values[0], high = values[0];
+                for (size_t i = size_t(c) * chunk; i < std::min(n, size_t(c + 1) * chunk); ++i) {
+                    low = std::min(low, values[i]);
+                    high = std::max(high, values[i]);
+                }
+                lows[c] = low;
+                highs[c] = high;
+            }
+        });
+        const float low = *std::min_element(lows.begin(), lows.end()), high = *std::max_element(highs.begin(), highs.end());
+        const double inverse = 1 / quantum, first = std::round(low * inverse), levels = std::round(high * inverse) - first + 1;
         std::vector<std::vector<size_t>> counts(levels <= kMostLevels ? kChunks : 0);
         std::vector<char> whole(kChunks, 1);
-        const size_t chunk = (n + kChunks - 1) / kChunks;
         parallelFor(int(counts.size()), threads, [&](int begin, int end) {
             for (int c = begin; c < end; ++c) {
                 counts[c].assign(size_t(levels), 0);
@@ -139,19 +162,17 @@ double quantisationNoise(const std::vector<float>& values, double quantum, int t
 }
 
 // Replaces the `band` columns (Axis::X; rows for Axis::Y) around the wrap line between the last and the
-// first with the model's sample conditioned on `context` lines on each side. The field must wrap along
-// the lines. In the loops below, u runs across the lines and v along them.
-void resynthesiseLines(Field& field, const GaussianModel& model, const Field& sample, Axis axis, int band, int context, double noise,
-                       int threads) {
+// first with the model's sample conditioned on `context` lines on each side, the field's mean being
+// `mean`. The field must wrap along the lines, and keep them (bandLinesReach). Returns the sum of the
+// changes. In the loops below, u runs across the lines and v along them.
+double resynthesiseLines(StripField& field, const GaussianModel& model, const StripField& sample, Axis axis, int band, int context,
+                         double noise, double mean, int threads) {
     const bool across = axis == Axis::X;
     const int w = across ? field.w : field.h, h = across ? field.h : field.w, c = context, strip = band + 2 * context;
-    auto at = [&](const Field& f, int u, int v) { return across ? f.at(u, v) : f.at(v, u); };
+    auto at = [&](const StripField& f, int u, int v) { return across ? f.at(u, v) : f.at(v, u); };
     auto set = [&](int u, int v) -> double& { return across ? field.at(u, v) : field.at(v, u); };
     const int first = w - band / 2 - context;  // the strip's first line, modulo w
     auto column = [&](int local) { return ((first + local) % w + w) % w; };
-    double mean = 0;
-    for (double value : field.v) mean += value;  // in memory order (across the lines is a stride for Y)
-    mean /= double(field.v.size());
     const cv::Mat covHat = detail::lineCovarianceSpectra(model.power, axis, strip, threads);
     auto cov = [&](int dx, int ky) {
         const cv::Vec2d z = covHat.at<cv::Vec2d>(ky, std::abs(dx));
@@ -176,21 +197,40 @@ void resynthesiseLines(Field& field, const GaussianModel& model, const Field& sa
                 weights[i] = Complex(r[0], r[1]);
             }
             choleskySolve(a, weights, conditioning);
-            for (int m = 0; m < band; ++m) {
-                Complex sum = 0;
-                for (int j = 0; j < conditioning; ++j) sum += cov(c + m - local(j), ky) * weights[j];
+            for (int m = 0; m < band; ++m) {  // in real arithmetic, as in choleskySolve
+                double re = 0, im = 0;
+                for (int j = 0; j < conditioning; ++j) {
+                    const Complex z = cov(c + m - local(j), ky);
+                    re += z.real() * weights[j].real() - z.imag() * weights[j].imag();
+                    im += z.real() * weights[j].imag() + z.imag() * weights[j].real();
+                }
+                const Complex sum(re, im);
                 kriged.at<cv::Vec2d>(m, ky) = cv::Vec2d(sum.real(), sum.imag());
                 if (ky > 0 && ky < h - ky) kriged.at<cv::Vec2d>(m, h - ky) = cv::Vec2d(sum.real(), -sum.imag());
             }
         }
     });
-    cv::Mat values;
-    cv::dft(kriged, values, cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    cv::Mat values(band, h, CV_64F);
+    parallelFor(band, threads, [&](int begin, int end) {  // each row alone: any split gives the same rows
+        cv::Mat rows = values.rowRange(begin, end);
+        cv::dft(kriged.rowRange(begin, end), rows, cv::DFT_ROWS | cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    });
+    double change = 0;
     for (int m = 0; m < band; ++m) {
         const int x = column(c + m);
-        for (int y = 0; y < h; ++y) set(x, y) = mean + at(sample, x, y) + values.at<double>(m, y);
+        for (int y = 0; y < h; ++y) {
+            double& value = set(x, y);
+            const double next = mean + at(sample, x, y) + values.at<double>(m, y);
+            change += next - value;
+            value = next;
+        }
     }
+    return change;
 }
+
+// How far from a wrap line the band re-synthesis reads and writes: a band's strip reaches band / 2 + context
+// lines on one side, band - band / 2 + context on the other; the texels set from it, (band + 1) / 2 + 1.
+int bandLinesReach(int band, int context) { return band / 2 + context + 2; }
 
 // Where the slopes along an axis stop resembling themselves: the lag at which the autocorrelation of the
 // difference field falls below 1/e, from the heights' circular autocovariance along that axis.
@@ -226,25 +266,35 @@ double largeScaleSigma(int bandX, int bandY, int w, int h) { return std::max(0.5
 struct Resynthesiser::State {
     const Image& map;
     int threads;
-    std::vector<float> values;
+    std::vector<float> dequantised;  // the map with its quantisation undone, where it has terraces
+    const std::vector<float>* values = &map.pixels;  // the values modelled: the map's or those
     double noise = 0;
     std::optional<GaussianModel> model;
     double correlationX = 0, correlationY = 0;
     double sigma = -1;
     std::vector<float> smooth;
     std::optional<detail::Gaussianiser> ranks;
+    Field gaussian{0, 0};  // the ranks' Gaussians as a field (moved out of ranks)
+    double gaussianMean = 0;
     State(const Image& m, int t) : map(m), threads(t) {}
     // The large scales at sigma and the ranks of the values less them, unless they are at sigma already.
     void useSigma(double newSigma, int w, int h) {
         if (newSigma == sigma) return;
         sigma = newSigma;
         ranks.reset();
-        smooth = detail::largeScaleField(values, w, h, sigma, threads);
-        std::vector<float> corrected(values.size());
+        smooth = detail::largeScaleField(*values, w, h, sigma, threads);
+        detail::Buffer<float> corrected(values->size());
         parallelFor(h, threads, [&](int begin, int end) {
-            for (size_t i = size_t(begin) * w; i < size_t(end) * w; ++i) corrected[i] = values[i] - smooth[i];
+            for (size_t i = size_t(begin) * w; i < size_t(end) * w; ++i) corrected[i] = (*values)[i] - smooth[i];
         });
         ranks.emplace(corrected, threads);
+        gaussian = Field(w, h, std::move(ranks->gaussian));
+        std::vector<double> rowSums(size_t(h), 0.0);  // per row on all threads, then summed in order
+        parallelFor(h, threads, [&](int begin, int end) {
+            for (int y = begin; y < end; ++y)
+                rowSums[y] = std::accumulate(&gaussian.v[size_t(y) * w], &gaussian.v[size_t(y) * w] + w, 0.0);
+        });
+        gaussianMean = std::accumulate(rowSums.begin(), rowSums.end(), 0.0) / double(gaussian.v.size());
     }
 };
 
@@ -257,11 +307,13 @@ Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : st
     //    Gaussianisation serves the model and every attempt whose bands ask no larger sigma.
     State& s = *state_;
     const bool terraced = quantum > 0 && detail::hasTerraces(map, threads);
-    s.values = terraced ? detail::dequantised(map, quantum, threads) : map.pixels;
-    s.noise = quantisationNoise(s.values, terraced ? 0.0 : quantum, threads);
+    if (terraced) {
+        s.dequantised = detail::dequantised(map, quantum, threads);
+        s.values = &s.dequantised;
+    }
+    s.noise = quantisationNoise(*s.values, terraced ? 0.0 : quantum, threads);
     s.useSigma(largeScaleSigma(0, 0, w, h), w, h);
-    const Field g(w, h, s.ranks->gaussian);
-    s.model.emplace(detail::modelOf(g, s.noise, threads));
+    s.model.emplace(detail::modelOf(s.gaussian, s.noise, threads));
     s.correlationX = slopeCorrelationLength(s.model->lagX);
     s.correlationY = slopeCorrelationLength(s.model->lagY);
 }
@@ -284,24 +336,33 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
     //    blurred apart, mirrored). Beyond the bands this is the whole change.
     s.useSigma(largeScaleSigma(result.bandX, result.bandY, w, h), w, h);
     const detail::Gaussianiser& ranks = *s.ranks;
-    Field g(w, h, ranks.gaussian);
-    const Field sample = detail::sampleOf(*s.model, seed, threads);
-    // 3. and 4. The bands, left/right first, then top/bottom.
+    // 3. and 4. The bands, left/right first, then top/bottom, in the strips they read and write (beyond
+    //    them the Gaussians are the map's own).
     const int contextX = std::clamp(result.bandX / 2, 4, 32), contextY = std::clamp(result.bandY / 2, 4, 32);
+    const int reachX = bandLinesReach(result.bandX, contextX), reachY = bandLinesReach(result.bandY, contextY);
+    detail::StripField g(w, h, reachX, reachY);
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y) g.setRow(y, &s.gaussian.v[size_t(y) * w]);
+    });
+    const detail::StripField sample = detail::sampleOf(*s.model, seed, reachX, reachY, threads);
+    double mean = s.gaussianMean;
     if (result.bandX + 2 * contextX <= w) {
         // The left/right band is solved per frequency along y, so its field must wrap top to bottom: the
-        // top/bottom jump is set aside meanwhile (the top/bottom band replaces what it touches later).
-        const Field aside = detail::topBottomSmoothField(g, threads);
+        // top/bottom jump is set aside meanwhile (the top/bottom band replaces what it touches later). Its
+        // mean is 0, so the field's stays.
+        const detail::StripField aside = detail::topBottomSmoothField(s.gaussian, reachX, threads);
         auto add = [&](double sign) {
             parallelFor(h, threads, [&](int begin, int end) {
-                for (size_t i = size_t(begin) * w; i < size_t(end) * w; ++i) g.v[i] += sign * aside.v[i];
+                for (int y = begin; y < end; ++y)
+                    for (int x : aside.columns()) g.at(x, y) += sign * aside.at(x, y);
             });
         };
         add(-1.0);
-        resynthesiseLines(g, *s.model, sample, Axis::X, result.bandX, contextX, s.noise, threads);
+        mean += resynthesiseLines(g, *s.model, sample, Axis::X, result.bandX, contextX, s.noise, mean, threads) / (double(w) * h);
         add(1.0);
     }
-    if (result.bandY + 2 * contextY <= h) resynthesiseLines(g, *s.model, sample, Axis::Y, result.bandY, contextY, s.noise, threads);
+    if (result.bandY + 2 * contextY <= h)
+        resynthesiseLines(g, *s.model, sample, Axis::Y, result.bandY, contextY, s.noise, mean, threads);
     // 5. Back to heights through the sorted values. Beyond the bands, the map itself plus the large-scale
     //    change there (so its own fine detail, terraces and all, stays exactly); in the bands, the new
     //    content, which a quantised output rounds to its levels.
@@ -311,11 +372,19 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
     };
     result.map = Image(w, h, 1);
     parallelFor(h, threads, [&](int begin, int end) {
-        for (int y = begin; y < end; ++y)
+        std::vector<double> gaussians(static_cast<size_t>(w));
+        std::vector<float> values(static_cast<size_t>(w));
+        for (int y = begin; y < end; ++y) {
+            int count = 0;  // the row's texels in the bands, their Gaussians gathered and taken back at once
+            for (int x = 0; x < w; ++x)
+                if (inBand(x, y)) gaussians[count++] = g.at(x, y);
+            ranks.back(gaussians.data(), values.data(), size_t(count));
+            count = 0;
             for (int x = 0; x < w; ++x) {
                 const size_t i = size_t(y) * w + x;
-                result.map.pixels[i] = inBand(x, y) ? ranks.back(g.v[i]) : map.pixels[i] - s.smooth[i];
+                result.map.pixels[i] = inBand(x, y) ? values[count++] : map.pixels[i] - s.smooth[i];
             }
+        }
     });
     detail::easeIntoRange(result.map, map, threads);
     return result;

@@ -86,6 +86,36 @@ std::array<std::vector<double>, kOperators> operatorSums(const float* lines, int
     return total;
 }
 
+// operatorSums of the columns of a w x h image (rows as stored) without transposing it: gap r lies between
+// rows r and r+1, and each gap's sums run along its rows, x in order, in four partial sums (x modulo 4)
+// added at the end (one running sum would wait on each add's latency). Gaps are independent: the result
+// does not depend on threads.
+std::array<std::vector<double>, kOperators> operatorSumsAcrossRows(const float* rows, int w, int h, int threads) {
+    std::array<std::vector<double>, kOperators> sums;
+    for (auto& v : sums) v.assign(h, 0.0);
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (int r = begin; r < end; ++r) {
+            auto row = [&](int k) { return rows + size_t((r + k + h) % h) * w; };
+            const float *before = row(-1), *at = row(0), *next = row(1), *after = row(2);
+            double jump1[4] = {}, jump3[4] = {}, kink[4] = {};
+            auto add = [&](int x, int part) {
+                const double d0 = double(at[x]) - before[x], d1 = double(next[x]) - at[x], d2 = double(after[x]) - next[x];
+                jump1[part] += std::abs(d1);
+                jump3[part] += std::abs(d2 - 2 * d1 + d0);
+                kink[part] += std::abs(d2 - d0);
+            };
+            int x = 0;
+            for (; x + 4 <= w; x += 4)
+                for (int part = 0; part < 4; ++part) add(x + part, part);
+            for (; x < w; ++x) add(x, 0);
+            sums[kJump1][r] = (jump1[0] + jump1[1]) + (jump1[2] + jump1[3]);
+            sums[kJump3][r] = (jump3[0] + jump3[1]) + (jump3[2] + jump3[3]);
+            sums[kKink][r] = (kink[0] + kink[1]) + (kink[2] + kink[3]);
+        }
+    });
+    return sums;
+}
+
 // The period of an 8x8 block grid (JPEG) as it appears at this level, when the gaps on the grid's lines
 // stand out from the others; 1 when there is none. The tile edge is a grid line itself (the grid starts
 // at texel 0), so it is then compared with the cuts of its own phase.
@@ -142,26 +172,17 @@ double edgeContrast(std::vector<double> s, int reach, int period, double floor) 
 }
 
 
-// Scores along one direction: lines holds m lines of n texels, the tile edge between texel n-1 and 0.
-SeamScore scoreAlong(const float* lines, int n, int m, const SeamOptions& options) {
+// The score of one direction from its operator sums over m lines at each of n gaps (the tile edge the
+// last), largest the largest |height|.
+SeamScore scoreOfSums(std::array<std::vector<double>, kOperators> sums, int m, double largest, const SeamOptions& options) {
     SeamScore score;
-    if (n < kMinimumTexels || m < kMinimumLines) return score;
+    const int n = static_cast<int>(sums[kJump1].size());
     score.measured = true;
-    std::array<std::vector<double>, kOperators> sums = operatorSums(lines, n, m, options.threads);
     for (auto& s : sums)
         for (double& v : s) v /= m;
     const int period = blockPeriod(sums[kJump3], options.level);
     // Below the source's steps, or float rounding at the heights' magnitude, a difference is no evidence:
     // on an exactly periodic, noiseless field every cut differs from the others by rounding alone.
-    std::vector<float> largestOf(size_t(m), 0.0f);  // per line, on all threads: a maximum has one value
-    parallelFor(m, options.threads, [&](int begin, int end) {
-        for (int j = begin; j < end; ++j) {
-            float top = 0.0f;
-            for (int c = 0; c < n; ++c) top = std::max(top, std::abs(lines[size_t(j) * n + c]));
-            largestOf[j] = top;
-        }
-    });
-    const double largest = *std::max_element(largestOf.begin(), largestOf.end());
     const double quantum = std::max(options.quantum, largest * 4 * std::numeric_limits<float>::epsilon());
     // Nor is a contrast under a hundredth of the map's typical height step: no one sees a jump that small
     // (jump3 shows a jump twice over), and a noiseless analytic field, whose third differences are next to
@@ -187,10 +208,15 @@ LevelSeams measureSeams(const Image& level, const SeamOptions& options) {
     LevelSeams seams;
     seams.width = level.width;
     seams.height = level.height;
-    seams.leftRight = scoreAlong(level.pixels.data(), level.width, level.height, options);
-    // Columns as lines: the same code then reads every line contiguously.
-    const Image columns = transposed(level, options.threads);
-    seams.topBottom = scoreAlong(columns.pixels.data(), level.height, level.width, options);
+    const int w = level.width, h = level.height;
+    const float* heights = level.pixels.data();
+    const SampleRange range = sampleRange(level, options.threads);
+    const double largest = std::max(std::abs(double(range.low)), std::abs(double(range.high)));
+    // Each direction is judged where it has the texels and lines to be (kMinimumTexels, kMinimumLines).
+    if (w >= kMinimumTexels && h >= kMinimumLines)
+        seams.leftRight = scoreOfSums(operatorSums(heights, w, h, options.threads), h, largest, options);
+    if (h >= kMinimumTexels && w >= kMinimumLines)
+        seams.topBottom = scoreOfSums(operatorSumsAcrossRows(heights, w, h, options.threads), w, largest, options);
     return seams;
 }
 

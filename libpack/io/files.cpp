@@ -200,6 +200,23 @@ TemporaryFile::~TemporaryFile() {
     if (slot_ >= 0) pendingUsed[slot_].store(false);
 }
 
+EarlyWriteback::EarlyWriteback(const std::string& path) : fd_(::open(path.c_str(), O_RDONLY | O_CLOEXEC)) {}
+
+EarlyWriteback::~EarlyWriteback() {
+    if (fd_ >= 0) ::close(fd_);
+}
+
+void EarlyWriteback::wrote(size_t bytes) {
+    constexpr size_t kStep = size_t(2) << 20;
+    size_t unsent = unsent_.fetch_add(bytes) + bytes;
+    // One caller of those that pass the step sends the pages: the others see the count already reset.
+    if (fd_ < 0 || unsent < kStep || !unsent_.compare_exchange_strong(unsent, 0)) return;
+#ifdef __linux__
+    // The whole file: pages already on their way are left alone, so each call sends what is new.
+    ::sync_file_range(fd_, 0, 0, SYNC_FILE_RANGE_WRITE);
+#endif
+}
+
 Status TemporaryFile::commit() {
     if (inPlace_) return Done{};  // the staged file's own TemporaryFile flushes and moves it
     struct stat st {};

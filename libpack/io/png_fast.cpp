@@ -3,7 +3,6 @@
 #include <libdeflate.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +12,7 @@
 #include "heightpack/core/parallel.hpp"
 
 #include "png_format.hpp"
+#include "png_unfilter.hpp"
 
 namespace heightpack::detail {
 
@@ -20,84 +20,6 @@ namespace {
 
 uint32_t be32(const unsigned char* p) {
     return (uint32_t(p[0]) << 24) | (uint32_t(p[1]) << 16) | (uint32_t(p[2]) << 8) | uint32_t(p[3]);
-}
-
-// Undoes one row's filter (0 to 4) on bytes [begin, end) of the row, begin a multiple of BPP, the bytes
-// before begin already undone. BPP bytes per pixel, known at compile time: byte i depends on byte i - BPP,
-// so the BPP chains within a pixel are independent and the unrolled inner loop runs them side by side.
-template <int BPP>
-void unfilterSpan(int filter, unsigned char* cur, const unsigned char* up, size_t begin, size_t end) {
-    auto byte = [](int v) { return static_cast<unsigned char>(v); };
-    const size_t from = std::max<size_t>(begin, BPP);  // the first pixel has no left neighbour
-    switch (filter) {
-        case 1:
-            for (size_t i = from; i < end; i += BPP)
-                for (int b = 0; b < BPP; ++b) cur[i + b] = byte(cur[i + b] + cur[i + b - BPP]);
-            return;
-        case 2:
-            for (size_t i = begin; i < end; ++i) cur[i] = byte(cur[i] + up[i]);
-            return;
-        case 3:
-            if (begin == 0)
-                for (int b = 0; b < BPP; ++b) cur[b] = byte(cur[b] + (up[b] >> 1));
-            for (size_t i = from; i < end; i += BPP)
-                for (int b = 0; b < BPP; ++b) cur[i + b] = byte(cur[i + b] + ((int(cur[i + b - BPP]) + up[i + b]) >> 1));
-            return;
-        case 4:
-            if (begin == 0)
-                for (int b = 0; b < BPP; ++b) cur[b] = byte(cur[b] + up[b]);
-            for (size_t i = from; i < end; i += BPP)
-                for (int b = 0; b < BPP; ++b)
-                    cur[i + b] = byte(cur[i + b] + paeth(cur[i + b - BPP], up[i + b], up[i + b - BPP]));
-            return;
-        default: return;  // 0: nothing to undo
-    }
-}
-
-// Bytes of a row undone between two looks at the row above: the rows' threads trail each other by this.
-constexpr size_t kUnfilterChunk = 4096;  // a multiple of every pixel size
-
-// Undoes PNG's per-row filters in place (spec section 9). rows holds, per row, a filter byte and rowBytes
-// bytes (a whole number of pixels). The row above the first is all zeros. A row depends on the one above
-// only up to the byte it is at: worker k of n takes rows k, k + n, ..., a chunk at a time, each chunk
-// once the row above is done that far, so the rows are undone side by side, as one thread would undo them.
-template <int BPP>
-bool unfilter(unsigned char* rows, int height, size_t rowBytes, int threads) {
-    const size_t stride = rowBytes + 1;
-    for (int y = 0; y < height; ++y)
-        if (rows[size_t(y) * stride] > 4) return false;  // checked first: no worker stops half way
-    const std::vector<unsigned char> zeros(rowBytes, 0);
-    const int workers = std::min(resolveThreadCount(threads), height);
-    std::vector<std::atomic<size_t>> done(static_cast<size_t>(height));  // bytes of each row undone
-    parallelFor(workers, workers, [&](int first, int last) {
-        for (int worker = first; worker < last; ++worker) {
-            for (int y = worker; y < height; y += workers) {
-                unsigned char* row = rows + size_t(y) * stride;
-                const unsigned char* up = y > 0 ? row - rowBytes : zeros.data();
-                for (size_t begin = 0; begin < rowBytes; begin += kUnfilterChunk) {
-                    const size_t end = std::min(begin + kUnfilterChunk, rowBytes);
-                    if (y > 0 && workers > 1) {
-                        std::atomic<size_t>& above = done[size_t(y) - 1];
-                        for (size_t have; (have = above.load(std::memory_order_acquire)) < end;)
-                            above.wait(have, std::memory_order_acquire);
-                    }
-                    unfilterSpan<BPP>(row[0], row + 1, up, begin, end);
-                    done[size_t(y)].store(end, std::memory_order_release);
-                    done[size_t(y)].notify_all();
-                }
-            }
-        }
-    });
-    return true;
-}
-
-bool unfilter(unsigned char* rows, int height, size_t rowBytes, int bpp, int threads) {
-    switch (bpp) {
-        case 1: return unfilter<1>(rows, height, rowBytes, threads);
-        case 2: return unfilter<2>(rows, height, rowBytes, threads);
-        case 4: return unfilter<4>(rows, height, rowBytes, threads);
-        default: return false;
-    }
 }
 
 // Converts sample `channel` of each of a row's pixels to floats, as OpenImageIO converts them.

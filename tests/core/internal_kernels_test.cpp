@@ -171,6 +171,47 @@ TEST(ThreadedDft, FieldsSharingOneColumnPassEqualTheirOwnInverses) {
     }
 }
 
+TEST(ThreadedDft, HalfSpectrumGivenAsItGoesEqualsTheStoredOneWithTheLastFieldAsScratch) {
+    // The overload with no spectrum of its own: the half spectrum read through a callback, the columns'
+    // result kept in the storage of a field it writes (interleaved, three floats a texel, with a field
+    // written beside it), must give the same bytes as the overload that transforms a stored spectrum.
+    std::mt19937 random(3);
+    std::normal_distribution<float> normal;
+    for (const auto& [w, h] : {std::pair{2, 1}, {8, 2}, {16, 64}, {64, 16}, {34, 9}}) {
+        const int columns = w / 2 + 1;
+        std::vector<std::complex<float>> spectrum(size_t(h) * columns);
+        for (auto& z : spectrum) z = {normal(random), normal(random)};
+        // Real where a real field's spectrum is: the columns kx = 0 and w/2 of rows 0 and h/2.
+        for (int r : {0, h / 2})
+            for (int q : {0, w / 2}) spectrum[size_t(r) * columns + q].imag(0.0f);
+        std::vector<std::complex<float>> ikx(columns);
+        for (int q = 0; q < columns; ++q) ikx[q] = {0.0f, float(q)};
+        auto into = [w](std::vector<float>& v, int stride, int channel) {
+            return [&v, w, stride, channel](int y, const float* row) {
+                for (int x = 0; x < w; ++x) v[(size_t(y) * w + x) * stride + channel] = row[x];
+            };
+        };
+        std::vector<float> plain(size_t(w) * h), dx(plain.size());
+        std::vector<std::complex<float>> copy = spectrum;
+        detail::inverseRealDftOfHalf(copy.data(), w, h, 1, {{ikx, into(dx, 1, 0)}, {{}, into(plain, 1, 0)}});
+        for (int threads : {1, 3}) {
+            std::vector<float> image(size_t(w) * h * 3, 7.0f);  // channel 0 the scratch, then plain; 1: dx; 2 untouched
+            std::vector<std::complex<float>> lastColumn(h);
+            const detail::HalfSpectrumSource give = [&](int q0, int count, std::complex<float>* lines, size_t lineStride) {
+                for (int r = 0; r < h; ++r)
+                    for (int i = 0; i < count; ++i) lines[i * lineStride + r] = spectrum[size_t(r) * columns + q0 + i];
+            };
+            detail::inverseRealDftOfHalf(w, h, threads, give, {image.data(), 3, lastColumn.data()},
+                                         {{ikx, into(image, 3, 1)}, {{}, into(image, 3, 0)}});
+            for (size_t i = 0; i < plain.size(); ++i) {
+                ASSERT_EQ(image[3 * i], plain[i]) << w << "x" << h << " on " << threads << " at " << i;
+                ASSERT_EQ(image[3 * i + 1], dx[i]) << w << "x" << h << " on " << threads << " at " << i;
+                ASSERT_EQ(image[3 * i + 2], 7.0f);
+            }
+        }
+    }
+}
+
 TEST(CounterNormals, AreStandardNormalAndUncorrelatedAlongCellsRowsAndSeeds) {
     // 10^6 deviates: 500 000 pairs of a 4096-wide grid, as Ocean draws them (index = row * 4096 + column).
     // Every tolerance is 5 standard errors of its estimate over N values: mean 1/sqrt(N), variance
@@ -232,5 +273,13 @@ TEST(StableOrder, EqualsStdStableSortWithTiesNegativesAndSignedZeros) {
         std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) { return values[a] < values[b]; });
         EXPECT_EQ(detail::stableOrder(values, 1), expected) << trial;
         EXPECT_EQ(detail::stableOrder(values, 3), expected) << trial;
+        // The Gaussianiser's sorted values come back from the sort's keys: the values in order (-0 as +0,
+        // which compares equal), every bit of every other value kept.
+        const detail::Gaussianiser ranks(values, 2);
+        ASSERT_EQ(ranks.sorted.size(), n);
+        for (size_t i = 0; i < n; ++i) {
+            const float want = values[expected[i]];
+            ASSERT_TRUE(want == 0.0f ? ranks.sorted[i] == 0.0f : std::memcmp(&ranks.sorted[i], &want, sizeof want) == 0) << trial << " " << i;
+        }
     }
 }

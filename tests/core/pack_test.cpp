@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/pack.hpp"
@@ -43,6 +44,26 @@ TEST(Pack, ChannelsAreTheLevelShiftedByOneTexel) {
                 ASSERT_EQ(p.at(x, y, 3), h.at(x1, y1)) << x << "," << y;
             }
         }
+    }
+}
+
+TEST(Pack, ARunOfOneChannelIsThatChannelOfThePackedRow) {
+    // Every run a writer can ask for (any start, any length, runs that end on the right edge) of every
+    // channel of every row, both wraps, against the packed image: the same values, and nothing written past
+    // the run.
+    const Image h = randomImage(16, 8, 5);
+    for (Wrap wrap : {Wrap::Periodic, Wrap::Clamp}) {
+        const Image p = packNeighbour4(h, wrap);
+        for (int y = 0; y < h.height; ++y)
+            for (int channel = 0; channel < 4; ++channel)
+                for (int x0 = 0; x0 < h.width; ++x0)
+                    for (int count = 0; x0 + count <= h.width; ++count) {
+                        std::vector<float> run(size_t(count) + 1, -7.0f);
+                        packNeighbour4Run(h, wrap, y, x0, count, channel, run.data());
+                        for (int i = 0; i < count; ++i)
+                            ASSERT_EQ(run[i], p.at(x0 + i, y, channel)) << channel << " " << x0 << "+" << i << "," << y;
+                        ASSERT_EQ(run[count], -7.0f);
+                    }
     }
 }
 

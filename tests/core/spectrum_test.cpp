@@ -169,6 +169,33 @@ TEST(Spectrum, TheSameBytesOnAnyThreadCountFrozenOrEvolving) {
     EXPECT_EQ(one.displacementBound(), frozen.displacementBound());
 }
 
+TEST(Spectrum, FieldsIntoOneInterleavedImageEqualEachFieldAlone) {
+    // fieldsInto keeps its transforms' work in the heights' storage until the heights are written: into
+    // one interleaved image (heights, Dx, Dy, J) every field must come out as the same field asked for
+    // alone, where each has storage of its own, frozen or evolving, on any thread count.
+    SpectrumOptions o = windSea(SpectrumModel::Jonswap, 17);
+    o.size = 64, o.tileSize = 200.0;
+    const Ocean ocean(o, 2);
+    for (double t : {0.0, 2.25})
+        for (int threads : {1, 3}) {
+            const int n = o.size;
+            std::vector<float> image(size_t(n) * n * 4);
+            SeaFieldTargets to;
+            to.heights = {image.data(), 4}, to.displacementX = {image.data() + 1, 4};
+            to.displacementY = {image.data() + 2, 4}, to.jacobian = {image.data() + 3, 4};
+            ocean.fieldsInto(t, to, 0.8, threads);
+            const Image h = ocean.fields(t, {true, false, false}, 0.8, threads).heights;
+            const Image d = ocean.fields(t, {false, true, false}, 0.8, threads).displacement;
+            const Image j = ocean.fields(t, {false, false, true}, 0.8, threads).jacobian;
+            for (size_t i = 0; i < h.texelCount(); ++i) {
+                ASSERT_EQ(image[4 * i], h.pixels[i]) << t << " on " << threads << " at " << i;
+                ASSERT_EQ(image[4 * i + 1], d.pixels[2 * i]) << t << " on " << threads << " at " << i;
+                ASSERT_EQ(image[4 * i + 2], d.pixels[2 * i + 1]) << t << " on " << threads << " at " << i;
+                ASSERT_EQ(image[4 * i + 3], j.pixels[i]) << t << " on " << threads << " at " << i;
+            }
+        }
+}
+
 TEST(Spectrum, DisplacementIsTheHeightTurnedAlongEachWave) {
     // D(k) = i k/|k| h(k): by Parseval, var(Dx) + var(Dy) = var(h) exactly (k = 0 carries nothing), and
     // the DFT of Dx is the height's DFT times i kx/|k|, checked on an independent transform.

@@ -117,3 +117,26 @@ TEST(TileLook, SmallMapsAreNotMeasured) {
 }
 
 }  // namespace
+
+TEST(TileLook, ScoresAreTheSameOnAnyThreadCount) {
+    // The statistics sum over rows and blocks of rows in fixed orders: a crop (that does not tile, so every
+    // score is away from its floor) scores the same to the bit on one, two and five threads.
+    for (unsigned seed = 1; seed <= 3; ++seed) {
+        const Image big = periodicField(384, 320, seed, 2.5, 1.0, 0.0);
+        Image crop(200, 136, 1);
+        for (int y = 0; y < crop.height; ++y)
+            for (int x = 0; x < crop.width; ++x) crop.at(x, y) = big.at(x + 31, y + 17);
+        LookOptions one;
+        one.threads = 1;
+        const TileLook reference = measureTileLook(crop, one);
+        ASSERT_TRUE(reference.measured);
+        for (int threads : {2, 5}) {
+            LookOptions options;
+            options.threads = threads;
+            const TileLook look = measureTileLook(crop, options);
+            EXPECT_EQ(look.frame, reference.frame) << seed << " on " << threads;
+            EXPECT_EQ(look.blobs, reference.blobs) << seed << " on " << threads;
+            EXPECT_EQ(look.echo, reference.echo) << seed << " on " << threads;
+        }
+    }
+}

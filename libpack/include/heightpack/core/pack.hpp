@@ -16,6 +16,12 @@ Image packNeighbour4(const Image& level, Wrap wrap);
 // a band at a time instead of holding the whole packed chain in memory.
 void packNeighbour4Rows(const Image& level, Wrap wrap, int y0, int rows, float* dst);
 
+// One channel of one packed row alone: `count` values of channel `channel` (0 R, 1 G, 2 B, 3 A) of row y
+// from texel x0 (x0 + count <= width), as packNeighbour4Rows puts them at dst[4 x + channel]. A channel
+// of a row is a run of the level's row y or y + 1 from x0 or x0 + 1, so it is a copy: a writer that lays
+// the channels of a row apart (EXR tiles) takes them so, with no RGBA band between.
+void packNeighbour4Run(const Image& level, Wrap wrap, int y, int x0, int count, int channel, float* dst);
+
 std::vector<Image> packMipChain(const std::vector<Image>& chain, Wrap wrap);
 
 // Bilinear height at texture coordinate (u, v) from one packed level, as the viewer's vertex shader does

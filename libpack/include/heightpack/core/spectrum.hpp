@@ -162,7 +162,8 @@ public:
     // result is the same for any count.
     SeaFields fields(double t, const SeaFieldSet& which, double choppiness = 1.0, int threads = 1) const;
     // The same fields written straight into the caller's storage (an interleaved image's channels, say),
-    // so no plane of each is held twice. t must be 0 unless the ocean evolves.
+    // so no plane of each is held twice. t must be 0 unless the ocean evolves. The targets must not overlap:
+    // the heights' storage holds the transforms' work until the heights, computed last, are written there.
     void fieldsInto(double t, const SeaFieldTargets& targets, double choppiness = 1.0, int threads = 1) const;
     // The variance the grid carries on average: the spectrum summed over the resolved wave vectors.
     double resolvedVariance() const { return resolvedVariance_; }

@@ -38,6 +38,11 @@ struct MipChainSource {
     std::vector<std::string> channelNames;  // interleaved in this order in the rows fillRows writes
     // Writes `rows` rows of level `level` starting at y0 into dst (levelWidth * channels floats a row).
     std::function<void(int level, int y0, int rows, float* dst)> fillRows;
+    // Optional: `count` values of channel `channel` of row y of level `level` from texel x0, as fillRows
+    // would put them at dst[x * channels + channel]. A writer that lays the channels of a row apart (an EXR
+    // tile: a line is each channel's run in turn) takes the runs straight from it, with no band of
+    // interleaved rows to fill and gather from. Empty: such writers go through fillRows.
+    std::function<void(int level, int y, int x0, int count, int channel, float* dst)> fillRun;
     std::vector<ExrAttribute> attributes;
     // An array texture (KTX2 layerCount, DDS arraySize; an EXR has none and holds layers as channels
     // NAME.R ... instead): each layer's name in order, every layer of the same size and of channelNames,

@@ -2,6 +2,8 @@
 // frame sequences, and the names that choose a format.
 #pragma once
 
+#include <atomic>
+#include <cstddef>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -96,6 +98,24 @@ private:
     int slot_ = -1;
     bool committed_ = false;
     bool inPlace_ = false;  // finalPath is a staged output: written where it is, moved by its own owner
+};
+
+// Starts the disk writes of a file while it is still being written (Linux: sync_file_range), so that the
+// fsync TemporaryFile::commit makes before its rename waits for the last bytes only, not for them all (a
+// 268 MB synth output spent 0.17 s there). A writer calls wrote(n) after each n bytes it wrote, from any
+// thread; every 8 MB the pages written so far are sent to the disk while the writer goes on. Where the file
+// cannot be opened or the call is missing, nothing happens: commit's fsync still writes everything.
+class EarlyWriteback {
+public:
+    explicit EarlyWriteback(const std::string& path);
+    ~EarlyWriteback();
+    EarlyWriteback(const EarlyWriteback&) = delete;
+    EarlyWriteback& operator=(const EarlyWriteback&) = delete;
+    void wrote(size_t bytes);
+
+private:
+    int fd_ = -1;
+    std::atomic<size_t> unsent_{0};
 };
 
 // The outputs of a sequence, written under temporary names and moved into place together once every
