@@ -8,6 +8,7 @@
 #include <cerrno>
 
 #include "heightpack/core/parallel.hpp"
+#include "heightpack/io/files.hpp"
 
 namespace heightpack::detail {
 
@@ -32,17 +33,6 @@ bool writeAllAt(int fd, const std::uint8_t* data, size_t n, std::uint64_t offset
         offset += std::uint64_t(done);
     }
     return true;
-}
-
-// Asks the kernel to start writing [offset, offset + n) to the disk now, without waiting for it: the disk
-// then works while later bands are encoded, instead of all at the final flush. Only a hint: the flush
-// reports any error.
-void startWriteBack(int fd, std::uint64_t offset, size_t n) {
-#ifdef SYNC_FILE_RANGE_WRITE
-    ::sync_file_range(fd, static_cast<off_t>(offset), static_cast<off_t>(n), SYNC_FILE_RANGE_WRITE);
-#else
-    (void)fd, (void)offset, (void)n;
-#endif
 }
 
 Error cannotWriteBecause(const std::string& path, const char* step) {
@@ -80,8 +70,8 @@ Status planBands(const std::string& path, int fd, const std::vector<std::uint8_t
     return Done{};
 }
 
-Status writeBands(const std::string& path, int fd, const std::vector<Band>& bands, long long rowsTotal,
-                  const MipChainSource& content, const EncodePlan& plan, int threads,
+Status writeBands(const std::string& path, int fd, EarlyWriteback& writeback, const std::vector<Band>& bands,
+                  long long rowsTotal, const MipChainSource& content, const EncodePlan& plan, int threads,
                   const std::function<void(double)>& progress) {
     // Worker k takes bands k, k + workers, ...: the threads move through the file side by side. A band
     // that fails is recorded and the others still encoded (not written), so the error reported is the
@@ -103,7 +93,7 @@ Status writeBands(const std::string& path, int fd, const std::vector<Band>& band
                     writeFailed = anyFailed = true;
                     continue;
                 }
-                startWriteBack(fd, band.offset, bytes.size());
+                writeback.wrote(bytes.size());
                 const long long done = rowsDone += band.rows;
                 // parallelFor runs worker 0 on the calling thread: the only one that reports.
                 if (worker == 0 && progress) progress(double(done) / double(rowsTotal));
@@ -127,7 +117,10 @@ Status writePlacedImages(const std::string& path, const std::string& temporaryPa
     std::vector<Band> bands;
     long long rowsTotal = 0;
     Status written = planBands(path, fd, header, images, content, plan, bands, rowsTotal);
-    if (written) written = writeBands(path, fd, bands, rowsTotal, content, plan, threads, progress);
+    if (written) {
+        EarlyWriteback writeback(temporaryPath);
+        written = writeBands(path, fd, writeback, bands, rowsTotal, content, plan, threads, progress);
+    }
     if (::close(fd) != 0 && written) return cannotWriteBecause(path, "closing the file");
     return written;
 }

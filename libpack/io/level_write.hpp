@@ -23,8 +23,8 @@ struct PlacedImage {
 // Creates the file temporaryPath and writes header at its start, then each of images (in file order:
 // increasing offsets, none before the header's end, none overlapping) at its offset, with zeros in any
 // gap, and closes it. Every thread fills, encodes and writes (pwrite) bands of its own, in turn through
-// the file, from buffers it keeps: the bytes depend on nothing but their place. Each band's write-back to
-// the disk starts as soon as it is written, so the flush before the file is moved into place
+// the file, from buffers it keeps: the bytes depend on nothing but their place. The disk writes start as
+// bands are written (EarlyWriteback), so the flush before the file is moved into place
 // (TemporaryFile::commit) waits only for the last ones. path names the output in errors; progress (may
 // be empty) is called on the calling thread with the fraction of rows written. Fails, naming the first
 // level in file order that holds a non-finite value, or when the file cannot be written; the caller then
