@@ -164,7 +164,7 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         write.threads = options.normal.threads;
         write.writer = "heightpack " + options.version;
         write.progress = [&](double f) { progress("write", f); };
-        auto storage = detail::chooseStorage({*mipMapped}, content, {&stored}, options.normal.wrap, write);
+        auto storage = detail::chooseStorage({*mipMapped}, content, {&stored}, write);
         if (!storage) return storage.error();
         write.storage.pixelType = storage->pixelType;
         write.planned = TextureWriteOptions::Planned{storage->pixelType, storage->normalisation};

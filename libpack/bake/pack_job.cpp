@@ -212,7 +212,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     if (twinOutput) outputs.push_back(*twinOutput);
     std::vector<const std::vector<Image>*> chains = {&chain};
     for (const CompanionChain& c : companions) chains.push_back(c.levels);
-    auto stored = detail::chooseStorage(outputs, content, chains, wrap, writeOptions);
+    auto stored = detail::chooseStorage(outputs, content, chains, writeOptions);
     if (!stored) return stored.error();
     writeOptions.storage.pixelType = stored->pixelType;
     writeOptions.planned = TextureWriteOptions::Planned{stored->pixelType, stored->normalisation};

@@ -15,8 +15,7 @@ double StoredChain::worst() const {
 namespace {
 
 Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
-                            const std::vector<const std::vector<Image>*>& chains, Wrap wrap, TextureWriteOptions options,
-                            PixelType type) {
+                            const ChainValues& chains, TextureWriteOptions options, PixelType type) {
     options.storage.pixelType = type;
     StoredChain stored;
     stored.pixelType = type;
@@ -24,7 +23,9 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Mip
         stored.lookupError.assign(chains.front()->size(), 0.0);
         return stored;
     }
-    auto storage = planTexelStorage(outputs.front(), content, options);
+    // The range from the plain chains themselves: the same values as content's, four times fewer than a
+    // packed content's and nothing to pack.
+    auto storage = planTexelStorage(outputs.front(), content, options, chains);
     if (!storage) return storage.error();
     stored.normalisation = storage->normalisation;
     // The same values, so only the container can object: no second scan.
@@ -32,7 +33,7 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Mip
     for (size_t i = 1; i < outputs.size(); ++i)
         if (auto other = planTexelStorage(outputs[i], content, options); !other) return other.error();
     for (const std::vector<Image>* chain : chains) {
-        const std::vector<double> errors = worstLookupError(*chain, wrap, storage->storeAndRead, options.threads);
+        const std::vector<double> errors = worstLookupError(*chain, storage->storeAndReadRow, options.threads);
         if (stored.lookupError.empty()) stored.lookupError = errors;
         for (size_t level = 0; level < errors.size(); ++level)
             stored.lookupError[level] = std::max(stored.lookupError[level], errors[level]);
@@ -43,18 +44,17 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Mip
 }  // namespace
 
 Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
-                                  const std::vector<const std::vector<Image>*>& chains, Wrap wrap,
-                                  const TextureWriteOptions& options) {
+                                  const ChainValues& chains, const TextureWriteOptions& options) {
     const double tolerance = options.storage.tolerance;
-    if (!(tolerance > 0.0)) return measure(outputs, content, chains, wrap, options, options.storage.pixelType);
+    if (!(tolerance > 0.0)) return measure(outputs, content, chains, options, options.storage.pixelType);
     std::optional<StoredChain> best;
     for (const PixelType type : {PixelType::Half, PixelType::Uint16}) {  // two bytes a component
-        auto candidate = measure(outputs, content, chains, wrap, options, type);
+        auto candidate = measure(outputs, content, chains, options, type);
         if (!candidate || candidate->worst() > tolerance) continue;
         if (!best || candidate->worst() < best->worst()) best = std::move(*candidate);
     }
     if (best) return *best;
-    return measure(outputs, content, chains, wrap, options, PixelType::Float);
+    return measure(outputs, content, chains, options, PixelType::Float);
 }
 
 std::vector<ExrAttribute> lookupErrorAttributes(const StoredChain& stored) {

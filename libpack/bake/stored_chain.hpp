@@ -21,9 +21,10 @@ struct StoredChain {
     double worst() const;
 };
 
-// chains are what content writes, level by level: the plain heights of a packed output (a packed texel
-// holds copies of them, see worstLookupError), then each chain written beside them (Dx, Dy, foam: an
-// EXR's further channels, a KTX2's or DDS's further layers). A level's error is the worst of every
+// chains are what content writes, level by level (ChainValues): the plain heights of a packed output (a
+// packed texel holds copies of them, see worstLookupError), then each chain written beside them (Dx, Dy,
+// foam: an EXR's further channels, a KTX2's or DDS's further layers); the plan's range is read from them,
+// and each is measured once, on all threads. A level's error is the worst of every
 // chain's, so a type is chosen only when it holds every layer. With options.storage.tolerance 0, measures
 // options.storage.pixelType and fails as writeTexture would when it cannot be stored. With a tolerance > 0,
 // chooses the type: the fewest bytes whose worst error over the whole chain is within the tolerance; half
@@ -33,8 +34,7 @@ struct StoredChain {
 // outputs are every file the chain goes to (a packed output and its plain twin): a type must suit each
 // one's container; content is what the first one holds.
 Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
-                                  const std::vector<const std::vector<Image>*>& chains, Wrap wrap,
-                                  const TextureWriteOptions& options);
+                                  const ChainValues& chains, const TextureWriteOptions& options);
 
 // The attributes that record stored's lookup errors (lookupError, maxLookupError); none for float,
 // whose file is the float chain itself.

@@ -1,5 +1,9 @@
 #include "heightpack/core/lookup_error.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -11,63 +15,71 @@ namespace heightpack {
 
 namespace {
 
-double levelError(const Image& level, Wrap wrap, const TexelRounding& stored, int threads) {
-    const int w = level.width, h = level.height, channels = level.channels;
-    const size_t rowValues = size_t(w) * channels;
-    // A bilinear lookup is linear in its texels, so lookup(stored) - lookup(float) is the lookup of the
-    // texels' differences. Each difference of two floats is exact in double; the weights 1/2 and 1/4
-    // are too, so this is the difference of the two double-precision lookups to double rounding, for
-    // the cost of one.
-    const auto differences = [&](int y, std::vector<double>& d) {
-        const float* values = level.row(y);
-        for (size_t i = 0; i < rowValues; ++i) d[i] = double(stored(values[i])) - double(values[i]);
-    };
+// The worst |double(stored[i]) - double(values[i])| of a run, and whether any difference is NaN. The
+// maximum of non-negative doubles is the same in any order, so two lanes at a time (SSE2, every x86-64)
+// give the loop's own result; maxpd keeps the running maximum when a difference is NaN, as std::max does.
+struct RunWorst {
     double worst = 0.0;
+    bool nan = false;
+};
+void worstOfRun(const float* stored, const float* values, size_t n, RunWorst& run) {
+    size_t i = 0;
+#if defined(__SSE2__)
+    __m128d worst = _mm_set1_pd(run.worst), nan = _mm_setzero_pd();
+    const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+    for (; i + 4 <= n; i += 4) {
+        const __m128 s = _mm_loadu_ps(stored + i), v = _mm_loadu_ps(values + i);
+        const __m128d low = _mm_sub_pd(_mm_cvtps_pd(s), _mm_cvtps_pd(v));
+        const __m128d high = _mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(s, s)), _mm_cvtps_pd(_mm_movehl_ps(v, v)));
+        worst = _mm_max_pd(_mm_and_pd(low, magnitude), worst);
+        worst = _mm_max_pd(_mm_and_pd(high, magnitude), worst);
+        nan = _mm_or_pd(nan, _mm_or_pd(_mm_cmpunord_pd(low, low), _mm_cmpunord_pd(high, high)));
+    }
+    double lanes[2];
+    _mm_storeu_pd(lanes, worst);
+    run.worst = std::max(lanes[0], lanes[1]);
+    run.nan |= _mm_movemask_pd(nan) != 0;
+#endif
+    for (; i < n; ++i) {
+        const double d = double(stored[i]) - double(values[i]);
+        run.worst = std::max(run.worst, std::fabs(d));
+        run.nan |= d != d;
+    }
+}
+
+double levelError(const Image& level, const TexelRowRounding& stored, int threads) {
+    const size_t rowValues = size_t(level.width) * level.channels;
+    double worst = 0.0;
+    bool notFinite = false;
     std::mutex merge;
-    parallelFor(h, threads, [&](int begin, int end) {
-        double mine = 0.0;
-        const auto keep = [&](double e) {
-            mine = std::isnan(e) ? std::numeric_limits<double>::infinity() : std::max(mine, std::fabs(e));
-        };
-        // Each thread rounds its own rows as it goes, two rows at a time (a row and the next), instead of
-        // one thread rounding the whole level first into a level-sized buffer.
-        std::vector<double> row(rowValues), next(rowValues);
-        differences(begin, row);
+    parallelFor(level.height, threads, [&](int begin, int end) {
+        std::vector<float> readBack(rowValues);
+        RunWorst mine;
         for (int y = begin; y < end; ++y) {
-            // The next row and column with the wrap mode: with clamp the last one is its own neighbour,
-            // as a lookup clamped to the last centre sees it.
-            const int y1 = wrapIndex(y + 1, h, wrap);
-            if (y1 == y)
-                next = row;
-            else
-                differences(y1, next);
-            for (int x = 0; x < w; ++x) {
-                const size_t x0 = size_t(x) * channels, x1 = size_t(wrapIndex(x + 1, w, wrap)) * channels;
-                for (int c = 0; c < channels; ++c) {
-                    const double d00 = row[x0 + c], d10 = row[x1 + c];
-                    const double d01 = next[x0 + c], d11 = next[x1 + c];
-                    keep(d00);                                // the texel centre
-                    keep(0.5 * (d00 + d10));                  // the midpoint along x
-                    keep(0.5 * (d00 + d01));                  // along y
-                    keep(0.25 * ((d00 + d10) + (d01 + d11)));  // between four centres
-                }
-            }
-            row.swap(next);  // row y + 1's differences, unless y + 1 wrapped: then the loop has ended
+            stored(level.row(y), rowValues, readBack.data());
+            worstOfRun(readBack.data(), level.row(y), rowValues, mine);
         }
         std::lock_guard<std::mutex> lock(merge);
-        worst = std::max(worst, mine);  // a maximum: the same whatever the split
+        worst = std::max(worst, mine.worst);  // a maximum: the same whatever the split
+        notFinite |= mine.nan;
     });
-    return worst;
+    return notFinite ? std::numeric_limits<double>::infinity() : worst;
 }
 
 }  // namespace
 
-std::vector<double> worstLookupError(const std::vector<Image>& chain, Wrap wrap, const TexelRounding& stored,
-                                     int threads) {
+std::vector<double> worstLookupError(const std::vector<Image>& chain, const TexelRowRounding& stored, int threads) {
     std::vector<double> errors;
     errors.reserve(chain.size());
-    for (const Image& level : chain) errors.push_back(levelError(level, wrap, stored, threads));
+    for (const Image& level : chain) errors.push_back(levelError(level, stored, threads));
     return errors;
+}
+
+std::vector<double> worstLookupError(const std::vector<Image>& chain, const TexelRounding& stored, int threads) {
+    const TexelRowRounding rows = [&stored](const float* values, size_t n, float* readBack) {
+        for (size_t i = 0; i < n; ++i) readBack[i] = stored(values[i]);
+    };
+    return worstLookupError(chain, rows, threads);
 }
 
 }  // namespace heightpack

@@ -15,21 +15,18 @@
 // Everything else the EXR header and KTX2 key/values carry (filter, source, hash, version, ...) is lost.
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <cstring>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/gpu_texture.hpp"
+#include "level_write.hpp"
 #include "texel_encode.hpp"
 
 namespace heightpack {
 
-using detail::FileCloser;
-using detail::kBandRows;
 using detail::readLe32;
 
 namespace {
@@ -142,30 +139,22 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     dx10[3] = static_cast<std::uint32_t>(layers);  // array size
     dx10[4] = 0;  // alpha mode unknown: alpha holds heights or a normal's w, not coverage
 
-    TemporaryFile temp(path);
-    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(temp.path().c_str(), "wb"));
-    auto failed = [&](const char* step) {
-        return cannotWrite(path, std::string(step) + " failed", "check free disk space and permissions");
-    };
-    if (!file) return failed("creating the file");
-    if (std::fwrite(h.data(), 4, h.size(), file.get()) != h.size()) return failed("writing the header");
-    long long rowsTotal = 0, rowsDone = 0;
-    for (int level = 0; level < plan.levels; ++level) rowsTotal += detail::levelSide(content.height, level) * layers;
-    detail::BandEncoder encoder(path, content, plan, options.threads);
-    const std::vector<std::uint8_t>& bytes = encoder.bytes();
-    for (int pass = 0; pass < layers * plan.levels; ++pass) {  // each layer's whole chain in turn
+    // Each layer's levels from level 0, one layer's chain after another, right after the headers.
+    std::vector<std::uint8_t> head(h.size() * 4);
+    std::memcpy(head.data(), h.data(), head.size());  // little-endian words, as the file holds them
+    std::vector<detail::PlacedImage> images;
+    std::uint64_t offset = head.size();
+    for (int pass = 0; pass < layers * plan.levels; ++pass) {
         const int layer = pass / plan.levels, level = pass % plan.levels;
-        const int lh = detail::levelSide(content.height, level);
-        for (int y0 = 0; y0 < lh; y0 += kBandRows) {
-            const int rows = std::min(kBandRows, lh - y0);
-            if (Status s = encoder.encode(level, y0, rows, layer); !s) return s;
-            if (std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size()) return failed("writing a level");
-            rowsDone += rows;
-            if (options.progress) options.progress(double(rowsDone) / double(rowsTotal));
-        }
+        images.push_back({layer, level, offset});
+        offset += std::uint64_t(detail::levelSide(content.width, level)) * detail::levelSide(content.height, level) *
+                  f.bytesPerTexel();
     }
-    if (std::fflush(file.get()) != 0 || std::ferror(file.get())) return failed("writing the file");
-    if (std::fclose(file.release()) != 0) return failed("closing the file");
+    TemporaryFile temp(path);
+    if (Status s = detail::writePlacedImages(path, temp.path(), head, images, content, plan, options.threads,
+                                             options.progress);
+        !s)
+        return s;
     return temp.commit();
 }
 

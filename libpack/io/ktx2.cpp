@@ -18,6 +18,7 @@
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/gpu_texture.hpp"
+#include "level_write.hpp"
 #include "texel_encode.hpp"
 
 namespace heightpack {
@@ -173,6 +174,20 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
     };
 
     TemporaryFile temp(path);
+    if (!zstd) {  // every level's place known: written on all threads, each band where it belongs
+        std::vector<detail::PlacedImage> images;
+        for (int level = levels - 1; level >= 0; --level) {
+            const std::uint64_t layerBytes = rawLength[level] / std::uint64_t(layers);
+            for (int layer = 0; layer < layers; ++layer)
+                images.push_back({layer, level, offset[level] + std::uint64_t(layer) * layerBytes});
+        }
+        if (Status s = detail::writePlacedImages(path, temp.path(), header(), images, content, plan, options.threads,
+                                                 options.progress);
+            !s)
+            return s;
+        return temp.commit();
+    }
+    // Zstandard: each level one frame, its compressed length known once written, so written in order.
     std::unique_ptr<std::FILE, FileCloser> file(std::fopen(temp.path().c_str(), "wb"));
     auto failed = [&](const char* step) {
         return cannotWrite(path, std::string(step) + " failed", "check free disk space and permissions");
@@ -182,58 +197,47 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
     std::vector<std::uint8_t> head = header();
     if (!write(head.data(), head.size())) return failed("writing the header");
 
-    std::unique_ptr<ZSTD_CCtx, ZstdFree> cctx(zstd ? ZSTD_createCCtx() : nullptr);
-    if (zstd && (!cctx || ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_compressionLevel, options.storage.zstdLevel))))
+    std::unique_ptr<ZSTD_CCtx, ZstdFree> cctx(ZSTD_createCCtx());
+    if (!cctx || ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_compressionLevel, options.storage.zstdLevel)))
         return Error{ErrorKind::Internal, path, "internal error: Zstandard could not be set up", "please report this"};
-    std::vector<std::uint8_t> packed(zstd ? ZSTD_CStreamOutSize() : 0);
+    std::vector<std::uint8_t> packed(ZSTD_CStreamOutSize());
     long long rowsTotal = 0, rowsDone = 0;
     for (int level = 0; level < levels; ++level) rowsTotal += detail::levelSide(content.height, level) * layers;
     size_t position = head.size();
     detail::BandEncoder encoder(path, content, plan, options.threads);
     const std::vector<std::uint8_t>& bytes = encoder.bytes();
-    const std::uint8_t zeros[16] = {};
     for (int level = levels - 1; level >= 0; --level) {
-        const size_t start = zstd ? position : size_t(offset[level]);
-        if (!write(zeros, start - position)) return failed("writing padding");
-        position = start;
+        const size_t start = position;  // supercompressed levels are not aligned (alignment 1)
         const int h = detail::levelSide(content.height, level);
         // Each level one frame that records its size, as readers expect to allocate from it.
-        if (zstd && ZSTD_isError(ZSTD_CCtx_setPledgedSrcSize(cctx.get(), rawLength[level])))
+        if (ZSTD_isError(ZSTD_CCtx_setPledgedSrcSize(cctx.get(), rawLength[level])))
             return Error{ErrorKind::Internal, path, "internal error: Zstandard refused a level's size", "please report this"};
         const int bandsPerLayer = (h + kBandRows - 1) / kBandRows;
         for (int band = 0; band < layers * bandsPerLayer; ++band) {  // each layer's bands in turn
             const int layer = band / bandsPerLayer, y0 = band % bandsPerLayer * kBandRows;
             const int rows = std::min(kBandRows, h - y0);
             if (Status s = encoder.encode(level, y0, rows, layer); !s) return s;
-            if (!zstd) {
-                if (!write(bytes.data(), bytes.size())) return failed("writing a level");
-                position += bytes.size();
-            } else {
-                ZSTD_inBuffer in{bytes.data(), bytes.size(), 0};
-                const bool last = layer + 1 == layers && y0 + rows == h;
-                for (bool done = false; !done;) {
-                    ZSTD_outBuffer out{packed.data(), packed.size(), 0};
-                    const size_t left = ZSTD_compressStream2(cctx.get(), &out, &in, last ? ZSTD_e_end : ZSTD_e_continue);
-                    if (ZSTD_isError(left))
-                        return Error{ErrorKind::Internal, path, std::string("internal error: Zstandard: ") +
-                                     ZSTD_getErrorName(left), "please report this"};
-                    if (!write(packed.data(), out.pos)) return failed("writing a level");
-                    position += out.pos;
-                    done = last ? left == 0 : in.pos == in.size;
-                }
+            ZSTD_inBuffer in{bytes.data(), bytes.size(), 0};
+            const bool last = layer + 1 == layers && y0 + rows == h;
+            for (bool done = false; !done;) {
+                ZSTD_outBuffer out{packed.data(), packed.size(), 0};
+                const size_t left = ZSTD_compressStream2(cctx.get(), &out, &in, last ? ZSTD_e_end : ZSTD_e_continue);
+                if (ZSTD_isError(left))
+                    return Error{ErrorKind::Internal, path, std::string("internal error: Zstandard: ") +
+                                 ZSTD_getErrorName(left), "please report this"};
+                if (!write(packed.data(), out.pos)) return failed("writing a level");
+                position += out.pos;
+                done = last ? left == 0 : in.pos == in.size;
             }
             rowsDone += rows;
             if (options.progress) options.progress(double(rowsDone) / double(rowsTotal));
         }
-        if (zstd) {
-            offset[level] = start;
-            length[level] = position - start;
-        }
+        offset[level] = start;
+        length[level] = position - start;
     }
-    if (zstd) {  // the level index, now that the compressed sizes are known
-        head = header();
-        if (std::fseek(file.get(), 0, SEEK_SET) != 0 || !write(head.data(), dfdOffset)) return failed("writing the level index");
-    }
+    // The level index, now that the compressed sizes are known.
+    head = header();
+    if (std::fseek(file.get(), 0, SEEK_SET) != 0 || !write(head.data(), dfdOffset)) return failed("writing the level index");
     if (std::fflush(file.get()) != 0 || std::ferror(file.get())) return failed("writing the file");
     if (std::fclose(file.release()) != 0) return failed("closing the file");
     return temp.commit();

@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -26,67 +25,6 @@ namespace {
 template <class T>
 void putLe(std::uint8_t* dst, T value) {
     std::memcpy(dst, &value, sizeof value);  // every target heightpack builds for is little-endian
-}
-
-// Fills rows of a layer's level into band (sourceChannels floats a texel), in parallel.
-void fillBand(const MipChainSource& content, int layer, int level, int y0, int rows, int width, int channels,
-              int threads, std::vector<float>& band) {
-    band.resize(size_t(rows) * width * channels);
-    parallelFor(rows, threads, [&](int a, int b) {
-        fillLayerRows(content, layer, level, y0 + a, b - a, band.data() + size_t(a) * width * channels);
-    });
-}
-
-// A float's bits as a signed integer that orders like the float (-0 just below +0, NaNs beyond the
-// infinities). Integer minima and maxima vectorise; float ones do not, since they must keep the first of
-// two equal zeros.
-std::int32_t orderKey(float v) {
-    std::int32_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
-    return bits ^ ((bits >> 31) & 0x7fffffff);
-}
-float fromOrderKey(std::int32_t key) {
-    const std::int32_t bits = key ^ ((key >> 31) & 0x7fffffff);
-    float v;
-    std::memcpy(&v, &bits, sizeof v);
-    return v;
-}
-
-// The range of a run of values and its first value that cannot be stored, as a loop with std::min and
-// std::max over doubles, stopping at that value, finds them.
-struct Scan {
-    double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
-    size_t bad = SIZE_MAX;  // index into the run
-};
-
-Scan scanValues(const float* v, size_t n, bool half) {
-    std::int32_t lo = std::numeric_limits<std::int32_t>::max(), hi = std::numeric_limits<std::int32_t>::min();
-    for (size_t i = 0; i < n; ++i) {
-        const std::int32_t key = orderKey(v[i]);
-        lo = std::min(lo, key);
-        hi = std::max(hi, key);
-    }
-    Scan scan;
-    if (n == 0) return scan;
-    const float limit = half ? 65520.0f : std::numeric_limits<float>::infinity();  // halfCanHold's bounds
-    if (lo <= orderKey(-limit) || hi >= orderKey(limit)) {
-        // Rare: a value beyond the type (or not finite). The loop replaced, value by value, finds the first.
-        for (size_t i = 0; i < n; ++i) {
-            if (!std::isfinite(v[i]) || (half && !halfCanHold(v[i]))) {
-                scan.bad = i;
-                break;
-            }
-            scan.lo = std::min<double>(scan.lo, v[i]);
-            scan.hi = std::max<double>(scan.hi, v[i]);
-        }
-        return scan;
-    }
-    // Equal floats are equal bits, except +0 and -0: std::min and std::max kept the first zero met.
-    auto firstZero = [&] { return *std::find(v, v + n, 0.0f); };
-    const float low = fromOrderKey(lo), high = fromOrderKey(hi);
-    scan.lo = low == 0.0f ? firstZero() : low;
-    scan.hi = high == 0.0f ? firstZero() : high;
-    return scan;
 }
 
 // Whether every value is finite, by their exponent bits (a test that vectorises).
@@ -122,15 +60,56 @@ __attribute__((target("avx,f16c"))) void halvesF16c(const float* in, size_t n, s
                          _mm256_cvtps_ph(_mm256_loadu_ps(in + i), _MM_FROUND_TO_NEAREST_INT));
     for (; i < n; ++i) putLe(out + 2 * i, Imath::half(in[i]).bits());
 }
+// What reading back a half of each value gives, eight values at a time (exactly, F16C's widening).
+__attribute__((target("avx,f16c"))) void halfRoundTripF16c(const float* in, size_t n, float* out) {
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8)
+        _mm256_storeu_ps(out + i, _mm256_cvtph_ps(_mm256_cvtps_ph(_mm256_loadu_ps(in + i), _MM_FROUND_TO_NEAREST_INT)));
+    for (; i < n; ++i) out[i] = float(Imath::half(in[i]));
+}
+// unormCode and unormValue four values at a time, with AVX. The same steps in the same precision: the
+// difference and product in double, the clamps (maxpd / minpd equal the scalar comparisons for every
+// value but NaN, which is never stored), the round to even by adding and subtracting 1.5 * 2^52, the
+// truncation of an integer-valued double; the value back in float, divided, multiplied and added as
+// unormValue does (no fused multiply-add: this target has none).
+__attribute__((target("avx"))) inline __m128i unormCodes4(const float* in, __m256d offset, __m256d k) {
+    __m256d u = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_loadu_ps(in)), offset), k);
+    u = _mm256_min_pd(_mm256_max_pd(u, _mm256_setzero_pd()), _mm256_set1_pd(65535.0));
+    const __m256d shift = _mm256_set1_pd(6755399441055744.0);
+    return _mm256_cvttpd_epi32(_mm256_sub_pd(_mm256_add_pd(u, shift), shift));  // four codes as int32
+}
+__attribute__((target("avx"))) void unormCodesAvx(const float* in, size_t n, const Normalisation& norm, std::uint8_t* out) {
+    const __m256d offset = _mm256_set1_pd(norm.offset), k = _mm256_set1_pd(65535.0 / norm.scale);
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8)
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 2 * i),
+                         _mm_packus_epi32(unormCodes4(in + i, offset, k), unormCodes4(in + i + 4, offset, k)));
+    for (; i < n; ++i) putLe(out + 2 * i, unormCode(in[i], norm));
+}
+__attribute__((target("avx"))) void unormRoundTripAvx(const float* in, size_t n, const Normalisation& norm, float* out) {
+    const __m256d offset = _mm256_set1_pd(norm.offset), k = _mm256_set1_pd(65535.0 / norm.scale);
+    const __m128 scale = _mm_set1_ps(norm.scale), base = _mm_set1_ps(norm.offset), top = _mm_set1_ps(65535.0f);
+    size_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        const __m128 codes = _mm_cvtepi32_ps(unormCodes4(in + i, offset, k));
+        _mm_storeu_ps(out + i, _mm_add_ps(base, _mm_mul_ps(scale, _mm_div_ps(codes, top))));
+    }
+    for (; i < n; ++i) out[i] = unormValue(unormCode(in[i], norm), norm);
+}
 // AVX with the OS saving its state (the builtin checks that), and F16C from CPUID: clang 14 knows no "f16c" name.
 bool hasF16c() {
     unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
     return __builtin_cpu_supports("avx") && __get_cpuid(1, &eax, &ebx, &ecx, &edx) && (ecx & bit_F16C) != 0;
 }
 const bool kHasF16c = hasF16c();
+const bool kHasAvx = __builtin_cpu_supports("avx");
 #else
 void halvesF16c(const float*, size_t, std::uint8_t*) {}
+void halfRoundTripF16c(const float*, size_t, float*) {}
+void unormCodesAvx(const float*, size_t, const Normalisation&, std::uint8_t*) {}
+void unormRoundTripAvx(const float*, size_t, const Normalisation&, float*) {}
 constexpr bool kHasF16c = false;
+constexpr bool kHasAvx = false;
 #endif
 
 void encodeRow(const EncodePlan& plan, const float* in, size_t texels, std::uint8_t* out) {
@@ -147,17 +126,15 @@ void encodeRow(const EncodePlan& plan, const float* in, size_t texels, std::uint
             break;
         case ComponentKind::Unorm16: {
             const Normalisation n = plan.normalisation.value_or(Normalisation{});
+            if (kHasAvx && from == to) {
+                unormCodesAvx(in, texels * size_t(to), n, out);
+                break;
+            }
             encodeTexels<std::uint16_t>(in, from, to, texels, out, [n](float v) { return unormCode(v, n); });
             break;
         }
         case ComponentKind::Snorm16: encodeTexels<std::int16_t>(in, from, to, texels, out, snormCode); break;
     }
-}
-
-Error notFinite(const std::string& path, int level) {
-    return Error{ErrorKind::Internal, path,
-                 "internal error: level " + std::to_string(level) + " holds a non-finite value; nothing was written",
-                 "please report this with the command line"};
 }
 
 }  // namespace
@@ -167,79 +144,16 @@ void fillLayerRows(const MipChainSource& content, int layer, int level, int y0, 
     else content.fillLayerRows(layer, level, y0, rows, dst);
 }
 
+Error nonFiniteLevel(const std::string& path, int level) {
+    return Error{ErrorKind::Internal, path,
+                 "internal error: level " + std::to_string(level) + " holds a non-finite value; nothing was written",
+                 "please report this with the command line"};
+}
+
 int fullChainLevels(int width, int height) {
     int levels = 1;
     while ((width >> levels) > 0 || (height >> levels) > 0) ++levels;
     return levels;
-}
-
-Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,
-                                const TextureWriteOptions& options) {
-    EncodePlan plan;
-    plan.sourceChannels = static_cast<int>(content.channelNames.size());
-    plan.format = texelFormatInfo(texelFormatFor(plan.sourceChannels, options.storage.pixelType));
-    plan.levels = fullChainLevels(content.width, content.height);
-    if (options.levels > 0) plan.levels = std::min(plan.levels, options.levels);
-    if (options.storage.pixelType == PixelType::Float) return plan;
-    if (options.planned && options.planned->pixelType == options.storage.pixelType) {
-        plan.normalisation = options.planned->normalisation;
-        return plan;
-    }
-
-    // One pass over the chain, every layer of an array: the range (uint16: one normalisation for the
-    // whole texture, as a DDS header has room for one) and what a half cannot hold.
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    std::vector<float> band;
-    for (int pass = 0; pass < content.layerCount() * plan.levels; ++pass) {
-        const int layer = pass / plan.levels, level = pass % plan.levels;
-        const int w = levelSide(content.width, level), h = levelSide(content.height, level);
-        for (int y0 = 0; y0 < h; y0 += kBandRows) {
-            const int rows = std::min(kBandRows, h - y0);
-            fillBand(content, layer, level, y0, rows, w, plan.sourceChannels, options.threads, band);
-            // The band's rows scanned on all threads: each its range and its first value that cannot be
-            // stored; the first such value in row order is the one reported, whatever the thread count.
-            std::vector<Scan> scans(static_cast<size_t>(rows));
-            const size_t rowValues = band.size() / size_t(rows);
-            const bool half = options.storage.pixelType == PixelType::Half;
-            parallelFor(rows, options.threads, [&](int begin, int end) {
-                for (int r = begin; r < end; ++r) {
-                    scans[size_t(r)] = scanValues(band.data() + size_t(r) * rowValues, rowValues, half);
-                    if (scans[size_t(r)].bad != SIZE_MAX) scans[size_t(r)].bad += size_t(r) * rowValues;
-                }
-            });
-            for (const Scan& scan : scans) {
-                if (scan.bad != SIZE_MAX) {
-                    const float v = band[scan.bad];
-                    if (!std::isfinite(v)) return notFinite(path, level);
-                    const std::string where =
-                        content.layerNames.empty() ? "" : "layer " + content.layerNames[size_t(layer)] + ", ";
-                    return badInput(path,
-                                    where + "level " + std::to_string(level) + " holds " + floatText(v) +
-                                        ", beyond the largest half float (65504); nothing was written",
-                                    "store float or uint16 pixels, or scale the heights down");
-                }
-                lo = std::min(lo, scan.lo);
-                hi = std::max(hi, scan.hi);
-            }
-        }
-    }
-    if (plan.format.kind == ComponentKind::Unorm16) {
-        if (plan.sourceChannels == 3) hi = std::max(hi, 1.0), lo = std::min(lo, 1.0);  // the alpha of 1 we add
-        Normalisation n{static_cast<float>(lo), static_cast<float>(hi - lo)};
-        if (options.gridSpan > 0.0f) {
-            // A painted map's values lie on origin + k * step. Start on that grid, below the chain's
-            // minimum, and split each step into the most whole sub-steps that still reach the maximum:
-            // level 0 then reads back exactly, and at least half of the 65536 codes are used.
-            const double step = double(options.gridSpan) / 65535.0;
-            const double base = options.gridOrigin + std::floor((lo - options.gridOrigin) / step + 1e-3) * step;
-            const double steps = std::max((hi - base) / step, 1.0);
-            const double split = std::floor(65535.0 / steps + 1e-9);
-            if (split >= 1.0) n = {static_cast<float>(base), static_cast<float>(double(options.gridSpan) / split)};
-        }
-        if (!(n.scale > 0.0f)) n.scale = 1.0f;  // a flat chain: every texel 0 decodes to offset
-        plan.normalisation = n;
-    }
-    return plan;
 }
 
 Status BandEncoder::encode(int level, int y0, int rows, int layer) {
@@ -261,11 +175,9 @@ Status BandEncoder::encode(int level, int y0, int rows, int layer) {
             if (!direct) encodeRow(plan_, row, size_t(w), bytes_.data() + size_t(r) * rowBytes);
         }
     });
-    if (std::find(finite.begin(), finite.end(), 0) != finite.end()) return notFinite(path_, level);
+    if (std::find(finite.begin(), finite.end(), 0) != finite.end()) return nonFiniteLevel(path_, level);
     return Done{};
 }
-
-float unormValue(std::uint16_t code, const Normalisation& n) { return n.offset + n.scale * (float(code) / 65535.0f); }
 
 float snormValue(std::int16_t code) { return std::max(float(code) / 32767.0f, -1.0f); }
 
@@ -280,6 +192,27 @@ float storeAndRead(const EncodePlan& plan, float value) {
         case ComponentKind::Snorm16: return snormValue(snormCode(value));
     }
     return value;
+}
+
+void storeAndReadRow(const EncodePlan& plan, const float* values, size_t n, float* readBack) {
+    switch (plan.format.kind) {
+        case ComponentKind::Float32: std::copy_n(values, n, readBack); return;
+        case ComponentKind::Float16:
+            if (kHasF16c) halfRoundTripF16c(values, n, readBack);
+            else
+                for (size_t i = 0; i < n; ++i) readBack[i] = float(Imath::half(values[i]));
+            return;
+        case ComponentKind::Unorm16: {
+            const Normalisation u = plan.normalisation.value_or(Normalisation{});
+            if (kHasAvx) unormRoundTripAvx(values, n, u, readBack);
+            else
+                for (size_t i = 0; i < n; ++i) readBack[i] = unormValue(unormCode(values[i], u), u);
+            return;
+        }
+        case ComponentKind::Snorm16:
+            for (size_t i = 0; i < n; ++i) readBack[i] = snormValue(snormCode(values[i]));
+            return;
+    }
 }
 
 Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int width, int height,

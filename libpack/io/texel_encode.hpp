@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "heightpack/io/gpu_texture.hpp"
+#include "heightpack/io/texture_write.hpp"
 
 namespace heightpack::detail {
 
@@ -29,6 +30,10 @@ inline int levelSide(int size, int level) { return size >> level > 0 ? size >> l
 // Levels of a full chain down to 1x1 (ROUND_DOWN, as the EXR writer).
 int fullChainLevels(int width, int height);
 
+// The internal error for a level holding a non-finite value (the loader refuses them; a writer never
+// stores one).
+Error nonFiniteLevel(const std::string& path, int level);
+
 // Fills rows of a level of content's layer: fillLayerRows for an array, fillRows (layer 0) otherwise.
 void fillLayerRows(const MipChainSource& content, int layer, int level, int y0, int rows, float* dst);
 
@@ -39,10 +44,12 @@ struct EncodePlan {
     std::optional<Normalisation> normalisation;  // Unorm16 formats only
 };
 
-// Chooses the format and, for uint16, the normalisation (one pass over the chain); refuses values the
-// pixel type cannot hold. path names the output in errors.
+// Chooses the format and, for uint16, the normalisation (one pass over the chain's values, on all
+// threads); refuses values the pixel type cannot hold. path names the output in errors. sameValues, when
+// given, are chains that hold, level by level, exactly the values content writes (see planTexelStorage):
+// the pass then reads them rather than filling content's rows; the plan is the same.
 Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,
-                                const TextureWriteOptions& options);
+                                const TextureWriteOptions& options, const ChainValues& sameValues = {});
 
 // Encodes a chain a band of rows at a time, filling and encoding on all threads. Its buffers live as long
 // as it does: one allocation for the chain instead of two a band (a library caller's malloc may hand a
@@ -83,7 +90,9 @@ inline std::uint16_t unormCode(double value, const Normalisation& n) {
     u = u > 65535.0 ? 65535.0 : u;
     return static_cast<std::uint16_t>(static_cast<std::int32_t>(roundToEven(u)));
 }
-float unormValue(std::uint16_t code, const Normalisation& n);
+inline float unormValue(std::uint16_t code, const Normalisation& n) {
+    return n.offset + n.scale * (float(code) / 65535.0f);
+}
 inline std::int16_t snormCode(float value) {
     double s = double(value);
     s = s < -1.0 ? -1.0 : s;
@@ -93,6 +102,8 @@ inline std::int16_t snormCode(float value) {
 float snormValue(std::int16_t code);
 // What reading back value gives once stored in plan's format.
 float storeAndRead(const EncodePlan& plan, float value);
+// The same for n values, into readBack: bit for bit storeAndRead's, vectorised.
+void storeAndReadRow(const EncodePlan& plan, const float* values, size_t n, float* readBack);
 
 // Decodes a level's bytes (little-endian) into a float image of the format's channels.
 Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int width, int height,

@@ -46,16 +46,19 @@ Status writeTexture(const TextureOutput& output, const MipChainSource& content, 
 }
 
 Result<TexelStorage> planTexelStorage(const TextureOutput& output, const MipChainSource& content,
-                                      const TextureWriteOptions& options) {
+                                      const TextureWriteOptions& options, const ChainValues& sameValues) {
     if (output.container == Container::Exr)
         if (Status s = exrTakes(output.path, options); !s) return s.error();
-    auto plan = detail::planEncoding(output.path, content, options);
+    auto plan = detail::planEncoding(output.path, content, options, sameValues);
     if (!plan) return plan.error();
     TexelStorage storage;
     storage.pixelType = options.storage.pixelType;
     storage.format = plan->format.format;
     storage.normalisation = plan->normalisation;
     storage.storeAndRead = [plan = *plan](float v) { return detail::storeAndRead(plan, v); };
+    storage.storeAndReadRow = [plan = *plan](const float* values, size_t n, float* readBack) {
+        detail::storeAndReadRow(plan, values, n, readBack);
+    };
     return storage;
 }
 

@@ -6,17 +6,27 @@
 #  2. issue 24's ratios, whole `pack` runs alternating (float, half, uint16, read, cp, ...), medians of
 #     wall and CPU (user + system) seconds and peak memory: per container, half and uint16 against float
 #     (at most 1), and float against its floor, `heightpack info` (start-up, read, decode) plus `cp` of the
-#     float file (writing the same bytes) (at most 1.3);
+#     float file (writing the same bytes) (at most 1.3), and against `info` plus `cp` and `sync` of the copy
+#     (writing the same bytes to the disk, as pack does before it moves its output into place). Every run
+#     starts after a `sync`, so that none waits on the disk for the files of the runs before it;
 #  3. per example map, layout and pixel type: the GPU bytes of the whole chain and the worst packed-
 #     lookup error (pack --json), heights with the example manifest's amplitude as --height (ripple:
 #     stored units), and ripple's normal map in rgb and xy (normal units).
-#   tests/bench/bench_containers.sh [BUILD_DIR] [RUNS] [SIZE] [SECTIONS]   (SECTIONS: default "1 2 3")
+#  4. issue 24's peak memory of pack (float; the default zip EXR, .ktx2, .dds) above start-up, the peak of
+#     `heightpack info` on a 16x16 map, in MiB and bytes a texel (at most 8 at 8192^2), medians of RUNS.
+#  With OLD_HEIGHTPACK (an older binary), sections 2 and 4 also run it, alternating: in section 2 every
+#  pixel type, each run just before this build's of the same type (float: its ratios to the same floors;
+#  half and uint16: to its own float), in section 4 float (its peak), for a before and after measured
+#  side by side.
+#   tests/bench/bench_containers.sh [BUILD_DIR] [RUNS] [SIZE] [SECTIONS] [OLD_HEIGHTPACK]
+#   (SECTIONS: default "1 2 3 4")
 # Needs jq, and heightpack_make_bench_map (configure with -DHEIGHTPACK_BUILD_BENCHMARKS=ON).
 set -euo pipefail
 build=${1:-build}
 runs=${2:-5}
 size=${3:-4096}
-sections=${4:-1 2 3}
+sections=${4:-1 2 3 4}
+old=${5:-}
 section() { [[ " $sections " == *" $1 "* ]]; }
 hp="$build/heightpack"
 make_map="$build/tests/bench/heightpack_make_bench_map"
@@ -24,6 +34,7 @@ examples="$(dirname "$0")/../../examples/maps"
 [ -x "$hp" ] || { echo "bench_containers: no $hp; build first (cmake --build $build)" >&2; exit 2; }
 [ -x "$make_map" ] || { echo "bench_containers: no $make_map; configure with -DHEIGHTPACK_BUILD_BENCHMARKS=ON" >&2; exit 2; }
 command -v jq >/dev/null || { echo "bench_containers: needs jq (apt-get install jq)" >&2; exit 2; }
+[ -z "$old" ] || [ -x "$old" ] || { echo "bench_containers: no older binary $old" >&2; exit 2; }
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/bench_containers.XXXXXX")
 trap 'rm -rf "$work"' EXIT
@@ -62,31 +73,88 @@ fi
 if section 2; then
 echo
 echo "2. whole pack runs, ${size}x${size}, median of $runs alternating runs (wall s, CPU s, peak MiB)"
-printf '%-5s %-7s %8s %8s %8s %10s %10s\n' container type wall CPU MiB "wall ratio" "CPU ratio"
+printf '%-5s %-10s %8s %8s %8s %10s %10s\n' container type wall CPU MiB "wall ratio" "CPU ratio"
 for ext in ktx2 dds; do
-  for log in float half uint16 read cp; do : >"$work/$log"; done
+  for log in float half uint16 read cp cpsync old_float old_half old_uint16; do : >"$work/$log"; done
   for ((i = 0; i < runs; i++)); do
     for type in float half uint16; do
+      if [ -n "$old" ]; then
+        rm -f "$work/old.$ext"
+        sync
+        measure "$work/old_$type" "$old" pack "$work/in.png" --pixel-type "$type" -q -o "$work/old.$ext"
+      fi
       rm -f "$work/$type.$ext"
+      sync
       measure "$work/$type" "$hp" pack "$work/in.png" --pixel-type "$type" -q -o "$work/$type.$ext"
     done
+    sync
     measure "$work/read" "$hp" info "$work/in.png"
     rm -f "$work/copy.$ext"
+    sync
     measure "$work/cp" cp "$work/float.$ext" "$work/copy.$ext"
+    rm -f "$work/copy.$ext"
+    sync
+    measure "$work/cpsync" sh -c 'cp "$1" "$2" && sync "$2"' sh "$work/float.$ext" "$work/copy.$ext"
   done
   read -r fw fc fm < <(medians "$work/float")
   for type in float half uint16; do
     read -r w c m < <(medians "$work/$type")
-    printf '%-5s %-7s %8.2f %8.2f %8d %10s %10s\n' "$ext" "$type" "$w" "$c" "$m" "$(ratio "$w" "$fw")" "$(ratio "$c" "$fc")"
+    printf '%-5s %-10s %8.2f %8.2f %8d %10s %10s\n' "$ext" "$type" "$w" "$c" "$m" "$(ratio "$w" "$fw")" "$(ratio "$c" "$fc")"
   done
   read -r rw rc rm < <(medians "$work/read")
   read -r cw cc cm < <(medians "$work/cp")
   floor_wall=$(awk -v a="$rw" -v b="$cw" 'BEGIN { print a + b }')
   floor_cpu=$(awk -v a="$rc" -v b="$cc" 'BEGIN { print a + b }')
-  printf '%-5s %-7s %8.2f %8.2f %8d %10s %10s  (info %.2f s + cp %.2f s; float / floor)\n' "$ext" floor \
+  printf '%-5s %-10s %8.2f %8.2f %8d %10s %10s  (info %.2f s + cp %.2f s; float / floor)\n' "$ext" floor \
     "$floor_wall" "$floor_cpu" "$rm" "$(ratio "$fw" "$floor_wall")" "$(ratio "$fc" "$floor_cpu")" "$rw" "$cw"
+  read -r sw sc sm < <(medians "$work/cpsync")
+  synced_wall=$(awk -v a="$rw" -v b="$sw" 'BEGIN { print a + b }')
+  synced_cpu=$(awk -v a="$rc" -v b="$sc" 'BEGIN { print a + b }')
+  printf '%-5s %-10s %8.2f %8.2f %8d %10s %10s  (info + cp and sync %.2f s; float / floor on disk)\n' "$ext" "floor+s" \
+    "$synced_wall" "$synced_cpu" "$rm" "$(ratio "$fw" "$synced_wall")" "$(ratio "$fc" "$synced_cpu")" "$sw"
+  if [ -n "$old" ]; then
+    read -r ow oc om < <(medians "$work/old_float")
+    printf '%-5s %-10s %8.2f %8.2f %8d %10s %10s  (older binary, float / floor; / floor on disk %s wall)\n' "$ext" old \
+      "$ow" "$oc" "$om" "$(ratio "$ow" "$floor_wall")" "$(ratio "$oc" "$floor_cpu")" "$(ratio "$ow" "$synced_wall")"
+    for type in half uint16; do
+      read -r w c m < <(medians "$work/old_$type")
+      printf '%-5s %-10s %8.2f %8.2f %8d %10s %10s  (older binary, / its float)\n' "$ext" "old $type" "$w" "$c" "$m" \
+        "$(ratio "$w" "$ow")" "$(ratio "$c" "$oc")"
+    done
+  fi
 done
 echo "(issue 24: half and uint16 at most 1.00 of float; float at most 1.30 of its floor)"
+fi
+
+if section 4; then
+echo
+echo "4. peak memory of pack above start-up, ${size}x${size} float, median of $runs runs"
+"$make_map" 16 16 "$work/tiny.png"
+: >"$work/startup"
+for ((i = 0; i < runs; i++)); do measure "$work/startup" "$hp" info "$work/tiny.png"; done
+read -r _ _ startup < <(medians "$work/startup")
+perTexel() { awk -v m="$(($1 - startup))" -v n="$size" 'BEGIN { print m * 1048576 / (n * n) }'; }
+for ext in exr ktx2 dds; do
+  : >"$work/peak"
+  : >"$work/oldpeak"
+  for ((i = 0; i < runs; i++)); do
+    rm -f "$work/peak.$ext"
+    measure "$work/peak" "$hp" pack "$work/in.png" -q -o "$work/peak.$ext"
+    if [ -n "$old" ]; then
+      rm -f "$work/peak.$ext"
+      measure "$work/oldpeak" "$old" pack "$work/in.png" -q -o "$work/peak.$ext"
+    fi
+  done
+  read -r _ _ peak < <(medians "$work/peak")
+  printf '%-5s %6d MiB, %6d MiB above start-up (%d MiB): %5.2f bytes a texel\n' "$ext" "$peak" \
+    "$((peak - startup))" "$startup" "$(perTexel "$peak")"
+  if [ -n "$old" ]; then
+    read -r _ _ oldpeak < <(medians "$work/oldpeak")
+    printf '%-5s %6d MiB, %6d MiB above start-up: %5.2f bytes a texel (older binary)\n' "$ext" "$oldpeak" \
+      "$((oldpeak - startup))" "$(perTexel "$oldpeak")"
+  fi
+done
+echo "(issue 24: at most 8 bytes a texel above start-up at 8192^2)"
 fi
 
 section 3 || exit 0

@@ -58,7 +58,7 @@ TEST(LookupError, EqualsABruteForceBilinearOfBothChainsAtEveryLevel) {
             for (const Image& level : chain)
                 for (float v : level.pixels) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
             for (const TexelRounding& stored : {TexelRounding(toGrid), codes(lo, hi)}) {
-                const std::vector<double> errors = worstLookupError(chain, wrap, stored, 2);
+                const std::vector<double> errors = worstLookupError(chain, stored, 2);
                 ASSERT_EQ(errors.size(), chain.size());
                 for (size_t l = 0; l < chain.size(); ++l) {
                     const double reference = bruteForce(chain[l], stored, wrap == Wrap::Periodic);
@@ -71,8 +71,8 @@ TEST(LookupError, EqualsABruteForceBilinearOfBothChainsAtEveryLevel) {
 
 TEST(LookupError, FloatIsExactAndAConstantShiftIsItself) {
     const std::vector<Image> chain = generateMipChain(randomImage(16, 16, 5), Filter::Kaiser);
-    for (const double e : worstLookupError(chain, Wrap::Periodic, [](float v) { return v; })) EXPECT_EQ(e, 0.0);
-    for (const double e : worstLookupError(chain, Wrap::Clamp, [](float v) { return v + 0.25f; }))
+    for (const double e : worstLookupError(chain, TexelRounding([](float v) { return v; }))) EXPECT_EQ(e, 0.0);
+    for (const double e : worstLookupError(chain, TexelRounding([](float v) { return v + 0.25f; })))
         EXPECT_NEAR(e, 0.25, 1e-6);
 }
 
@@ -83,8 +83,8 @@ TEST(LookupError, EveryChannelCountsAndTheResultIgnoresThreads) {
     const TexelRounding coarse = [](float v) { return v == 0.5f ? v : float(std::nearbyint(v * 16.0) / 16.0); };
     Image second(8, 4, 1);
     for (size_t t = 0; t < second.texelCount(); ++t) second.pixels[t] = two.pixels[2 * t + 1];
-    const double alone = worstLookupError({second}, Wrap::Periodic, coarse)[0];
+    const double alone = worstLookupError({second}, coarse)[0];
     EXPECT_GT(alone, 0.0);
-    EXPECT_EQ(worstLookupError({two}, Wrap::Periodic, coarse, 1)[0], alone);
-    EXPECT_EQ(worstLookupError({two}, Wrap::Periodic, coarse, 3)[0], alone);
+    EXPECT_EQ(worstLookupError({two}, coarse, 1)[0], alone);
+    EXPECT_EQ(worstLookupError({two}, coarse, 3)[0], alone);
 }

@@ -2,6 +2,7 @@
 // where it matters: at the bilinear lookups a shader makes, against the same lookups of the float chain.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -12,19 +13,22 @@ namespace heightpack {
 // What reading back a stored texel gives for the float value v: v itself for 32-bit float, the nearest
 // half, or the value of the nearest 16-bit code. Must be a pure function of v.
 using TexelRounding = std::function<float(float v)>;
+// The same for n values at once, values[i] to readBack[i]: one call a row instead of one a value.
+using TexelRowRounding = std::function<void(const float* values, size_t n, float* readBack)>;
 
 // For each level of chain (level 0 first), the worst absolute difference between a bilinear lookup from
 // the texels as stored (every value through `stored`) and the same lookup from the float texels, over
-// every channel and a 2x oversampled grid: every texel centre and every midpoint between neighbouring
-// texels (along x, along y and diagonally), neighbours found with wrap, clamp keeping the lookup inside
-// the level as samplePackedBilinear does. The lookup is samplePackedBilinear's (the packed vertex-shader
-// fetch, equal to hardware filtering of the plain level): a packed texel holds four copies of plain
-// values, so its stored channels are stored(H) of the same neighbours and one function serves packed and
-// plain chains alike. Both lookups are taken in double precision, so the difference is the storing's
-// alone. (A lookup is linear in its four texels, so no point of a cell strays further than its worst
-// corner: the grid's centres already find the worst; the midpoints guard the claim.)
-// Values are in the chain's units. threads: 0 = all cores; the result does not depend on it.
-std::vector<double> worstLookupError(const std::vector<Image>& chain, Wrap wrap, const TexelRounding& stored,
-                                     int threads = 0);
+// every channel, anywhere in the level, in either wrap mode. The lookup is samplePackedBilinear's (the
+// packed vertex-shader fetch, equal to hardware filtering of the plain level): a packed texel holds four
+// copies of plain values, so its stored channels are stored(H) of the same neighbours and one function
+// serves packed and plain chains alike. A lookup is a weighted mean of four texels (weights >= 0 that sum
+// to 1), so the difference of the two lookups is the same mean of the texels' differences: never more
+// than the largest of them, which the lookup at that texel's centre gives. The worst is therefore the
+// worst texel's |stored(v) - v|, taken in double precision (it equals, bit for bit, the worst over a grid
+// of every texel centre and every midpoint between neighbours evaluated in double: weights 1/2 and 1/4
+// are exact and rounding is monotone). Values are in the chain's units; a non-finite difference counts as
+// infinity. threads: 0 = all cores; the result does not depend on it.
+std::vector<double> worstLookupError(const std::vector<Image>& chain, const TexelRowRounding& stored, int threads = 0);
+std::vector<double> worstLookupError(const std::vector<Image>& chain, const TexelRounding& stored, int threads = 0);
 
 }  // namespace heightpack

@@ -5,6 +5,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/exr_write.hpp"
@@ -28,17 +29,28 @@ Result<TextureOutput> textureOutput(const std::string& path);
 // channels; a DDS no supercompression).
 Status writeTexture(const TextureOutput& output, const MipChainSource& content, const TextureWriteOptions& options);
 
+// Chains (each a mip chain, level 0 first) that hold, level by level, exactly the values a
+// MipChainSource writes: every value it writes is in one of them, and every value of theirs is written.
+// A packed chain's plain levels are such (a packed texel holds copies of four plain values), as are a
+// texture's layers' plain chains.
+using ChainValues = std::vector<const std::vector<Image>*>;
+
 // What storing content with options does to its values: the format writeTexture would choose and, for
 // uint16, the normalisation it would record (the whole chain's range). Fails as writeTexture would,
-// writing nothing, when a value cannot be stored in the pixel type or the container lacks it.
+// writing nothing, when a value cannot be stored in the pixel type or the container lacks it. sameValues
+// (see ChainValues), when given, are read for the range instead of content's rows, which are then never
+// filled (a packed content's are four times as many, and packed on the way): the result is the same.
 struct TexelStorage {
     PixelType pixelType = PixelType::Float;
     TexelFormat format = TexelFormat::Rgba32F;
     std::optional<Normalisation> normalisation;
     std::function<float(float)> storeAndRead;  // what reading back a stored value gives
+    // The same for n values at once, into readBack (vectorised: half through F16C where the processor
+    // has it); bit for bit what storeAndRead gives each value.
+    std::function<void(const float* values, size_t n, float* readBack)> storeAndReadRow;
 };
 Result<TexelStorage> planTexelStorage(const TextureOutput& output, const MipChainSource& content,
-                                      const TextureWriteOptions& options);
+                                      const TextureWriteOptions& options, const ChainValues& sameValues = {});
 
 // The bytes a level of width x height texels with `channels` channels takes on the GPU in the format
 // writeTexture would choose (three channels are stored as four).

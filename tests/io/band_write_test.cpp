@@ -1,0 +1,174 @@
+// The uncompressed KTX2 and DDS writers put every level's bands where the header says, from every thread:
+// their files must hold exactly what writing the levels one after another gives. That serial encoding is
+// made here from the definitions (IEEE 754 binary16, nearest 16-bit code of the recorded normalisation),
+// in each container's order (KTX2: smallest level first, each aligned, its layers in turn; DDS: each
+// layer's whole chain in turn), on sizes that split into uneven bands and odd levels, at 1 and 3 threads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "heightpack/io/attributes.hpp"
+#include "heightpack/io/gpu_texture.hpp"
+#include "support/test_support.hpp"
+
+using namespace heightpack;
+using namespace heightpack::test;
+
+namespace {
+
+int side(int size, int level) { return std::max(size >> level, 1); }
+
+// A smooth value per layer, level, texel and channel, within [-3, 5]: no two levels or layers alike.
+float valueAt(int layer, int level, int x, int y, int c) {
+    return float(1.0 + 4.0 * std::sin(0.013 * x + 0.029 * y + 0.7 * c + 1.3 * layer + 0.4 * level) *
+                           std::cos(0.005 * x * (c + 1) - 0.011 * y));
+}
+
+MipChainSource content(int width, int height, int channels, int layers) {
+    MipChainSource c;
+    c.width = width;
+    c.height = height;
+    c.channelNames.assign(size_t(channels), "");
+    for (int i = 0; i < channels; ++i) c.channelNames[size_t(i)] = std::string(1, "RGBA"[i]);
+    const auto fill = [width, channels](int layer, int level, int y0, int rows, float* dst) {
+        const int w = side(width, level);
+        for (int y = y0; y < y0 + rows; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int ch = 0; ch < channels; ++ch) *dst++ = valueAt(layer, level, x, y, ch);
+    };
+    if (layers > 1) {
+        // Layers a DDS can record: heights, then Dx and Dy, then Foam.
+        c.layerNames = layers == 4 ? std::vector<std::string>{"heights", "Dx", "Dy", "Foam"}
+                                   : std::vector<std::string>{"heights", "Foam"};
+        c.fillLayerRows = fill;
+    } else {
+        c.fillRows = [fill](int level, int y0, int rows, float* dst) { fill(0, level, y0, rows, dst); };
+    }
+    c.attributes = {{"heightpack:layout", std::string("plain")}};
+    return c;
+}
+
+// binary16 bits of the half nearest to v (ties to even), from the format's definition; |v| < 65504.
+std::uint16_t halfBits(float v) {
+    const double a = std::fabs(double(v));
+    const std::uint16_t sign = std::signbit(v) ? 0x8000 : 0;
+    if (a < std::ldexp(1.0, -14)) return std::uint16_t(sign | std::uint16_t(std::nearbyint(a * std::ldexp(1.0, 24))));
+    int e = int(std::floor(std::log2(a)));
+    double m = std::nearbyint(a / std::ldexp(1.0, e - 10));  // 1024 .. 2048
+    if (m == 2048.0) m = 1024.0, ++e;
+    return std::uint16_t(sign | (e + 15) << 10 | (int(m) - 1024));
+}
+
+// One layer's image of one level as the file should hold it: texels of four components (alpha 1 added to
+// three channels), each float, half or the nearest code of value = offset + scale * u / 65535.
+std::vector<std::uint8_t> encoded(const MipChainSource& c, int layer, int level, PixelType type,
+                                  const Normalisation& n) {
+    const int w = side(c.width, level), h = side(c.height, level), from = int(c.channelNames.size());
+    std::vector<float> values(size_t(w) * h * from);
+    if (c.layerNames.empty()) c.fillRows(level, 0, h, values.data());
+    else c.fillLayerRows(layer, level, 0, h, values.data());
+    const int to = from == 3 ? 4 : from;
+    std::vector<std::uint8_t> out;
+    for (size_t t = 0; t < size_t(w) * h; ++t)
+        for (int ch = 0; ch < to; ++ch) {
+            const float v = ch < from ? values[t * from + ch] : 1.0f;
+            std::uint8_t b[4];
+            size_t bytes = 2;
+            if (type == PixelType::Float) std::memcpy(b, &v, bytes = 4);
+            else {
+                std::uint16_t u = 0;
+                if (type == PixelType::Half) u = halfBits(v);
+                else u = std::uint16_t(std::nearbyint(std::clamp((double(v) - n.offset) / n.scale * 65535.0, 0.0, 65535.0)));
+                std::memcpy(b, &u, 2);
+            }
+            out.insert(out.end(), b, b + bytes);
+        }
+    return out;
+}
+
+std::uint64_t le64(const std::vector<unsigned char>& b, size_t at) {
+    std::uint64_t v = 0;
+    for (int i = 7; i >= 0; --i) v = v << 8 | b.at(at + size_t(i));
+    return v;
+}
+
+// The whole file a serial writer gives: the file's own header (checked elsewhere against independent
+// readers), then the levels in the container's order.
+std::vector<unsigned char> serialFile(const std::vector<unsigned char>& file, bool ktx2, const MipChainSource& c,
+                                      PixelType type, const Normalisation& n, int levels) {
+    const int layers = c.layerCount();
+    std::vector<unsigned char> expected;
+    if (!ktx2) {
+        expected.assign(file.begin(), file.begin() + std::min<size_t>(file.size(), 4 + 124 + 20));
+        for (int layer = 0; layer < layers; ++layer)
+            for (int level = 0; level < levels; ++level) {
+                const auto bytes = encoded(c, layer, level, type, n);
+                expected.insert(expected.end(), bytes.begin(), bytes.end());
+            }
+        return expected;
+    }
+    // After the identifier and header: dfdByteOffset/Length at 48, kvdByteOffset/Length at 56.
+    const std::uint64_t dfdEnd = (le64(file, 48) & 0xffffffff) + (le64(file, 48) >> 32);
+    const std::uint64_t kvdEnd = (le64(file, 56) & 0xffffffff) + (le64(file, 56) >> 32);
+    expected.assign(file.begin(), file.begin() + std::ptrdiff_t(std::max(dfdEnd, kvdEnd)));
+    const size_t texelBytes = (type == PixelType::Float ? 4 : 2) * size_t(c.channelNames.size() == 3 ? 4 : c.channelNames.size());
+    const size_t alignment = std::lcm(texelBytes, size_t(4));
+    for (int level = levels - 1; level >= 0; --level) {
+        expected.resize((expected.size() + alignment - 1) / alignment * alignment, 0);
+        EXPECT_EQ(le64(file, 80 + 24 * size_t(level)), expected.size()) << "level " << level << "'s offset";
+        for (int layer = 0; layer < layers; ++layer) {
+            const auto bytes = encoded(c, layer, level, type, n);
+            expected.insert(expected.end(), bytes.begin(), bytes.end());
+        }
+    }
+    return expected;
+}
+
+}  // namespace
+
+TEST(BandWrite, FilesHoldTheLevelsAsASerialWriterLaysThemOut) {
+    ScratchDir dir;
+    struct Case {
+        int width, height, channels, layers, levels;
+    };
+    // An array of four RGBA layers in bands of 65 rows; a three-channel texture (alpha added) whose 1 MiB
+    // bands end mid-level; one channel, two levels only; an array of two layers one texel wide.
+    const Case cases[] = {{1000, 301, 4, 4, 0}, {777, 523, 3, 1, 0}, {1531, 999, 1, 1, 2}, {1, 37, 4, 2, 0}};
+    for (const Case& k : cases) {
+        const MipChainSource c = content(k.width, k.height, k.channels, k.layers);
+        int levels = 1;
+        while ((k.width >> levels) > 0 || (k.height >> levels) > 0) ++levels;
+        if (k.levels > 0) levels = k.levels;
+        for (const char* ext : {".ktx2", ".dds"}) {
+            for (PixelType type : {PixelType::Float, PixelType::Half, PixelType::Uint16}) {
+                for (int threads : {1, 3}) {
+                    const std::string path = dir.file("band" + std::to_string(threads) + ext);
+                    SCOPED_TRACE(std::to_string(k.width) + "x" + std::to_string(k.height) + " " + pixelTypeName(type) +
+                                 " " + path);
+                    TextureWriteOptions options;
+                    options.storage.pixelType = type;
+                    options.threads = threads;
+                    options.levels = k.levels;
+                    const bool ktx2 = std::string(ext) == ".ktx2";
+                    ASSERT_TRUE((ktx2 ? writeKtx2(path, c, options) : writeDds(path, c, options)).ok());
+                    auto read = readGpuTexture(path);
+                    ASSERT_TRUE(read.ok()) << read.error().what;
+                    ASSERT_EQ(read->normalisation.has_value(), type == PixelType::Uint16);
+                    const Normalisation n = read->normalisation.value_or(Normalisation{});
+                    const std::vector<unsigned char> file = readBytes(path);
+                    const std::vector<unsigned char> expected = serialFile(file, ktx2, c, type, n, levels);
+                    ASSERT_EQ(file.size(), expected.size());
+                    // The first differing byte, rather than two files' worth of bytes, when they differ.
+                    const auto diff = std::mismatch(file.begin(), file.end(), expected.begin());
+                    EXPECT_TRUE(diff.first == file.end()) << "first difference at byte " << (diff.first - file.begin());
+                }
+            }
+        }
+    }
+}
