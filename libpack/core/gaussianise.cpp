@@ -181,10 +181,9 @@ void Gaussianiser::back(const double* g, float* out, size_t count) const {
 }
 
 float Gaussianiser::back(double g) const {
-    const double pos = std::clamp(normalCdf(g) * sorted.size() - 0.5, 0.0, double(sorted.size() - 1));
-    const size_t i = static_cast<size_t>(pos);
-    const size_t j = std::min(i + 1, sorted.size() - 1);
-    return static_cast<float>(sorted[i] + (double(sorted[j]) - sorted[i]) * (pos - i));
+    float value;
+    back(&g, &value, 1);
+    return value;
 }
 
 }  // namespace heightpack::detail

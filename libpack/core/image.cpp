@@ -6,17 +6,19 @@
 
 namespace heightpack {
 
-SampleRange sampleRange(const Image& image, int threads) {
-    const size_t n = image.pixels.size();
+SampleRange sampleRange(const Image& image, int threads) { return sampleRange(std::span<const float>(image.pixels), threads); }
+
+SampleRange sampleRange(std::span<const float> samples, int threads) {
+    const size_t n = samples.size();
     if (n == 0) return {};
     constexpr int kChunks = 64;
     const size_t chunk = (n + kChunks - 1) / kChunks;
-    std::vector<SampleRange> ranges(kChunks, SampleRange{image.pixels[0], image.pixels[0]});
+    std::vector<SampleRange> ranges(kChunks, SampleRange{samples[0], samples[0]});
     parallelFor(kChunks, threads, [&](int begin, int end) {
         for (int c = begin; c < end; ++c) {
-            float low = image.pixels[0], high = low;
+            float low = samples[0], high = low;
             for (size_t i = c * chunk; i < std::min(n, (c + 1) * chunk); ++i) {
-                const float v = image.pixels[i];
+                const float v = samples[i];
                 low = v < low ? v : low;  // the form minps computes, so the loop vectorises
                 high = v > high ? v : high;
             }

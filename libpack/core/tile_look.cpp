@@ -126,18 +126,17 @@ double ringScore(const std::vector<double>& profile, int reach, double floor) {
     return worst;
 }
 
-// The means of g's columns and of its rows, on all threads: each mean sums in
-// one fixed order, so the thread count cannot change it.
+// The means of g's columns and of its rows, on all threads: each mean sums in one fixed order, so the
+// thread count cannot change it.
 struct Profiles {
     std::vector<double> columns, rows;
 };
 Profiles profilesOf(const Grid& g, int threads) {
     Profiles p{std::vector<double>(g.w, 0.0), std::vector<double>(g.h, 0.0)};
-    auto value = [&](int x, int y) { return g.at(x, y); };
     parallelFor(g.h, threads, [&](int begin, int end) {
         for (int y = begin; y < end; ++y) {
             double sum = 0;
-            for (int x = 0; x < g.w; ++x) sum += value(x, y);
+            for (int x = 0; x < g.w; ++x) sum += g.at(x, y);
             p.rows[y] = sum / g.w;
         }
     });
@@ -146,7 +145,7 @@ Profiles profilesOf(const Grid& g, int threads) {
         for (int x0 = begin * kColumns; x0 < std::min(g.w, end * kColumns); x0 += kColumns) {
             const int x1 = std::min(g.w, x0 + kColumns);
             for (int y = 0; y < g.h; ++y)
-                for (int x = x0; x < x1; ++x) p.columns[x] += value(x, y);
+                for (int x = x0; x < x1; ++x) p.columns[x] += g.at(x, y);
             for (int x = x0; x < x1; ++x) p.columns[x] /= g.h;
         }
     });
@@ -154,8 +153,8 @@ Profiles profilesOf(const Grid& g, int threads) {
 }
 
 // The profiles (as profilesOf) of the square of bandPassed(spectrum, fine, coarse), taken from the
-// inverse's rows as they come: no field is stored. The columns are summed per block of rows (each block's rows in order, on one thread),
-// the blocks then in order: the same on any thread count.
+// inverse's rows as they come: no field is stored. The columns are summed per block of rows (each block's
+// rows in order, on one thread), the blocks then in order: the same on any thread count.
 Profiles energyProfiles(const HalfSpectrum& spectrum, double fine, double coarse, int threads) {
     HalfSpectrum s = bandPassSpectrum(spectrum, fine, coarse, threads);
     const int w = s.w, h = s.h, blocks = (h + detail::kInverseRowBlock - 1) / detail::kInverseRowBlock;

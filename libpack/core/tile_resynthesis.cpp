@@ -111,20 +111,8 @@ double quantisationNoise(const std::vector<float>& values, double quantum, int t
         constexpr int kChunks = 16;
         constexpr double kMostLevels = 1 << 17;  // 8- and 16-bit samples, and some headroom
         const size_t chunk = (n + kChunks - 1) / kChunks;
-        std::vector<float> lows(kChunks, values[0]), highs(kChunks, values[0]);
-        parallelFor(kChunks, threads, [&](int begin, int end) {
-            for (int c = begin; c < end; ++c) {  // in locals: the chunks' entries share a cache line
-                float low = values[0], high = values[0];
-                for (size_t i = size_t(c) * chunk; i < std::min(n, size_t(c + 1) * chunk); ++i) {
-                    low = std::min(low, values[i]);
-                    high = std::max(high, values[i]);
-                }
-                lows[c] = low;
-                highs[c] = high;
-            }
-        });
-        const float low = *std::min_element(lows.begin(), lows.end()), high = *std::max_element(highs.begin(), highs.end());
-        const double inverse = 1 / quantum, first = std::round(low * inverse), levels = std::round(high * inverse) - first + 1;
+        const SampleRange range = sampleRange(values, threads);
+        const double inverse = 1 / quantum, first = std::round(range.low * inverse), levels = std::round(range.high * inverse) - first + 1;
         std::vector<std::vector<size_t>> counts(levels <= kMostLevels ? kChunks : 0);
         std::vector<char> whole(kChunks, 1);
         parallelFor(int(counts.size()), threads, [&](int begin, int end) {

@@ -3,6 +3,7 @@
 
 #include <cassert>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "heightpack/core/names.hpp"
@@ -76,6 +77,8 @@ struct SampleRange {
     float low = 0.0f, high = 0.0f;
 };
 SampleRange sampleRange(const Image& image, int threads);
+// The same of any run of samples (empty: {0, 0}).
+SampleRange sampleRange(std::span<const float> samples, int threads);
 
 // The given channels of image, in that order, as an image of that many channels (e.g. {1, 2} of Y, Dx, Dy
 // is Dx, Dy).
