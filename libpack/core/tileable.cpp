@@ -46,6 +46,15 @@ double median(std::vector<double> v) {
     return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + mid));
 }
 
+// The three operators' magnitudes at one gap, from the differences across the gap before it, the gap
+// itself and the gap after it.
+struct GapTerms {
+    double jump1, jump3, kink;
+};
+inline GapTerms gapTerms(double before, double at, double after) {
+    return {std::abs(at), std::abs(after - 2 * at + before), std::abs(after - before)};
+}
+
 // Sums over the lines of |operator| at every gap: sums[op][c]. lines holds m lines of n texels each.
 // Lines are summed in fixed blocks and the blocks in order, so the result does not depend on threads.
 std::array<std::vector<double>, kOperators> operatorSums(const float* lines, int n, int m, int threads) {
@@ -70,10 +79,10 @@ std::array<std::vector<double>, kOperators> operatorSums(const float* lines, int
                 d[-1] = d[n - 1];
                 d[n] = d[0];
                 for (int c = 0; c < n; ++c) {
-                    const double before = d[c - 1], after = d[c + 1];
-                    jump1[c] += std::abs(d[c]);
-                    jump3[c] += std::abs(after - 2 * d[c] + before);
-                    kink[c] += std::abs(after - before);
+                    const GapTerms t = gapTerms(d[c - 1], d[c], d[c + 1]);
+                    jump1[c] += t.jump1;
+                    jump3[c] += t.jump3;
+                    kink[c] += t.kink;
                 }
             }
         }
@@ -99,10 +108,10 @@ std::array<std::vector<double>, kOperators> operatorSumsAcrossRows(const float* 
             const float *before = row(-1), *at = row(0), *next = row(1), *after = row(2);
             double jump1[4] = {}, jump3[4] = {}, kink[4] = {};
             auto add = [&](int x, int part) {
-                const double d0 = double(at[x]) - before[x], d1 = double(next[x]) - at[x], d2 = double(after[x]) - next[x];
-                jump1[part] += std::abs(d1);
-                jump3[part] += std::abs(d2 - 2 * d1 + d0);
-                kink[part] += std::abs(d2 - d0);
+                const GapTerms t = gapTerms(double(at[x]) - before[x], double(next[x]) - at[x], double(after[x]) - next[x]);
+                jump1[part] += t.jump1;
+                jump3[part] += t.jump3;
+                kink[part] += t.kink;
             };
             int x = 0;
             for (; x + 4 <= w; x += 4)
