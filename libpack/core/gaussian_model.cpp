@@ -110,10 +110,8 @@ GaussianModel modelOf(const Field& g, double noise, int threads) {
     const double floor = n * noise;  // the expected |P(k)|^2 of white noise of that variance
     parallelFor(h, threads, [&](int begin, int end) {
         for (int r = begin; r < end; ++r)
-            for (int q = 0; q < w; ++q) {  // beyond the half, the opposite frequency's power: the same
-                const std::complex<double> a = q < columns ? half[size_t(r) * columns + q] : half[size_t((h - r) % h) * columns + (w - q)];
-                model.power.at<double>(r, q) = std::max(std::norm(a) - floor, 0.0);
-            }
+            for (int q = 0; q < columns; ++q)
+                model.power.at<double>(r, q) = std::max(std::norm(std::complex<double>(half[size_t(r) * columns + q])) - floor, 0.0);
     });
     // The power summed along each axis on all threads: each row's sum in order; the columns' per fixed
     // block of rows, the blocks then in order (the same on any thread count).
@@ -124,11 +122,14 @@ GaussianModel modelOf(const Field& g, double noise, int threads) {
         for (int b = begin; b < end; ++b) {
             double* columnSums = &blockX[size_t(b) * w];
             for (int r = b * kRows; r < std::min(h, (b + 1) * kRows); ++r) {
+                // Over the whole row, in order: the half, then the opposite row's half backwards.
                 const double* row = model.power.ptr<double>(r);
+                const double* mirror = model.power.ptr<double>((h - r) % h);
                 double sum = 0;
                 for (int q = 0; q < w; ++q) {
-                    sum += row[q];
-                    columnSums[q] += row[q];
+                    const double p = q < columns ? row[q] : mirror[w - q];
+                    sum += p;
+                    columnSums[q] += p;
                 }
                 marginalY[r] = sum;
             }
@@ -142,7 +143,7 @@ GaussianModel modelOf(const Field& g, double noise, int threads) {
 }
 
 StripField sampleOf(const GaussianModel& model, uint64_t seed, int reachX, int reachY, int threads) {
-    const int w = model.power.cols, h = model.power.rows, columns = w / 2 + 1;
+    const int w = model.w, h = model.h, columns = w / 2 + 1;
     // The sample's spectrum: sqrt(power) times complex white noise of unit variance, Hermitian so the sample
     // is real. Its covariance is the model's: (1/n^2) sum of power e^(2 pi i k.d). Only the half kx <= w/2
     // is stored (the float inverse makes the rest); in its first and last columns, which hold their own
@@ -172,9 +173,9 @@ StripField sampleOf(const GaussianModel& model, uint64_t seed, int reachX, int r
 }
 
 // The power's 1-D transform across the lines at each k, conjugated and scaled.
-cv::Mat lineCovarianceSpectra(const cv::Mat& power, Axis axis, int strip, int threads) {
+cv::Mat lineCovarianceSpectra(const GaussianModel& model, Axis axis, int strip, int threads) {
     const bool across = axis == Axis::X;
-    const int w = power.cols, h = power.rows, along = across ? h : w, length = across ? w : h;
+    const int w = model.w, h = model.h, along = across ? h : w, length = across ? w : h;
     const double scale = 1.0 / (double(w) * h * length);
     const int lines = along / 2 + 1;
     cv::Mat out(lines, strip, CV_64FC2);
@@ -185,7 +186,7 @@ cv::Mat lineCovarianceSpectra(const cv::Mat& power, Axis axis, int strip, int th
             const int k0 = b * kBlock, count = std::min(kBlock, lines - k0);
             for (int i = 0; i < count; ++i)
                 for (int u = 0; u < length; ++u)
-                    block.at<double>(i, u) = across ? power.at<double>(k0 + i, u) : power.at<double>(u, k0 + i);
+                    block.at<double>(i, u) = across ? model.powerAt(u, k0 + i) : model.powerAt(k0 + i, u);
             cv::dft(block.rowRange(0, count), spectra, cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
             for (int i = 0; i < count; ++i)
                 for (int du = 0; du < strip; ++du) {

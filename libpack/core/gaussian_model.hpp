@@ -22,10 +22,15 @@ enum class Axis { X, Y };
 // The model of a Gaussianised map g: the spectrum of its periodic component (Moisan's: no cross of edge
 // jumps in it) less the quantisation's white floor, and the covariances along the axes.
 struct GaussianModel {
-    cv::Mat power;                   // CV_64F, h x w: |P(k)|^2 less the floor, P the periodic component's DFT
+    int w, h;
+    // CV_64F, h x (w / 2 + 1): |P(k)|^2 less the floor, P the periodic component's DFT, for the half
+    // kx <= w/2 (the power of a real field is even: the rest is powerAt's mirror of it).
+    cv::Mat power;
     std::vector<double> lagX, lagY;  // the circular autocovariance C(d, 0) and C(0, d)
-    GaussianModel(int w, int h) : power(h, w, CV_64F), lagX(w), lagY(h) {}
+    GaussianModel(int width, int height) : w(width), h(height), power(height, width / 2 + 1, CV_64F), lagX(width), lagY(height) {}
     double variance() const { return lagX[0]; }
+    // The power at (kx, ky) = (q, r), for any q < w.
+    double powerAt(int q, int r) const { return q < power.cols ? power.at<double>(r, q) : power.at<double>((h - r) % h, w - q); }
 };
 
 // The spectrum of Moisan's periodic component of map's first channel, as forwardRealDftToHalf gives it (the
@@ -45,7 +50,7 @@ StripField sampleOf(const GaussianModel& model, uint64_t seed, int reachX, int r
 // The covariance between lines du apart (du < strip), per frequency k along them (k up to half their
 // length), as a (length / 2 + 1) x strip CV_64FC2 matrix: covHat(k, du) = the sum along the lines of
 // C(du, v) e^(-2 pi i k v / length).
-cv::Mat lineCovarianceSpectra(const cv::Mat& power, Axis axis, int strip, int threads);
+cv::Mat lineCovarianceSpectra(const GaussianModel& model, Axis axis, int strip, int threads);
 
 // Moisan's smooth field of the jumps across f's top/bottom wrap line alone: periodic in both directions,
 // harmonic but at that line, where it carries the jump. Taking it off makes f wrap top to bottom without

@@ -161,7 +161,7 @@ double resynthesiseLines(StripField& field, const GaussianModel& model, const St
     auto set = [&](int u, int v) -> double& { return across ? field.at(u, v) : field.at(v, u); };
     const int first = w - band / 2 - context;  // the strip's first line, modulo w
     auto column = [&](int local) { return ((first + local) % w + w) % w; };
-    const cv::Mat covHat = detail::lineCovarianceSpectra(model.power, axis, strip, threads);
+    const cv::Mat covHat = detail::lineCovarianceSpectra(model, axis, strip, threads);
     auto cov = [&](int dx, int ky) {
         const cv::Vec2d z = covHat.at<cv::Vec2d>(ky, std::abs(dx));
         return dx >= 0 ? Complex(z[0], z[1]) : Complex(z[0], -z[1]);  // C(-dx, dy) = C(dx, -dy)
@@ -175,9 +175,15 @@ double resynthesiseLines(StripField& field, const GaussianModel& model, const St
     const double nugget = noise + 1e-7 * std::max(model.variance(), 1e-12);
     const int half = h / 2;
     cv::Mat kriged(band, h, CV_64FC2, cv::Scalar(0, 0));
-    parallelFor(half + 1, threads, [&](int begin, int end) {
-        std::vector<Complex> a(size_t(conditioning) * conditioning), weights(conditioning);
-        for (int ky = begin; ky < end; ++ky) {
+    // The frequencies in blocks of kBlock, each block's kriged values kept here and then stored a row
+    // segment at a time: stored one frequency at a time, each value went to another row of kriged (a
+    // cache and TLB miss per value, a seventh of the kriging's time).
+    constexpr int kBlock = 8;
+    parallelFor((half + kBlock) / kBlock, threads, [&](int beginBlock, int endBlock) {
+        std::vector<Complex> a(size_t(conditioning) * conditioning), weights(conditioning), block(size_t(band) * kBlock);
+        for (int ky0 = beginBlock * kBlock; ky0 < std::min(half + 1, endBlock * kBlock); ky0 += kBlock) {
+        const int kyEnd = std::min(half + 1, ky0 + kBlock);
+        for (int ky = ky0; ky < kyEnd; ++ky) {
             for (int i = 0; i < conditioning; ++i) {
                 for (int j = 0; j <= i; ++j) a[size_t(i) * conditioning + j] = cov(local(i) - local(j), ky);
                 a[size_t(i) * conditioning + i] += nugget;
@@ -192,7 +198,12 @@ double resynthesiseLines(StripField& field, const GaussianModel& model, const St
                     re += z.real() * weights[j].real() - z.imag() * weights[j].imag();
                     im += z.real() * weights[j].imag() + z.imag() * weights[j].real();
                 }
-                const Complex sum(re, im);
+                block[size_t(m) * kBlock + (ky - ky0)] = Complex(re, im);
+            }
+        }
+        for (int m = 0; m < band; ++m)
+            for (int ky = ky0; ky < kyEnd; ++ky) {
+                const Complex sum = block[size_t(m) * kBlock + (ky - ky0)];
                 kriged.at<cv::Vec2d>(m, ky) = cv::Vec2d(sum.real(), sum.imag());
                 if (ky > 0 && ky < h - ky) kriged.at<cv::Vec2d>(m, h - ky) = cv::Vec2d(sum.real(), -sum.imag());
             }
