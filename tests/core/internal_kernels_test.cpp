@@ -262,13 +262,22 @@ TEST(CounterNormals, AreStandardNormalAndUncorrelatedAlongCellsRowsAndSeeds) {
 TEST(StableOrder, EqualsStdStableSortWithTiesNegativesAndSignedZeros) {
     std::mt19937 random(11);
     for (int trial = 0; trial < 40; ++trial) {
-        // Some longer than the sort's 64 chunks x 2048 buckets, so chunks hold many items of a bucket.
-        const size_t n = 1 + random() % (trial % 8 == 7 ? 300000 : 5000);
+        // Some longer than the sort's 64 chunks x 2048 digits, so chunks hold many items of a digit, and
+        // long enough to be sorted by buckets of the value range (at least 16 buckets of 4096 values).
+        const size_t n = trial % 4 >= 2 ? 250000 + random() % 50000 : 1 + random() % 5000;
         std::vector<float> values(n);
-        // Few distinct levels (ties), both signs, both zeros, tiny and huge magnitudes.
+        // Few distinct levels (ties), both signs, both zeros, tiny and huge magnitudes (the crowded case);
+        // uniform values, some in steps of 1/64 (ties within buckets); normal values with a few huge
+        // ones (a bucket holds most).
         const float levels[] = {-0.0f, 0.0f, -1.5f, 2.0f, 1e-30f, -1e-30f, 3e38f, -3e38f, 0.25f};
+        std::normal_distribution<float> normal(0.0f, 1.0f);
         for (float& v : values)
-            v = trial % 2 ? levels[random() % 9] : std::uniform_real_distribution<float>(-4.0f, 4.0f)(random);
+            v = trial % 3 == 0   ? levels[random() % 9]
+                : trial % 3 == 1 ? std::uniform_real_distribution<float>(-4.0f, 4.0f)(random) * (trial % 2 ? 64 : 1)
+                : random() % 100000 == 0 ? 1e6f
+                                        : normal(random);
+        if (trial % 3 == 1 && trial % 2)
+            for (float& v : values) v = std::round(v) / 64;
         std::vector<uint32_t> expected(n);
         std::iota(expected.begin(), expected.end(), 0u);
         std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) { return values[a] < values[b]; });
