@@ -32,11 +32,11 @@ void keepWorst(SeamScore& worst, const SeamScore& s) {
     worst.slope = std::max(worst.slope, s.slope);
 }
 
-// Scores chain level by level into report: levels, worst, failure and the verdict.
-void scoreChain(const std::vector<Image>& chain, const SeamOptions& seamOptions, const CheckOptions& options,
+// Puts the seams of a chain whose level 0 is level0 into report: levels, worst, failure and the verdict;
+// and level0's look.
+void scoreChain(ChainSeams seams, const Image& level0, const SeamOptions& seamOptions, const CheckOptions& options,
                 CheckReport& report) {
     if (options.progress) options.progress("check", 0.0);
-    ChainSeams seams = measureChainSeams(chain, options.threshold, seamOptions);
     report.tiles = seams.tiles();
     report.failure = seams.failure;
     report.levels = std::move(seams.levels);
@@ -44,10 +44,10 @@ void scoreChain(const std::vector<Image>& chain, const SeamOptions& seamOptions,
         keepWorst(report.worst.leftRight, s.leftRight);
         keepWorst(report.worst.topBottom, s.topBottom);
     }
-    report.worst.width = chain[0].width;
-    report.worst.height = chain[0].height;
+    report.worst.width = level0.width;
+    report.worst.height = level0.height;
     if (report.packing && !report.packing->consistent) report.tiles = false;
-    report.look = measureTileLook(chain[0], {nullptr, seamOptions.threads, std::nullopt});
+    report.look = measureTileLook(level0, {nullptr, seamOptions.threads, std::nullopt});
     report.lookThresholds = options.look;
     report.lookFails = options.lookFails;
 }
@@ -58,10 +58,11 @@ double sampleQuantum(const SourceInfo& source) {
     return source.pixelType == "uint8" ? 1.0 / 255 : source.pixelType == "uint16" ? 1.0 / 65535 : 0.0;
 }
 
-std::vector<Image> seamChain(const Image& heights, const MipOptions& mip, std::string* note) {
-    if (isPowerOfTwo(heights.width) && isPowerOfTwo(heights.height)) return generateMipChain(heights, mip);
-    if (note) *note = "sides are not powers of two: level 0 only";
-    return {heights};
+ChainSeams measureSeamChain(const Image& heights, const MipOptions& mip, double threshold, const SeamOptions& seams,
+                            std::string* note) {
+    const bool powers = isPowerOfTwo(heights.width) && isPowerOfTwo(heights.height);
+    if (!powers && note) *note = "sides are not powers of two: level 0 only";
+    return measureChainSeams(heights, powers ? generateMipLevelsBelow(heights, mip) : std::vector<Image>{}, threshold, seams);
 }
 
 CheckReport checkHeights(const Image& heights, const SourceInfo& source, const CheckOptions& options) {
@@ -74,7 +75,7 @@ CheckReport checkHeights(const Image& heights, const SourceInfo& source, const C
     SeamOptions seamOptions;
     seamOptions.threads = options.mip.threads;
     seamOptions.quantum = sampleQuantum(source);
-    scoreChain(seamChain(heights, options.mip, &report.note), seamOptions, options, report);
+    scoreChain(measureSeamChain(heights, options.mip, options.threshold, seamOptions, &report.note), heights, seamOptions, options, report);
     if (!report.note.empty()) report.noteFix = Fix::ResizeToPowerOfTwo;  // pack would have to resize
     return report;
 }
@@ -123,7 +124,7 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
             if (Status s = checkFinite(chain.back(), path, 0, "level " + std::to_string(chain.size() - 1)); !s)
                 return s.error();
         }
-        scoreChain(chain, seamOptions, options, report);
+        scoreChain(measureChainSeams(chain, options.threshold, seamOptions), chain[0], seamOptions, options, report);
     } else {
         auto loaded = detail::loadInput(path, options.load, options.mip.threads);
         if (!loaded) return loaded.error();

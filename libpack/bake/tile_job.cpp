@@ -127,7 +127,7 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         stored = std::make_shared<Image>(Storage::rounded(candidate, c.bits, options.mip.threads));
         const Image& asStored = *stored;
         judging(stored, c.bits);
-        judged = measureChainSeams(seamChain(asStored, options.mip), options.threshold, storedSeams);
+        judged = measureSeamChain(asStored, options.mip, options.threshold, storedSeams);
         if (!judged->tiles() || !lookRequired) return judged->tiles();
         if (!lookOptions.sourceEcho) lookOptions.sourceEcho = sourceEchoOf(map, options.mip.threads);
         looked = measureTileLook(asStored, lookOptions);
@@ -203,7 +203,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     SeamOptions seamOptions;
     seamOptions.threads = options.mip.threads;
     seamOptions.quantum = sampleQuantum(loaded->source);
-    report.before = measureChainSeams(seamChain(map, options.mip), options.threshold, seamOptions);
+    report.before = measureSeamChain(map, options.mip, options.threshold, seamOptions);
     report.alreadyTiled = report.before.tiles() && !options.force;
     progress("tile", 0.0);
 
@@ -287,7 +287,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     } else {
         SeamOptions afterOptions = seamOptions;
         afterOptions.quantum = Storage::quantum(report.bits);
-        report.after = measureChainSeams(seamChain(result, options.mip), options.threshold, afterOptions);
+        report.after = measureSeamChain(result, options.mip, options.threshold, afterOptions);
     }
     report.lookThresholds = options.look;
     report.look = looked ? *looked : measureTileLook(result, {&map, options.mip.threads, std::nullopt});

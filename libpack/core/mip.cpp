@@ -188,18 +188,26 @@ std::vector<Image> generateMipChain(const Image& level0, const MipOptions& optio
 }
 
 std::vector<Image> generateMipChain(Image&& level0, const MipOptions& options) {
+    std::vector<Image> below = generateMipLevelsBelow(level0, options);
+    std::vector<Image> chain;
+    chain.reserve(below.size() + 1);
+    chain.push_back(std::move(level0));
+    for (Image& level : below) chain.push_back(std::move(level));
+    return chain;
+}
+
+std::vector<Image> generateMipLevelsBelow(const Image& level0, const MipOptions& options) {
     assert(isPowerOfTwo(level0.width) && isPowerOfTwo(level0.height));
     const int levels = mipLevelCount(level0.width, level0.height);
-    std::vector<Image> chain;
-    chain.reserve(levels);
-    chain.push_back(std::move(level0));
+    std::vector<Image> below;
+    below.reserve(levels - 1);
     for (int level = 1; level < levels; ++level) {
-        const Image& above = chain.back();
+        const Image& above = level == 1 ? level0 : below.back();
         // Each level is made from the one above (not from level 0): the filter at ratio 2 has a fixed
         // set of weights, so the chain is exactly shift-invariant for periodic maps.
-        chain.push_back(resample(above, std::max(1, above.width / 2), std::max(1, above.height / 2), options));
+        below.push_back(resample(above, std::max(1, above.width / 2), std::max(1, above.height / 2), options));
     }
-    return chain;
+    return below;
 }
 
 }  // namespace heightpack

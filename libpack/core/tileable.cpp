@@ -252,15 +252,31 @@ std::optional<SeamFailure> firstSeamFailure(const std::vector<LevelSeams>& level
     return std::nullopt;
 }
 
-ChainSeams measureChainSeams(const std::vector<Image>& chain, double threshold, SeamOptions options) {
+namespace {
+
+ChainSeams measureLevels(const std::vector<const Image*>& chain, double threshold, SeamOptions options) {
     ChainSeams result;
     result.threshold = threshold;
     for (size_t level = 0; level < chain.size(); ++level) {
         options.level = static_cast<int>(level);
-        result.levels.push_back(measureSeams(chain[level], options));
+        result.levels.push_back(measureSeams(*chain[level], options));
     }
     result.failure = firstSeamFailure(result.levels, threshold);
     return result;
+}
+
+}  // namespace
+
+ChainSeams measureChainSeams(const std::vector<Image>& chain, double threshold, SeamOptions options) {
+    std::vector<const Image*> levels;
+    for (const Image& level : chain) levels.push_back(&level);
+    return measureLevels(levels, threshold, options);
+}
+
+ChainSeams measureChainSeams(const Image& level0, const std::vector<Image>& below, double threshold, SeamOptions options) {
+    std::vector<const Image*> levels{&level0};
+    for (const Image& level : below) levels.push_back(&level);
+    return measureLevels(levels, threshold, options);
 }
 
 const char* seamEdgeName(SeamEdge edge) { return edge == SeamEdge::LeftRight ? "left/right" : "top/bottom"; }

@@ -142,7 +142,7 @@ TEST(Quilt, ACropOfPeriodicCellsTilesAndLooksRight) {
     const QuiltResult r = quiltTile(crop);
     ASSERT_EQ(r.map.width, 160);
     ASSERT_EQ(r.map.height, 128);
-    EXPECT_TRUE(measureChainSeams(seamChain(r.map, MipOptions{})).tiles());
+    EXPECT_TRUE(measureSeamChain(r.map, MipOptions{}, kDefaultSeamThreshold, SeamOptions{}).tiles());
     const TileLook look = measureTileLook(r.map, {&crop, 0, std::nullopt});
     EXPECT_TRUE(look.passes()) << look.frame << " " << look.blobs << " " << look.echo;
     // No line at a strip's border either: the step across each border column is like the steps beside it.

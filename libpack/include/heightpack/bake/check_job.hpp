@@ -51,11 +51,13 @@ struct CheckReport {
 // The quantum of a source's samples: 1/255 for 8 bits, 1/65535 for 16, 0 for float.
 double sampleQuantum(const SourceInfo& source);
 
-// The mip chain `pack` would make from a flat map, for the seam measure: the whole chain when the sides
-// are powers of two, else level 0 alone (pack would resize first). Sets *note to say which.
-std::vector<Image> seamChain(const Image& heights, const MipOptions& mip, std::string* note = nullptr);
+// The seams of the mip chain `pack` would make from a flat map: the whole chain when the sides are powers
+// of two, else level 0 alone (pack would resize first; *note then says so). Level 0 is the heights
+// themselves, not a copy.
+ChainSeams measureSeamChain(const Image& heights, const MipOptions& mip, double threshold, const SeamOptions& seams,
+                            std::string* note = nullptr);
 
-// The verdict on heights already loaded (a flat map): the chain seamChain makes from them, scored level by
+// The verdict on heights already loaded (a flat map): the chain measureSeamChain measures, scored level by
 // level, the sample quantum taken from source. Kind "image"; input is source.path. Writes nothing:
 // options.previewPath is not used (seamPreview(heights, report.worst, report.threshold) draws the preview).
 CheckReport checkHeights(const Image& heights, const SourceInfo& source, const CheckOptions& options);

@@ -57,6 +57,8 @@ int nextPowerOfTwo(int n);
 std::vector<Image> generateMipChain(const Image& level0, const MipOptions& options);
 // The same, taking level0 as the chain's first level rather than copying it.
 std::vector<Image> generateMipChain(Image&& level0, const MipOptions& options);
+// The chain's levels below level0 (1, 2, ...): for a reader of the whole chain that has level0 already.
+std::vector<Image> generateMipLevelsBelow(const Image& level0, const MipOptions& options);
 inline std::vector<Image> generateMipChain(const Image& level0, Filter filter) {
     MipOptions options;
     options.filter = filter;

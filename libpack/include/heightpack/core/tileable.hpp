@@ -83,6 +83,8 @@ struct ChainSeams {
 // options.level is set per level.
 ChainSeams measureChainSeams(const std::vector<Image>& chain, double threshold = kDefaultSeamThreshold,
                              SeamOptions options = {});
+// The same for the chain of level0 and the levels below it (generateMipLevelsBelow's).
+ChainSeams measureChainSeams(const Image& level0, const std::vector<Image>& below, double threshold, SeamOptions options);
 
 // "left/right edges at level 2 (32x32): heights jump, score 12.3 (threshold 7.5)".
 std::string describeSeamFailure(const SeamFailure& failure, double threshold);
