@@ -287,38 +287,42 @@ Image atLookScale(const Image& input, int threads) {
 }
 
 // The map's power spectrum and the same smoothed over 5x5 frequency bins (a box, three times each way,
-// circular): the smooth part is the field's statistics, what stays in the ratio is fine structure.
+// circular): the smooth part is the field's statistics, what stays in the ratio is fine structure. Both
+// for the half kx <= w/2 only (columns x columns wide): the power is even, P(x, y) = P(w - x, -y), and the
+// symmetric smoothing keeps it so, so the other half is the mirror and need not be made.
 struct Spectra {
     Grid power, smooth;
-    Spectra(int w, int h) : power(w, h, Grid::unset), smooth(w, h, Grid::unset) {}  // both written in full
+    Spectra(int columns, int h) : power(columns, h, Grid::unset), smooth(columns, h, Grid::unset) {}  // both written in full
 };
 
 Spectra spectraOf(const HalfSpectrum& spectrum, int threads) {
-    const int h = spectrum.h, w = spectrum.w;
-    Spectra out(w, h);
+    const int h = spectrum.h, w = spectrum.w, columns = spectrum.columns;
+    Spectra out(columns, h);
     Grid& power = out.power;
     Grid& smooth = out.smooth;
     parallelFor(h, threads, [&](int begin, int end) {
         for (int y = begin; y < end; ++y)
-            for (int x = 0; x < w; ++x) {  // beyond the half, the power of the opposite frequency: the same
-                const std::complex<float> z = x < spectrum.columns ? spectrum.at(x, y) : spectrum.at(w - x, (h - y) % h);
-                power.at(x, y) = (x == 0 && y == 0) ? 0.0 : std::norm(std::complex<double>(z));
-            }
+            for (int x = 0; x < columns; ++x)
+                power.at(x, y) = (x == 0 && y == 0) ? 0.0 : std::norm(std::complex<double>(spectrum.at(x, y)));
     });
     // Smoothed over 5x5 frequency bins (a box, three times each way, circular), the first pass from the
-    // power itself. The neighbours' indices are wrapped once per line, not per texel; the sums add in the
-    // same order.
-    Grid next(w, h, Grid::unset);
-    std::vector<int> wrapX(size_t(w) + 4), wrapY(size_t(h) + 4);
-    for (int i = -2; i < w + 2; ++i) wrapX[i + 2] = (i + w) % w;
+    // power itself. A row's neighbours beyond the half (x < 0 or x >= columns, modulo w) are the mirror
+    // row's (-y) at w - x; the rows' indices are wrapped once per line, not per texel.
+    Grid next(columns, h, Grid::unset);
+    std::vector<int> wrapY(size_t(h) + 4);
     for (int i = -2; i < h + 2; ++i) wrapY[i + 2] = (i + h) % h;
     for (int pass = 0; pass < 3; ++pass) {
+        const Grid& from = pass == 0 ? power : smooth;
         parallelFor(h, threads, [&](int begin, int end) {
-            std::vector<double> padded(size_t(w) + 4);  // the row with its wrapped neighbours: no gather
+            std::vector<double> padded(size_t(columns) + 4);  // the row with its wrapped neighbours: no gather
             for (int y = begin; y < end; ++y) {
-                const double* row = &(pass == 0 ? power : smooth).v[size_t(y) * w];
-                for (int i = 0; i < w + 4; ++i) padded[i] = row[wrapX[i]];
-                for (int x = 0; x < w; ++x) {
+                const double* row = &from.v[size_t(y) * columns];
+                const double* mirror = &from.v[size_t((h - y) % h) * columns];
+                for (int i = 0; i < columns + 4; ++i) {
+                    const int x = ((i - 2) % w + w) % w;  // the full spectrum's column
+                    padded[i] = x < columns ? row[x] : mirror[w - x];
+                }
+                for (int x = 0; x < columns; ++x) {
                     double sum = 0;
                     for (int d = 0; d < 5; ++d) sum += padded[x + d];
                     next.at(x, y) = sum / 5;
@@ -328,8 +332,8 @@ Spectra spectraOf(const HalfSpectrum& spectrum, int threads) {
         parallelFor(h, threads, [&](int begin, int end) {
             for (int y = begin; y < end; ++y) {
                 const double* rows[5];
-                for (int d = 0; d < 5; ++d) rows[d] = &next.v[size_t(wrapY[y + d]) * w];
-                for (int x = 0; x < w; ++x) {
+                for (int d = 0; d < 5; ++d) rows[d] = &next.v[size_t(wrapY[y + d]) * columns];
+                for (int x = 0; x < columns; ++x) {
                     double sum = 0;
                     for (int d = 0; d < 5; ++d) sum += rows[d][x];
                     smooth.at(x, y) = sum / 5;
