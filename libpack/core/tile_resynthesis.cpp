@@ -181,6 +181,7 @@ double resynthesiseLines(StripField& field, const GaussianModel& model, const St
     constexpr int kBlock = 8;
     parallelFor((half + kBlock) / kBlock, threads, [&](int beginBlock, int endBlock) {
         std::vector<Complex> a(size_t(conditioning) * conditioning), weights(conditioning), block(size_t(band) * kBlock);
+        std::vector<double> re(band), im(band);
         for (int ky0 = beginBlock * kBlock; ky0 < std::min(half + 1, endBlock * kBlock); ky0 += kBlock) {
         const int kyEnd = std::min(half + 1, ky0 + kBlock);
         for (int ky = ky0; ky < kyEnd; ++ky) {
@@ -191,15 +192,30 @@ double resynthesiseLines(StripField& field, const GaussianModel& model, const St
                 weights[i] = Complex(r[0], r[1]);
             }
             choleskySolve(a, weights, conditioning);
-            for (int m = 0; m < band; ++m) {  // in real arithmetic, as in choleskySolve
-                double re = 0, im = 0;
-                for (int j = 0; j < conditioning; ++j) {
-                    const Complex z = cov(c + m - local(j), ky);
-                    re += z.real() * weights[j].real() - z.imag() * weights[j].imag();
-                    im += z.real() * weights[j].imag() + z.imag() * weights[j].real();
-                }
-                block[size_t(m) * kBlock + (ky - ky0)] = Complex(re, im);
+            // sum over j of cov(c + m - local(j)) weights[j], for every m at once (in real arithmetic, as
+            // in choleskySolve): each m's terms add in the order of j, and the lines m are the inner loop,
+            // which reads the covariances in a run (forwards for the context before the band, whose
+            // offsets are positive; backwards, conjugated, for the one after it) and vectorises.
+            std::fill(re.begin(), re.end(), 0.0);
+            std::fill(im.begin(), im.end(), 0.0);
+            const double* covRow = covHat.ptr<double>(ky);  // (re, im) per offset 0 .. strip - 1
+            for (int j = 0; j < conditioning; ++j) {
+                const double wr = weights[j].real(), wi = weights[j].imag();
+                const int base = c - local(j);  // the offset for m = 0; positive for j < c, else negative
+                if (j < c)
+                    for (int m = 0; m < band; ++m) {
+                        const double zr = covRow[2 * (base + m)], zi = covRow[2 * (base + m) + 1];
+                        re[m] += zr * wr - zi * wi;
+                        im[m] += zr * wi + zi * wr;
+                    }
+                else
+                    for (int m = 0; m < band; ++m) {
+                        const double zr = covRow[2 * (-base - m)], zi = -covRow[2 * (-base - m) + 1];
+                        re[m] += zr * wr - zi * wi;
+                        im[m] += zr * wi + zi * wr;
+                    }
             }
+            for (int m = 0; m < band; ++m) block[size_t(m) * kBlock + (ky - ky0)] = Complex(re[m], im[m]);
         }
         for (int m = 0; m < band; ++m)
             for (int ky = ky0; ky < kyEnd; ++ky) {
