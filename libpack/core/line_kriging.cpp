@@ -28,7 +28,10 @@ cv::Mat rowSpectra(int rows, int length, Get seq) {
 // In-place Cholesky of a Hermitian positive definite n x n matrix (lower triangle), then solves A x = b.
 // The inner products are written out in real arithmetic: std::complex's product checks for infinities
 // and NaNs on every call, which keeps the loops from vectorising (twice the time of the whole solve).
-void choleskySolve(std::vector<Complex>& a, std::vector<Complex>& b, int n) {
+// With AVX where the processor has it (chosen at load time; 0.1 s less CPU in a 4096^2 tile): the same
+// arithmetic in the same order, four partial sums to a register instead of two, and no FMA, so the same
+// bits as the SSE2 build.
+__attribute__((target_clones("avx", "default"))) void choleskySolve(std::vector<Complex>& a, std::vector<Complex>& b, int n) {
     // a[i n + k] times the conjugate of a[j n + k], summed over k < count.
     // Four partial sums (k modulo 4), added in a fixed order at the end: one running sum waits on each
     // add's latency, which was most of the solve's time.
