@@ -69,6 +69,36 @@ __attribute__((target_clones("avx", "default"))) void choleskySolve(std::vector<
 }
 
 
+// The kriged values of the band's lines m < band at one frequency: the sum over the 2 c conditioning
+// lines j of cov(c + m - local(j)) weights[j], local(j) = j for the context before the band and band + j
+// after it; covRow holds (re, im) of the covariance per offset 0 .. strip - 1. In real arithmetic, as in
+// choleskySolve, for every m at once: each m's terms add in the order of j, and the lines m are the inner
+// loop, which reads the covariances in a run (forwards for the context before the band, whose offsets are
+// positive; backwards, conjugated, for the one after it) and vectorises; with AVX as choleskySolve.
+__attribute__((target_clones("avx", "default"))) void krigedSums(const double* covRow, const Complex* weights, int c, int band,
+                                                                 double* re, double* im) {
+    std::fill(re, re + band, 0.0);
+    std::fill(im, im + band, 0.0);
+    for (int j = 0; j < 2 * c; ++j) {
+        const double wr = weights[j].real(), wi = weights[j].imag();
+        if (j < c) {
+            const int base = c - j;  // the offset for m = 0
+            for (int m = 0; m < band; ++m) {
+                const double zr = covRow[2 * (base + m)], zi = covRow[2 * (base + m) + 1];
+                re[m] += zr * wr - zi * wi;
+                im[m] += zr * wi + zi * wr;
+            }
+        } else {
+            const int base = band + j - c;  // minus the offset for m = 0
+            for (int m = 0; m < band; ++m) {
+                const double zr = covRow[2 * (base - m)], zi = -covRow[2 * (base - m) + 1];
+                re[m] += zr * wr - zi * wi;
+                im[m] += zr * wi + zi * wr;
+            }
+        }
+    }
+}
+
 }  // namespace
 
 // In the loops below, u runs across the lines and v along them.
@@ -111,29 +141,7 @@ double resynthesiseLines(StripField& field, const GaussianModel& model, const St
                 weights[i] = Complex(r[0], r[1]);
             }
             choleskySolve(a, weights, conditioning);
-            // sum over j of cov(c + m - local(j)) weights[j], for every m at once (in real arithmetic, as
-            // in choleskySolve): each m's terms add in the order of j, and the lines m are the inner loop,
-            // which reads the covariances in a run (forwards for the context before the band, whose
-            // offsets are positive; backwards, conjugated, for the one after it) and vectorises.
-            std::fill(re.begin(), re.end(), 0.0);
-            std::fill(im.begin(), im.end(), 0.0);
-            const double* covRow = covHat.ptr<double>(ky);  // (re, im) per offset 0 .. strip - 1
-            for (int j = 0; j < conditioning; ++j) {
-                const double wr = weights[j].real(), wi = weights[j].imag();
-                const int base = c - local(j);  // the offset for m = 0; positive for j < c, else negative
-                if (j < c)
-                    for (int m = 0; m < band; ++m) {
-                        const double zr = covRow[2 * (base + m)], zi = covRow[2 * (base + m) + 1];
-                        re[m] += zr * wr - zi * wi;
-                        im[m] += zr * wi + zi * wr;
-                    }
-                else
-                    for (int m = 0; m < band; ++m) {
-                        const double zr = covRow[2 * (-base - m)], zi = -covRow[2 * (-base - m) + 1];
-                        re[m] += zr * wr - zi * wi;
-                        im[m] += zr * wi + zi * wr;
-                    }
-            }
+            krigedSums(covHat.ptr<double>(ky), weights.data(), c, band, re.data(), im.data());
             for (int m = 0; m < band; ++m) block[size_t(m) * kBlock + (ky - ky0)] = Complex(re[m], im[m]);
         }
         for (int m = 0; m < band; ++m)
