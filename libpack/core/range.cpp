@@ -7,8 +7,8 @@
 
 namespace heightpack::detail {
 
-void easeIntoRange(Image& out, const Image& source, int threads) {
-    const SampleRange in = sampleRange(source, threads), now = sampleRange(out, threads);
+void easeIntoRange(Image& out, SampleRange in, int threads) {
+    const SampleRange now = sampleRange(out, threads);
     const double margin = 0.02 * (double(in.high) - in.low);
     if (!(margin > 0)) return;
     // The knees: values beyond them are eased, each towards its own extreme.

@@ -10,6 +10,6 @@ namespace heightpack::detail {
 // of an extreme and beyond are eased into that 2% (tanh: monotone, continuous); the rest, the whole middle
 // of the range, is untouched. Nothing changes when out stays within source's range. On `threads` threads
 // (0 = all cores), with the same result on any number.
-void easeIntoRange(Image& out, const Image& source, int threads);
+void easeIntoRange(Image& out, SampleRange source, int threads);
 
 }  // namespace heightpack::detail

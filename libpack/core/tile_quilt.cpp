@@ -238,7 +238,7 @@ QuiltResult quiltTile(const Image& map, const QuiltOptions& options) {
     result.sourceY[1] = ydy;
     result.map = Image(w, h, 1);
     std::transform(f.v.begin(), f.v.end(), result.map.pixels.begin(), [](double x) { return static_cast<float>(x); });
-    detail::easeIntoRange(result.map, map, options.threads);
+    detail::easeIntoRange(result.map, sampleRange(map, options.threads), options.threads);
     return result;
 }
 

@@ -49,15 +49,14 @@ double quantisationNoise(size_t n, Runs runs) {
 }
 
 // quantisationNoise of values: from a histogram where every value is a whole number of quanta (a map read
-// from integer samples: no sort), else from the sorted values.
-double quantisationNoise(const std::vector<float>& values, double quantum, int threads) {
+// from integer samples: no sort), else from the sorted values. range: the values' (used with a quantum).
+double quantisationNoise(const std::vector<float>& values, double quantum, SampleRange range, int threads) {
     const size_t n = values.size();
     if (quantum > 0 && n > 0) {
         // Counted in fixed chunks, each its own histogram, summed in order: the same on any thread count.
         constexpr int kChunks = 16;
         constexpr double kMostLevels = 1 << 17;  // 8- and 16-bit samples, and some headroom
         const size_t chunk = (n + kChunks - 1) / kChunks;
-        const SampleRange range = sampleRange(values, threads);
         const double inverse = 1 / quantum, first = std::round(range.low * inverse), levels = std::round(range.high * inverse) - first + 1;
         std::vector<std::vector<size_t>> counts(levels <= kMostLevels ? kChunks : 0);
         std::vector<char> whole(kChunks, 1);
@@ -130,6 +129,7 @@ struct Resynthesiser::State {
     const Image& map;
     int threads;
     std::vector<float> dequantised;  // the map with its quantisation undone, where it has terraces
+    SampleRange mapRange;                              // the map's lowest and highest values
     const std::vector<float>* values = &map.pixels;  // the values modelled: the map's or those
     double noise = 0;
     std::optional<GaussianModel> model;
@@ -169,12 +169,13 @@ Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : st
     //    large scales at the least sigma taken off (step 2): the field the bands are conditioned in, so one
     //    Gaussianisation serves the model and every attempt whose bands ask no larger sigma.
     State& s = *state_;
+    s.mapRange = sampleRange(map, threads);
     const bool terraced = quantum > 0 && detail::hasTerraces(map, threads);
     if (terraced) {
         s.dequantised = detail::dequantised(map, quantum, threads);
         s.values = &s.dequantised;
     }
-    s.noise = quantisationNoise(*s.values, terraced ? 0.0 : quantum, threads);
+    s.noise = quantisationNoise(*s.values, terraced ? 0.0 : quantum, s.mapRange, threads);
     s.useSigma(largeScaleSigma(0, 0, w, h), w, h);
     s.model.emplace(detail::modelOf(s.gaussian, s.noise, threads));
     s.correlationX = slopeCorrelationLength(s.model->lagX);
@@ -249,7 +250,7 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
             }
         }
     });
-    detail::easeIntoRange(result.map, map, threads);
+    detail::easeIntoRange(result.map, s.mapRange, threads);
     return result;
 }
 
