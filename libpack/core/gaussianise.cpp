@@ -1,182 +1,16 @@
 #include "gaussianise.hpp"
 
 #include <algorithm>
-#include <bit>
-#include <limits>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
+#include <limits>
 #include <numbers>
 #include <span>
-#include <utility>
 
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/parallel.hpp"
 
 namespace heightpack::detail {
-
-namespace {
-
-// A float's bits as an unsigned key that sorts as the float does (negatives flipped, positives with the
-// sign bit set); -0 counts as +0, as comparison has it.
-uint32_t keyOf(float v) {
-    uint32_t u;
-    const float canonical = v == 0.0f ? 0.0f : v;
-    std::memcpy(&u, &canonical, sizeof u);
-    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
-}
-
-float valueOfKey(uint32_t key) {
-    const uint32_t u = (key & 0x80000000u) ? (key & 0x7fffffffu) : ~key;
-    float v;
-    std::memcpy(&v, &u, sizeof v);
-    return v;
-}
-
-}  // namespace
-
-namespace {
-
-// The whole sort in passes of 11 bits over all items (least significant digit first).
-Buffer<uint64_t> digitSortedItems(std::span<const float> values, int threads) {
-    const size_t n = values.size();
-    // The items in a fixed number of chunks: each pass counts digits per chunk on any thread, then each
-    // chunk scatters its items, in order, from its own start in each bucket. A stable sort has one result,
-    // so the thread count cannot change it. Both arrays are first written by the chunks (no serial zeroing).
-    constexpr int kChunks = 64, kBits = 11, kBuckets = 1 << kBits;
-    const size_t chunkSize = (n + kChunks - 1) / kChunks;
-    auto chunkRange = [&](int c) { return std::pair<size_t, size_t>(std::min(n, c * chunkSize), std::min(n, (c + 1) * chunkSize)); };
-    Buffer<uint64_t> items(n), scratch(n);  // key << 32 | index
-    parallelFor(kChunks, threads, [&](int begin, int end) {
-        for (size_t i = chunkRange(begin).first; i < chunkRange(end - 1).second; ++i) items[i] = uint64_t(keyOf(values[i])) << 32 | i;
-    });
-    std::vector<size_t> counts(size_t(kChunks) * kBuckets);
-    for (int shift = 32; shift < 64; shift += kBits) {
-        parallelFor(kChunks, threads, [&](int begin, int end) {
-            for (int c = begin; c < end; ++c) {
-                size_t* count = &counts[size_t(c) * kBuckets];
-                std::fill(count, count + kBuckets, size_t(0));
-                const auto [from, to] = chunkRange(c);
-                for (size_t i = from; i < to; ++i) ++count[(items[i] >> shift) & (kBuckets - 1)];
-            }
-        });
-        // Each (chunk, bucket)'s first place: buckets in order, chunks in order within a bucket.
-        size_t next = 0;
-        bool oneBucket = false;
-        for (int b = 0; b < kBuckets; ++b) {
-            const size_t bucketStart = next;
-            for (int c = 0; c < kChunks; ++c) {
-                const size_t count = counts[size_t(c) * kBuckets + b];
-                counts[size_t(c) * kBuckets + b] = next;
-                next += count;
-            }
-            oneBucket = oneBucket || next - bucketStart == n;
-        }
-        if (oneBucket) continue;  // every digit the same: no change
-        parallelFor(kChunks, threads, [&](int begin, int end) {
-            for (int c = begin; c < end; ++c) {
-                size_t* start = &counts[size_t(c) * kBuckets];
-                const auto [from, to] = chunkRange(c);
-                for (size_t i = from; i < to; ++i) scratch[start[(items[i] >> shift) & (kBuckets - 1)]++] = items[i];
-            }
-        });
-        items.swap(scratch);
-    }
-    return items;
-}
-
-// Sorts items[0, n) (key << 32 | index, in index order among equal keys) by key, stably, through scratch
-// (at least n): passes of 11 bits over only the bits in which the keys differ. For a bucket that fits in
-// the cache.
-void sortBucket(uint64_t* items, uint64_t* scratch, size_t n) {
-    if (n < 2) return;
-    uint64_t any = 0, all = ~uint64_t(0);
-    for (size_t i = 0; i < n; ++i) {
-        any |= items[i];
-        all &= items[i];
-    }
-    const uint32_t differing = static_cast<uint32_t>((any ^ all) >> 32);
-    if (differing == 0) return;
-    constexpr int kBits = 11, kBuckets = 1 << kBits;
-    const int low = std::countr_zero(differing), high = 32 - std::countl_zero(differing);
-    size_t count[kBuckets];
-    uint64_t* from = items;
-    uint64_t* to = scratch;
-    for (int shift = 32 + low; shift < 32 + high; shift += kBits) {
-        std::fill(count, count + kBuckets, size_t(0));
-        for (size_t i = 0; i < n; ++i) ++count[(from[i] >> shift) & (kBuckets - 1)];
-        size_t next = 0;
-        for (size_t& c : count) next += std::exchange(c, next);
-        for (size_t i = 0; i < n; ++i) to[count[(from[i] >> shift) & (kBuckets - 1)]++] = from[i];
-        std::swap(from, to);
-    }
-    if (from != items) std::copy(from, from + n, items);
-}
-
-}  // namespace
-
-Buffer<uint64_t> sortedItems(std::span<const float> values, int threads) {
-    const size_t n = values.size();
-    // First by bucket: the range of values cut into equal parts, about 4096 values a part on average
-    // (a bucket is monotone in the value, so buckets in order hold the values in order); the items
-    // scattered into their buckets once, in index order, then each bucket sorted alone while it is in the
-    // cache. The whole-array digit passes read and wrote every item three times over. A map whose values
-    // crowd into few parts (a flat region, a handful of levels) is sorted by those passes instead. Either
-    // way the sort is stable, with one result on any thread count.
-    constexpr size_t kPerBucket = 4096;
-    constexpr int kChunks = 64;
-    const size_t buckets = std::min<size_t>(n / kPerBucket, size_t(1) << 16);
-    if (buckets < 16) return digitSortedItems(values, threads);
-    const SampleRange range = sampleRange(values, threads);
-    const double low = range.low, scale = double(buckets) / (double(range.high) - low);
-    if (!(scale < std::numeric_limits<double>::infinity())) return digitSortedItems(values, threads);  // one value
-    auto bucketOf = [&](float v) { return std::min(buckets - 1, static_cast<size_t>((double(v) - low) * scale)); };
-    const size_t chunkSize = (n + kChunks - 1) / kChunks;
-    std::vector<size_t> starts(size_t(kChunks) * buckets);  // per chunk, per bucket: counts, then first places
-    parallelFor(kChunks, threads, [&](int begin, int end) {
-        for (int c = begin; c < end; ++c) {
-            size_t* count = &starts[size_t(c) * buckets];
-            for (size_t i = std::min(n, c * chunkSize); i < std::min(n, (c + 1) * chunkSize); ++i) ++count[bucketOf(values[i])];
-        }
-    });
-    std::vector<size_t> bucketStart(buckets + 1);
-    size_t next = 0, largest = 0;
-    for (size_t b = 0; b < buckets; ++b) {
-        bucketStart[b] = next;
-        for (int c = 0; c < kChunks; ++c) next += std::exchange(starts[size_t(c) * buckets + b], next);
-        largest = std::max(largest, next - bucketStart[b]);
-    }
-    bucketStart[buckets] = n;
-    if (largest > n / 16) return digitSortedItems(values, threads);  // crowded: one thread would sort most
-    Buffer<uint64_t> items(n);
-    parallelFor(kChunks, threads, [&](int begin, int end) {
-        for (int c = begin; c < end; ++c) {
-            size_t* start = &starts[size_t(c) * buckets];
-            for (size_t i = std::min(n, c * chunkSize); i < std::min(n, (c + 1) * chunkSize); ++i)
-                items[start[bucketOf(values[i])]++] = uint64_t(keyOf(values[i])) << 32 | i;
-        }
-    });
-    // The buckets in groups of about equal numbers of items, so the threads' shares are even.
-    std::vector<size_t> groupStart;  // bucket indices
-    for (size_t b = 0; b < buckets; ++b)
-        if (groupStart.empty() || bucketStart[b] * kChunks >= groupStart.size() * n) groupStart.push_back(b);
-    groupStart.push_back(buckets);
-    parallelFor(int(groupStart.size()) - 1, threads, [&](int begin, int end) {
-        Buffer<uint64_t> scratch(largest);
-        for (size_t b = groupStart[size_t(begin)]; b < groupStart[size_t(end)]; ++b)
-            sortBucket(&items[bucketStart[b]], scratch.data(), bucketStart[b + 1] - bucketStart[b]);
-    });
-    return items;
-}
-
-std::vector<uint32_t> stableOrder(std::span<const float> values, int threads) {
-    const Buffer<uint64_t> items = sortedItems(values, threads);
-    std::vector<uint32_t> order(items.size());
-    parallelFor(static_cast<int>((items.size() + 65535) / 65536), threads, [&](int begin, int end) {
-        for (size_t i = size_t(begin) * 65536; i < std::min(items.size(), size_t(end) * 65536); ++i) order[i] = static_cast<uint32_t>(items[i]);
-    });
-    return order;
-}
 
 double normalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 
@@ -217,16 +51,134 @@ double inverseNormalCdf(double p) {
     return x - u / (1 + x * u / 2);
 }
 
-Gaussianiser::Gaussianiser(std::span<const float> values, int threads) : sorted(values.size()), gaussian(values.size()) {
-    const size_t n = values.size();
-    if (n == 0) return;
+Gaussianiser::Gaussianiser(std::span<const float> values, int threads) : gaussian(values.size()), n_(values.size()) {
+    if (n_ == 0) return;
+    if (!binnedRanks(values, threads)) sortedRanks(values, threads);
+}
+
+bool Gaussianiser::binnedRanks(std::span<const float> values, int threads) {
+    const size_t n = n_;
+    constexpr size_t kLeast = size_t(1) << 20;
+    if (n < kLeast) return false;
+    const SampleRange range = sampleRange(values, threads);
+    const double low = range.low, scale = kRankBins / (double(range.high) - low);
+    if (!(scale < std::numeric_limits<double>::infinity())) return false;  // one value
+    auto binOf = [&](float v) { return std::min(kRankBins - 1, static_cast<int>((double(v) - low) * scale)); };
+    // Counts, lowest and highest per part, per worker (sums and extremes: the same in any split), merged.
+    const int workers = std::min(resolveThreadCount(threads), 16);
+    struct Part {
+        size_t count = 0;
+        float low = std::numeric_limits<float>::infinity(), high = -std::numeric_limits<float>::infinity();
+    };
+    std::vector<std::vector<Part>> parts(static_cast<size_t>(workers));
+    parallelFor(workers, workers, [&](int first, int last) {
+        for (int worker = first; worker < last; ++worker) {
+            std::vector<Part>& mine = parts[size_t(worker)];
+            mine.assign(kRankBins, Part{});
+            const size_t from = n * size_t(worker) / size_t(workers), to = n * size_t(worker + 1) / size_t(workers);
+            for (size_t i = from; i < to; ++i) {
+                const float v = values[i] == 0.0f ? 0.0f : values[i];  // -0 as +0, as comparison has it
+                Part& p = mine[size_t(binOf(v))];
+                ++p.count;
+                p.low = std::min(p.low, v);
+                p.high = std::max(p.high, v);
+            }
+        }
+    });
+    binned_.assign(kRankBins, Bin{});
+    size_t next = 0;
+    const size_t crowded = 64 * (n / kRankBins);  // a smooth density's peak part holds a few times the mean
+    for (int b = 0; b < kRankBins; ++b) {
+        Bin& bin = binned_[size_t(b)];
+        bin.low = std::numeric_limits<float>::infinity();
+        bin.high = -std::numeric_limits<float>::infinity();
+        for (const std::vector<Part>& mine : parts) {
+            bin.count += mine[size_t(b)].count;
+            bin.low = std::min(bin.low, mine[size_t(b)].low);
+            bin.high = std::max(bin.high, mine[size_t(b)].high);
+        }
+        bin.first = next;
+        next += bin.count;
+        if (bin.count > crowded && bin.low != bin.high) {  // crowded, and not one value: sort instead
+            binned_.clear();
+            return false;
+        }
+    }
+    // Each part's ranks: its lowest value's, interpolated to its highest's; a part of one value, its
+    // mid-rank; the Gaussians interpolated alike. A rank's place within its part is only as good as the
+    // part's values are even (a few ranks off, as order statistics go), so where one rank moves the
+    // Gaussian by more than 1e-5 (the tails: beyond 2.9 standard deviations at 2^24 values, where it
+    // curves like a logarithm and a rank moves it by tenths at the far end) the part is "curved": its
+    // values are sorted, for their exact ranks.
+    auto quantile = [&](double rank) { return acklamQuantile((rank + 0.5) / double(n)); };
+    for (Bin& bin : binned_) {
+        if (bin.count == 0) continue;
+        if (bin.low == bin.high) {
+            bin.gaussian = quantile(double(bin.first) + 0.5 * double(bin.count - 1));
+            continue;
+        }
+        const double last = double(bin.first + bin.count - 1), span = double(bin.high) - bin.low;
+        bin.gaussian = quantile(double(bin.first));
+        bin.slope = (quantile(last) - bin.gaussian) / span;
+        bin.curved = bin.slope * span / (last - double(bin.first)) > 1e-5;
+    }
+    // Every value's Gaussian, those of curved parts gathered (key << 32 | index, per worker in index
+    // order, so the whole list is in index order on any split).
+    std::vector<std::vector<uint64_t>> tails(static_cast<size_t>(workers));
+    parallelFor(workers, workers, [&](int first, int last) {
+        for (int worker = first; worker < last; ++worker) {
+            const size_t from = n * size_t(worker) / size_t(workers), to = n * size_t(worker + 1) / size_t(workers);
+            for (size_t i = from; i < to; ++i) {
+                const float v = values[i] == 0.0f ? 0.0f : values[i];
+                const Bin& bin = binned_[size_t(binOf(v))];
+                if (bin.curved) tails[size_t(worker)].push_back(uint64_t(keyOf(v)) << 32 | i);
+                else gaussian[i] = bin.gaussian + (double(v) - bin.low) * bin.slope;
+            }
+        }
+    });
+    std::vector<uint64_t> tail;
+    for (const std::vector<uint64_t>& t : tails) tail.insert(tail.end(), t.begin(), t.end());
+    std::sort(tail.begin(), tail.end());  // by value, then index: the tails' values in rank order
+    tailValues_.resize(tail.size());
+    for (size_t k = 0; k < tail.size(); ++k) tailValues_[k] = valueOfKey(uint32_t(tail[k] >> 32));
+    for (size_t start = 0; start < tail.size();) {
+        // A run of equal values, within one part: its ranks from the part's first.
+        const Bin& bin = binned_[size_t(binOf(tailValues_[start]))];
+        size_t stop = start + 1;
+        while (stop < tail.size() && tailValues_[stop] == tailValues_[start]) ++stop;
+        size_t partStart = start;  // the part's first place in the tail list
+        while (partStart > 0 && binOf(tailValues_[partStart - 1]) == binOf(tailValues_[start])) --partStart;
+        const double rank = double(bin.first + (start - partStart)) + 0.5 * double(stop - start - 1);
+        for (size_t k = start; k < stop; ++k) gaussian[uint32_t(tail[k])] = quantile(rank);
+        start = stop;
+    }
+    size_t offset = 0;
+    for (Bin& bin : binned_)
+        if (bin.curved) {
+            bin.tailOffset = offset;
+            offset += bin.count;
+        }
+    // For back: the part holding each of kRankBins evenly spaced ranks, so a rank's part is a short walk.
+    binOfRank_.resize(kRankBins);
+    int b = 0;
+    for (size_t k = 0; k < binOfRank_.size(); ++k) {
+        const size_t rank = n * k / binOfRank_.size();
+        while (binned_[size_t(b)].first + binned_[size_t(b)].count <= rank) ++b;
+        binOfRank_[k] = b;
+    }
+    return true;
+}
+
+void Gaussianiser::sortedRanks(std::span<const float> values, int threads) {
+    const size_t n = n_;
+    sorted_.resize(n);
     // The (value, index) pairs by value then index: a stable radix sort of the values' bits, which keeps
     // the index order of equal values (and is ~10x std::sort's time on millions of texels). The sorted
     // values come back from the keys, in order, rather than gathered from all over the input.
     const Buffer<uint64_t> items = sortedItems(values, threads);
     auto indexAt = [&](size_t k) { return static_cast<uint32_t>(items[k]); };
     parallelFor(static_cast<int>((n + 65535) / 65536), threads, [&](int begin, int end) {
-        for (size_t i = size_t(begin) * 65536; i < std::min(n, size_t(end) * 65536); ++i) sorted[i] = valueOfKey(uint32_t(items[i] >> 32));
+        for (size_t i = size_t(begin) * 65536; i < std::min(n, size_t(end) * 65536); ++i) sorted_[i] = valueOfKey(uint32_t(items[i] >> 32));
     });
     // Runs of equal values share their mid-rank's quantile; the quantiles are computed on all threads.
     // Acklam's approximation alone: its error (1.15e-9 relative) is far below the spacing of neighbouring
@@ -237,12 +189,12 @@ Gaussianiser::Gaussianiser(std::span<const float> values, int threads) : sorted(
     constexpr size_t kPlaces = 65536;
     parallelFor(static_cast<int>((n + kPlaces - 1) / kPlaces), threads, [&](int begin, int end) {
         for (size_t start = size_t(begin) * kPlaces, last = std::min(n, size_t(end) * kPlaces); start < last;) {
-            if (start > 0 && sorted[start] == sorted[start - 1]) {  // inside a run an earlier block takes
+            if (start > 0 && sorted_[start] == sorted_[start - 1]) {  // inside a run an earlier block takes
                 ++start;
                 continue;
             }
             size_t stop = start + 1;
-            while (stop < n && sorted[stop] == sorted[start]) ++stop;
+            while (stop < n && sorted_[stop] == sorted_[start]) ++stop;
             const double g = acklamQuantile((0.5 * double(start + stop - 1) + 0.5) / double(n));
             for (size_t k = start; k < stop; ++k) gaussian[indexAt(k)] = g;
             start = stop;
@@ -250,22 +202,51 @@ Gaussianiser::Gaussianiser(std::span<const float> values, int threads) : sorted(
     });
 }
 
+float Gaussianiser::binnedValue(double rank) const {
+    size_t b = size_t(binOfRank_[std::min(binOfRank_.size() - 1, static_cast<size_t>(rank / double(n_) * double(binOfRank_.size())))]);
+    // From a part that starts at or before the rank, on past those that end at or before it (empty parts
+    // among them): the part that holds it.
+    while (b + 1 < binned_.size() && double(binned_[b].first + binned_[b].count) <= rank) ++b;
+    const Bin& bin = binned_[b];
+    // The value of rank first + place, place a whole number: the part's lowest, its highest, a sorted
+    // one (curved), or one interpolated in the part.
+    auto valueAt = [&](size_t place) -> double {
+        if (bin.curved) return tailValues_[bin.tailOffset + place];
+        return bin.count < 2 ? bin.low : bin.low + (double(bin.high) - bin.low) * double(place) / double(bin.count - 1);
+    };
+    const double place = std::max(0.0, rank - double(bin.first));
+    const size_t i = std::min(static_cast<size_t>(place), bin.count - 1);
+    if (place <= double(bin.count - 1)) {
+        if (i + 1 >= bin.count) return static_cast<float>(valueAt(i));
+        return static_cast<float>(valueAt(i) + (valueAt(i + 1) - valueAt(i)) * (place - double(i)));
+    }
+    // Between the part's last rank and the next part's first: towards the next part's lowest value.
+    size_t next = b + 1;
+    while (next < binned_.size() && binned_[next].count == 0) ++next;
+    if (next == binned_.size()) return bin.high;
+    return static_cast<float>(valueAt(bin.count - 1) + (double(binned_[next].low) - valueAt(bin.count - 1)) * (place - double(bin.count - 1)));
+}
+
 void Gaussianiser::back(const double* g, float* out, size_t count) const {
+    const double top = double(n_ - 1);
+    if (!binned_.empty()) {
+        for (size_t k = 0; k < count; ++k) out[k] = binnedValue(std::clamp(normalCdf(g[k]) * double(n_) - 0.5, 0.0, top));
+        return;
+    }
     // In groups: every place of a group found (and its sorted values asked of memory) before any is read,
     // so the misses of a group overlap instead of each waiting on the last.
     constexpr size_t kGroup = 16;
-    const double top = double(sorted.size() - 1);
     for (size_t start = 0; start < count; start += kGroup) {
         const size_t n = std::min(kGroup, count - start);
         double pos[kGroup];
         for (size_t k = 0; k < n; ++k) {
-            pos[k] = std::clamp(normalCdf(g[start + k]) * sorted.size() - 0.5, 0.0, top);
-            __builtin_prefetch(&sorted[static_cast<size_t>(pos[k])]);
+            pos[k] = std::clamp(normalCdf(g[start + k]) * double(n_) - 0.5, 0.0, top);
+            __builtin_prefetch(&sorted_[static_cast<size_t>(pos[k])]);
         }
         for (size_t k = 0; k < n; ++k) {
             const size_t i = static_cast<size_t>(pos[k]);
-            const size_t j = std::min(i + 1, sorted.size() - 1);
-            out[start + k] = static_cast<float>(sorted[i] + (double(sorted[j]) - sorted[i]) * (pos[k] - i));
+            const size_t j = std::min(i + 1, n_ - 1);
+            out[start + k] = static_cast<float>(sorted_[i] + (double(sorted_[j]) - sorted_[i]) * (pos[k] - i));
         }
     }
 }

@@ -283,13 +283,75 @@ TEST(StableOrder, EqualsStdStableSortWithTiesNegativesAndSignedZeros) {
         std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) { return values[a] < values[b]; });
         EXPECT_EQ(detail::stableOrder(values, 1), expected) << trial;
         EXPECT_EQ(detail::stableOrder(values, 3), expected) << trial;
-        // The Gaussianiser's sorted values come back from the sort's keys: the values in order (-0 as +0,
-        // which compares equal), every bit of every other value kept.
+        // The Gaussianiser (exact ranks below 2^20 values) takes each rank's quantile back to the rank's
+        // value: between its neighbours in the sorted order (-0 as +0, which compares equal).
         const detail::Gaussianiser ranks(values, 2);
-        ASSERT_EQ(ranks.sorted.size(), n);
+        ASSERT_TRUE(ranks.exact());
+        for (size_t k = 0; k < n; k += 1 + n / 200) {
+            const float back = ranks.back(detail::inverseNormalCdf((double(k) + 0.5) / double(n)));
+            const float below = values[expected[k == 0 ? 0 : k - 1]], above = values[expected[std::min(n - 1, k + 1)]];
+            ASSERT_TRUE(back >= below && back <= above) << trial << " " << k << ": " << back << " not in [" << below << ", " << above << "]";
+        }
+    }
+}
+
+TEST(Gaussianiser, BinnedRanksAreTheSortsToWithinTheirPartsOnLargeMaps) {
+    // 2^21 values from several distributions, against the exact mid-rank quantiles of a sort: the binned
+    // ranks (used from 2^20 values on) are off by little, ties exactly as the sort, and back returns a
+    // value within two parts' widths of the one whose Gaussian it is given. A cluster crowded into one part
+    // is sorted instead.
+    std::mt19937 random(5);
+    const size_t n = (size_t(1) << 21) + 12345;
+    for (int kind = 0; kind < 6; ++kind) {
+        std::vector<float> values(n);
+        std::normal_distribution<float> normal(0.0f, 1.0f);
+        std::exponential_distribution<float> exponential(3.0f);
+        for (float& v : values) {
+            switch (kind) {
+                case 0: v = normal(random); break;
+                case 1: v = std::uniform_real_distribution<float>(-1.0f, 3.0f)(random); break;
+                case 2: v = exponential(random); break;  // skewed, a long tail
+                case 3: v = random() % 5 == 0 ? 8.0f : normal(random); break;  // a fifth of them one value
+                case 4: v = (random() % 2 ? 40.0f : 0.0f) + normal(random); break;  // two clusters far apart
+                default: v = random() % 3 == 0 ? 0.5f + 1e-4f * normal(random) : 10 * normal(random); break;  // crowded
+            }
+        }
+        std::vector<uint32_t> order(n);
+        std::iota(order.begin(), order.end(), 0u);
+        std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return values[a] < values[b]; });
+        std::vector<double> reference(n);
+        for (size_t start = 0; start < n;) {
+            size_t stop = start + 1;
+            while (stop < n && values[order[stop]] == values[order[start]]) ++stop;
+            const double g = detail::inverseNormalCdf((0.5 * double(start + stop - 1) + 0.5) / double(n));
+            for (size_t k = start; k < stop; ++k) reference[order[k]] = g;
+            start = stop;
+        }
+        const detail::Gaussianiser ranks(values, 3);
+        if (kind == 5) {
+            EXPECT_TRUE(ranks.exact());
+            continue;
+        }
+        ASSERT_FALSE(ranks.exact()) << kind;
+        double worst = 0, squares = 0, worstBack = 0;
+        const double width = (double(values[order[n - 1]]) - values[order[0]]) / detail::Gaussianiser::kRankBins;
         for (size_t i = 0; i < n; ++i) {
-            const float want = values[expected[i]];
-            ASSERT_TRUE(want == 0.0f ? ranks.sorted[i] == 0.0f : std::memcmp(&ranks.sorted[i], &want, sizeof want) == 0) << trial << " " << i;
+            const double error = std::abs(ranks.gaussian[i] - reference[i]);
+            worst = std::max(worst, error);
+            squares += error * error;
+            if (kind == 3 && values[i] == 0.25f) {
+                ASSERT_NEAR(ranks.gaussian[i], reference[i], 1e-9) << "a tie takes its mid-rank";
+            }
+            if (i % 64 == 0) {
+                const double e = std::abs(double(ranks.back(reference[i])) - values[i]) / width;
+                worstBack = std::max(worstBack, e);
+            }
+        }
+        EXPECT_LT(std::sqrt(squares / double(n)), 1e-4) << kind;
+        EXPECT_LT(worst, 5e-3) << kind;  // the far tails, where a rank's quantile moves fastest
+        EXPECT_LT(worstBack, 2.0) << kind;
+        if (kind == 4) {
+            EXPECT_TRUE(detail::Gaussianiser(values, 1).gaussian == ranks.gaussian) << "the same on any thread count";
         }
     }
 }
