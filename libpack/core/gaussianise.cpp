@@ -141,13 +141,13 @@ bool Gaussianiser::binnedRanks(std::span<const float> values, int threads) {
     std::sort(tail.begin(), tail.end());  // by value, then index: the tails' values in rank order
     tailValues_.resize(tail.size());
     for (size_t k = 0; k < tail.size(); ++k) tailValues_[k] = valueOfKey(uint32_t(tail[k] >> 32));
+    size_t partStart = 0;  // the first place in the tail list of the part of the run at start
     for (size_t start = 0; start < tail.size();) {
         // A run of equal values, within one part: its ranks from the part's first.
+        if (start > 0 && binOf(tailValues_[start]) != binOf(tailValues_[start - 1])) partStart = start;
         const Bin& bin = binned_[size_t(binOf(tailValues_[start]))];
         size_t stop = start + 1;
         while (stop < tail.size() && tailValues_[stop] == tailValues_[start]) ++stop;
-        size_t partStart = start;  // the part's first place in the tail list
-        while (partStart > 0 && binOf(tailValues_[partStart - 1]) == binOf(tailValues_[start])) --partStart;
         const double rank = double(bin.first + (start - partStart)) + 0.5 * double(stop - start - 1);
         for (size_t k = start; k < stop; ++k) gaussian[uint32_t(tail[k])] = quantile(rank);
         start = stop;
