@@ -166,7 +166,7 @@ Image atLookScale(const Image& input, int threads) {
 
 // The map's power spectrum and the same smoothed over 5x5 frequency bins (a box, three times each way,
 // circular): the smooth part is the field's statistics, what stays in the ratio is fine structure. Both
-// for the half kx <= w/2 only (columns x columns wide): the power is even, P(x, y) = P(w - x, -y), and the
+// for the half kx <= w/2 only (w / 2 + 1 columns): the power is even, P(x, y) = P(w - x, -y), and the
 // symmetric smoothing keeps it so, so the other half is the mirror and need not be made.
 struct Spectra {
     Grid power, smooth;
