@@ -122,12 +122,9 @@ GaussianModel modelOf(const Field& g, double noise, int threads) {
         for (int b = begin; b < end; ++b) {
             double* columnSums = &blockX[size_t(b) * w];
             for (int r = b * kRows; r < std::min(h, (b + 1) * kRows); ++r) {
-                // Over the whole row, in order: the half, then the opposite row's half backwards.
-                const double* row = model.power.ptr<double>(r);
-                const double* mirror = model.power.ptr<double>((h - r) % h);
                 double sum = 0;
-                for (int q = 0; q < w; ++q) {
-                    const double p = q < columns ? row[q] : mirror[w - q];
+                for (int q = 0; q < w; ++q) {  // over the whole row, in order: the half, then its mirror
+                    const double p = model.powerAt(q, r);
                     sum += p;
                     columnSums[q] += p;
                 }

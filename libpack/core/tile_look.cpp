@@ -77,6 +77,8 @@ double ringScore(const std::vector<double>& profile, int reach, double floor) {
     return worst;
 }
 
+// The means of g's columns and of its rows, on all threads: each mean sums in one fixed order, so the
+// thread count cannot change it.
 Profiles profilesOf(const Grid& g, int threads) {
     Profiles p{std::vector<double>(g.w, 0.0), std::vector<double>(g.h, 0.0)};
     parallelFor(g.h, threads, [&](int begin, int end) {
