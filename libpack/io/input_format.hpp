@@ -61,9 +61,17 @@ Result<int> openReadable(const std::string& path);
 // saying the bytes are no image heightpack knows.
 Result<InputBytes> readInputBytes(const std::string& path);
 
+// The hint for a file in a format, or a variant of one, that heightpack does not read.
+inline constexpr const char* kExportHint = "export it as PNG, TIFF or EXR";
+
+// For judgeHeader (exr_header.cpp): an OpenEXR file's headers, each attribute read as OpenEXR 3.1 reads it
+// and required to end where its size says, the data windows against limits, the offset tables against the
+// file's size.
+Status judgeExrHeader(const std::string& path, const std::vector<unsigned char>& bytes, const SizeLimits& limits);
+
 // Judges what a header claims before any reader allocates for it: for an EXR, every attribute's size
-// against the bytes that follow, the data window against limits, and the chunk offset table against the
-// file's size; for a PNG, every chunk's length against the bytes left (libpng allocates a text chunk's
+// against the bytes that follow and against what OpenEXR reads of it, the data window against limits,
+// and the chunk offset table against the file's size; for a PNG, every chunk's length against the bytes left (libpng allocates a text chunk's
 // claimed length); for a JPEG, the marker segments' lengths, and the metadata segments are dropped from
 // input.bytes: no APPn but JFIF and Adobe, no comment, reaches the decoder. Fails with BadInput.
 Status judgeHeader(const std::string& path, InputBytes& input, const SizeLimits& limits);

@@ -345,6 +345,28 @@ TEST(IoSafety, HugeHeadersAreBadInputInEveryReader) {
     }
 }
 
+// Issue 34: every fuzz finding (tests/io/hostile) is refused within a small margin of the memory a command
+// needs to start, measured against info on a good file of the same size; the EXR whose channel list ran
+// past its size made OpenEXR allocate 2 GB before it failed.
+TEST(IoSafety, InfoOnEveryHostileInputStaysNearItsStartUpMemory) {
+    ScratchDir dir;
+    writeImage(dir.file("good.exr"), makeImage(8, 8, smoothWave), OIIO::TypeDesc::FLOAT);
+    const ProcessResult baseline = hp({"info", dir.file("good.exr")});
+    ASSERT_EQ(baseline.code, 0) << baseline.err;
+    ASSERT_GT(baseline.peakKiB, 0);
+    const long marginKiB = 32 * 1024;
+    int files = 0;
+    for (const auto& e : fs::directory_iterator(std::string(HEIGHTPACK_SOURCE_DIR) + "/tests/io/hostile")) {
+        if (e.path().extension() == ".md") continue;
+        const ProcessResult run = hp({"info", e.path().string()});
+        EXPECT_LE(run.peakKiB, baseline.peakKiB + marginKiB)
+            << e.path().filename() << ": " << run.peakKiB << " KiB against " << baseline.peakKiB << " KiB for a good file";
+        EXPECT_TRUE(run.code == 0 || run.code == 3) << e.path() << ": " << run.err;
+        ++files;
+    }
+    EXPECT_GE(files, 12);
+}
+
 // Item 8: an output that exists and is not a regular file, or is a link, is refused (exit 4).
 TEST(IoSafety, OutputsThatAreNotRegularFilesAreRefused) {
     ScratchDir dir;

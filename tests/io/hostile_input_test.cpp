@@ -46,7 +46,7 @@ TEST(HostileInput, EveryFuzzFindingIsRefusedNamingTheFileOrLoadsWhole) {
         ASSERT_FALSE(texture) << path;
         EXPECT_EQ(texture.error().kind, ErrorKind::BadInput) << path;
     }
-    EXPECT_EQ(refused, 10);
+    EXPECT_EQ(refused, 11);
 }
 
 // What the readers refuse and why, one file each, made here from a good file.

@@ -54,6 +54,7 @@ std::vector<unsigned char> pngWithClaimedSize(unsigned width, unsigned height);
 struct ProcessResult {
     int code = -1;
     std::string out, err;
+    long peakKiB = 0;  // the largest resident set of the process or of any process it waited for
 };
 
 // Runs argv (argv[0] looked up on PATH) with the given environment (this process's when empty),
