@@ -1,8 +1,22 @@
 #include "hints.hpp"
 
+#include <filesystem>
+
 #include "heightpack/io/read.hpp"
 
 namespace heightpack::cli {
+
+std::string manifestReference() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (const fs::path self = fs::read_symlink("/proc/self/exe", ec); !ec) {
+        const fs::path installed = (self.parent_path() / HEIGHTPACK_DOC_FROM_BIN / "manifest.md").lexically_normal();
+        if (fs::is_regular_file(installed, ec)) return installed.string();
+    }
+    const fs::path source = fs::path(HEIGHTPACK_SOURCE_DOCS) / "manifest.md";
+    if (fs::is_regular_file(source, ec)) return source.string();
+    return "docs/manifest.md in heightpack's source";
+}
 
 std::string cliHint(const Error& error) {
     const auto arg = [&](size_t i) { return i < error.fixArgs.size() ? error.fixArgs[i] : std::string(); };
@@ -28,6 +42,8 @@ std::string cliHint(const Error& error) {
                                    : "--layout xy stores two channels, leaving no alpha for --height-in-alpha or "
                                      "--variance-in-alpha";
         case Fix::VarianceNeedsLevels: return "--variance-in-alpha is for mip-mapped outputs: write .exr";
+        case Fix::ManifestReference:
+            return arg(0) + (arg(0).empty() ? "" : " ") + "see " + manifestReference() + " for every key";
         case Fix::MakeTileable: {
             std::string command = "heightpack tile " + arg(0) + " -o " + arg(1);
             if (!arg(2).empty()) command += " --filter " + arg(2);

@@ -44,6 +44,8 @@ enum class Fix {
     RgbNormals,             // xy normals asked where only rgb fit; fixArgs: {"png"} (an 8-bit PNG has no mip
                             // levels) or {"alpha"} (two channels leave no alpha)
     VarianceNeedsLevels,    // slope variance in alpha asked of a one-level PNG: write a mip-mapped texture
+    ManifestReference,      // a manifest key or value is wrong: the manifest reference (docs/manifest.md, installed
+                            // with heightpack's documentation) lists every key; fixArgs: {what to do first, or ""}
 };
 
 struct Error {
