@@ -43,6 +43,21 @@ if(NOT EXISTS "${reference}" OR NOT reference STREQUAL installed_reference)
   message(FATAL_ERROR "the manifest error names ${reference}, not the installed ${installed_reference}:\n${err}")
 endif()
 
+# A pure asset project (LANGUAGES NONE: no compiler) finds the package and builds a material with it;
+# asking it for a library instead says that the libraries need C++.
+set(assets_build ${WORK_DIR}/assets_build)
+run(${CMAKE_COMMAND} -S ${src}/assets_only -B ${assets_build} -G Ninja -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
+run(${CMAKE_COMMAND} --build ${assets_build})
+if(NOT EXISTS ${assets_build}/water/material.json OR NOT EXISTS ${assets_build}/water/chop.exr)
+  message(FATAL_ERROR "the asset project without a compiler did not build its water material:\n${out}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${src}/assets_only -B ${WORK_DIR}/assets_core_build -G Ninja
+                        -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DHEIGHTPACK_COMPONENTS=core
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "are C\\+\\+: enable CXX")
+  message(FATAL_ERROR "asking for heightpack::core without C++ did not say it needs C++ (${rc}):\n${out}\n${err}")
+endif()
+
 # heightpack::core alone: configured, built (with image and TOML library headers poisoned) and run, and it
 # links no image or TOML library.
 set(core_build ${WORK_DIR}/core_build)
