@@ -141,7 +141,7 @@ Status makeSynthesised(const SynthSource& sea, int frame, const std::string& int
         flat.channelNames.push_back("Foam");
     }
     flat.threads = threads;
-    flat.attributes = {attribute(attr::layout, "synthesised"), attribute(attr::version, pack.version)};
+    flat.attributes = {attribute(attr::layout, attr::synthesised), attribute(attr::version, pack.version)};
     if (sea.frames > 1) {
         flat.attributes.push_back(attribute(attr::frame, std::to_string(frame) + "/" + std::to_string(sea.frames)));
         flat.attributes.push_back(attribute(attr::loopPeriod, static_cast<float>(sea.spectrum.loopPeriod)));
