@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
                    "where the height is in a painted colour map: r, g, b, a, luma, or a channel's name (height.Y, Z)");
     app.add_option("--explosion", explosion, "drop an explosion at x,y (metres) at t = 0 [,start time s [,strength I0]]");
     app.add_flag("--panel", o.panelInScreenshot, "draw the panel into --screenshot too");
-    app.add_option("--tiled", tiled, "flat view of the first map tiled NxM, to look for seams (e.g. 3x3)");
+    app.add_option("--tiled", tiled, "flat view of the first map tiled NxM, to look for seams (e.g. 3x3); the tiles keep the map's shape");
     app.add_flag("--seams", o.settings.seamLines, "draw the tile lines in the tiled view");
     app.add_option("--screenshot", o.screenshot, "render one frame offscreen to this PNG and exit (works under xvfb-run)");
     app.add_option("--grid-heights", o.gridHeights,
