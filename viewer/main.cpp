@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "app.hpp"
 #include "exit_codes.hpp"
@@ -27,6 +29,17 @@ bool parseFloats(const std::string& text, std::vector<float>& out) {
         else if (*p) return false;
     }
     return !out.empty();
+}
+
+// One field of every map's defaults, "64,16,4,1", for --help.
+std::string defaultsOf(float heightpack::view::LayerSettings::*field) {
+    std::string text;
+    for (const auto& layer : heightpack::view::RenderSettings{}.layers) {
+        char number[32];
+        std::snprintf(number, sizeof number, "%s%g", text.empty() ? "" : ",", double(layer.*field));
+        text += number;
+    }
+    return text;
 }
 
 }  // namespace
@@ -80,8 +93,14 @@ int main(int argc, char** argv) {
     app.add_flag("--two-pass", o.settings.twoPass, "combine the maps into an fp32 texture first (render-to-texture)");
     app.add_flag("--no-frustum-branch", frustumOff, "sample every vertex, even outside the guard-banded frustum");
     app.add_flag("--wireframe", o.settings.wireframe, "draw the grid as lines");
-    app.add_option("--tile-size", tileSizes, "metres each map's tile spans, in the maps' order (up to 4), e.g. 64,16");
-    app.add_option("--amplitude", amplitudes, "metres per stored unit for each map (up to 4), e.g. 1.5,0.4");
+    app.add_option("--tile-size", tileSizes,
+                   "metres each map's tile spans, in the maps' order (up to 4), e.g. 64,16; default: what the map "
+                   "records (synth and pack write it), else " + defaultsOf(&LayerSettings::tileSize) +
+                       "; a material.json's own");
+    app.add_option("--amplitude", amplitudes,
+                   "metres per stored unit for each map (up to 4), e.g. 1.5,0.4; default: the map's own metres (a "
+                   "synthesised sea, or a map packed from one or with --height), else " +
+                       defaultsOf(&LayerSettings::amplitude) + "; a material.json's own");
     app.add_option("--choppiness", choppiness,
                    "how far the Dx, Dy of each map that has them move the grid sideways (0: heights only), e.g. 1 "
                    "or 1,0.5 (up to 4); default the material's, else 1");
@@ -149,22 +168,18 @@ int main(int argc, char** argv) {
             return usage("--tiled must be NxM, e.g. 3x3");
         o.settings.tiledView = true;
     }
-    // One number per map, in the maps' order; a single choppiness is every map's.
+    // One number per map, in the maps' order; a single choppiness is every map's. Applied once the maps
+    // are loaded, over what they record.
     const size_t most = size_t(kMaxLayers);
-    if (!tileSizes.empty()) {
-        if (!parseFloats(tileSizes, v) || v.size() > most || std::any_of(v.begin(), v.end(), [](float x) { return x <= 0; }))
-            return usage("--tile-size must be one to four positive lengths in metres, e.g. 64,16");
-        for (size_t k = 0; k < v.size(); ++k) o.settings.layers[k].tileSize = v[k];
-    }
-    if (!amplitudes.empty()) {
-        if (!parseFloats(amplitudes, v) || v.size() > most) return usage("--amplitude must be one to four numbers, e.g. 1.5,0.4");
-        for (size_t k = 0; k < v.size(); ++k) o.settings.layers[k].amplitude = v[k];
-    }
-    if (!choppiness.empty()) {
-        if (!parseFloats(choppiness, v) || v.size() > most || std::any_of(v.begin(), v.end(), [](float x) { return x < 0 || x > 10; }))
-            return usage("--choppiness must be one to four numbers from 0 to 10, e.g. 1 or 1,0.5");
-        for (size_t k = 0; k < o.settings.layers.size(); ++k) o.settings.layers[k].choppiness = v[std::min(k, v.size() - 1)];
-    }
+    std::vector<float> tileSizeFlags, amplitudeFlags, choppinessFlags;
+    if (!tileSizes.empty() && (!parseFloats(tileSizes, tileSizeFlags) || tileSizeFlags.size() > most ||
+                               std::any_of(tileSizeFlags.begin(), tileSizeFlags.end(), [](float x) { return x <= 0; })))
+        return usage("--tile-size must be one to four positive lengths in metres, e.g. 64,16");
+    if (!amplitudes.empty() && (!parseFloats(amplitudes, amplitudeFlags) || amplitudeFlags.size() > most))
+        return usage("--amplitude must be one to four numbers, e.g. 1.5,0.4");
+    if (!choppiness.empty() && (!parseFloats(choppiness, choppinessFlags) || choppinessFlags.size() > most ||
+                                std::any_of(choppinessFlags.begin(), choppinessFlags.end(), [](float x) { return x < 0 || x > 10; })))
+        return usage("--choppiness must be one to four numbers from 0 to 10, e.g. 1 or 1,0.5");
     if (o.settings.rings < 2 || o.settings.segments < 3 || o.settings.rings > 4096 || o.settings.segments > 4096)
         return usage("--grid and --segments must be 2..4096 and 3..4096");
     if (o.bench < 0) return usage("--bench takes a number of frames");
@@ -194,5 +209,11 @@ int main(int argc, char** argv) {
 
     auto scene = loadScene(o.files);
     if (!scene) return fail(scene.error());
+    // Each map's size and metres: the flags, else the material's, else what the map records, else the defaults.
+    if (!material) applyRecordedUnits(*scene, o.settings);
+    for (size_t k = 0; k < tileSizeFlags.size(); ++k) o.settings.layers[k].tileSize = tileSizeFlags[k];
+    for (size_t k = 0; k < amplitudeFlags.size(); ++k) o.settings.layers[k].amplitude = amplitudeFlags[k];
+    for (size_t k = 0; k < o.settings.layers.size() && !choppinessFlags.empty(); ++k)
+        o.settings.layers[k].choppiness = choppinessFlags[std::min(k, choppinessFlags.size() - 1)];
     return runViewer(o, *scene);
 }
