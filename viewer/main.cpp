@@ -12,6 +12,8 @@
 #include "app.hpp"
 #include "exit_codes.hpp"
 #include "material_settings.hpp"
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
 #include "heightpack/version.hpp"
 
 namespace {
@@ -42,6 +44,15 @@ std::string defaultsOf(float heightpack::view::LayerSettings::*field) {
     return text;
 }
 
+// "a.png, b.tif or c.exr" of the formats a screenshot is written in.
+std::string screenshotFormats() {
+    std::string text;
+    const auto& formats = heightpack::kFlatImageExtensions;
+    for (size_t i = 0; i < formats.size(); ++i)
+        text += std::string(i == 0 ? "" : i + 1 == formats.size() ? " or " : ", ") + formats[i];
+    return text;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -55,7 +66,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string("heightpack-view ") + heightpack::kVersion);
     app.add_option("maps", o.files.heights,
                    "height maps (packed or plain .exr, .ktx2 or .dds from heightpack pack, or painted images), or one "
-                   "material.json from heightpack build")
+                   "material.json from heightpack build, or the folder holding it")
         ->required();
     app.add_option("--normals", o.files.normals, "normal map from heightpack normal (else derived from the heights)");
     app.add_option("--fresnel", o.files.fresnel, "Fresnel ramp from heightpack fresnel (else Schlick and fixed colours)");
@@ -70,7 +81,9 @@ int main(int argc, char** argv) {
     app.add_flag("--panel", o.panelInScreenshot, "draw the panel into --screenshot too");
     app.add_option("--tiled", tiled, "flat view of the first map tiled NxM, to look for seams (e.g. 3x3); the tiles keep the map's shape");
     app.add_flag("--seams", o.settings.seamLines, "draw the tile lines in the tiled view");
-    app.add_option("--screenshot", o.screenshot, "render one frame offscreen to this PNG and exit (works under xvfb-run)");
+    app.add_option("--screenshot", o.screenshot,
+                   "render one frame offscreen to this file and exit (works under xvfb-run, or --headless): " +
+                       screenshotFormats());
     app.add_option("--grid-heights", o.gridHeights,
                    "render one frame two-pass, every grid vertex sampled, and write the vertices' heights (Y) and "
                    "horizontal shifts (Dx, Dy) to this EXR (x = segment, y = ring; camera and grid in its header) and exit");
@@ -113,7 +126,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1000000000));
     app.footer(
         "Examples:\n"
-        "  heightpack-view out/ocean/material.json\n"
+        "  heightpack-view out/ocean/material.json             # or out/ocean, the folder heightpack build wrote\n"
         "  heightpack-view out/swell.exr out/choppy.exr --normals out/ripple_n.exr --fresnel out/fresnel.exr\n"
         "  heightpack-view out/swell.exr --tiled 3x3\n"
         "  heightpack-view out/swell.exr --screenshot shot.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10\n"
@@ -141,6 +154,28 @@ int main(int argc, char** argv) {
     if (std::sscanf(size.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 16 || o.height < 16 ||
         o.width > 8192 || o.height > 8192)
         return usage("--size must be WxH between 16 and 8192, e.g. 1280x720");
+    if (!o.screenshot.empty()) {
+        const std::string ext = heightpack::lowerExtension(o.screenshot);
+        const auto& formats = heightpack::kFlatImageExtensions;
+        if (std::find(formats.begin(), formats.end(), ext) == formats.end())
+            return fail(o.screenshot + ": is no screenshot format: the viewer writes " + screenshotFormats(),
+                        "name it " + std::filesystem::path(o.screenshot).replace_extension(".png").string() +
+                            ", or see 'heightpack-view --help'",
+                        ExitCode::Usage);
+    }
+    // The folder heightpack build wrote: its material.json.
+    for (std::string& map : o.files.heights) {
+        std::error_code ec;
+        if (!std::filesystem::is_directory(map, ec)) continue;
+        const std::string inside = (std::filesystem::path(map) / "material.json").string();
+        if (!std::filesystem::is_regular_file(inside, ec))
+            return fail(map + ": is a folder, not a map, and holds no material.json",
+                        "name a map, or the folder heightpack build wrote", ExitCode::BadInput);
+        if (o.files.heights.size() > 1)
+            return usage(map + " is a built material's folder: open its material.json alone, without other maps");
+        std::fprintf(stderr, "heightpack-view: note: %s is a folder; opening its %s\n", map.c_str(), inside.c_str());
+        map = inside;
+    }
     // A built material sets the files and parameters; options given as well override it.
     const bool material = o.files.heights.size() == 1 && std::filesystem::path(o.files.heights[0]).extension() == ".json";
     if (material) {
