@@ -6,10 +6,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "app.hpp"
 #include "exit_codes.hpp"
 #include "material_settings.hpp"
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/image_write.hpp"
 #include "heightpack/version.hpp"
 
 namespace {
@@ -29,6 +33,26 @@ bool parseFloats(const std::string& text, std::vector<float>& out) {
     return !out.empty();
 }
 
+// One field of every map's defaults, "64,16,4,1", for --help.
+std::string defaultsOf(float heightpack::view::LayerSettings::*field) {
+    std::string text;
+    for (const auto& layer : heightpack::view::RenderSettings{}.layers) {
+        char number[32];
+        std::snprintf(number, sizeof number, "%s%g", text.empty() ? "" : ",", double(layer.*field));
+        text += number;
+    }
+    return text;
+}
+
+// "a.png, b.tif or c.exr" of the formats a screenshot is written in.
+std::string screenshotFormats() {
+    std::string text;
+    const auto& formats = heightpack::kFlatImageExtensions;
+    for (size_t i = 0; i < formats.size(); ++i)
+        text += std::string(i == 0 ? "" : i + 1 == formats.size() ? " or " : ", ") + formats[i];
+    return text;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -42,7 +66,7 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", std::string("heightpack-view ") + heightpack::kVersion);
     app.add_option("maps", o.files.heights,
                    "height maps (packed or plain .exr, .ktx2 or .dds from heightpack pack, or painted images), or one "
-                   "material.json from heightpack build")
+                   "material.json from heightpack build, or the folder holding it")
         ->required();
     app.add_option("--normals", o.files.normals, "normal map from heightpack normal (else derived from the heights)");
     app.add_option("--fresnel", o.files.fresnel, "Fresnel ramp from heightpack fresnel (else Schlick and fixed colours)");
@@ -55,9 +79,11 @@ int main(int argc, char** argv) {
                    "where the height is in a painted colour map: r, g, b, a, luma, or a channel's name (height.Y, Z)");
     app.add_option("--explosion", explosion, "drop an explosion at x,y (metres) at t = 0 [,start time s [,strength I0]]");
     app.add_flag("--panel", o.panelInScreenshot, "draw the panel into --screenshot too");
-    app.add_option("--tiled", tiled, "flat view of the first map tiled NxM, to look for seams (e.g. 3x3)");
+    app.add_option("--tiled", tiled, "flat view of the first map tiled NxM, to look for seams (e.g. 3x3); the tiles keep the map's shape");
     app.add_flag("--seams", o.settings.seamLines, "draw the tile lines in the tiled view");
-    app.add_option("--screenshot", o.screenshot, "render one frame offscreen to this PNG and exit (works under xvfb-run)");
+    app.add_option("--screenshot", o.screenshot,
+                   "render one frame offscreen to this file and exit (works under xvfb-run, or --headless): " +
+                       screenshotFormats());
     app.add_option("--grid-heights", o.gridHeights,
                    "render one frame two-pass, every grid vertex sampled, and write the vertices' heights (Y) and "
                    "horizontal shifts (Dx, Dy) to this EXR (x = segment, y = ring; camera and grid in its header) and exit");
@@ -85,8 +111,14 @@ int main(int argc, char** argv) {
     app.add_flag("--two-pass", o.settings.twoPass, "combine the maps into an fp32 texture first (render-to-texture)");
     app.add_flag("--no-frustum-branch", frustumOff, "sample every vertex, even outside the guard-banded frustum");
     app.add_flag("--wireframe", o.settings.wireframe, "draw the grid as lines");
-    app.add_option("--tile-size", tileSizes, "metres each map's tile spans, in the maps' order (up to 4), e.g. 64,16");
-    app.add_option("--amplitude", amplitudes, "metres per stored unit for each map (up to 4), e.g. 1.5,0.4");
+    app.add_option("--tile-size", tileSizes,
+                   "metres each map's tile spans, in the maps' order (up to 4), e.g. 64,16; default: what the map "
+                   "records (synth and pack write it), else " + defaultsOf(&LayerSettings::tileSize) +
+                       "; a material.json's own");
+    app.add_option("--amplitude", amplitudes,
+                   "metres per stored unit for each map (up to 4), e.g. 1.5,0.4; default: the map's own metres (a "
+                   "synthesised sea, or a map packed from one or with --height), else " +
+                       defaultsOf(&LayerSettings::amplitude) + "; a material.json's own");
     app.add_option("--choppiness", choppiness,
                    "how far the Dx, Dy of each map that has them move the grid sideways (0: heights only), e.g. 1 "
                    "or 1,0.5 (up to 4); default the material's, else 1");
@@ -99,7 +131,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1000000000));
     app.footer(
         "Examples:\n"
-        "  heightpack-view out/ocean/material.json\n"
+        "  heightpack-view out/ocean/material.json             # or out/ocean, the folder heightpack build wrote\n"
         "  heightpack-view out/swell.exr out/choppy.exr --normals out/ripple_n.exr --fresnel out/fresnel.exr\n"
         "  heightpack-view out/swell.exr --tiled 3x3\n"
         "  heightpack-view out/swell.exr --screenshot shot.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10\n"
@@ -127,6 +159,28 @@ int main(int argc, char** argv) {
     if (std::sscanf(size.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 16 || o.height < 16 ||
         o.width > 8192 || o.height > 8192)
         return usage("--size must be WxH between 16 and 8192, e.g. 1280x720");
+    if (!o.screenshot.empty()) {
+        const std::string ext = heightpack::lowerExtension(o.screenshot);
+        const auto& formats = heightpack::kFlatImageExtensions;
+        if (std::find(formats.begin(), formats.end(), ext) == formats.end())
+            return fail(o.screenshot + ": is no screenshot format: the viewer writes " + screenshotFormats(),
+                        "name it " + std::filesystem::path(o.screenshot).replace_extension(".png").string() +
+                            ", or see 'heightpack-view --help'",
+                        ExitCode::Usage);
+    }
+    // The folder heightpack build wrote: its material.json.
+    for (std::string& map : o.files.heights) {
+        std::error_code ec;
+        if (!std::filesystem::is_directory(map, ec)) continue;
+        const std::string inside = (std::filesystem::path(map) / "material.json").string();
+        if (!std::filesystem::is_regular_file(inside, ec))
+            return fail(map + ": is a folder, not a map, and holds no material.json",
+                        "name a map, or the folder heightpack build wrote", ExitCode::BadInput);
+        if (o.files.heights.size() > 1)
+            return usage(map + " is a built material's folder: open its material.json alone, without other maps");
+        std::fprintf(stderr, "heightpack-view: note: %s is a folder; opening its %s\n", map.c_str(), inside.c_str());
+        map = inside;
+    }
     // A built material sets the files and parameters; options given as well override it.
     const bool material = o.files.heights.size() == 1 && std::filesystem::path(o.files.heights[0]).extension() == ".json";
     if (material) {
@@ -154,22 +208,18 @@ int main(int argc, char** argv) {
             return usage("--tiled must be NxM, e.g. 3x3");
         o.settings.tiledView = true;
     }
-    // One number per map, in the maps' order; a single choppiness is every map's.
+    // One number per map, in the maps' order; a single choppiness is every map's. Applied once the maps
+    // are loaded, over what they record.
     const size_t most = size_t(kMaxLayers);
-    if (!tileSizes.empty()) {
-        if (!parseFloats(tileSizes, v) || v.size() > most || std::any_of(v.begin(), v.end(), [](float x) { return x <= 0; }))
-            return usage("--tile-size must be one to four positive lengths in metres, e.g. 64,16");
-        for (size_t k = 0; k < v.size(); ++k) o.settings.layers[k].tileSize = v[k];
-    }
-    if (!amplitudes.empty()) {
-        if (!parseFloats(amplitudes, v) || v.size() > most) return usage("--amplitude must be one to four numbers, e.g. 1.5,0.4");
-        for (size_t k = 0; k < v.size(); ++k) o.settings.layers[k].amplitude = v[k];
-    }
-    if (!choppiness.empty()) {
-        if (!parseFloats(choppiness, v) || v.size() > most || std::any_of(v.begin(), v.end(), [](float x) { return x < 0 || x > 10; }))
-            return usage("--choppiness must be one to four numbers from 0 to 10, e.g. 1 or 1,0.5");
-        for (size_t k = 0; k < o.settings.layers.size(); ++k) o.settings.layers[k].choppiness = v[std::min(k, v.size() - 1)];
-    }
+    std::vector<float> tileSizeFlags, amplitudeFlags, choppinessFlags;
+    if (!tileSizes.empty() && (!parseFloats(tileSizes, tileSizeFlags) || tileSizeFlags.size() > most ||
+                               std::any_of(tileSizeFlags.begin(), tileSizeFlags.end(), [](float x) { return x <= 0; })))
+        return usage("--tile-size must be one to four positive lengths in metres, e.g. 64,16");
+    if (!amplitudes.empty() && (!parseFloats(amplitudes, amplitudeFlags) || amplitudeFlags.size() > most))
+        return usage("--amplitude must be one to four numbers, e.g. 1.5,0.4");
+    if (!choppiness.empty() && (!parseFloats(choppiness, choppinessFlags) || choppinessFlags.size() > most ||
+                                std::any_of(choppinessFlags.begin(), choppinessFlags.end(), [](float x) { return x < 0 || x > 10; })))
+        return usage("--choppiness must be one to four numbers from 0 to 10, e.g. 1 or 1,0.5");
     if (o.settings.rings < 2 || o.settings.segments < 3 || o.settings.rings > 4096 || o.settings.segments > 4096)
         return usage("--grid and --segments must be 2..4096 and 3..4096");
     if (o.bench < 0) return usage("--bench takes a number of frames");
@@ -200,5 +250,11 @@ int main(int argc, char** argv) {
 
     auto scene = loadScene(o.files);
     if (!scene) return fail(scene.error());
+    // Each map's size and metres: the flags, else the material's, else what the map records, else the defaults.
+    if (!material) applyRecordedUnits(*scene, o.settings);
+    for (size_t k = 0; k < tileSizeFlags.size(); ++k) o.settings.layers[k].tileSize = tileSizeFlags[k];
+    for (size_t k = 0; k < amplitudeFlags.size(); ++k) o.settings.layers[k].amplitude = amplitudeFlags[k];
+    for (size_t k = 0; k < o.settings.layers.size() && !choppinessFlags.empty(); ++k)
+        o.settings.layers[k].choppiness = choppinessFlags[std::min(k, choppinessFlags.size() - 1)];
     return runViewer(o, *scene);
 }

@@ -1,5 +1,6 @@
 #include "material_settings.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "heightpack/bake/material.hpp"
@@ -49,6 +50,14 @@ Status applyMaterial(const std::string& path, SceneFiles& files, RenderSettings&
         settings.foamTileSize = static_cast<float>(m.foam->tileSize);
     }
     return Done{};
+}
+
+void applyRecordedUnits(const Scene& scene, RenderSettings& settings) {
+    for (size_t k = 0; k < std::min(scene.layers.size(), settings.layers.size()); ++k) {
+        const MapUnits& units = scene.layers[k].units;
+        if (units.tileWidth) settings.layers[k].tileSize = static_cast<float>(*units.tileWidth);
+        if (units.heightRange) settings.layers[k].amplitude = static_cast<float>(*units.heightRange);
+    }
 }
 
 }  // namespace heightpack::view

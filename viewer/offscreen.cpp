@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -79,8 +80,18 @@ nlohmann::ordered_json samplersJson(const Renderer& renderer) {
     return {{"vertex", used.vertex}, {"fragment", used.fragment}, {"vertexLimit", limit.vertex}, {"fragmentLimit", limit.fragment}};
 }
 
-void printBench(const ViewerOptions& o, const Renderer& renderer, const ContextInfo& context, const PassTimes& chosen,
-                const std::vector<std::pair<Lookup, PassTimes>>& lookups) {
+// Each map as drawn: its file, and the tile size, amplitude and choppiness the renderer took for it (the
+// flags', else the material's, else what the map records, else the defaults).
+nlohmann::ordered_json layersJson(const RenderSettings& s, const Scene& scene) {
+    nlohmann::ordered_json list = nlohmann::ordered_json::array();
+    for (size_t k = 0; k < std::min(scene.layers.size(), s.layers.size()); ++k)
+        list.push_back({{"map", scene.layers[k].path}, {"tileSize", s.layers[k].tileSize},
+                        {"amplitude", s.layers[k].amplitude}, {"choppiness", s.layers[k].choppiness}});
+    return list;
+}
+
+void printBench(const ViewerOptions& o, const Scene& scene, const Renderer& renderer, const ContextInfo& context,
+                const PassTimes& chosen, const std::vector<std::pair<Lookup, PassTimes>>& lookups) {
     const std::string gl = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     const std::string version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
     const TextureBytes& b = renderer.textureBytes();
@@ -104,6 +115,7 @@ void printBench(const ViewerOptions& o, const Renderer& renderer, const ContextI
         j["lookups"] = each;
         j["gpuBytes"] = bytesJson(b);
         j["samplers"] = samplersJson(renderer);
+        j["layers"] = layersJson(o.settings, scene);
         std::printf("%s\n", j.dump().c_str());
         return;
     }
@@ -176,7 +188,7 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer, co
             if (isGather(s.lookup) && !renderer.gatherAvailable()) continue;
             lookups.emplace_back(s.lookup, s.lookup == o.settings.lookup ? chosen : benchFrames(o, s, renderer, target.framebuffer));
         }
-        printBench(o, renderer, context, chosen, lookups);
+        printBench(o, scene, renderer, context, chosen, lookups);
     }
     if (!o.gridHeights.empty()) {
         if (int code = writeGridHeights(o, renderer, time, target.framebuffer); code != 0) {
@@ -209,7 +221,8 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer, co
                                               {"context", context.platform},
                                               {"lookup", lookupName(o.settings.lookup)},
                                               {"gpuBytes", bytesJson(renderer.textureBytes())},
-                                              {"samplers", samplersJson(renderer)}};
+                                              {"samplers", samplersJson(renderer)},
+                                              {"layers", layersJson(o.settings, scene)}};
             std::printf("%s\n", j.dump().c_str());
         } else if (o.bench == 0) {
             std::printf("wrote %s: %dx%d at t = %.2f s\n", o.screenshot.c_str(), o.width, o.height, time);

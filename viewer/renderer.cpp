@@ -1,5 +1,6 @@
 #include "renderer.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -281,6 +282,13 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
         const Normalisation d = layers_[0].decode[0].heights;
         set(tiledProgram_, "uDecode", glm::vec2(d.offset, d.scale));
         set(tiledProgram_, "uSeamLines", int(s.seamLines));
+        // The N x M tiles as large as the window holds them with square texels, centred: a tile keeps its
+        // map's shape whatever the window's.
+        const StoredChain& map = scene_->layers[0].frames[0].plain;
+        const glm::vec2 tile(map.width, map.height), block = glm::vec2(s.tiles) * tile;
+        const float fit = std::min(float(width) / block.x, float(height) / block.y);
+        set(tiledProgram_, "uTilePixels", tile * fit);
+        set(tiledProgram_, "uOrigin", 0.5f * (glm::vec2(width, height) - block * fit));
         set(tiledProgram_, "uViewport", glm::vec2(width, height));
         glDisable(GL_DEPTH_TEST);
         glBindVertexArray(emptyVao_);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "heightpack/bake/pack_job.hpp"
 #include "heightpack/io/files.hpp"
@@ -33,20 +34,22 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
                  bool first) {
     auto file = readViewerTexture(path);
     if (!file) return file.error();
-    const std::string layout = findAttribute(file->attributes, attr::layout);
+    const std::optional<Layout> layout = layoutFromAttribute(findAttribute(file->attributes, attr::layout));
+    auto units = readMapUnits(file->attributes, path);
+    if (!units) return units.error();
     if (first) {
-        const std::string period = findAttribute(file->attributes, attr::loopPeriod);
-        layer.loopPeriod = period.empty() ? 0.0 : std::stod(period);
+        layer.loopPeriod = units->loopPeriod.value_or(0.0);
+        layer.units = *units;  // the file's own values: a texture goes up as stored
     }
-    if (layout == "neighbour4" || layout == "plain") {
+    if (layout == Layout::Neighbour4 || layout == Layout::Plain) {
         if (first) {
             layer.wrap = findAttribute(file->attributes, attr::wrap).value_or(Wrap::Periodic);
-            layer.source = layout == "neighbour4" ? "packed texture" : "plain texture, packed in memory";
+            layer.source = layout == Layout::Neighbour4 ? "packed texture" : "plain texture, packed in memory";
         }
         if (Status s = takeFoam(path, *file, frame); !s) return s;  // first: it leaves the channels as without foam
         if (Status s = takeDisplacement(path, *file, layer.wrap, frame); !s) return s;
         StoredChain stored = file->stored ? std::move(*file->stored) : storeFloats(file->levels);
-        if (layout == "neighbour4") {
+        if (layout == Layout::Neighbour4) {
             if (stored.channels != 4) return badInput(path, "is marked neighbour4 but has no 4 channels", "pack it again");
             frame.plain = firstChannel(stored);
             frame.packed = std::move(stored);
@@ -78,7 +81,10 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
     frame.packed = storeFloats(maps->packed);
     if (Status s = packDisplacementOf(path, load, loaded->source, pack, frame); !s) return s;
     if (Status s = foamChainOf(path, load, loaded->source, pack, frame); !s) return s;
-    if (first) layer.source = "painted map, packed in memory";
+    if (first) {
+        layer.source = "painted map, packed in memory";
+        layer.units = loaded->source.units;  // per unit of the values loaded (a heightpack texture's mapped back)
+    }
     return Done{};
 }
 

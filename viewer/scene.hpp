@@ -10,6 +10,7 @@
 
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/io/map_units.hpp"
 #include "stored_chain.hpp"
 
 namespace heightpack::view {
@@ -33,6 +34,9 @@ struct HeightLayer {
     std::string source;           // "packed texture", "plain texture" or "painted map, packed in memory"
     std::vector<HeightFrame> frames;  // one, or a looping sequence (NAME.0000.EXT ...)
     double loopPeriod = 0.0;      // seconds the frames span (heightpack:loopPeriod), for sequences
+    // What the first file records of the world: its tile's size in metres and the metres of one unit of
+    // its values as the layer holds them (the renderer's amplitude), each absent where the file is silent.
+    MapUnits units;
     Wrap wrap = Wrap::Periodic;
     float midStored = 0.5f;       // the map's mean (its 1x1 level): subtracted so waves sit on the water level
     float minStored = 0.0f, maxStored = 1.0f;

@@ -141,7 +141,9 @@ Status makeSynthesised(const SynthSource& sea, int frame, const std::string& int
         flat.channelNames.push_back("Foam");
     }
     flat.threads = threads;
-    flat.attributes = {attribute(attr::layout, "synthesised"), attribute(attr::version, pack.version)};
+    // The tile's size, as synth records it: the packed frame carries it (heights in metres, synthesised).
+    flat.attributes = {attribute(attr::layout, attr::synthesised), attribute(attr::tileWidth, static_cast<float>(sea.spectrum.tileSize)),
+                       attribute(attr::version, pack.version)};
     if (sea.frames > 1) {
         flat.attributes.push_back(attribute(attr::frame, std::to_string(frame) + "/" + std::to_string(sea.frames)));
         flat.attributes.push_back(attribute(attr::loopPeriod, static_cast<float>(sea.spectrum.loopPeriod)));

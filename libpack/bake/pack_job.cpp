@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -65,10 +66,18 @@ std::vector<ExrAttribute> heightAttributes(Layout layout, const PackOptions& opt
                                                sourceHash, options.version);
     attributes.push_back(attribute(attr::heightScale, options.scale));
     attributes.push_back(attribute(attr::heightOffset, options.offset));
-    if (options.heightRange > 0.0) attributes.push_back(attribute(attr::heightRange, float(options.heightRange)));
-    if (!source.loopPeriod.empty()) {
-        attributes.push_back(attribute(attr::loopPeriod, std::stof(source.loopPeriod)));
-        attributes.push_back(attribute(attr::time, source.time.empty() ? 0.0f : std::stof(source.time)));
+    // What the source records of the world carries over: its tile, its metres (a stored unit is 1 / scale
+    // of the source's, unless the options give the range), its place in a loop.
+    const MapUnits& units = source.units;
+    if (units.tileWidth) attributes.push_back(attribute(attr::tileWidth, float(*units.tileWidth)));
+    if (units.tileHeight) attributes.push_back(attribute(attr::tileHeight, float(*units.tileHeight)));
+    const double range = options.heightRange > 0.0 ? options.heightRange
+                         : units.heightRange     ? *units.heightRange / options.scale
+                                                 : 0.0;
+    if (range > 0.0 && std::isfinite(range)) attributes.push_back(attribute(attr::heightRange, float(range)));
+    if (units.loopPeriod) {
+        attributes.push_back(attribute(attr::loopPeriod, float(*units.loopPeriod)));
+        attributes.push_back(attribute(attr::time, float(units.time.value_or(0.0))));
     }
     return attributes;
 }

@@ -26,7 +26,7 @@ std::string formatted(const char* format, double a, double b, double c = 0.0) {
 std::vector<ExrAttribute> seaAttributes(const SynthOptions& options, const SpectrumOptions& s, const SynthTileReport& r,
                                         int cascade, int count) {
     std::vector<ExrAttribute> a = {
-        attribute(attr::layout, "synthesised"),
+        attribute(attr::layout, attr::synthesised),
         attribute(attr::spectrum, s.model),
         attribute(attr::wind, formatted("%.4g m/s from %.4g deg", s.windSpeed, s.windDirection)),
         attribute(attr::spreading, s.spreading),

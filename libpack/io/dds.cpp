@@ -12,6 +12,9 @@
 //       Dx, Dy follow the heights, bit 3 an array's last layer is Foam (so the layers are, in this fixed
 //       order, heights, then Dx, Dy, then Foam: the order heightpack:layers names in a KTX2)
 //   [7] normalised offset  [8] normalised scale (uint16: value = offset + scale * u / 65535)
+// and, flagged in [6], three floats in the header's words that Microsoft's layout leaves unused (dwCaps3,
+// dwCaps4, dwReserved2): bit 4 the tile width in metres in dwCaps3, bit 5 the height range (metres per
+// stored unit) in dwCaps4, bit 6 a sequence's loop period in seconds in dwReserved2.
 // Everything else the EXR header and KTX2 key/values carry (filter, source, hash, version, ...) is lost.
 #include <algorithm>
 #include <array>
@@ -54,6 +57,14 @@ constexpr std::array<const char*, 2> kWraps = {nameOf(Wrap::Periodic), nameOf(Wr
 
 // Record flags.
 constexpr std::uint32_t kScaleOffsetFlag = 1, kNormalisationFlag = 2, kDisplacementFlag = 4, kFoamFlag = 8;
+// The units, each a float in a DDS_HEADER word (from its start, after the magic) that is otherwise unused.
+struct UnitWord {
+    AttributeKey<float> key;
+    std::uint32_t flag;
+    int word;
+};
+constexpr std::array<UnitWord, 3> kUnitWords = {UnitWord{attr::tileWidth, 16, 28}, UnitWord{attr::heightRange, 32, 29},
+                                                UnitWord{attr::loopPeriod, 64, 30}};
 
 // The layers the record's flags name, in their fixed order.
 std::vector<std::string> recordedLayers(std::uint32_t flags) {
@@ -120,6 +131,8 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
         if (!std::holds_alternative<float>(a.value)) continue;
         if (a.name == attr::heightScale.name) reserved[4] = floatBits(std::get<float>(a.value)), reserved[6] |= kScaleOffsetFlag;
         if (a.name == attr::heightOffset.name) reserved[5] = floatBits(std::get<float>(a.value)), reserved[6] |= kScaleOffsetFlag;
+        for (const UnitWord& u : kUnitWords)
+            if (a.name == u.key.name) header[u.word] = floatBits(std::get<float>(a.value)), reserved[6] |= u.flag;
     }
     reserved[6] |= layerFlags;
     if (plan.normalisation) {
@@ -199,6 +212,8 @@ Result<GpuTexture> readDds(const std::string& path) {
             t.keyValues.emplace_back(attr::heightScale.name, floatText(bitsFloat(word(11))));
             t.keyValues.emplace_back(attr::heightOffset.name, floatText(bitsFloat(word(12))));
         }
+        for (const UnitWord& u : kUnitWords)
+            if (flags & u.flag) t.keyValues.emplace_back(u.key.name, floatText(bitsFloat(word(u.word))));
         if ((flags & kNormalisationFlag) && f.kind == ComponentKind::Unorm16) {
             t.normalisation = Normalisation{bitsFloat(word(14)), bitsFloat(word(15))};
             t.keyValues.emplace_back(attr::normalisedOffset.name, floatText(t.normalisation->offset));

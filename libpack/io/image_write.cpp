@@ -44,7 +44,7 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
     if (Status writable = checkWritable(path); !writable) return writable;
     // The extension decides the format; only those that hold what is given faithfully are written.
     const std::string ext = lowerExtension(path);
-    if (ext != ".png" && ext != ".tif" && ext != ".tiff" && ext != ".exr")
+    if (std::find(kFlatImageExtensions.begin(), kFlatImageExtensions.end(), ext) == kFlatImageExtensions.end())
         return cannotWrite(path, "names no format heightpack writes", "use .png, .tif or .exr");
     const OIIO::TypeDesc type = options.bits == 8    ? OIIO::TypeDesc::UINT8
                                 : options.bits == 16 ? OIIO::TypeDesc::UINT16

@@ -108,20 +108,13 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     src.width = spec.width;
     src.height = spec.height;
     src.channels = spec.nchannels;
-    // Float in an EXR, text in a PNG: read either as text.
-    if (const OIIO::ParamValue* p = spec.find_attribute(attr::loopPeriod.name)) src.loopPeriod = p->get_string();
-    if (const OIIO::ParamValue* p = spec.find_attribute(attr::time.name)) src.time = p->get_string();
-    // Later steps write these as float attributes: anything else in them (a hand-edited PNG text chunk)
-    // is damaged metadata, not a crash or a non-finite attribute later.
-    for (const auto& [name, text] : {std::pair<const char*, const std::string&>{attr::loopPeriod.name, src.loopPeriod},
-                                     std::pair<const char*, const std::string&>{attr::time.name, src.time}}) {
-        if (text.empty()) continue;
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || std::abs(v) > 1e30)
-            return badInput(path, std::string("its ") + name + " metadata '" + text.substr(0, 64) + "' is not a finite number",
-                            "remove or correct that metadata in the file");
-    }
+    // Float in an EXR, text in a PNG: heightpack's attributes as text, read into numbers once.
+    Attributes recordedText;
+    for (const OIIO::ParamValue& p : spec.extra_attribs)
+        if (p.name().string().rfind(attr::kPrefix, 0) == 0) recordedText.emplace_back(p.name().string(), p.get_string());
+    auto units = readMapUnits(recordedText, path);
+    if (!units) return units.error();
+    src.units = *units;
 
     const int colourChannels = spec.nchannels - (spec.alpha_channel >= 0 ? 1 : 0);
     const bool colour = colourChannels > 1;
@@ -193,6 +186,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
         scale = recordedNumber(spec, attr::heightScale.name).value_or(1.0);
         offset = recordedNumber(spec, attr::heightOffset.name).value_or(0.0);
         if (scale == 0.0) scale = 1.0;
+        if (src.units.heightRange) *src.units.heightRange *= scale;  // metres per unit of the values returned
         src.channelNote = std::string(layout == "neighbour4" ? "packed" : "plain") + " heightpack texture: heights from '" +
                           src.channelUsed + "' of level 0, mapped back to values through its heightScale " +
                           numberText(scale) + " and heightOffset " + numberText(offset);

@@ -3,6 +3,7 @@
 // the shader put it and asks loadMaterialSampler's sampler for the same point, time and footprint; with
 // choppy maps, it also asks for the height over the vertex's displaced position, which the sampler finds
 // by inverting the shift.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "heightpack/bake/material_sampler.hpp"
+#include "heightpack/bake/pack_job.hpp"
 #include "heightpack/core/cascades.hpp"
 #include "support/test_support.hpp"
 #include "viewer_support.hpp"
@@ -247,4 +249,86 @@ TEST(GridHeights, TheFourthTileShadesThePictureWithinTheSamplerLimits) {
     EXPECT_LE(samplers["fragment"].get<int>(), samplers["fragmentLimit"].get<int>());
     std::printf("flattening the fourth tile changes %.1f%% of the channel values by more than 2; samplers %s\n",
                 100 * d.fractionOver, samplers.dump().c_str());
+}
+
+namespace {
+
+// The heights of a float image's channel 0 (read here with OpenImageIO) as the sampler's one layer, packed
+// as pack and the viewer pack them, at the given tile size and metres per stored unit; the viewer's
+// default scroll for a first map (0.010, 0.004 tiles a second).
+WaterSampler seaSampler(const std::string& path, float tileSize, float amplitude) {
+    auto in = OIIO::ImageInput::open(path);
+    EXPECT_TRUE(in) << path;
+    WaterSampler sampler;
+    if (!in) return sampler;
+    Image heights(in->spec().width, in->spec().height, 1);
+    EXPECT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, heights.pixels.data()));
+    auto maps = packHeights(std::move(heights), SourceInfo{}, PackOptions{});
+    EXPECT_TRUE(maps);
+    SampledLayer layer;
+    layer.frames = {maps->packed};
+    layer.tileSize = tileSize;
+    layer.amplitude = amplitude;
+    layer.scroll = {0.010f, 0.004f};
+    layer.midStored = midStoredOf(layer.frames);
+    sampler.layers.push_back(std::move(layer));
+    return sampler;
+}
+
+}  // namespace
+
+// Issue 35, item 1: a map that records its tile size and the metres of its heights is drawn at them, not
+// at the viewer's defaults (64 m, 1.5 m per unit): a synthesised 256 m sea opened as synth wrote it (float
+// metres, or 16-bit with heightScale giving metres back), and packed into KTX2 and DDS. The GPU's grid
+// heights equal the CPU sampler's at 256 m and the sea's own metres, and are far from them at the
+// defaults; --tile-size and --amplitude still override what the file says.
+TEST(ViewerUnits, AMapIsDrawnAtTheTileSizeAndMetresItRecordsUnlessAFlagSaysOtherwise) {
+    ScratchDir dir;
+    const std::vector<std::string> synth = {HEIGHTPACK_EXE, "synth", "--spectrum", "jonswap", "--wind", "12m/s",
+                                            "--tile-size", "256m", "--size", "128", "-q", "-o"};
+    for (const std::string out : {"sea.exr", "sea.png"}) {
+        auto args = synth;
+        args.push_back(dir.file(out));
+        ASSERT_EQ(runProcess(args).code, 0) << out;
+    }
+    for (const std::string out : {"sea.ktx2", "sea.dds"})
+        ASSERT_EQ(runProcess({HEIGHTPACK_EXE, "pack", dir.file("sea.exr"), "-q", "-o", dir.file(out)}).code, 0) << out;
+    // The 16-bit sea's values are heightOffset + heightScale * value metres: heightScale metres a unit.
+    auto png = OIIO::ImageInput::open(dir.file("sea.png"));
+    ASSERT_TRUE(png);
+    const float pngMetres = std::stof(png->spec().get_string_attribute("heightpack:heightScale"));
+    png.reset();
+    ASSERT_GT(pngMetres, 1.0f);
+
+    auto gridOf = [&](const std::string& map, const std::vector<std::string>& flags) {
+        std::vector<std::string> args = {dir.file(map), "--grid-heights", dir.file("grid.exr"), "--time", "2",
+                                         "--camera", "13,-7,25,30,-20", "--size", "160x120"};
+        args.insert(args.end(), flags.begin(), flags.end());
+        const ViewRun run = view(args);
+        EXPECT_EQ(run.code, 0) << run.err;
+        return readGridHeights(dir.file("grid.exr"));
+    };
+    for (const std::string map : {"sea.exr", "sea.ktx2", "sea.dds", "sea.png"}) {
+        SCOPED_TRACE(map);
+        // The packed files hold the float sea's values; the 16-bit sea its own.
+        const bool integer = map == "sea.png";
+        const std::string values = dir.file(integer ? "sea.png" : "sea.exr");
+        const float metres = integer ? pngMetres : 1.0f;
+        const GridHeights grid = gridOf(map, {});
+        const Agreement own = compareWithSampler(grid, seaSampler(values, 256.0f, metres), 100.0f);
+        const Agreement defaults = compareWithSampler(grid, seaSampler(values, 64.0f, 1.5f), 100.0f);
+        EXPECT_GT(own.compared, 10000);
+        EXPECT_GT(own.range, 1.0) << "a 12 m/s sea moves the vertices by metres";
+        EXPECT_LT(own.worst, 1e-5) << "drawn at 256 m and " << metres << " m a unit";
+        EXPECT_GT(defaults.worst, 0.5) << "the viewer's defaults would draw another sea";
+        std::printf("%s: heights over %.3f m; against 256 m, %.4g m a unit: worst %.3g m; against 64 m, 1.5 m a unit: "
+                    "worst %.3g m\n",
+                    map.c_str(), own.range, metres, own.worst, defaults.worst);
+    }
+    // Flags win over the file.
+    const GridHeights flagged = gridOf("sea.ktx2", {"--tile-size", "100", "--amplitude", "2"});
+    const Agreement asked = compareWithSampler(flagged, seaSampler(dir.file("sea.exr"), 100.0f, 2.0f), 100.0f);
+    EXPECT_GT(asked.compared, 10000);
+    EXPECT_LT(asked.worst, 2 * 1e-5) << "--tile-size 100 --amplitude 2: float rounding of the stored units, in metres twice";
+    EXPECT_GT(asked.range, 2.0);
 }

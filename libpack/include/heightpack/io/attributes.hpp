@@ -36,6 +36,8 @@ inline constexpr const char* kPrefix = "heightpack:";  // every key below starts
 // Every file heightpack writes.
 // neighbour4, plain, normal, normalXY (see attributeText(Layout)), fresnel, synthesised, ...
 inline constexpr AttributeKey<std::string> layout{"heightpack:layout"};
+// The layout word of synth's seas: heights in metres = heightOffset + heightScale * value.
+inline constexpr const char* synthesised = "synthesised";
 inline constexpr AttributeKey<std::string> version{"heightpack:version"};
 inline constexpr AttributeKey<float> texelCentre{"heightpack:texelCentre"};
 inline constexpr AttributeKey<std::string> source{"heightpack:source"};  // the input's file name

@@ -1,6 +1,7 @@
 // Flat (one-level) image files: PNG, TIFF, scanline EXR, chosen by the extension, written atomically.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,9 @@ struct GreyPngPixels;
 struct PreparedPixels {
     std::shared_ptr<const detail::GreyPngPixels> png;
 };
+
+// The extensions writeFlatImage writes, lower case (any case is taken): a PNG, a TIFF, a scanline EXR.
+inline constexpr std::array<const char*, 4> kFlatImageExtensions = {".png", ".tif", ".tiff", ".exr"};
 
 // A flat (single-level, scanline) image file: a PNG, a TIFF, a scanline EXR, chosen by the extension.
 struct FlatImageOptions {

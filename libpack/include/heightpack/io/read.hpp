@@ -10,6 +10,7 @@
 
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/io/map_units.hpp"
 
 namespace heightpack {
 
@@ -60,9 +61,11 @@ struct SourceInfo {
     // a colour choice on a grey image, a heightpack texture read back): one sentence saying what was used.
     std::string channelNote;
     std::string decoder;      // "heightpack-png" (fast path for grey PNGs) or "openimageio"
-    // Where the map sits in an animation, if its file says (heightpack:loopPeriod, heightpack:time):
-    // carried into what is made from it, so a packed sequence still knows its timing.
-    std::string loopPeriod, time;
+    // What the file records of its tile size, height units and place in an animation, carried into what
+    // is made from it (a packed sequence still knows its timing, a packed sea its size and metres). Its
+    // heightRange is per unit of the heights returned: a heightpack texture's values are mapped back
+    // through its heightScale, so the range is scaled with them.
+    MapUnits units;
 };
 
 struct LoadedHeights {
