@@ -25,22 +25,6 @@ inline std::string shorten(const std::string& text) {
     return text.size() <= kMax ? text : text.substr(0, kMax) + "... (" + std::to_string(text.size()) + " characters)";
 }
 
-// Edit distance, to suggest the key a typo meant.
-inline size_t distance(const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diagonal = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t above = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-            diagonal = above;
-        }
-    }
-    return row[b.size()];
-}
-
 inline int lineOf(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
 
 // One table of the manifest. Every key read is remembered, so finish() can reject the ones nobody
@@ -72,7 +56,7 @@ public:
         // A misspelt key is the likelier mistake: name it rather than the key it was meant to be.
         for (auto&& [other, node] : table_) {
             const std::string name(other.str());
-            if (!known_.count(name) && distance(name, k) <= 2)
+            if (!known_.count(name) && editDistance(name, k) <= 2)
                 throw error(lineOf(node), "unknown key '" + key(name) + "'", "did you mean '" + k + "'? " + kHint);
         }
         throw error(line(), "missing key '" + key(k) + "'");
@@ -145,12 +129,8 @@ public:
         for (auto&& [k, node] : table_) {
             const std::string name(k.str());
             if (known_.count(name)) continue;
-            std::string best;
-            size_t bestDistance = 3;
-            for (const std::string& candidate : known_) {
-                const size_t d = distance(name, candidate);
-                if (d < bestDistance) bestDistance = d, best = candidate;
-            }
+            const std::vector<std::string> near = nearestNames(name, std::vector<std::string>(known_.begin(), known_.end()));
+            const std::string best = near.empty() ? std::string() : near.front();
             const std::string where = prefix_.empty() ? "at the top level" : "in [" + prefix_ + "]";
             throw error(lineOf(node), "unknown key '" + key(name) + "' " + where,
                         best.empty() ? kHint : "did you mean '" + best + "'? " + kHint);
