@@ -170,6 +170,8 @@ private:
                        {"channel", channelJson(r.source)},
                        {"maxSlopeDegrees", r.maxSlopeDegrees},
                        {"layout", nameOf(r.layout)},
+                       {"alpha", nameOf(n.alpha)},
+                       {"channels", channels},
                        {"pixelType", format == "png8" ? nlohmann::json("uint8") : stored["pixelType"]},
                        {"pixelTypeRequested", pixelType_},
                        {"tolerance", r.tolerance > 0.0 ? nlohmann::json(r.tolerance) : nlohmann::json(nullptr)},
@@ -188,8 +190,10 @@ private:
                  << format << ", tile " << n.tileWidth << " m, height " << n.heightRange << " m, " << nameOf(n.kernel) << ", "
                  << nameOf(n.convention) << ", steepest " << std::fixed << std::setprecision(1) << r.maxSlopeDegrees
                  << " deg, ";
-            if (format != "png8")
-                line << nameOf(r.layout) << " " << storedChainText(r.pixelType, r.lookupError, 0.0) << ", ";
+            // What was written: rgba with an alpha (its content named), else the layout's channels.
+            const std::string stored = channels == 4 ? std::string("rgba (") + nameOf(n.alpha) + " in alpha)"
+                                                     : std::string(nameOf(r.layout));
+            line << stored << (format == "png8" ? "" : " " + storedChainText(r.pixelType, r.lookupError, 0.0)) << ", ";
             line << std::setprecision(2) << r.seconds << " s";
             std::cout << line.str() << "\n";
             if (r.resized) std::cout << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";
