@@ -59,7 +59,9 @@ public:
                       "outputs, no alpha)",
                       {Layout::Rgb, Layout::Xy});
         addChannelOption(*cmd, channel_);
-        cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two (EXR)")
+        cmd->add_option("--resize", resize_, "none: refuse a map whose sides are not powers of two (a .png takes any "
+                                              "size); pow2: resample it up to the next ones first")
+            ->capture_default_str()
             ->check(CLI::IsMember({"none", "pow2"}));
         addCommonOptions(*cmd);
         cmd->footer(

@@ -23,8 +23,7 @@ class PackCommand final : public Command {
 public:
     CLI::App* attach(CLI::App& app) override {
         CLI::App* cmd = app.add_subcommand("pack", "pack a height map into a mip-mapped, 4-neighbour packed (or plain) EXR, KTX2 or DDS");
-        cmd->add_option("input", input_, "height map: PNG, TIFF, EXR, JPEG, TGA, PSD (8/16-bit, half, float)")
-            ->required();
+        cmd->add_option("input", input_, "height map: " + readableFormats() + "; 8/16-bit, half or float")->required();
         cmd->add_option("-o,--output", output_, "packed texture to write: .exr, .ktx2 or .dds (replaced atomically)")
             ->required();
         addChannelOption(*cmd, channel_);
@@ -46,8 +45,9 @@ public:
                       "neighbour4: each texel holds its four neighbours (one fetch per lookup); plain: one channel, "
                       "the height (textureGather, hardware filtering)",
                       {Layout::Neighbour4, Layout::Plain});
-        cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two up to the "
-                                              "next ones, with the mip filter")
+        cmd->add_option("--resize", resize_, "none: refuse a map whose sides are not powers of two; pow2: resample it "
+                                              "up to the next ones, with the mip filter")
+            ->capture_default_str()
             ->check(CLI::IsMember({"none", "pow2"}));
         cmd->add_option("--emit-plain", options_.plainOutput, "also write the unpacked one-channel mip chain here");
         cmd->add_flag("--displacement", options_.displacement,

@@ -5,7 +5,11 @@
 
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
+
+#include "heightpack/io/read.hpp"
 
 #include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
@@ -38,6 +42,34 @@ std::string fileText(const std::string& path) {
     std::stringstream text;
     text << in.rdbuf();
     return text.str();
+}
+
+std::string readme() { return fileText(std::string(HEIGHTPACK_SOURCE_DIR) + "/README.md"); }
+
+// The line of text that contains marker (whole, without its newline); "" when none does.
+std::string lineWith(const std::string& text, const std::string& marker) {
+    const size_t at = text.find(marker);
+    if (at == std::string::npos) return {};
+    const size_t start = text.rfind('\n', at) + 1;  // npos + 1 = 0
+    return text.substr(start, text.find('\n', at) - start);
+}
+
+// The text between the first `from` and the next `to` after it in text; "" when either is missing.
+std::string between(const std::string& text, const std::string& from, const std::string& to) {
+    const size_t a = text.find(from);
+    if (a == std::string::npos) return {};
+    const size_t b = text.find(to, a + from.size());
+    return b == std::string::npos ? std::string() : text.substr(a + from.size(), b - a - from.size());
+}
+
+std::vector<std::string> split(const std::string& text, const std::string& separator) {
+    std::vector<std::string> parts;
+    for (size_t from = 0;;) {
+        const size_t at = text.find(separator, from);
+        parts.push_back(text.substr(from, at - from));
+        if (at == std::string::npos) return parts;
+        from = at + separator.size();
+    }
 }
 
 }  // namespace
@@ -141,4 +173,88 @@ TEST(FirstHour, InfoDescribesAMaterialAndPointsAManifestAtBuild) {
     const ProcessResult other = heightpackRun({"info", dir.file("other.json")});
     EXPECT_EQ(other.code, 3) << other.err;
     expectOneLineError(other, dir.file("other.json"));
+}
+
+// pack --help and the README's pack table list the same input formats, as many as the formats the reader
+// names when it refuses a file.
+TEST(FirstHour, HelpAndReadmeListTheSameInputFormats) {
+    const ProcessResult help = heightpackRun({"pack", "--help"});
+    ASSERT_EQ(help.code, 0);
+    const std::string fromHelp = between(lineWith(help.out, "height map: "), "height map: ", "; 8/16-bit");
+    const std::string fromReadme = between(lineWith(readme(), "| `INPUT` |"), "| `INPUT` | ", " (see \"Input formats\")");
+    ASSERT_FALSE(fromHelp.empty()) << help.out;
+    EXPECT_EQ(fromReadme, fromHelp);
+    EXPECT_EQ(fromHelp, readableFormats());
+    ScratchDir dir;
+    std::ofstream(dir.file("notes.txt")) << "not an image at all\n";
+    const ProcessResult refused = heightpackRun({"info", dir.file("notes.txt")});
+    EXPECT_EQ(refused.code, 3);
+    const std::string named = between(refused.err, "heightpack reads (", ")");
+    ASSERT_FALSE(named.empty()) << refused.err;
+    EXPECT_EQ(split(named, ", ").size(), split(fromHelp, ", ").size()) << named << " against " << fromHelp;
+}
+
+// --channel's names, in every command's help and in the README, are ChannelSelect's table.
+TEST(FirstHour, ChannelNamesAreTheTablesInHelpAndReadme) {
+    const std::string names = joinedNames<ChannelSelect>(", ");
+    for (const char* command : {"pack", "normal", "check", "tile"}) {
+        const ProcessResult help = heightpackRun({command, "--help"});
+        const std::string line = lineWith(help.out, "where the height is in a colour image: ");
+        EXPECT_NE(line.find("colour image: " + names + ", or a channel's name"), std::string::npos) << command << ": " << line;
+    }
+    EXPECT_NE(readme().find("| `--channel " + joinedNames<ChannelSelect>("\\|") + "\\|NAME` | which channel of a colour "
+                            "image holds the height: " + names + ", or a channel's name"),
+              std::string::npos);
+}
+
+// The exit-code table says which extensions each command writes: what the command itself says when it is
+// given another.
+TEST(FirstHour, ReadmeSaysWhichOutputsEachCommandWrites) {
+    const std::string row = lineWith(readme(), "| 2 | usage error (the message points at `--help`)");
+    const std::string list = between(row, "an output whose extension is not one the command writes (", ")");
+    ASSERT_FALSE(list.empty()) << row;
+    std::map<std::string, std::set<std::string>> documented;  // "pack" or "check --preview" -> extensions
+    for (const std::string& part : split(list, "; ")) {
+        const size_t colon = part.find(": ");
+        ASSERT_NE(colon, std::string::npos) << part;
+        std::set<std::string> extensions;
+        for (const std::string& e : split(part.substr(colon + 2), ", ")) extensions.insert(between(e, "`", "`"));
+        for (const std::string& c : split(part.substr(0, colon), ", ")) documented[between(c, "`", "`")] = extensions;
+    }
+    ScratchDir dir;
+    writeImage(dir.file("map.png"), makeImage(16, 16, smoothWave), OIIO::TypeDesc::UINT8);
+    const std::string map = dir.file("map.png"), bmp = dir.file("x.bmp");
+    const std::map<std::string, std::vector<std::string>> runs = {
+        {"pack", {"pack", map, "-o", bmp}},
+        {"normal", {"normal", map, "--tile-size", "8m", "--height", "1m", "-o", bmp}},
+        {"fresnel", {"fresnel", "-o", bmp}},
+        {"tile", {"tile", map, "-o", bmp}},
+        {"synth", {"synth", "--wind", "10", "--tile-size", "10m", "-o", bmp}},
+        {"check --preview", {"check", map, "--preview", bmp}},
+    };
+    for (const auto& [name, args] : runs) {
+        const ProcessResult run = heightpackRun(args);
+        EXPECT_EQ(run.code, 2) << run.err;
+        std::set<std::string> said;
+        for (const std::string& e : split(between(run.err, " must end in ", ";"), ", ")) said.insert(e);
+        EXPECT_EQ(documented[name], said) << name << ": " << run.err << " against the README's " << list;
+    }
+    EXPECT_EQ(documented.size(), runs.size()) << list;
+}
+
+// --resize's default is what the help and the README say it is: none, which refuses a map whose sides are
+// not powers of two, exactly as --resize none does.
+TEST(FirstHour, ResizeDefaultIsWhatTheDocsSay) {
+    for (const char* command : {"pack", "normal"}) {
+        const ProcessResult help = heightpackRun({command, "--help"});
+        EXPECT_NE(lineWith(help.out, "--resize").find("--resize TEXT:{none,pow2}=none"), std::string::npos) << help.out;
+    }
+    EXPECT_NE(readme().find("| `--resize none\\|pow2` | `none` refuses a map whose sides are not powers of two (exit 3); "
+                            "`pow2` resamples it up to the next powers of two with the mip filter | none |"),
+              std::string::npos);
+    ScratchDir dir;
+    writeImage(dir.file("odd.png"), makeImage(24, 16, smoothWave), OIIO::TypeDesc::UINT8);
+    EXPECT_EQ(heightpackRun({"pack", dir.file("odd.png"), "-o", dir.file("a.exr")}).code, 3);
+    EXPECT_EQ(heightpackRun({"pack", dir.file("odd.png"), "--resize", "none", "-o", dir.file("b.exr")}).code, 3);
+    EXPECT_EQ(heightpackRun({"pack", dir.file("odd.png"), "--resize", "pow2", "-o", dir.file("c.exr")}).code, 0);
 }
