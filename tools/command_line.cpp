@@ -106,7 +106,8 @@ std::optional<Error> judgeOptions(const CLI::App& app, const std::vector<std::st
         const CLI::Option* option = app.get_option_no_throw(typed);
         if (!option) {
             const std::string meant = typed.size() > 2 ? suggestion(name, longNames(app), "--") : std::string();
-            return usage("unknown option " + typed, meant + help);
+            // A short option as the whole word: "-.5" is not the option "-.".
+            return usage("unknown option " + (typed.size() == 2 ? word : typed), meant + help);
         }
         const bool single = option->get_multi_option_policy() == CLI::MultiOptionPolicy::Throw &&
                             option->get_items_expected_max() == 1 && option->get_items_expected_min() == 1;
