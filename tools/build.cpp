@@ -18,6 +18,7 @@
 
 #include "command.hpp"
 #include "enum_option.hpp"
+#include "hints.hpp"
 #include "look_report.hpp"
 #include "option_values.hpp"
 
@@ -66,7 +67,7 @@ class BuildCommand final : public Command {
 public:
     CLI::App* attach(CLI::App& app) override {
         CLI::App* cmd = app.add_subcommand("build", "build every texture of a water material manifest, incrementally");
-        cmd->add_option("manifests", manifests_, "material manifests (.toml; see docs/manifest.md)")->required();
+        cmd->add_option("manifests", manifests_, "material manifests (.toml; see " + manifestReference() + ")")->required();
         cmd->add_option("-o,--output", output_,
                         "output folder: the material's own for one manifest, else one subfolder per material name");
         cmd->add_option("-j,--jobs", jobs_, "assets built at once (output bytes are the same for any number)")

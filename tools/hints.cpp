@@ -1,8 +1,49 @@
 #include "hints.hpp"
 
+#include <filesystem>
+
 #include "heightpack/io/read.hpp"
 
 namespace heightpack::cli {
+
+namespace {
+
+// A word as a POSIX shell reads it back: as it is when it is plain, else in double quotes.
+std::string shellWord(const std::string& word) {
+    const bool plain = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                               "0123456789_-+=.,:/@%") == std::string::npos;
+    if (plain) return word;
+    std::string quoted = "\"";
+    for (char c : word) {
+        if (c == '"' || c == '\\' || c == '$' || c == '`') quoted += '\\';
+        quoted += c;
+    }
+    return quoted + "\"";
+}
+
+// A TOML basic string holding text.
+std::string tomlString(const std::string& text) {
+    std::string quoted = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') quoted += '\\';
+        quoted += c;
+    }
+    return quoted + "\"";
+}
+
+}  // namespace
+
+std::string manifestReference() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (const fs::path self = fs::read_symlink("/proc/self/exe", ec); !ec) {
+        const fs::path installed = (self.parent_path() / HEIGHTPACK_DOC_FROM_BIN / "manifest.md").lexically_normal();
+        if (fs::is_regular_file(installed, ec)) return installed.string();
+    }
+    const fs::path source = fs::path(HEIGHTPACK_SOURCE_DOCS) / "manifest.md";
+    if (fs::is_regular_file(source, ec)) return source.string();
+    return "docs/manifest.md in heightpack's source";
+}
 
 std::string cliHint(const Error& error) {
     const auto arg = [&](size_t i) { return i < error.fixArgs.size() ? error.fixArgs[i] : std::string(); };
@@ -28,12 +69,18 @@ std::string cliHint(const Error& error) {
                                    : "--layout xy stores two channels, leaving no alpha for --height-in-alpha or "
                                      "--variance-in-alpha";
         case Fix::VarianceNeedsLevels: return "--variance-in-alpha is for mip-mapped outputs: write .exr";
+        case Fix::ManifestReference:
+            return arg(0) + (arg(0).empty() ? "" : " ") + "see " + manifestReference() + " for every key";
         case Fix::MakeTileable: {
-            std::string command = "heightpack tile " + arg(0) + " -o " + arg(1);
+            // The command as the shell runs it, with every manifest setting that shapes tile's verdict.
+            std::string command = "heightpack tile " + shellWord(arg(0)) + " -o " + shellWord(arg(1));
+            if (!arg(4).empty()) command += " --channel " + shellWord(arg(4));
             if (!arg(2).empty()) command += " --filter " + arg(2);
             if (!arg(3).empty()) command += " --threshold " + arg(3);
-            return "make it tile with '" + command +
-                   "' and use that as the source, or set tileable = false if it is not meant to tile";
+            const std::string frames = arg(6).empty() ? "" : " (every frame of the sequence alike)";
+            const std::string channel = arg(4).empty() ? "" : " and remove channel (it holds the heights alone)";
+            return "make it tile with '" + command + "'" + frames + ", then set source = " + tomlString(arg(5)) +
+                   channel + "; or set tileable = false if it is not meant to tile";
         }
     }
     return error.hint;

@@ -21,7 +21,7 @@ namespace {
 class TileCommand final : public Command {
 public:
     CLI::App* attach(CLI::App& app) override {
-        CLI::App* cmd = app.add_subcommand("tile", "make a height map tile, changing it as little as the method allows");
+        CLI::App* cmd = app.add_subcommand("tile", "make a height map tile: new content across each wrap line, a smooth change elsewhere");
         cmd->add_option("input", input_, "the height map")->required();
         cmd->add_option("-o,--output", output_, "the tiling map to write (.png, .tif, .exr)")->required();
         addEnumOption(*cmd, "--method", options_.method,
@@ -67,8 +67,12 @@ public:
             "bands, then the quilt (best and next-best source, a wider strip), before it falls back to\n"
             "Moisan's component and crossfades. One that tiles is written\n"
             "unchanged (the same bytes, or as float when its heights came from a colour channel); --force applies\n"
-            "the method anyway. Heights are never clipped or rescaled: when the fixed map leaves [0,1] an integer\n"
-            "output cannot hold it, so .exr and .tif outputs become float (said in the output) and a .png fails.\n"
+            "the method anyway. periodic and quilt replace a band across each wrap line and change the rest only\n"
+            "by a smooth (harmonic) field that makes the large scales periodic; every texel may move a little.\n"
+            "Heights are never clipped: periodic and quilt ease what would pass the input's extremes into the\n"
+            "outer 2% of its range; where another method leaves [0,1] an integer output cannot hold it, so .exr\n"
+            "and .tif outputs become float (said in the output) and a .png fails. The heights printed are those\n"
+            "of the file written.\n"
             "When the result would still not tile, nothing is written (exit 1).\n");
         return cmd;
     }

@@ -19,6 +19,7 @@ struct ViewerOptions {
     int width = 1280, height = 720;
     std::optional<float> time;    // fixed animation clock
     int bench = 0;                // render this many frames offscreen, print GPU time per pass, exit
+    bool compareLookups = false;  // --bench: time every other lookup the context has too, on the same frames
     int frames = 0;               // interactive: close the window after this many frames (0: when the user does)
     bool json = false;
     bool panelInScreenshot = false;  // draw the ImGui panel into the screenshot too

@@ -3,6 +3,8 @@
 #include <imgui.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -37,17 +39,25 @@ void drawPanelOffscreen(ViewerOptions& o, const Scene& scene, const Renderer& re
     ImGui::DestroyContext();
 }
 
-// Mean times per frame over `frames` frames drawn with settings, after one frame to warm up.
+// Mean times per frame over `frames` frames drawn with settings, after one frame to warm up. On a terminal
+// (and not --json) it shows which lookup and frame it is at: a software renderer takes seconds a frame.
 PassTimes benchFrames(const ViewerOptions& o, const RenderSettings& settings, Renderer& renderer, GLuint framebuffer) {
     const float time = o.time.value_or(0.0f);
+    const bool progress = !o.json && isatty(STDERR_FILENO);
+    auto show = [&](int frame) {
+        if (progress) std::fprintf(stderr, "\rbench: lookup %s, frame %d of %d ", lookupName(settings.lookup), frame, o.bench);
+    };
     PassTimes total;
+    show(0);
     renderer.render(o.camera, settings, time, o.width, o.height, framebuffer, true, true);
     for (int i = 0; i < o.bench; ++i) {
+        show(i + 1);
         renderer.render(o.camera, settings, time + i / 60.0f, o.width, o.height, framebuffer, true, true);
         const PassTimes& t = renderer.times();
         total.water += t.water, total.combine += t.combine, total.tiled += t.tiled;
         total.waterWall += t.waterWall, total.combineWall += t.combineWall, total.tiledWall += t.tiledWall;
     }
+    if (progress) std::fprintf(stderr, "\r\033[K");
     const double n = o.bench;
     for (double* v : {&total.water, &total.combine, &total.tiled, &total.waterWall, &total.combineWall, &total.tiledWall})
         *v /= n;
@@ -98,9 +108,15 @@ void printBench(const ViewerOptions& o, const Renderer& renderer, const ContextI
         return;
     }
     std::printf("%d frames at %dx%d on %s (%s, OpenGL %s), %lld grid vertices, ms per frame (timer query / wall with "
-                "glFinish):\n  water pass   %8.3f / %8.3f\n  combine pass %8.3f / %8.3f\n  tiled view   %8.3f / %8.3f\n",
-                o.bench, o.width, o.height, gl.c_str(), context.platform.c_str(), version.c_str(), chosen.vertices,
-                chosen.water, chosen.waterWall, chosen.combine, chosen.combineWall, chosen.tiled, chosen.tiledWall);
+                "glFinish):\n",
+                o.bench, o.width, o.height, gl.c_str(), context.platform.c_str(), version.c_str(), chosen.vertices);
+    // The passes drawn, and no others.
+    if (o.settings.tiledView) {
+        std::printf("  tiled view   %8.3f / %8.3f\n", chosen.tiled, chosen.tiledWall);
+    } else {
+        std::printf("  water pass   %8.3f / %8.3f   (lookup %s)\n", chosen.water, chosen.waterWall, lookupName(o.settings.lookup));
+        if (o.settings.twoPass) std::printf("  combine pass %8.3f / %8.3f\n", chosen.combine, chosen.combineWall);
+    }
     for (const auto& [lookup, t] : lookups)
         std::printf("  lookup %-20s water %8.3f / %8.3f   combine %8.3f / %8.3f\n", lookupName(lookup), t.water, t.waterWall,
                     t.combine, t.combineWall);
@@ -151,9 +167,10 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer, co
     const float time = o.time.value_or(0.0f);
     if (o.bench > 0) {
         const PassTimes chosen = benchFrames(o, o.settings, renderer, target.framebuffer);
-        // Each lookup on the same frames (the tiled view reads no lookup): the one asked for is measured once.
+        // With --compare-lookups, each lookup on the same frames (the tiled view reads no lookup): the one
+        // asked for is measured once.
         std::vector<std::pair<Lookup, PassTimes>> lookups;
-        for (int l = 0; l < 6 && !o.settings.tiledView; ++l) {
+        for (int l = 0; l < 6 && o.compareLookups && !o.settings.tiledView; ++l) {
             RenderSettings s = o.settings;
             s.lookup = static_cast<Lookup>(l);
             if (isGather(s.lookup) && !renderer.gatherAvailable()) continue;

@@ -17,7 +17,8 @@ struct ContextInfo {
 // The current context's version, under the given platform name.
 ContextInfo currentContext(const std::string& platform);
 
-// Renders the bench (every lookup the context has, GPU bytes of the textures) and then the screenshot,
+// Renders the bench (the lookup asked for, or every lookup the context has with --compare-lookups; GPU
+// bytes of the textures) and then the screenshot,
 // as the options ask. Returns the process exit code.
 int renderOffscreen(ViewerOptions& options, const Scene& scene, Renderer& renderer, const ContextInfo& context);
 

@@ -15,6 +15,7 @@
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/read.hpp"
 
+#include "manifest_keys.hpp"
 #include "manifest_parser.hpp"
 #include "manifest_synth.hpp"
 
@@ -32,18 +33,25 @@ bool validName(const std::string& name) {
 }
 
 Manifest ManifestParser::parse(const toml::table& root) {
-    Section top(root, "", path_);
+    Section top(root, "", path_, ManifestTable::Top);
     Manifest m;
     m.path = path_;
-    const double format = top.number("format", std::nullopt, 1, 1e9);
-    if (format != kManifestFormat)
-        throw top.error("format", "is " + Section::formatNumber(format) + ", but this heightpack reads format " +
-                                      std::to_string(kManifestFormat));
+    const auto checkFormat = [&] {
+        const double format = top.number("format", std::nullopt, 1, 1e9);
+        if (format != kManifestFormat)
+            throw top.error("format", "is " + Section::formatNumber(format) + ", but this heightpack reads format " +
+                                          std::to_string(kManifestFormat));
+    };
+    // Another format's keys are not this one's: a manifest of another format is told so first. Then a
+    // misspelt key anywhere is named before any key it leaves missing (or any value) is judged.
+    if (root.get("format")) checkFormat();
+    rejectUnknownKeys(root, path_);
+    checkFormat();
     m.name = top.requiredText("name");
     if (!validName(m.name)) throw top.error("name", "must be 1-64 letters, digits, '_', '-' or '.'");
     m.threshold = top.number("threshold", kDefaultSeamThreshold, 1.0, 1e6);
     if (const toml::table* d = top.table("defaults")) {
-        Section s(*d, "defaults", path_);
+        Section s(*d, "defaults", path_, ManifestTable::Defaults);
         defaults_ = settings(s, MapSettings{});
         defaultsMustTile_ = s.boolean("tileable");
         s.finish();
@@ -56,7 +64,7 @@ Manifest ManifestParser::parse(const toml::table& root) {
         throw top.error("displacement", "has " + std::to_string(array->size()) + " maps; at most " +
                                             std::to_string(kMaxDisplacementMaps));
     for (size_t i = 0; i < array->size(); ++i) {
-        Section s(*(*array)[i].as_table(), "displacement[" + std::to_string(i) + "]", path_);
+        Section s(*(*array)[i].as_table(), "displacement[" + std::to_string(i) + "]", path_, ManifestTable::Displacement);
         mapsBefore_ = m.displacement.size();
         for (DisplacementAsset& d : displacement(s)) m.displacement.push_back(std::move(d));
         if (m.displacement.size() > kMaxDisplacementMaps)  // the cascades of a sea above it fill the material
@@ -66,15 +74,15 @@ Manifest ManifestParser::parse(const toml::table& root) {
                           "use fewer cascades, or fewer [[displacement]] maps");
     }
     if (const toml::table* t = top.table("normals")) {
-        Section s(*t, "normals", path_);
+        Section s(*t, "normals", path_, ManifestTable::Normals);
         m.normals = normals(s);
     }
     if (const toml::table* t = top.table("fresnel")) {
-        Section s(*t, "fresnel", path_);
+        Section s(*t, "fresnel", path_, ManifestTable::Fresnel);
         m.fresnel = fresnel(s);
     }
     if (const toml::table* t = top.table("foam")) {
-        Section s(*t, "foam", path_);
+        Section s(*t, "foam", path_, ManifestTable::Foam);
         m.foam = foam(s);
     }
     top.finish();

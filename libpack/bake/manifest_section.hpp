@@ -9,15 +9,26 @@
 #include <cstdio>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "heightpack/core/names.hpp"
 #include "heightpack/core/result.hpp"
 
+#include "manifest_keys.hpp"
+
 namespace heightpack::detail {
 
-inline constexpr const char* kHint = "see docs/manifest.md for every key";
+// The library's neutral words for Fix::ManifestReference; each shell names where the reference is.
+inline constexpr const char* kHint = "see manifest.md in heightpack's documentation for every key";
+
+// An error in a manifest's key or value, pointing at the reference: first is what to do before reading
+// it ("did you mean 'source'?"), or empty.
+inline Error referenced(const std::string& where, const std::string& what, const std::string& first = {}) {
+    return withFix(badInput(where, what, first.empty() ? kHint : first + " " + kHint), Fix::ManifestReference, {first});
+}
 
 // A key or value as quoted in a message: long ones are cut, so an error stays one readable line.
 inline std::string shorten(const std::string& text) {
@@ -27,39 +38,47 @@ inline std::string shorten(const std::string& text) {
 
 inline int lineOf(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
 
-// One table of the manifest. Every key read is remembered, so finish() can reject the ones nobody
-// asked for; every error names file:line and the key's full path.
+// One table of the manifest, of a kind that takes the keys keysOf(kind) lists. Every key read is
+// remembered, so finish() can reject the ones nobody asked for; every error names file:line and the
+// key's full path.
 class Section {
 public:
-    Section(const toml::table& table, std::string prefix, const std::string& file)
-        : table_(table), prefix_(std::move(prefix)), file_(file) {}
+    Section(const toml::table& table, std::string prefix, const std::string& file, ManifestTable kind)
+        : table_(table), prefix_(std::move(prefix)), file_(file), kind_(kind) {}
 
     int line() const { return std::max(1, lineOf(table_)); }
     const std::string& prefix() const { return prefix_; }
     std::string key(const std::string& k) const { return shorten(prefix_.empty() ? k : prefix_ + "." + k); }
 
-    Error error(int line, const std::string& what, const std::string& hint = kHint) const {
-        return badInput(file_ + ":" + std::to_string(line), what, hint);
+    // The error at line: with a hint of its own, or without one pointing at the reference.
+    Error error(int line, const std::string& what, const std::string& hint = {}) const {
+        const std::string where = file_ + ":" + std::to_string(line);
+        return hint.empty() ? referenced(where, what) : badInput(where, what, hint);
     }
-    Error error(const std::string& k, const std::string& what, const std::string& hint = kHint) const {
+    Error error(const std::string& k, const std::string& what, const std::string& hint = {}) const {
         const toml::node* n = table_.get(k);
         return error(n ? lineOf(*n) : line(), "key '" + key(k) + "' " + what, hint);
     }
+    // A key that must be there and is not (first: what to do, before the reference).
+    Error missing(const std::string& k, const std::string& first = {}) const {
+        return referenced(file_ + ":" + std::to_string(line()), "missing key '" + key(k) + "'", first);
+    }
 
     const toml::node* find(const std::string& k) {
+        // A key the parser reads must be one its table takes (manifest_keys.cpp), or rejectUnknownKeys
+        // would refuse it before the parser ever saw it: a bug to report, whatever the manifest.
+        const auto& keys = keysOf(kind_);
+        if (std::find(keys.begin(), keys.end(), k) == keys.end())
+            throw std::logic_error("the manifest parser reads '" + key(k) + "', which keysOf does not list");
         known_.insert(k);
         return table_.get(k);
     }
+    // Unknown keys were rejected before any table was read (rejectUnknownKeys), so a key missing here
+    // is not a misspelling's doing.
     const toml::node& require(const std::string& k) {
         const toml::node* n = find(k);
         if (n) return *n;
-        // A misspelt key is the likelier mistake: name it rather than the key it was meant to be.
-        for (auto&& [other, node] : table_) {
-            const std::string name(other.str());
-            if (!known_.count(name) && editDistance(name, k) <= 2)
-                throw error(lineOf(node), "unknown key '" + key(name) + "'", "did you mean '" + k + "'? " + kHint);
-        }
-        throw error(line(), "missing key '" + key(k) + "'");
+        throw missing(k);
     }
 
     double number(const std::string& k, std::optional<double> fallback, double lo, double hi, bool openLow = false) {
@@ -124,17 +143,25 @@ public:
         if (!n->is_table()) throw error(k, "must be a table [" + key(k) + "], not " + typeName(*n));
         return n->as_table();
     }
-    // Rejects any key that was never asked for, suggesting the nearest one that was.
+    // Rejects any key that was never asked for (a key the table takes that this parse left unread is
+    // a bug, as rejectUnknownKeys has let it through), suggesting the nearest one that was.
     void finish() const {
         for (auto&& [k, node] : table_) {
             const std::string name(k.str());
-            if (known_.count(name)) continue;
-            const std::vector<std::string> near = nearestNames(name, std::vector<std::string>(known_.begin(), known_.end()));
-            const std::string best = near.empty() ? std::string() : near.front();
-            const std::string where = prefix_.empty() ? "at the top level" : "in [" + prefix_ + "]";
-            throw error(lineOf(node), "unknown key '" + key(name) + "' " + where,
-                        best.empty() ? kHint : "did you mean '" + best + "'? " + kHint);
+            if (!known_.count(name)) throw unknownKey(name, node, {known_.begin(), known_.end()});
         }
+    }
+    // The line and error of this table's first key (in file order) that its kind does not take.
+    std::optional<std::pair<int, Error>> firstUnknownKey() const {
+        std::optional<std::pair<int, Error>> first;
+        const auto& keys = keysOf(kind_);
+        for (auto&& [k, node] : table_) {
+            const std::string name(k.str());
+            if (std::find(keys.begin(), keys.end(), name) != keys.end()) continue;
+            if (!first || lineOf(node) < first->first)
+                first.emplace(lineOf(node), unknownKey(name, node, {keys.begin(), keys.end()}));
+        }
+        return first;
     }
 
     static std::string typeName(const toml::node& n) {
@@ -160,9 +187,19 @@ public:
     }
 
 private:
+    // The error for key name, at node, suggesting the nearest of candidates (within two edits).
+    Error unknownKey(const std::string& name, const toml::node& node, const std::vector<std::string>& candidates) const {
+        const std::vector<std::string> near = nearestNames(name, candidates);  // heightpack/core/names.hpp
+        const std::string best = near.empty() ? std::string() : near.front();
+        const std::string where = prefix_.empty() ? "at the top level" : "in [" + prefix_ + "]";
+        return referenced(file_ + ":" + std::to_string(lineOf(node)), "unknown key '" + key(name) + "' " + where,
+                          best.empty() ? "" : "did you mean '" + best + "'?");
+    }
+
     const toml::table& table_;
     std::string prefix_;
     const std::string& file_;
+    ManifestTable kind_;
     std::set<std::string> known_;
 };
 

@@ -23,13 +23,11 @@ std::vector<DisplacementAsset> ManifestParser::displacement(Section& s) {
         throw s.error("source", "is given beside a [" + s.prefix() + ".synth] table",
                       "keep one: source = a map's path, or the synth table to synthesise the sea");
     if (!synth && !s.find("source"))
-        throw s.error(s.line(), "missing key '" + s.key("source") + "'",
-                      "give source = a map's path, or a [displacement.synth] table to synthesise the sea; " +
-                          std::string(detail::kHint));
+        throw s.missing("source", "give source = a map's path, or a [displacement.synth] table to synthesise the sea;");
     static_cast<SourcedAsset&>(d) = sourced(s, d.layer.name, true, synth != nullptr);
     d.layer.tileSize = s.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
     if (synth) {
-        Section t(*synth, s.prefix() + ".synth", path_);
+        Section t(*synth, s.prefix() + ".synth", path_, ManifestTable::Synth);
         d.synth = detail::parseSynthSource(t, d.layer.tileSize);
         if (const size_t maps = mapsBefore_ + d.synth->cascades; maps > kMaxDisplacementMaps)
             throw t.error("cascades", "is " + std::to_string(d.synth->cascades) + ", which makes " +
@@ -116,7 +114,7 @@ NormalAsset ManifestParser::normals(Section& s) {
         if (!a || !a->is_array_of_tables() || a->empty() || a->size() > 4)
             throw s.error("octave", "must be one to four [[normals.octave]] tables");
         for (size_t i = 0; i < a->size(); ++i) {
-            Section o(*(*a)[i].as_table(), "normals.octave[" + std::to_string(i) + "]", path_);
+            Section o(*(*a)[i].as_table(), "normals.octave[" + std::to_string(i) + "]", path_, ManifestTable::Octave);
             NormalOctave octave;
             octave.tileSize = o.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
             octave.scroll = scroll(o);

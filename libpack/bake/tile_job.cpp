@@ -255,8 +255,6 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     report.width = result.width;
     report.height = result.height;
     const SampleRange range = sampleRange(result, options.mip.threads);
-    report.low = range.low;
-    report.high = range.high;
 
     const Storage::Choice stored = storage.choose(result, range, report.alreadyTiled);
     report.bits = stored.bits;
@@ -282,6 +280,10 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
         if (bits == report.bits && judgedStored && compressed.get() == judgedStored.get()) prepared = std::move(pixels);
     }
     result = judged && judgedStored ? std::move(*judgedStored) : Storage::rounded(std::move(result), report.bits, options.mip.threads);
+    // The heights reported are those of the file: rounded to its steps where it holds integers.
+    const SampleRange written = report.bits == 32 ? range : sampleRange(result, options.mip.threads);
+    report.low = written.low;
+    report.high = written.high;
     if (judged) {
         report.after = std::move(*judged);
     } else {

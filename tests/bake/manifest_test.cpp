@@ -2,6 +2,7 @@
 // they do not), bad ones give BadInput naming FILE:LINE and the key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <string>
 
@@ -138,6 +139,79 @@ TEST(Manifest, BadManifestsAreBadInputNamingTheLineAndTheKey) {
     auto missing = parseManifest(d.dir.file("none.toml"));
     ASSERT_FALSE(missing);
     EXPECT_EQ(missing.error().kind, ErrorKind::BadInput);
+}
+
+// A misspelt key leaves the key it meant missing, and may sit in a table read after one with a key
+// missing for no such reason: either way the misspelling is what is named, with the key it was meant to
+// be, in every table of a manifest. Nothing is named missing while a key is unknown.
+TEST(Manifest, UnknownKeysAreNamedBeforeMissingOnesInEveryTable) {
+    ManifestDir d;
+    const std::string head = "format = 1\nname = \"sea\"\n";
+    const std::string displacement = "\n[[displacement]]\nname = \"swell\"\nsource = \"a.png\"\ntile_size = 64.0\n";
+    const std::string noTileSize = "\n[[displacement]]\nname = \"swell\"\nsource = \"a.png\"\n";
+    struct Case {
+        std::string text;
+        std::string misspelt;  // the line holding it is the error's
+        std::string key;       // as the message names it
+        std::string meant;     // the suggestion ("" for none)
+    };
+    const Case cases[] = {
+        // The top level: the name it meant, and the array of tables it meant.
+        {"format = 1\nnme = \"sea\"\n" + displacement, "nme", "nme", "name"},
+        {head + "\n[[displacment]]\nname = \"swell\"\nsource = \"a.png\"\ntile_size = 64.0\n", "[[displacment]]",
+         "displacment", "displacement"},
+        // [defaults], read after the top level's missing name.
+        {"format = 1\n\n[defaults]\nfiltr = \"box\"\n" + displacement, "filtr", "defaults.filtr", "filter"},
+        // The manifest: source misspelt, so no source and no synth table.
+        {head + "\n[[displacement]]\nname = \"swell\"\nsorce = \"swell.png\"\ntile_size = 64.0\n", "sorce",
+         "displacement[0].sorce", "source"},
+        // Too far from any key for a suggestion, yet still named first.
+        {head + noTileSize + "size_of_tile = 64.0\n", "size_of_tile", "displacement[0].size_of_tile", ""},
+        // [displacement.synth] without its wind, and a misspelt seed.
+        {head + noTileSize.substr(0, noTileSize.find("source")) + "tile_size = 64.0\n\n[displacement.synth]\nsed = 3\n",
+         "sed", "displacement[0].synth.sed", "seed"},
+        // [normals] without its height, and a misspelt kernel.
+        {head + displacement + "\n[normals]\nsource = \"a.png\"\ntile_size = 8.0\nkernal = \"scharr\"\n", "kernal",
+         "normals.kernal", "kernel"},
+        // [[normals.octave]] without its tile_size, and a misspelt strength.
+        {head + displacement + "\n[normals]\nsource = \"a.png\"\ntile_size = 8.0\nheight = 0.5\n\n[[normals.octave]]\n"
+                               "strenght = 1.0\n",
+         "strenght", "normals.octave[0].strenght", "strength"},
+        // [fresnel] (no key is required there) after a displacement map missing its tile_size.
+        {head + noTileSize + "\n[fresnel]\niro = 1.5\n", "iro", "fresnel.iro", "ior"},
+        // [foam] without its hmax, and a misspelt tile_size.
+        {head + displacement + "\n[foam]\nh0 = 1.0\ntilesize = 4.0\n", "tilesize", "foam.tilesize", "tile_size"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.text);
+        auto m = d.parse(c.text);
+        ASSERT_FALSE(m);
+        const Error& e = m.error();
+        const size_t at = c.text.find(c.misspelt);
+        ASSERT_NE(at, std::string::npos);
+        const int line = 1 + static_cast<int>(std::count(c.text.begin(), c.text.begin() + at, '\n'));
+        EXPECT_EQ(e.path, d.dir.file("m.toml") + ":" + std::to_string(line)) << e.what;
+        EXPECT_EQ(e.what.rfind("unknown key '" + c.key + "'", 0), 0u) << e.what;
+        EXPECT_EQ(e.what.find("missing"), std::string::npos) << e.what;
+        // The suggestion leads the hint; a shell words where the reference is (Fix::ManifestReference).
+        EXPECT_EQ(e.fix, Fix::ManifestReference);
+        const std::string suggestion = c.meant.empty() ? "" : "did you mean '" + c.meant + "'?";
+        EXPECT_EQ(e.fixArgs, std::vector<std::string>{suggestion});
+        EXPECT_EQ(e.hint.rfind(suggestion, 0), 0u) << e.hint;
+        if (c.meant.empty()) {
+            EXPECT_EQ(e.hint.find("did you mean"), std::string::npos) << e.hint;
+        }
+    }
+
+    // A manifest of another format has other keys: it is told its format first.
+    auto newer = d.parse("format = 2\nname = \"sea\"\nnew_key = 1\n" + displacement);
+    ASSERT_FALSE(newer);
+    EXPECT_NE(newer.error().what.find("reads format 1"), std::string::npos) << newer.error().what;
+    // With every key known, a missing one is named, pointing at the reference.
+    auto missing = d.parse(head + noTileSize);
+    ASSERT_FALSE(missing);
+    EXPECT_EQ(missing.error().what, "missing key 'displacement[0].tile_size'");
+    EXPECT_EQ(missing.error().fix, Fix::ManifestReference);
 }
 
 }  // namespace

@@ -28,9 +28,34 @@ foreach(f IN LISTS package_files)
     endif()
   endforeach()
 endforeach()
-# Every manifest error points at docs/manifest.md: it must be installed with the package.
-if(NOT EXISTS ${WORK_DIR}/prefix/share/doc/heightpack/manifest.md)
-  message(FATAL_ERROR "docs/manifest.md was not installed under share/doc/heightpack")
+# Every manifest error points at the manifest reference: the installed program, moved with its prefix,
+# names the copy installed with it, and that file is there.
+file(WRITE ${WORK_DIR}/misspelt.toml "format = 1\nname = \"sea\"\n\n[[displacement]]\nname = \"chop\"\n"
+                                     "sorce = \"chop.png\"\ntile_size = 16.0\n")
+execute_process(COMMAND ${WORK_DIR}/prefix/bin/heightpack build ${WORK_DIR}/misspelt.toml --check-only
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 3 OR NOT err MATCHES "unknown key 'displacement\\[0\\]\\.sorce'.*did you mean 'source'\\? see (.+) for every key\\)")
+  message(FATAL_ERROR "a misspelt key did not name the reference with a suggestion (${rc}):\n${err}")
+endif()
+set(reference "${CMAKE_MATCH_1}")
+file(REAL_PATH ${WORK_DIR}/prefix/share/doc/heightpack/manifest.md installed_reference)
+if(NOT EXISTS "${reference}" OR NOT reference STREQUAL installed_reference)
+  message(FATAL_ERROR "the manifest error names ${reference}, not the installed ${installed_reference}:\n${err}")
+endif()
+
+# A pure asset project (LANGUAGES NONE: no compiler) finds the package and builds a material with it;
+# asking it for a library instead says that the libraries need C++.
+set(assets_build ${WORK_DIR}/assets_build)
+run(${CMAKE_COMMAND} -S ${src}/assets_only -B ${assets_build} -G Ninja -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
+run(${CMAKE_COMMAND} --build ${assets_build})
+if(NOT EXISTS ${assets_build}/water/material.json OR NOT EXISTS ${assets_build}/water/chop.exr)
+  message(FATAL_ERROR "the asset project without a compiler did not build its water material:\n${out}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${src}/assets_only -B ${WORK_DIR}/assets_core_build -G Ninja
+                        -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DHEIGHTPACK_COMPONENTS=core
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "are C\\+\\+: enable CXX")
+  message(FATAL_ERROR "asking for heightpack::core without C++ did not say it needs C++ (${rc}):\n${out}\n${err}")
 endif()
 
 # heightpack::core alone: configured, built (with image and TOML library headers poisoned) and run, and it

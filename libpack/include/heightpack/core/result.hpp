@@ -32,8 +32,11 @@ enum class Fix {
     RenamePlainOutput,      // the unpacked chain's output is the packed output
     FewerJobs,              // out of memory: fewer jobs or threads at once
     WriteFloat,             // heights that integer samples cannot hold: write float samples
-    MakeTileable,           // a map that must tile does not: make it tile with `heightpack tile`;
-                            // fixArgs: {input, output, filter ("" for the default), threshold ("" for the default)}
+    MakeTileable,           // a map that must tile does not: make it tile with `heightpack tile`; fixArgs:
+                            // {input, output, filter ("" for the default), threshold ("" for the default),
+                            // channel ("" for none: the manifest's channel, r, g, b, a, luma or a name),
+                            // the manifest's source for the tiled map (relative to the manifest),
+                            // "sequence" when the input is one frame of a sequence (else "")}
     AddDisplacement,        // horizontal displacement asked of a map without it: make the map with its Dx, Dy
                             // channels (a synthesised EXR), or leave the displacement out
     AddFoam,                // foam coverage asked of a map without it: make the map with its Foam channel
@@ -44,6 +47,8 @@ enum class Fix {
     RgbNormals,             // xy normals asked where only rgb fit; fixArgs: {"png"} (an 8-bit PNG has no mip
                             // levels) or {"alpha"} (two channels leave no alpha)
     VarianceNeedsLevels,    // slope variance in alpha asked of a one-level PNG: write a mip-mapped texture
+    ManifestReference,      // a manifest key or value is wrong: the manifest reference (docs/manifest.md, installed
+                            // with heightpack's documentation) lists every key; fixArgs: {what to do first, or ""}
 };
 
 struct Error {
