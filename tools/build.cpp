@@ -1,8 +1,10 @@
 // heightpack build: every texture of one or more water material manifests, rebuilt only where inputs
 // or options changed, with material.json for the viewer and engines.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -256,12 +258,19 @@ private:
     };
 
     static void printAsset(const AssetReport& a) {
+        // The status column as wide as the widest status ("restored from cache"), so the outputs line up.
+        static const int width = [] {
+            size_t widest = 0;
+            for (const EnumName<AssetStatus>& e : NameTable<AssetStatus>::entries) widest = std::max(widest, std::strlen(e.name));
+            return static_cast<int>(widest);
+        }();
         std::string what = a.kind + " '" + a.name + "'";
         if (a.frame >= 0) what += " frame " + std::to_string(a.frame);
         if (a.status == AssetStatus::Rebuilt)
-            std::printf("  %-11s %-28s %-30s %6.2f s\n", "rebuilt", a.output.c_str(), what.c_str(), a.seconds);
+            std::printf("  %-*s %-28s %-30s %6.2f s\n", width, assetStatusName(a.status), a.output.c_str(), what.c_str(),
+                        a.seconds);
         else
-            std::printf("  %-11s %-28s %s\n", assetStatusName(a.status), a.output.c_str(), what.c_str());
+            std::printf("  %-*s %-28s %s\n", width, assetStatusName(a.status), a.output.c_str(), what.c_str());
         std::fflush(stdout);
     }
 

@@ -140,16 +140,23 @@ private:
                     r.tiles ? "tiles" : "does NOT tile", seamScoreText(t, t).c_str());
         if (!r.note.empty()) std::printf("  note: %s\n", cliNote(r.note, r.noteFix).c_str());
         if (!r.source.channelNote.empty()) std::printf("  note: %s\n", r.source.channelNote.c_str());
-        std::printf("  %-5s %-11s %-26s %-26s\n", "level", "size", "left/right value  slope", "top/bottom value  slope");
+        // Each score right-aligned under the last letter of its heading ("value", "slope"), FAIL after the pair.
+        std::printf("  %-5s %-11s %16s %7s      %16s %7s\n", "level", "size", "left/right value", "slope",
+                    "top/bottom value", "slope");
         auto cell = [&](const SeamScore& s) {
-            if (!s.measured) return std::string("(too small)");
-            std::string text = seamScoreText(s.value, t) + " / " + seamScoreText(s.slope, t);
-            return text + (seamPasses(s, t) ? "" : "  FAIL");
+            char text[64];
+            if (!s.measured)
+                std::snprintf(text, sizeof text, "%24s     ", "(too small)");
+            else
+                std::snprintf(text, sizeof text, "%16s %7s%-5s", seamScoreText(s.value, t).c_str(),
+                              seamScoreText(s.slope, t).c_str(), seamPasses(s, t) ? "" : " FAIL");
+            return std::string(text);
         };
         for (size_t i = 0; i < r.levels.size(); ++i) {
             const LevelSeams& l = r.levels[i];
             const std::string size = std::to_string(l.width) + "x" + std::to_string(l.height);
-            std::printf("  %-5zu %-11s %-26s %-26s\n", i, size.c_str(), cell(l.leftRight).c_str(), cell(l.topBottom).c_str());
+            const std::string row = cell(l.leftRight) + " " + cell(l.topBottom);
+            std::printf("  %-5zu %-11s %s\n", i, size.c_str(), row.substr(0, row.find_last_not_of(' ') + 1).c_str());
         }
         for (SeamEdge edge : {SeamEdge::LeftRight, SeamEdge::TopBottom}) {
             const SeamScore& worst = edge == SeamEdge::LeftRight ? r.worst.leftRight : r.worst.topBottom;

@@ -1,9 +1,12 @@
 // heightpack info: what a texture file holds, level by level.
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <iostream>
+
+#include "heightpack/bake/material.hpp"
 
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/engine_support.hpp"
@@ -24,7 +27,7 @@ public:
         CLI::App* cmd = app.add_subcommand("info", "describe a texture: size, levels, layout, wrap, filter, "
                                                    "scale/offset, min/max/mean per level");
         cmd->add_option("input", input_, "an EXR, KTX2 or DDS heightpack wrote, or any image; NAME.EXT for a sequence "
-                                         "NAME.0000.EXT, NAME.0001.EXT, ...")
+                                         "NAME.0000.EXT, NAME.0001.EXT, ...; or a material.json 'heightpack build' wrote")
             ->required();
         addEnumOption(*cmd, "--engine", engines_,
                       "say whether the file loads as stored in these engines (three, babylon, unreal, unity, godot; "
@@ -34,12 +37,20 @@ public:
             "Examples:\n  heightpack info out/swell.exr\n  heightpack info out/swell.exr --json\n"
             "  heightpack info out/ripple_seq.exr   (the frames out/ripple_seq.0000.exr ...)\n"
             "  heightpack info out/swell.ktx2 --engine three,godot\n"
+            "  heightpack info out/ocean/material.json   (what a build made: every texture and its parameters)\n"
             "Engines: what each loader reads, with its source, is in README, 'Which engine loads what'.\n");
         return cmd;
     }
 
     ExitCode run() override {
         setLibraryThreads(common_.threads);
+        // A build's description, or the manifest it was built from, rather than a texture.
+        const std::string ext = lowerExtension(input_);
+        if (ext == ".json") return runMaterial();
+        if (ext == ".toml")
+            return fail({ErrorKind::InconsistentOptions, input_, "is a material manifest, not a texture",
+                         "build it with 'heightpack build " + input_ + " -o FOLDER', then 'heightpack info "
+                         "FOLDER/material.json' describes what it made"});
         // A sequence: frame 0 described in full, then a line per frame.
         const std::vector<std::string> frames = expandSequence(input_);
         if (frames.size() > 1 || frames.front() != input_) return runSequence(frames);
@@ -84,6 +95,59 @@ private:
             std::printf("  %-5zu %-11s %12.6g %12.6g %12.6g\n", f, size.c_str(), c.min, c.max, c.mean);
         }
         return ExitCode::Ok;
+    }
+
+    ExitCode runMaterial() const {
+        auto material = readMaterial(input_);
+        if (!material) return fail(material.error());
+        if (common_.json)
+            printJson({{"command", "info"}, {"path", input_}, {"material", nlohmann::json::parse(materialJson(*material))}});
+        else if (!common_.quiet)
+            printMaterial(*material);
+        return ExitCode::Ok;
+    }
+
+    // A number as material.json holds it: the shortest text that reads back as the same double.
+    static std::string number(double v) {
+        char text[32];
+        const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+        return std::string(text, end);
+    }
+
+    static std::string textureText(const MaterialTexture& t) {
+        std::string text = t.file + ", " + std::to_string(t.width) + "x" + std::to_string(t.height) + ", " +
+                           std::to_string(t.levels) + (t.levels == 1 ? " level" : " levels");
+        return t.frames > 1 ? text + ", " + std::to_string(t.frames) + " frames" : text;
+    }
+
+    void printMaterial(const MaterialDescription& m) const {
+        std::printf("%s: material '%s', made by %s from %s\n", input_.c_str(), m.name.c_str(), m.generator.c_str(),
+                    m.manifest.c_str());
+        auto row = [](const std::string& what, const std::string& texture, const std::string& parameters) {
+            std::printf("  %-26s %s; %s\n", what.c_str(), texture.c_str(), parameters.c_str());
+        };
+        for (const DisplacementLayer& d : m.displacement) {
+            std::string p = "tile " + number(d.tileSize) + " m, amplitude " + number(d.amplitude) + " m, scroll " +
+                            number(d.scroll[0]) + "," + number(d.scroll[1]) + " tiles/s, " + nameOf(d.wrap) + ", " +
+                            nameOf(d.filter);
+            if (d.loopPeriod > 0) p += ", loop " + number(d.loopPeriod) + " s";
+            if (d.horizontalDisplacement) p += ", choppiness " + number(d.choppiness);
+            if (d.foam) p += ", foam layer";
+            row("displacement '" + d.name + "'", textureText(d.texture), p);
+        }
+        if (const auto& n = m.normals)
+            row("normals '" + n->name + "'", textureText(n->texture),
+                "tile " + number(n->tileSize) + " m, height " + number(n->heightRange) + " m, " + nameOf(n->convention) +
+                    ", alpha " + nameOf(n->alpha) + ", " + std::to_string(n->octaves.size()) +
+                    (n->octaves.size() == 1 ? " octave" : " octaves"));
+        if (const auto& f = m.fresnel)
+            row("fresnel '" + f->name + "'", textureText(f->texture),
+                "ior " + number(f->ior) + ", " + nameOf(f->model) + ", index " + nameOf(f->index));
+        if (const auto& f = m.foam)
+            row("foam '" + f->name + "'", f->texture ? textureText(*f->texture) : "no texture (the renderer's own pattern)",
+                "from " + number(f->h0) + " m to " + number(f->hmax) + " m, tile " + number(f->tileSize) + " m");
+        std::printf("  each texture: 'heightpack info FILE' (files are beside %s); all of them: 'heightpack-view %s'\n",
+                    input_.c_str(), input_.c_str());
     }
 
     // Metres per unit of a height file's lookup errors, when it records its height range; 0 otherwise

@@ -1,6 +1,8 @@
 #include "look_report.hpp"
 
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <vector>
 
 namespace heightpack::cli {
@@ -17,6 +19,13 @@ std::vector<Statistic> statistics(const TileLook& look, const LookThresholds& t)
     return {{"frame", look.frame, t.frame, "a band of other contrast around every tile"},
             {"blobs", look.blobs, t.blobs, "bright or dark patches along the tile edges or at its corners"},
             {"echo", look.echo, t.echo, "one feature shown twice in every tile"}};
+}
+
+// Two decimals, a rounded zero without a sign ("0.00", not "-0.00").
+std::string twoDecimals(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", v);
+    return text[0] == '-' && std::strtod(text, nullptr) == 0.0 ? text + 1 : text;
 }
 
 }  // namespace
@@ -41,7 +50,7 @@ std::string lookText(const TileLook& look, const LookThresholds& t) {
     std::string text;
     for (const Statistic& s : statistics(look, t)) {
         char part[96];
-        std::snprintf(part, sizeof part, "%s%s %.2f%s", text.empty() ? "" : ", ", s.name, s.value,
+        std::snprintf(part, sizeof part, "%s%s %s%s", text.empty() ? "" : ", ", s.name, twoDecimals(s.value).c_str(),
                       s.value > s.threshold ? " (over)" : "");
         text += part;
     }
@@ -53,8 +62,8 @@ void printLook(const TileLook& look, const LookThresholds& t, bool fails) {
                 t.blobs, t.echo);
     for (const Statistic& s : statistics(look, t))
         if (look.measured && s.value > s.threshold)
-            std::printf("  %s: %s %.2f over %.2f: tiled, it shows %s\n", fails ? "LOOK FAILS" : "WARNING", s.name,
-                        s.value, s.threshold, s.seen);
+            std::printf("  %s: %s %s over %.2f: tiled, it shows %s\n", fails ? "LOOK FAILS" : "WARNING", s.name,
+                        twoDecimals(s.value).c_str(), s.threshold, s.seen);
 }
 
 }  // namespace heightpack::cli

@@ -1,4 +1,5 @@
 // heightpack: dispatches to one subcommand, turns every failure into a one-line error and an exit code.
+#include <algorithm>
 #include <csignal>
 #include <iostream>
 #include <vector>
@@ -8,9 +9,8 @@
 #endif
 
 #include "heightpack/io/files.hpp"
-#include "heightpack/version.hpp"
 
-#include "command.hpp"
+#include "command_line.hpp"
 
 namespace {
 
@@ -39,49 +39,26 @@ int main(int argc, char** argv) {
     keepLargeBlocksInTheHeap();
     for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, onSignal);
 
-    CLI::App app{"heightpack: water height maps to tileable, mip-chained, 4-neighbour packed RGBA32F textures"};
-    app.name("heightpack");  // the usage lines say heightpack, not the path it was run by
-    app.set_version_flag("--version", std::string("heightpack ") + heightpack::kVersion);
-    app.require_subcommand(1);
-    app.footer(
-        "Examples:\n"
-        "  heightpack pack examples/maps/swell.png -o out/swell.exr\n"
-        "  heightpack normal examples/maps/ripple.png --tile-size 8m --height 0.15m -o out/ripple_n.exr\n"
-        "  heightpack fresnel --ior 1.333 -o out/fresnel.exr\n"
-        "  heightpack check examples/maps/painted_not_tileable.png --preview out/painted_check.png\n"
-        "  heightpack tile examples/maps/painted_not_tileable.png -o out/painted_tiled.png\n"
-        "  heightpack info out/swell.exr\n"
-        "  heightpack build examples/ocean.toml -o out/ocean\n"
-        "Run 'heightpack <command> --help' for a command's options.\n"
-        "Exit codes: 0 done, 1 a check failed, 2 usage error, 3 bad input, 4 cannot write output, 70 internal error.\n");
-
-    std::vector<std::unique_ptr<Command>> commands;
-    commands.push_back(makePackCommand());
-    commands.push_back(makeNormalCommand());
-    commands.push_back(makeFresnelCommand());
-    commands.push_back(makeCheckCommand());
-    commands.push_back(makeTileCommand());
-    commands.push_back(makeSynthCommand());
-    commands.push_back(makeBuildCommand());
-    commands.push_back(makeInfoCommand());
-    std::vector<CLI::App*> subcommands;
-    for (auto& command : commands) subcommands.push_back(command->attach(app));
-
+    const std::unique_ptr<CommandLine> line = makeCommandLine();
+    CLI::App& app = line->app;
+    // A word that names no command or option is said first, as itself: CLI11 would report a misspelt
+    // required option as missing, and a misspelt one with a value as two unexpected words.
+    if (const auto error = unknownWord(*line, std::vector<std::string>(argv + std::min(argc, 1), argv + argc))) {
+        printError(*error);
+        return static_cast<int>(ExitCode::Usage);
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
         return app.exit(e);  // --help, --version: printed by CLI11 for the chosen subcommand
     } catch (const CLI::ParseError& e) {
-        std::string where = "heightpack";
-        for (CLI::App* sub : subcommands)
-            if (sub->parsed()) where += " " + sub->get_name();
-        printError({heightpack::ErrorKind::Internal, {}, e.what(), "see '" + where + " --help'"});
+        printError(usageError(*line, e));
         return static_cast<int>(ExitCode::Usage);
     }
 
     try {
-        for (size_t i = 0; i < commands.size(); ++i)
-            if (subcommands[i]->parsed()) return static_cast<int>(commands[i]->run());
+        for (size_t i = 0; i < line->commands.size(); ++i)
+            if (line->subcommands[i]->parsed()) return static_cast<int>(line->commands[i]->run());
     } catch (const std::bad_alloc&) {
         printError({heightpack::ErrorKind::Internal, {}, "out of memory", "try a smaller map or fewer --threads"});
     } catch (const std::exception& e) {

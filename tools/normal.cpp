@@ -1,4 +1,5 @@
 // heightpack normal: a height map in, a tangent-space normal map (mip-mapped EXR or 8-bit PNG) out.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -49,13 +50,18 @@ public:
                             "EXR compression, by default none for float normals (zip saves 1-5% of their bytes at "
                             "3-4x the time) and zip for half or auto (it halves them); for .ktx2 none or zstd")
                 ->check(CLI::IsMember(compressionNames()));
-        addPixelTypeOption(*cmd, pixelType_, true, &tolerance_);
+        addPixelTypeOption(*cmd, pixelType_, true, &tolerance_,
+                           "with --pixel-type auto: the worst lookup error allowed over the chain; a number in normal "
+                           "units (0.001), or a length (1mm, 0.5cm): the tilt a height error that large makes across one "
+                           "texel, length / texel size");
         addEnumOption(*cmd, "--layout", options_.layout,
                       "rgb: x, y, z; xy: two channels, z rebuilt in the shader as sqrt(1 - x^2 - y^2) (mip-mapped "
                       "outputs, no alpha)",
                       {Layout::Rgb, Layout::Xy});
         addChannelOption(*cmd, channel_);
-        cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two (EXR)")
+        cmd->add_option("--resize", resize_, "none: refuse a map whose sides are not powers of two (a .png takes any "
+                                              "size); pow2: resample it up to the next ones first")
+            ->capture_default_str()
             ->check(CLI::IsMember({"none", "pow2"}));
         addCommonOptions(*cmd);
         cmd->footer(
@@ -88,12 +94,14 @@ public:
         o.storage.pixelType = requestedPixelType(pixelType_);
         if (format == "png8" && pixelType_ != "float")
             return usage("--pixel-type is for .exr, .ktx2 and .dds outputs; a PNG normal map is 8-bit");
-        // Normal maps' errors are in normal units: --tolerance is a plain number (no --height conversion).
-        if (const std::string problem = toleranceInStoredUnits(pixelType_, tolerance_, 0.0, o.storage.tolerance); !problem.empty())
+        // Normal maps' errors are in normal units: a plain number is one, a length the job converts.
+        if (const std::string problem = normalTolerance(pixelType_, tolerance_, o.storage.tolerance, o.toleranceMetres);
+            !problem.empty())
             return usage(problem);
         o.storage.exrCompression = compressionOption_->count() > 0
                                        ? parseName<Compression>(compression_).value_or(Compression::Zip)
-                                       : defaultNormalCompression(o.storage.pixelType, o.storage.tolerance);
+                                       : defaultNormalCompression(o.storage.pixelType,
+                                                                  std::max(o.storage.tolerance, o.toleranceMetres));
         if (const std::string problem = checkContainerChoice({output_}, o.storage.pixelType, compression_,
                                                              compressionOption_->count() > 0, o.storage.supercompression);
             !problem.empty())
@@ -164,8 +172,11 @@ private:
                        {"channel", channelJson(r.source)},
                        {"maxSlopeDegrees", r.maxSlopeDegrees},
                        {"layout", nameOf(r.layout)},
+                       {"alpha", nameOf(n.alpha)},
+                       {"channels", channels},
                        {"pixelType", format == "png8" ? nlohmann::json("uint8") : stored["pixelType"]},
                        {"pixelTypeRequested", pixelType_},
+                       {"tolerance", r.tolerance > 0.0 ? nlohmann::json(r.tolerance) : nlohmann::json(nullptr)},
                        {"gpuBytes", format == "png8" ? nlohmann::json(nullptr) : stored["gpuBytes"]},
                        {"lookupError", format == "png8" ? nlohmann::json(nullptr) : stored["lookupError"]},
                        {"levels", stored["levels"]},
@@ -181,8 +192,10 @@ private:
                  << format << ", tile " << n.tileWidth << " m, height " << n.heightRange << " m, " << nameOf(n.kernel) << ", "
                  << nameOf(n.convention) << ", steepest " << std::fixed << std::setprecision(1) << r.maxSlopeDegrees
                  << " deg, ";
-            if (format != "png8")
-                line << nameOf(r.layout) << " " << storedChainText(r.pixelType, r.lookupError, 0.0) << ", ";
+            // What was written: rgba with an alpha (its content named), else the layout's channels.
+            const std::string stored = channels == 4 ? std::string("rgba (") + nameOf(n.alpha) + " in alpha)"
+                                                     : std::string(nameOf(r.layout));
+            line << stored << (format == "png8" ? "" : " " + storedChainText(r.pixelType, r.lookupError, 0.0)) << ", ";
             line << std::setprecision(2) << r.seconds << " s";
             std::cout << line.str() << "\n";
             if (r.resized) std::cout << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";

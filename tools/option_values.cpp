@@ -14,12 +14,13 @@
 namespace heightpack::cli {
 
 CLI::Option* addChannelOption(CLI::App& cmd, std::string& channel) {
+    const std::string names = joinedNames<ChannelSelect>(", ");
     return cmd.add_option("--channel", channel,
-                          "where the height is in a colour image: r, g, b, a, luma, or a channel's name as the file "
-                          "lists it (height.Y, Z, depth); default: the only grey channel, or Y, or R of a packed "
-                          "heightpack texture")
+                          "where the height is in a colour image: " + names +
+                              ", or a channel's name as the file lists it (height.Y, Z, depth); default: the only grey "
+                              "channel, or Y, or R of a packed heightpack texture")
         ->check(CLI::Validator(
-            [](std::string& text) { return text.empty() ? std::string("give a channel: r, g, b, a, luma or a name") : ""; },
+            [names](std::string& text) { return text.empty() ? "give a channel: " + names + " or a name" : std::string(); },
             "CHANNEL"));
 }
 

@@ -23,8 +23,7 @@ class PackCommand final : public Command {
 public:
     CLI::App* attach(CLI::App& app) override {
         CLI::App* cmd = app.add_subcommand("pack", "pack a height map into a mip-mapped, 4-neighbour packed (or plain) EXR, KTX2 or DDS");
-        cmd->add_option("input", input_, "height map: PNG, TIFF, EXR, JPEG, TGA, PSD (8/16-bit, half, float)")
-            ->required();
+        cmd->add_option("input", input_, "height map: " + readableFormats() + "; 8/16-bit, half or float")->required();
         cmd->add_option("-o,--output", output_, "packed texture to write: .exr, .ktx2 or .dds (replaced atomically)")
             ->required();
         addChannelOption(*cmd, channel_);
@@ -46,8 +45,9 @@ public:
                       "neighbour4: each texel holds its four neighbours (one fetch per lookup); plain: one channel, "
                       "the height (textureGather, hardware filtering)",
                       {Layout::Neighbour4, Layout::Plain});
-        cmd->add_option("--resize", resize_, "pow2: resample a map whose sides are not powers of two up to the "
-                                              "next ones, with the mip filter")
+        cmd->add_option("--resize", resize_, "none: refuse a map whose sides are not powers of two; pow2: resample it "
+                                              "up to the next ones, with the mip filter")
+            ->capture_default_str()
             ->check(CLI::IsMember({"none", "pow2"}));
         cmd->add_option("--emit-plain", options_.plainOutput, "also write the unpacked one-channel mip chain here");
         cmd->add_flag("--displacement", options_.displacement,
@@ -119,6 +119,7 @@ public:
         if (Status committed = staged.commit(); !committed) return fail(committed.error());
         held.release();
         if (frames > 1 && common_.json) printJson({{"command", "pack"}, {"frames", sequence}});
+        if (frames > 1 && chatty()) printSequence();
         return ExitCode::Ok;
     }
 
@@ -127,6 +128,47 @@ private:
     struct Shown {
         std::string output, plain;
     };
+
+    // What a sequence's summary line says of each frame.
+    struct FrameText {
+        std::string output, plain;
+        std::string stored;  // "neighbour4 half, worst lookup error 0.0001 m"
+        std::uintmax_t bytes = 0;
+        double seconds = 0.0;
+    };
+
+    // One line for a whole sequence, as synth prints: the first and last outputs, what frame 0 was packed
+    // from and as, and the totals; the pixel types, when --pixel-type auto chose differently per frame, each
+    // with its frames' count.
+    void printSequence() const {
+        const FrameText& first = frames_.front();
+        std::map<std::string, int> stored;
+        std::uintmax_t bytes = 0;
+        double seconds = 0.0;
+        for (const FrameText& f : frames_) {
+            ++stored[f.stored];
+            bytes += f.bytes;
+            seconds += f.seconds;
+        }
+        std::string storedText;
+        for (const auto& [text, count] : stored)
+            storedText += (storedText.empty() ? "" : "; ") + text +
+                          (stored.size() > 1 ? " (" + std::to_string(count) + " frames)" : std::string());
+        std::ostringstream line;
+        line << "wrote " << first.output << " .. " << frames_.back().output << ": " << frames_.size() << " frames, "
+             << firstFrame_ << storedText << ", " << compressionText() << ", " << humanBytes(bytes) << ", " << std::fixed
+             << std::setprecision(2) << seconds << " s";
+        std::cout << line.str() << "\n";
+        std::cout << firstFrameNotes_;
+        if (!first.plain.empty())
+            std::cout << "wrote " << first.plain << " .. " << frames_.back().plain << ": unpacked chains\n";
+    }
+
+    // What the output holds: the EXR codec, or KTX2's supercompression (none for DDS).
+    std::string compressionText() const {
+        if (containerForPath(output_) == Container::Exr) return compression_;
+        return options_.storage.supercompression == Supercompression::Zstd ? "zstd" : "none";
+    }
 
     // Packs one map; its JSON report goes to stdout, or into sequence when packing frames.
     ExitCode packOne(const std::string& input, const std::string& output, const Shown& shown, nlohmann::json* sequence) {
@@ -149,10 +191,7 @@ private:
         if (!r.plainOutput.empty()) r.plainOutput = shown.plain;
         const int width = r.levelSizes[0].first, height = r.levelSizes[0].second;
         const double seconds = r.loadSeconds + r.mipSeconds + r.writeSeconds;
-        // What the output holds: the EXR codec, or KTX2's supercompression (none for DDS).
-        const std::string compression = r.container == Container::Exr ? compression_
-                                         : options_.storage.supercompression == Supercompression::Zstd ? "zstd"
-                                                                                                : "none";
+        const std::string compression = compressionText();
 
         const int channels = layoutChannels(r.layout);
         if (common_.json) {
@@ -198,18 +237,27 @@ private:
             else
                 printJson(doc);
         } else if (chatty()) {
+            std::ostringstream what;  // the level sizes, the source, and how it was packed
+            what << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " (" << r.levelSizes.size()
+                 << " levels) from " << r.source.width << "x" << r.source.height << " " << r.source.pixelType << " '"
+                 << r.source.channelUsed << "'" << ", " << nameOf(options_.mip.wrap) << ", " << nameOf(options_.mip.filter)
+                 << ", ";
+            const std::string stored =
+                std::string(nameOf(r.layout)) + " " + storedChainText(r.pixelType, r.lookupError, options_.heightRange);
+            std::ostringstream notes;
+            if (r.resized) notes << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";
+            if (!r.source.channelNote.empty()) notes << "  note: " << r.source.channelNote << "\n";
+            const std::string plain = r.layout == Layout::Neighbour4 ? r.plainOutput : std::string();
+            if (sequence) {  // one line for the sequence, once every frame is packed (printSequence)
+                if (frames_.empty()) firstFrame_ = what.str(), firstFrameNotes_ = notes.str();
+                frames_.push_back({r.output, plain, stored, bytes, seconds});
+                return ExitCode::Ok;
+            }
             std::ostringstream line;
-            line << "wrote " << r.output << ": " << r.levelSizes[0].first << "x" << r.levelSizes[0].second << " ("
-                 << r.levelSizes.size() << " levels) from " << r.source.width << "x" << r.source.height << " "
-                 << r.source.pixelType << " '" << r.source.channelUsed << "'"
-                 << ", " << nameOf(options_.mip.wrap) << ", " << nameOf(options_.mip.filter) << ", " << nameOf(r.layout) << " "
-                 << storedChainText(r.pixelType, r.lookupError, options_.heightRange) << ", " << compression << ", "
-                 << humanBytes(bytes) << ", "
-                 << std::fixed << std::setprecision(2) << seconds << " s";
-            std::cout << line.str() << "\n";
-            if (r.resized) std::cout << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";
-            printChannelNote(r.source);
-            if (r.layout == Layout::Neighbour4 && !r.plainOutput.empty()) std::cout << "wrote " << r.plainOutput << ": unpacked chain\n";
+            line << "wrote " << r.output << ": " << what.str() << stored << ", " << compression << ", " << humanBytes(bytes)
+                 << ", " << std::fixed << std::setprecision(2) << seconds << " s";
+            std::cout << line.str() << "\n" << notes.str();
+            if (!plain.empty()) std::cout << "wrote " << plain << ": unpacked chain\n";
         }
         return ExitCode::Ok;
     }
@@ -219,6 +267,9 @@ private:
     std::string compression_ = nameOf(options_.storage.exrCompression), resize_ = "none", pixelType_ = "float";
     std::string tolerance_;
     CLI::Option* compressionOption_ = nullptr;
+    // A sequence's text: every frame's part, and frame 0's size, source and notes.
+    std::vector<FrameText> frames_;
+    std::string firstFrame_, firstFrameNotes_;
 };
 
 }  // namespace

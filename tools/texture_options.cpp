@@ -11,7 +11,8 @@
 
 namespace heightpack::cli {
 
-void addPixelTypeOption(CLI::App& cmd, std::string& pixelType, bool withAuto, std::string* tolerance) {
+void addPixelTypeOption(CLI::App& cmd, std::string& pixelType, bool withAuto, std::string* tolerance,
+                        const std::string& toleranceHelp) {
     std::vector<std::string> names = allNames<PixelType>();
     if (withAuto) names.emplace_back("auto");
     cmd.add_option("--pixel-type", pixelType,
@@ -22,8 +23,9 @@ void addPixelTypeOption(CLI::App& cmd, std::string& pixelType, bool withAuto, st
         ->check(CLI::IsMember(names));
     if (withAuto && tolerance)
         cmd.add_option("--tolerance", *tolerance,
-                       "with --pixel-type auto: the worst lookup error allowed over the chain; a length (1mm, 0.5cm) "
-                       "when --height is given, else a number in stored units");
+                       !toleranceHelp.empty() ? toleranceHelp
+                                              : "with --pixel-type auto: the worst lookup error allowed over the chain; a "
+                                                "length (1mm, 0.5cm) when --height is given, else a number in stored units");
 }
 
 namespace {
@@ -62,6 +64,17 @@ std::string toleranceInStoredUnits(const std::string& pixelType, const std::stri
         return "--tolerance '" + text + "' is a length, but without --height there are no metres to convert it from: "
                "give --height, or a number in stored units";
     return "--tolerance '" + text + "' is not a positive number";
+}
+
+std::string normalTolerance(const std::string& pixelType, const std::string& text, double& normalUnits, double& metres) {
+    metres = 0.0;
+    if (pixelType != "auto" || text.empty() || plainNumber(text)) return toleranceInStoredUnits(pixelType, text, 0.0, normalUnits);
+    normalUnits = 0.0;
+    if (const auto length = parseLength(text)) {
+        metres = *length;
+        return {};
+    }
+    return "--tolerance '" + text + "' is neither a number (normal units) nor a length like 1mm or 0.5cm";
 }
 
 PixelType requestedPixelType(const std::string& pixelType) {

@@ -13,8 +13,10 @@
 
 namespace heightpack::cli {
 
-// Adds --pixel-type float|half|uint16 to cmd; with withAuto also auto and --tolerance (into tolerance).
-void addPixelTypeOption(CLI::App& cmd, std::string& pixelType, bool withAuto = false, std::string* tolerance = nullptr);
+// Adds --pixel-type float|half|uint16 to cmd; with withAuto also auto and --tolerance (into tolerance),
+// described as toleranceHelp says (default: pack's, a length with --height or a number in stored units).
+void addPixelTypeOption(CLI::App& cmd, std::string& pixelType, bool withAuto = false, std::string* tolerance = nullptr,
+                        const std::string& toleranceHelp = "");
 
 // The tolerance --pixel-type auto chooses within, in stored units (0 for a pixel type given), from
 // --tolerance's text: a length (1mm, 0.5cm, 2e-3m) divided by heightMetres when that is known (> 0),
@@ -22,6 +24,11 @@ void addPixelTypeOption(CLI::App& cmd, std::string& pixelType, bool withAuto = f
 // or empty.
 std::string toleranceInStoredUnits(const std::string& pixelType, const std::string& text, double heightMetres,
                                    double& tolerance);
+
+// --tolerance for a normal map, whose --height is always given: a plain number is in normal units (into
+// normalUnits); a length with a unit (1mm, 0.5cm) is a height error in metres (into metres: the job turns
+// it into normal units, the tilt it makes across one texel). Returns what is wrong, for usage(), or empty.
+std::string normalTolerance(const std::string& pixelType, const std::string& text, double& normalUnits, double& metres);
 
 // The pixel type to judge the containers by: auto chooses among those each container holds.
 PixelType requestedPixelType(const std::string& pixelType);

@@ -121,7 +121,11 @@ public:
                 std::printf("%s already tiles at every level: wrote it unchanged to %s (--force applies %s anyway)\n",
                             r.input.c_str(), r.output.c_str(), nameOf(options_.method));
             } else {
-                std::printf("%s: %s\n", r.input.c_str(), describeSeamFailure(*r.before.failure, t).c_str());
+                if (r.before.failure)
+                    std::printf("%s: %s\n", r.input.c_str(), describeSeamFailure(*r.before.failure, t).c_str());
+                else  // --force on a map that tiles: there is no seam to name
+                    std::printf("%s tiles at every level; --force applies %s anyway\n", r.input.c_str(),
+                                nameOf(options_.method));
                 std::printf("wrote %s: %dx%d, %s, tiles at every level; heights %.4g..%.4g (input %.4g..%.4g)\n",
                             r.output.c_str(), r.width, r.height, r.methodUsed.c_str(), r.low, r.high, r.inputLow,
                             r.inputHigh);

@@ -31,17 +31,6 @@ using detail::readText;
 using detail::Step;
 using detail::tileFailure;
 
-const char* assetStatusName(AssetStatus status) {
-    switch (status) {
-        case AssetStatus::UpToDate: return "up to date";
-        case AssetStatus::Rebuilt: return "rebuilt";
-        case AssetStatus::Restored: return "restored from cache";
-        case AssetStatus::Checked: return "checked";
-        case AssetStatus::Skipped: return "skipped";
-    }
-    return "?";
-}
-
 int BuildReport::rebuilt() const {
     return static_cast<int>(std::count_if(assets.begin(), assets.end(), [](const AssetReport& a) { return a.status == AssetStatus::Rebuilt; }));
 }

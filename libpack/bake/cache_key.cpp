@@ -123,7 +123,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const PackOptions
 }
 
 void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOptions& o) {
-    static_assert(fieldCount<NormalJobOptions>() == 9, "NormalJobOptions changed: put the new field in its key text");
+    static_assert(fieldCount<NormalJobOptions>() == 10, "NormalJobOptions changed: put the new field in its key text");
     Key k(text, prefix);
     k.nested("load", o.load);
     k.nested("normal", o.normal);
@@ -131,6 +131,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const NormalJobOp
     k.put("resizeToPowerOfTwo", o.resizeToPowerOfTwo);
     k.put("format", o.format);
     putStorage(k, o.storage);
+    if (o.toleranceMetres > 0.0) k.put("toleranceMetres", o.toleranceMetres);  // a line only when set, as below
     if (o.layout != Layout::Rgb) k.put("layout", o.layout);  // a line only when not the default, as above
     k.put("version", o.version);
     // progress: reports, makes nothing

@@ -36,22 +36,6 @@ inline std::string shorten(const std::string& text) {
     return text.size() <= kMax ? text : text.substr(0, kMax) + "... (" + std::to_string(text.size()) + " characters)";
 }
 
-// Edit distance, to suggest the key a typo meant.
-inline size_t distance(const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diagonal = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t above = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-            diagonal = above;
-        }
-    }
-    return row[b.size()];
-}
-
 inline int lineOf(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
 
 // One table of the manifest, of a kind that takes the keys keysOf(kind) lists. Every key read is
@@ -205,12 +189,8 @@ public:
 private:
     // The error for key name, at node, suggesting the nearest of candidates (within two edits).
     Error unknownKey(const std::string& name, const toml::node& node, const std::vector<std::string>& candidates) const {
-        std::string best;
-        size_t bestDistance = 3;
-        for (const std::string& candidate : candidates) {
-            const size_t d = distance(name, candidate);
-            if (d < bestDistance) bestDistance = d, best = candidate;
-        }
+        const std::vector<std::string> near = nearestNames(name, candidates);  // heightpack/core/names.hpp
+        const std::string best = near.empty() ? std::string() : near.front();
         const std::string where = prefix_.empty() ? "at the top level" : "in [" + prefix_ + "]";
         return referenced(file_ + ":" + std::to_string(lineOf(node)), "unknown key '" + key(name) + "' " + where,
                           best.empty() ? "" : "did you mean '" + best + "'?");

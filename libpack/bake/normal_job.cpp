@@ -1,5 +1,6 @@
 #include "heightpack/bake/normal_job.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -161,6 +162,13 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         content.attributes = normalAttributes(options, report.source, report.sourceHash, content.width, content.height);
         TextureWriteOptions write;
         write.storage = options.storage;
+        if (write.storage.tolerance <= 0.0 && options.toleranceMetres > 0.0) {
+            const NormalOptions& n = options.normal;
+            const double across = n.tileWidth / chain[0].width;
+            const double down = n.tileHeight > 0.0 ? n.tileHeight / chain[0].height : across;
+            write.storage.tolerance = options.toleranceMetres / std::max(across, down);
+        }
+        report.tolerance = write.storage.tolerance;
         write.threads = options.normal.threads;
         write.writer = "heightpack " + options.version;
         write.progress = [&](double f) { progress("write", f); };

@@ -311,7 +311,8 @@ TileLook measureTileLook(const Image& input, const LookOptions& options) {
     // Echo, less the source's own (of its periodic component: its seams would echo along their lines).
     look.echo = echoOfSpectrum(spectrum, options.threads);  // the map's spectrum, transformed once
     look.echoBaseline = options.sourceEcho ? *options.sourceEcho : options.source ? sourceEchoOf(*options.source, options.threads) : 0.0;
-    look.echo -= look.echoBaseline;
+    // An echo the tile adds: never below 0 (a tile that echoes less than its source adds none).
+    look.echo = std::max(0.0, look.echo - look.echoBaseline);
     return look;
 }
 

@@ -296,7 +296,8 @@ std::string seamScoreText(double score, double threshold) {
         std::snprintf(text, sizeof text, "%.*f", decimals, score);
         if ((std::strtod(text, nullptr) > threshold) == (score > threshold)) break;
     }
-    return text;
+    // -0.04 shown as 0.0, not -0.0: a rounded zero has no sign.
+    return text[0] == '-' && std::strtod(text, nullptr) == 0.0 ? text + 1 : text;
 }
 
 PackingCheck checkPacking(const std::vector<Image>& packedLevels, Wrap wrap) {

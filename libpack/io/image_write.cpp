@@ -75,15 +75,8 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
             return Error{ErrorKind::Internal, path, "internal error: the image holds a non-finite value; nothing was written",
                          "please report this with the command line"};
     // PNG keeps text chunks only: numbers go in as text there, so nothing recorded is lost.
-    auto asText = [](const ExrAttribute& a) {
-        if (const auto* s = std::get_if<std::string>(&a.value)) return *s;
-        char text[32];
-        std::snprintf(text, sizeof text, "%.9g", std::get<float>(a.value));
-        return std::string(text);
-    };
     if (encodesGreyPng(ext, image, options)) {
-        std::vector<std::pair<std::string, std::string>> text;
-        for (const ExrAttribute& a : options.attributes) text.emplace_back(a.name, asText(a));
+        const Attributes text = detail::attributesAsText(options.attributes);
         const detail::GreyPngPixels* prepared = options.prepared.png.get();
         const bool fits = prepared && prepared->width == image.width && prepared->height == image.height && prepared->bits == options.bits;
         const std::vector<unsigned char> bytes = fits ? detail::assembleGreyPng(*prepared, text)
@@ -102,8 +95,10 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
     spec.attribute("DateTime", "");
     if (options.srgbChannels > 0 && options.bits != 32) spec.attribute("oiio:ColorSpace", "sRGB");
     for (const ExrAttribute& a : options.attributes) {
-        if (ext == ".png" || std::holds_alternative<std::string>(a.value))
-            spec.attribute(a.name, asText(a));
+        if (const auto* text = std::get_if<std::string>(&a.value))
+            spec.attribute(a.name, *text);
+        else if (ext == ".png")
+            spec.attribute(a.name, detail::floatText(std::get<float>(a.value)));
         else
             spec.attribute(a.name, std::get<float>(a.value));
     }

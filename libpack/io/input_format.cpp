@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/read.hpp"
 #include "image_input.hpp"
 
 namespace heightpack::detail {
@@ -175,3 +176,14 @@ Status judgeDecodedSize(const std::string& path, int64_t texels, int channels, u
 }
 
 }  // namespace heightpack::detail
+
+namespace heightpack {
+
+std::string readableFormats() {
+    std::string text;
+    for (const EnumName<detail::InputFormat>& e : NameTable<detail::InputFormat>::entries)
+        text += (text.empty() ? "" : ", ") + std::string(e.description);
+    return text;
+}
+
+}  // namespace heightpack

@@ -25,19 +25,20 @@ enum class InputFormat { Png, Jpeg, Tiff, Exr, Targa, Bmp, Psd, Hdr, Pnm };
 }  // namespace heightpack::detail
 
 namespace heightpack {
-// Each format by the name of the OpenImageIO reader that decodes it.
+// Each format by the name of the OpenImageIO reader that decodes it, and as a person names it (help
+// texts and the README list them: readableFormats). A JPEG's metadata segments are removed before decoding.
 template <>
 struct NameTable<detail::InputFormat> {
     static constexpr EnumName<detail::InputFormat> entries[] = {
         {detail::InputFormat::Png, "png", "PNG"},
-        {detail::InputFormat::Jpeg, "jpeg", "JPEG (metadata segments removed before decoding)"},
-        {detail::InputFormat::Tiff, "tiff", "TIFF"},
-        {detail::InputFormat::Exr, "openexr", "OpenEXR (scanline or tiled, single or multi-part)"},
+        {detail::InputFormat::Jpeg, "jpeg", "JPEG"},
+        {detail::InputFormat::Tiff, "tiff", "TIFF (and BigTIFF)"},
+        {detail::InputFormat::Exr, "openexr", "OpenEXR (scanline or tiled)"},
         {detail::InputFormat::Targa, "targa", "Targa (.tga)"},
         {detail::InputFormat::Bmp, "bmp", "BMP (uncompressed)"},
-        {detail::InputFormat::Psd, "psd", "Photoshop (.psd)"},
+        {detail::InputFormat::Psd, "psd", "Photoshop PSD"},
         {detail::InputFormat::Hdr, "hdr", "Radiance HDR"},
-        {detail::InputFormat::Pnm, "pnm", "PGM, PPM, PBM and PFM"},
+        {detail::InputFormat::Pnm, "pnm", "PGM/PPM/PBM/PFM"},
     };
 };
 }  // namespace heightpack

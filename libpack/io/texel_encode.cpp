@@ -7,6 +7,7 @@
 #endif
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -281,8 +282,7 @@ std::string layerList(const std::vector<std::string>& names) {
 
 std::string floatText(float value) {
     char text[32];
-    std::snprintf(text, sizeof text, "%.9g", double(value));
-    return text;
+    return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
 }
 
 Attributes attributesAsText(const std::vector<ExrAttribute>& attributes) {

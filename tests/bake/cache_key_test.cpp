@@ -156,13 +156,14 @@ TEST(CacheKey, EveryStorageFieldIsInTheKey) {
 }
 
 TEST(CacheKey, NormalJobOptions) {
-    expectEveryFieldJudged(std::array<FieldChange<NormalJobOptions>, 9>{{
+    expectEveryFieldJudged(std::array<FieldChange<NormalJobOptions>, 10>{{
         {"load", [](NormalJobOptions& o) { o.load.maxSide = 16; }, true},
         {"normal", [](NormalJobOptions& o) { o.normal.alpha = NormalAlpha::Height; }, true},
         {"filter", [](NormalJobOptions& o) { o.filter = Filter::Triangle; }, true},
         {"resizeToPowerOfTwo", [](NormalJobOptions& o) { o.resizeToPowerOfTwo = true; }, true},
         {"format", [](NormalJobOptions& o) { o.format = NormalFormat::Png8; }, true},
         {"storage", [](NormalJobOptions& o) { o.storage.exrCompression = Compression::None; }, true},
+        {"toleranceMetres", [](NormalJobOptions& o) { o.toleranceMetres = 1e-3; }, true},
         {"layout", [](NormalJobOptions& o) { o.layout = Layout::Xy; }, true},
         {"version", [](NormalJobOptions& o) { o.version = std::string("2"); }, true},
         {"progress", [](NormalJobOptions& o) { o.progress = [](std::string_view, double) {}; }, false},

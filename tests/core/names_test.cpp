@@ -1,6 +1,10 @@
 // The name tables of core's enums: every name, as users type and see it, parses back to its value.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <string>
+#include <vector>
+
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/layout.hpp"
 #include "heightpack/core/mip.hpp"
@@ -54,4 +58,62 @@ TEST(Names, NamesAndOrderAreTheDocumentedOnes) {
     EXPECT_EQ(allNames<Layout>(), (V{"neighbour4", "plain", "rgb", "xy"}));
     EXPECT_EQ(joinedNames<Wrap>(), "periodic, clamp");
     EXPECT_EQ(parseName<Wrap>("Clamp"), std::nullopt);  // names are case-sensitive
+}
+
+// editDistance against breadth-first searches written from the definitions, over every word of up to four
+// letters of a three-letter alphabet: it lies between the fewest edits with swaps of neighbours allowed
+// (Damerau) and without them (Levenshtein), and a word one edit away, a swap included, is at 1: the typos
+// a "did you mean" must recognise.
+TEST(Names, EditDistanceCountsOneLetterEdits) {
+    const std::string alphabet = "abc";
+    auto neighbours = [&](const std::string& w, bool swaps) {
+        std::vector<std::string> out;
+        for (size_t i = 0; i <= w.size(); ++i)
+            for (char c : alphabet) out.push_back(w.substr(0, i) + c + w.substr(i));  // insert
+        for (size_t i = 0; i < w.size(); ++i) {
+            out.push_back(w.substr(0, i) + w.substr(i + 1));                               // delete
+            for (char c : alphabet) out.push_back(w.substr(0, i) + c + w.substr(i + 1));  // replace
+            if (swaps && i + 1 < w.size()) out.push_back(w.substr(0, i) + w[i + 1] + w[i] + w.substr(i + 2));
+        }
+        return out;
+    };
+    // The fewest edits from a to every word of up to 5 letters, breadth first.
+    auto distancesFrom = [&](const std::string& a, bool swaps) {
+        std::map<std::string, size_t> reach = {{a, 0}};
+        std::vector<std::string> ring = {a};
+        for (size_t d = 1; !ring.empty(); ++d) {
+            std::vector<std::string> next;
+            for (const std::string& w : ring)
+                for (const std::string& n : neighbours(w, swaps))
+                    if (n.size() <= 5 && reach.emplace(n, d).second) next.push_back(n);
+            ring = next;
+        }
+        return reach;
+    };
+    std::vector<std::string> words = {""};
+    for (size_t n = 0; n < words.size(); ++n)
+        if (words[n].size() < 4)
+            for (char c : alphabet) words.push_back(words[n] + c);
+    size_t ones = 0;
+    for (const std::string& a : words) {
+        const auto damerau = distancesFrom(a, true), levenshtein = distancesFrom(a, false);
+        for (const std::string& b : words) {
+            const size_t d = editDistance(a, b);
+            EXPECT_EQ(d, editDistance(b, a)) << a << " " << b;
+            EXPECT_LE(damerau.at(b), d) << a << " -> " << b;
+            EXPECT_LE(d, levenshtein.at(b)) << a << " -> " << b;
+            if (damerau.at(b) <= 1) {
+                EXPECT_EQ(d, damerau.at(b)) << a << " -> " << b;
+                ones += damerau.at(b);
+            }
+        }
+    }
+    EXPECT_GT(ones, words.size());
+    EXPECT_EQ(editDistance("tilesize", "tile-size"), 1u);
+    EXPECT_EQ(editDistance("fitler", "filter"), 1u);
+    EXPECT_EQ(editDistance("kitten", "sitting"), 3u);
+    EXPECT_EQ(nearestNames("spreadings", {"wind", "spreading", "spreading-s"}),
+              (std::vector<std::string>{"spreading", "spreading-s"}));
+    EXPECT_EQ(nearestNames("filtr", {"filter", "fetch", "frames"}), std::vector<std::string>{"filter"});
+    EXPECT_TRUE(nearestNames("squash", {"pack", "check"}).empty());
 }

@@ -181,7 +181,11 @@ N=(--tile-size 8m --height 1m)
 for f in "${BAD_MAPS[@]}" "${HEIGHT_ONLY[@]}" odd.pfm; do expect normal 3 "$f" "$f" "${N[@]}" -o out.exr; done
 expect normal 2 "" good.png --tile-size 8m --height 1e300 -o out.exr
 expect normal 2 "" good.png "${N[@]}" --layout xy --height-in-alpha -o out.ktx2
-expect normal 2 "" good.png "${N[@]}" --pixel-type auto --tolerance 1mm -o out.ktx2
+expect normal 2 "" good.png "${N[@]}" --pixel-type auto --tolerance 1furlong -o out.ktx2
+# Words a new user gets wrong (issue 35): a misspelt option, an option given twice; a manifest is no texture.
+expect normal 2 "--tilesize" good.png --tilesize 8m --height 1m -o out.exr
+expect pack 2 "--filtr" good.png --filtr lanczos3 -o out.exr
+expect synth 2 "--size" --size 64 --size 128 --wind 12 --tile-size 64m -o out.exr
 expect normal 2 "" good.png "${N[@]}" --layout xy -o out.png
 expect normal 2 "" good.png --tile-size nan --height 1m -o out.exr
 expect normal 2 "" good.png --tile-size 8m,inf --height 1m -o out.exr
@@ -348,6 +352,7 @@ bad_manifest 3 "huge.png" "$(manifest huge.png '')"
 bad_manifest 3 "colour.png" "$(manifest colour.png '')"
 manifest maps_a.png '' > ok.toml
 expect build 4 good.png ok.toml -o good.png
+expect info 2 ok.toml ok.toml
 expect build 4 /dev/full ok.toml -o /dev/full
 expect build 3 folder.png folder.png -o out
 expect build 3 fifo.png fifo.png -o out

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "heightpack/core/names.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/core/tile_look.hpp"
 #include "heightpack/core/tileable.hpp"
@@ -25,7 +26,17 @@ enum class AssetStatus {
     Checked,   // --check-only: checked, nothing written
     Skipped,   // --check-only and no check asked for
 };
-const char* assetStatusName(AssetStatus status);
+template <>
+struct NameTable<AssetStatus> {
+    static constexpr EnumName<AssetStatus> entries[] = {
+        {AssetStatus::UpToDate, "up to date", "its key matched and the output is the file this build made"},
+        {AssetStatus::Rebuilt, "rebuilt", "written by this build"},
+        {AssetStatus::Restored, "restored from cache", "copied from the shared cache, where another build stored it"},
+        {AssetStatus::Checked, "checked", "checked, nothing written"},
+        {AssetStatus::Skipped, "skipped", "no check asked for"},
+    };
+};
+inline const char* assetStatusName(AssetStatus status) { return nameOf(status); }
 
 // The tileability verdict on one asset's source, if a check ran (or passed in an earlier build).
 struct AssetCheck {

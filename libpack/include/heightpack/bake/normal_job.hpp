@@ -33,6 +33,10 @@ struct NormalJobOptions {
     // Mip-mapped outputs: pixel type or "auto" within a tolerance (normal units), EXR compression, KTX2
     // supercompression.
     TextureStorage storage;
+    // With storage.tolerance 0 and this > 0, the tolerance as a height error in metres instead: the tilt
+    // that error makes across one texel of level 0 (the longer side of a texel, so the stricter), this /
+    // texel size, in normal units; the job converts it once it knows the map's size.
+    double toleranceMetres = 0.0;
     // Rgb: x, y, z (and alpha). Xy: x and y alone, for a shader that rebuilds z; mip-mapped outputs
     // without alpha only.
     Layout layout = Layout::Rgb;
@@ -52,6 +56,7 @@ struct NormalReport {
     Layout layout = Layout::Rgb;
     PixelType pixelType = PixelType::Float;  // as written (the choice, with a tolerance); float for a PNG
     std::vector<double> lookupError;         // per level, normal units; empty for a PNG
+    double tolerance = 0.0;                  // the pixel type was chosen within this (normal units); 0: given
 };
 
 // The EXR compression for normals when the caller names none. Float normals are stored uncompressed:

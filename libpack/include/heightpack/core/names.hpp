@@ -11,6 +11,7 @@
 // The order of the entries is the order allNames lists them in (help texts and error messages).
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -70,6 +71,41 @@ constexpr const char* describe(E value) {
     for (const EnumName<E>& e : NameTable<E>::entries)
         if (e.value == value) return e.description;
     return "";
+}
+
+// How many one-letter edits (insert, delete, replace, or swap two neighbours) turn a into b: how far a
+// typo is from the word it meant ("tilesize" is 1 from "tile-size", "filtr" 1 from "filter", "chekc" 1
+// from "check"). Every "did you mean" (manifest keys, command-line commands and options) asks this.
+inline size_t editDistance(std::string_view a, std::string_view b) {
+    // Rows i-2, i-1 and i of the table d[i][j] = distance(a[0, i), b[0, j)).
+    std::vector<size_t> before(b.size() + 1), above(b.size() + 1), row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) above[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            row[j] = std::min({above[j] + 1, row[j - 1] + 1, above[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) row[j] = std::min(row[j], before[j - 2] + 1);
+        }
+        std::swap(before, above);
+        std::swap(above, row);
+    }
+    return above[b.size()];
+}
+
+// The candidates nearest to word, if within maxDistance edits (editDistance), in the order given: one
+// name, or several equally near ("spreadings" is one edit from both "spreading" and "spreading-s");
+// empty when none is that near.
+inline std::vector<std::string> nearestNames(std::string_view word, const std::vector<std::string>& candidates,
+                                             size_t maxDistance = 2) {
+    std::vector<std::string> nearest;
+    size_t best = maxDistance;
+    for (const std::string& candidate : candidates) {
+        const size_t d = editDistance(word, candidate);
+        if (d > best) continue;
+        if (d < best) nearest.clear(), best = d;
+        if (std::find(nearest.begin(), nearest.end(), candidate) == nearest.end()) nearest.push_back(candidate);
+    }
+    return nearest;
 }
 
 }  // namespace heightpack

@@ -40,7 +40,7 @@ struct TileLook {
     double blobs = 0.0;
     // Echo: the largest autocorrelation of the tile whitened by its own smoothed spectrum (so a field's
     // natural correlation divides out) at lags beyond 1/16 of the tile, less the same of the map it was
-    // made from when there is one (echoBaseline), else as it is.
+    // made from when there is one (echoBaseline), else as it is; never below 0.
     double echo = 0.0;
     double echoBaseline = 0.0;  // the source's own (0 when not given)
     bool passes(const LookThresholds& t = {}) const {

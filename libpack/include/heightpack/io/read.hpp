@@ -77,6 +77,10 @@ struct LoadedHeights {
 // a colour image without a channel choice, or non-finite values.
 Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& options = {});
 
+// The formats an input may be in, as a person names them: "PNG, JPEG, TIFF (and BigTIFF), ..." (help
+// texts list these; any other format is refused, naming what it is).
+std::string readableFormats();
+
 // Checks, before anything is opened, that path names a regular file (not a folder, FIFO, device or
 // socket: those would hang or mislead a decoder) that this process may read and that is not empty.
 // Fails with BadInput saying which, with a hint.
