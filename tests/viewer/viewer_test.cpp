@@ -204,17 +204,14 @@ TEST(Viewer, BenchReportsGpuTimePerPass) {
     EXPECT_GT(j["combineMs"].get<double>(), 0.0);
     EXPECT_TRUE(j["lookups"].empty()) << "only the lookup asked for, unless --compare-lookups";
     // As text: the passes drawn and no others (no combine pass without --two-pass, no tiled view), and the
-    // other lookups only when asked to compare them.
+    // other lookups only when asked to compare them (not run here: each lookup compiles its own shaders,
+    // 5-10 s apiece on Mesa's software renderer).
     const ViewRun text = view({kExamples + "swell.png", "--bench", "2", "--grid", "32", "--segments", "64", "--size", "160x90"});
     ASSERT_EQ(text.code, 0) << text.err;
     EXPECT_NE(text.out.find("water pass"), std::string::npos) << text.out;
     EXPECT_EQ(text.out.find("combine pass"), std::string::npos) << text.out;
     EXPECT_EQ(text.out.find("tiled view"), std::string::npos) << text.out;
     EXPECT_EQ(text.out.find("  lookup "), std::string::npos) << text.out;
-    const ViewRun compared = view({kExamples + "swell.png", "--bench", "2", "--compare-lookups", "--json", "--grid", "32",
-                                   "--segments", "64", "--size", "160x90"});
-    ASSERT_EQ(compared.code, 0) << compared.err;
-    EXPECT_GE(nlohmann::json::parse(compared.out)["lookups"].size(), 4u);
     const ViewRun alone = view({kExamples + "swell.png", "--compare-lookups", "--size", "160x90"});
     EXPECT_EQ(alone.code, 2) << alone.err;
 }
