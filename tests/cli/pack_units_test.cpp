@@ -20,17 +20,6 @@ using namespace heightpack::test;
 
 namespace {
 
-std::uint32_t le32(const std::vector<unsigned char>& b, size_t at) {
-    return std::uint32_t(b.at(at)) | std::uint32_t(b.at(at + 1)) << 8 | std::uint32_t(b.at(at + 2)) << 16 |
-           std::uint32_t(b.at(at + 3)) << 24;
-}
-float leFloat(const std::vector<unsigned char>& b, size_t at) {
-    const std::uint32_t u = le32(b, at);
-    float v;
-    std::memcpy(&v, &u, 4);
-    return v;
-}
-
 // What a file records of the world, as far as its container can say it.
 struct Recorded {
     std::optional<double> tileWidth, heightRange, loopPeriod, time;

@@ -43,17 +43,6 @@ double halfValue(std::uint16_t h) {
     return sign * std::ldexp(1024 + fraction, exponent - 25);
 }
 
-std::uint32_t le32(const std::vector<unsigned char>& b, size_t at) {
-    return std::uint32_t(b.at(at)) | std::uint32_t(b.at(at + 1)) << 8 | std::uint32_t(b.at(at + 2)) << 16 |
-           std::uint32_t(b.at(at + 3)) << 24;
-}
-float leFloat(const std::vector<unsigned char>& b, size_t at) {
-    const std::uint32_t u = le32(b, at);
-    float v;
-    std::memcpy(&v, &u, 4);
-    return v;
-}
-
 // A DDS as Microsoft's layout defines it: magic, the 124-byte DDS_HEADER (height at byte 8, width at 12,
 // mip count at 24, dwReserved1 from 28), DDS_HEADER_DXT10 (dxgiFormat, dimension, misc, arraySize), then
 // each layer's chain, level 0 first; heightpack's record in dwReserved1 as the README documents it.

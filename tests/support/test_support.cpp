@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -108,6 +110,18 @@ std::vector<unsigned char> pngWithClaimedSize(unsigned width, unsigned height) {
     chunk("IDAT", packed);
     chunk("IEND", {});
     return png;
+}
+
+std::uint32_t le32(const std::vector<unsigned char>& b, size_t at) {
+    return std::uint32_t(b.at(at)) | std::uint32_t(b.at(at + 1)) << 8 | std::uint32_t(b.at(at + 2)) << 16 |
+           std::uint32_t(b.at(at + 3)) << 24;
+}
+
+float leFloat(const std::vector<unsigned char>& b, size_t at) {
+    const std::uint32_t u = le32(b, at);
+    float v;
+    std::memcpy(&v, &u, 4);
+    return v;
 }
 
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::vector<std::string>& environment) {

@@ -5,6 +5,7 @@
 #include <OpenImageIO/typedesc.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <random>
@@ -45,6 +46,9 @@ void writeImage(const std::string& path, int width, int height, int channels, co
 void writeImage(const std::string& path, const Image& image, OIIO::TypeDesc type);
 
 std::vector<unsigned char> readBytes(const std::string& path);
+// Little-endian fields of a container header read from its bytes (bounds-checked: a short file fails).
+std::uint32_t le32(const std::vector<unsigned char>& b, size_t at);
+float leFloat(const std::vector<unsigned char>& b, size_t at);
 void writeBytes(const std::string& path, const std::vector<unsigned char>& bytes);
 
 // A PNG whose header claims width x height, followed by a tiny, valid data stream.
