@@ -1,4 +1,5 @@
 #include "heightpack/io/info.hpp"
+#include "heightpack/io/map_units.hpp"
 
 #include <OpenImageIO/imageio.h>
 
@@ -108,6 +109,9 @@ Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDec
 Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages) {
     auto file = readTextureFile(path, silenceDecoderMessages);
     if (!file) return file.error();
+    // The recorded world (tile size, height range and scale, loop period, time) read as numbers, so a
+    // damaged value is bad input here as in pack and the viewer, never printed as if it were one.
+    if (auto units = readMapUnits(file->attributes, path); !units) return units.error();
     FileInfo info;
     static_cast<TextureHeader&>(info) = *file;
     const std::vector<double> errors = recordedLookupErrors(file->attributes);

@@ -12,6 +12,8 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -549,6 +551,26 @@ TEST(IoSafety, MessagesSayWhatIsWrong) {
 // A PNG's heightpack:loopPeriod text that is no number (hand-edited, or another tool's) was read with
 // std::stof when packing: an uncaught exception, exit 70. It is damaged metadata: exit 3, nothing written;
 // a real number is carried into the packed file.
+// A packed texture whose recorded height scale was damaged (issue 38's example): info refuses it, as pack
+// and the viewer do, where it printed 'heightScale x' and exited 0.
+TEST(IoSafety, InfoRefusesADamagedRecordedNumber) {
+    ScratchDir dir;
+    const std::string packed = dir.file("s.ktx2");
+    ASSERT_EQ(hp({"pack", std::string(HEIGHTPACK_SOURCE_DIR) + "/examples/maps/ripple.png", "-o", packed, "-q"}).code, 0);
+    ASSERT_EQ(hp({"info", packed}).code, 0);
+    std::vector<unsigned char> bytes = readBytes(packed);
+    const std::string key("heightpack:heightScale\0", 23);
+    const auto at = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+    ASSERT_NE(at, bytes.end());
+    ASSERT_TRUE(std::isdigit(at[23]));
+    at[23] = 'x';
+    writeBytes(dir.file("bad.ktx2"), bytes);
+    const ProcessResult run = hp({"info", dir.file("bad.ktx2")});
+    EXPECT_EQ(run.code, 3) << run.out;
+    expectOneLineError(run, dir.file("bad.ktx2"));
+    EXPECT_NE(run.err.find("heightScale"), std::string::npos) << run.err;
+}
+
 TEST(IoSafety, LoopPeriodMetadataThatIsNoNumberIsBadInput) {
     ScratchDir dir;
     for (const auto& [text, good] : {std::pair<std::string, bool>{"abc", false}, {"12.5x", false}, {"12.5", true}}) {
