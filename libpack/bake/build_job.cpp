@@ -306,7 +306,15 @@ Status MaterialBuild::Impl::run() {
     for (const fs::path& f : folders) report.staleTemporariesRemoved += removeStaleTemporaryFiles(f.string());
 
     // 3. Make what changed. The state is saved after every output, so a killed build redoes only
-    // what it had not finished.
+    // what it had not finished. First it forgets every output about to be replaced: between an output's
+    // rename and the next save, a kill would otherwise leave the state vouching for bytes no longer there.
+    if (options.only.empty()) {
+        bool forgot = false;
+        for (const Step& s : steps)
+            if (s.needBuild) forgot |= state.erase(s.report.output) > 0;
+        if (forgot)
+            if (Status saved = writeTextFile(statePath, buildStateText(state)); !saved) return saved.error();
+    }
     std::atomic<bool> stop{false};
     forEachParallel(steps.size(), jobs, [&](size_t i) { makeStep(steps[i], stop); });
     // Synthesised maps' intermediates are gone once packed; what steps shared (a foam loop) and their
