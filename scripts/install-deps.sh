@@ -11,6 +11,7 @@ packages=(
   libtomlplusplus-dev                           # material manifests (heightpack build)
   libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
   libzstd-dev                                   # Zstandard supercompression of KTX2 levels
+  strace                                        # tests: which files a command opens (io_safety_test)
   zstd libnvtt-bin                              # tests' independent readers: the zstd tool for supercompressed
                                                 # KTX2 levels, nvddsinfo for DDS (ktx-parse under Node: below)
   libopencv-core-dev                            # the DFT behind `tile` (periodic + smooth)

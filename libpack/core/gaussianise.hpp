@@ -24,8 +24,8 @@ double inverseNormalCdf(double p);
 // takes their mid-rank, as the sort): at least 64 values a part on average and none with more than 64x
 // that (a smooth density's peak part holds a few times the mean; more is a cluster finer than a part), so
 // a rank is off by a fraction of its part's count at most, and by its sampling noise (about sqrt(count))
-// on a smooth distribution: the Gaussians' RMS error is under 1e-4 (Gaussianiser tests). The sort, its
-// scattered writes and its 300 MB were a tenth of tile's time (4096^2: 2.8 -> 2.6 s CPU).
+// on a smooth distribution: the Gaussians' RMS error is under 1e-4 (Gaussianiser tests). A sort, with its
+// scattered writes and 300 MB at 4096^2, would cost a tenth of tile's time.
 struct Gaussianiser {
     Buffer<double> gaussian;  // per value of the input, its Gaussian
 

@@ -160,7 +160,7 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     for (int pass = 0; pass < layers * plan.levels; ++pass) {
         const int layer = pass / plan.levels, level = pass % plan.levels;
         images.push_back({layer, level, offset});
-        offset += std::uint64_t(detail::levelSide(content.width, level)) * detail::levelSide(content.height, level) *
+        offset += std::uint64_t(mipLevelSide(content.width, level)) * mipLevelSide(content.height, level) *
                   f.bytesPerTexel();
     }
     TemporaryFile temp(path);
@@ -200,7 +200,7 @@ Result<GpuTexture> readDds(const std::string& path) {
     t.width = int(width);
     t.height = int(height);
     const int levels = (word(1) & kMipMapCount) && word(6) > 0 ? int(std::min<std::uint32_t>(word(6), 64)) : 1;
-    if (levels > fullChainLevels(t.width, t.height)) return corrupt("it lists more levels than its size allows");
+    if (levels > mipLevelCount(t.width, t.height)) return corrupt("it lists more levels than its size allows");
 
     std::uint32_t flags = 0;  // the record's, when it has one
     if (word(7) == kRecord && word(8) == 1) {
@@ -236,7 +236,7 @@ Result<GpuTexture> readDds(const std::string& path) {
     size_t at = kDataStart;
     for (int pass = 0; pass < layers * levels; ++pass) {
         const int level = pass % levels;
-        const int w = levelSide(t.width, level), h = levelSide(t.height, level);
+        const int w = mipLevelSide(t.width, level), h = mipLevelSide(t.height, level);
         const size_t n = size_t(w) * h * f.bytesPerTexel();
         if (n > b.size() - at) return corrupt("level " + std::to_string(level) + " is truncated");
         t.levelBytes[size_t(level)].insert(t.levelBytes[size_t(level)].end(), b.begin() + std::ptrdiff_t(at),
@@ -244,8 +244,8 @@ Result<GpuTexture> readDds(const std::string& path) {
         at += n;
     }
     for (int level = 0; level < levels; ++level)
-        t.levels.push_back(decodeLayers(f, t.levelBytes[size_t(level)].data(), levelSide(t.width, level),
-                                        levelSide(t.height, level), layers, t.normalisation));
+        t.levels.push_back(decodeLayers(f, t.levelBytes[size_t(level)].data(), mipLevelSide(t.width, level),
+                                        mipLevelSide(t.height, level), layers, t.normalisation));
     return t;
 }
 

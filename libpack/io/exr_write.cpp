@@ -19,6 +19,7 @@
 #include <numeric>
 #include <vector>
 
+#include "heightpack/core/mip.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
@@ -133,7 +134,6 @@ namespace {
 // (zlib level 4), in about half the CPU time. Fixed, so outputs are reproducible.
 constexpr int kDeflateLevel = 4;
 
-int levelSize(int size, int level) { return std::max(1, size >> level); }
 
 // One row of tiles of one level of a tiled file: the rows [y0, y0 + rows) of a level `width` wide.
 struct TileRow {
@@ -199,7 +199,7 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
     const int ts = options.tileSize;
     std::vector<TileRow> jobs;
     for (int level = 0; level < levels; ++level) {
-        const int w = levelSize(content.width, level), h = levelSize(content.height, level);
+        const int w = mipLevelSide(content.width, level), h = mipLevelSide(content.height, level);
         for (int y0 = 0; y0 < h; y0 += ts) jobs.push_back({level, y0, std::min(ts, h - y0), w, (w + ts - 1) / ts});
     }
     const size_t bandFloats = size_t(content.width) * std::min(ts, content.height) * channels;

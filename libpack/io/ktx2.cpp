@@ -138,8 +138,8 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
     std::vector<std::uint64_t> offset(levels), length(levels), rawLength(levels);
     size_t at = dataStart;
     for (int level = levels - 1; level >= 0; --level) {
-        rawLength[level] = std::uint64_t(detail::levelSide(content.width, level)) *
-                           detail::levelSide(content.height, level) * f.bytesPerTexel() * layers;
+        rawLength[level] = std::uint64_t(mipLevelSide(content.width, level)) *
+                           mipLevelSide(content.height, level) * f.bytesPerTexel() * layers;
         at = alignUp(at, alignment);
         offset[level] = at;
         length[level] = rawLength[level];
@@ -202,13 +202,13 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
         return Error{ErrorKind::Internal, path, "internal error: Zstandard could not be set up", "please report this"};
     std::vector<std::uint8_t> packed(ZSTD_CStreamOutSize());
     long long rowsTotal = 0, rowsDone = 0;
-    for (int level = 0; level < levels; ++level) rowsTotal += detail::levelSide(content.height, level) * layers;
+    for (int level = 0; level < levels; ++level) rowsTotal += mipLevelSide(content.height, level) * layers;
     size_t position = head.size();
     detail::BandEncoder encoder(path, content, plan, options.threads);
     const std::vector<std::uint8_t>& bytes = encoder.bytes();
     for (int level = levels - 1; level >= 0; --level) {
         const size_t start = position;  // supercompressed levels are not aligned (alignment 1)
-        const int h = detail::levelSide(content.height, level);
+        const int h = mipLevelSide(content.height, level);
         // Each level one frame that records its size, as readers expect to allocate from it.
         if (ZSTD_isError(ZSTD_CCtx_setPledgedSrcSize(cctx.get(), rawLength[level])))
             return Error{ErrorKind::Internal, path, "internal error: Zstandard refused a level's size", "please report this"};
@@ -277,7 +277,7 @@ Result<GpuTexture> readKtx2(const std::string& path) {
     t.supercompression = scheme == kSupercompressionZstd ? Supercompression::Zstd : Supercompression::None;
     t.width = int(width);
     t.height = int(height);
-    const int full = fullChainLevels(t.width, t.height);
+    const int full = mipLevelCount(t.width, t.height);
     const int levels = levelCount == 0 ? 1 : int(std::min<std::uint32_t>(levelCount, 64));
     if (levels > full) return corrupt("it lists more levels than its size allows");
     if (kHeaderBytes + 24 * size_t(levels) > b.size()) return corrupt("its level index is truncated");
@@ -310,7 +310,7 @@ Result<GpuTexture> readKtx2(const std::string& path) {
     for (int level = 0; level < levels; ++level) {
         const std::uint8_t* e = b.data() + kHeaderBytes + 24 * size_t(level);
         const std::uint64_t offset = get64(e), length = get64(e + 8), raw = get64(e + 16);
-        const int w = levelSide(t.width, level), h = levelSide(t.height, level);
+        const int w = mipLevelSide(t.width, level), h = mipLevelSide(t.height, level);
         const std::uint64_t expected = std::uint64_t(w) * h * f.bytesPerTexel() * layerCount;
         if (offset > b.size() || length > b.size() - offset)
             return corrupt("level " + std::to_string(level) + " lies past the end of the file");

@@ -48,7 +48,7 @@ Status planBands(const std::string& path, int fd, const std::vector<std::uint8_t
     const size_t texelBytes = size_t(plan.format.bytesPerTexel());
     std::uint64_t end = header.size();
     for (const PlacedImage& image : images) {
-        const int w = levelSide(content.width, image.level), h = levelSide(content.height, image.level);
+        const int w = mipLevelSide(content.width, image.level), h = mipLevelSide(content.height, image.level);
         if (image.offset < end)
             return Error{ErrorKind::Internal, path, "internal error: a level overlaps what comes before it",
                          "please report this"};

@@ -12,7 +12,7 @@
 
 namespace heightpack::detail {
 
-// Where one layer's image of one level goes: levelSide(width, level) x levelSide(height, level) texels
+// Where one layer's image of one level goes: mipLevelSide(width, level) x mipLevelSide(height, level) texels
 // of the plan's format, rows tightly packed (layer 0 for a texture that is not an array).
 struct PlacedImage {
     int layer = 0;

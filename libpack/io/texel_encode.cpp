@@ -151,14 +151,8 @@ Error nonFiniteLevel(const std::string& path, int level) {
                  "please report this with the command line"};
 }
 
-int fullChainLevels(int width, int height) {
-    int levels = 1;
-    while ((width >> levels) > 0 || (height >> levels) > 0) ++levels;
-    return levels;
-}
-
 Status BandEncoder::encode(int level, int y0, int rows, int layer) {
-    const int w = levelSide(content_.width, level);
+    const int w = mipLevelSide(content_.width, level);
     const int from = plan_.sourceChannels;
     const size_t rowValues = size_t(w) * from, rowBytes = size_t(w) * plan_.format.bytesPerTexel();
     bytes_.resize(size_t(rows) * rowBytes);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "heightpack/core/mip.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/texture_write.hpp"
 
@@ -26,9 +27,6 @@ struct FileCloser {
     void operator()(std::FILE* f) const { std::fclose(f); }
 };
 
-inline int levelSide(int size, int level) { return size >> level > 0 ? size >> level : 1; }
-// Levels of a full chain down to 1x1 (ROUND_DOWN, as the EXR writer).
-int fullChainLevels(int width, int height);
 
 // The internal error for a level holding a non-finite value (the loader refuses them; a writer never
 // stores one).

@@ -78,7 +78,7 @@ Status scanContent(const std::string& path, const MipChainSource& content, const
     const float limit = limitOf(options.storage.pixelType);
     for (int pass = 0; pass < content.layerCount() * plan.levels; ++pass) {
         const int layer = pass / plan.levels, level = pass % plan.levels;
-        const int w = levelSide(content.width, level), h = levelSide(content.height, level);
+        const int w = mipLevelSide(content.width, level), h = mipLevelSide(content.height, level);
         const size_t rowValues = size_t(w) * plan.sourceChannels;
         std::vector<Scan> scans(static_cast<size_t>(h));
         std::vector<std::vector<float>> badRows(static_cast<size_t>(h));  // a row with a bad value, kept to name it
@@ -193,7 +193,7 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
     EncodePlan plan;
     plan.sourceChannels = static_cast<int>(content.channelNames.size());
     plan.format = texelFormatInfo(texelFormatFor(plan.sourceChannels, options.storage.pixelType));
-    plan.levels = fullChainLevels(content.width, content.height);
+    plan.levels = mipLevelCount(content.width, content.height);
     if (options.levels > 0) plan.levels = std::min(plan.levels, options.levels);
     if (options.storage.pixelType == PixelType::Float) return plan;
     if (options.planned && options.planned->pixelType == options.storage.pixelType) {

@@ -21,7 +21,6 @@ struct NameTable<FresnelModel> {
         {FresnelModel::Schlick, "schlick", "Schlick's approximation"},
     };
 };
-inline const char* fresnelModelName(FresnelModel model) { return nameOf(model); }
 
 // What the texture coordinate is.
 enum class FresnelIndex {
@@ -35,7 +34,6 @@ struct NameTable<FresnelIndex> {
         {FresnelIndex::TwoNdotV, "2nv", "u = saturate(2 N.V)"},
     };
 };
-inline const char* fresnelIndexName(FresnelIndex index) { return nameOf(index); }
 
 using Rgb = std::array<double, 3>;  // linear RGB in [0,1]
 

@@ -48,6 +48,8 @@ Image resample(const Image& src, int width, int height, const MipOptions& option
 
 // The number of levels of a full chain down to 1x1: 1 + log2(max(width, height)) for power-of-two sizes.
 int mipLevelCount(int width, int height);
+// The side of level `level` of a chain whose level 0 has side `size` (ROUND_DOWN, never below 1).
+inline int mipLevelSide(int size, int level) { return size >> level > 0 ? size >> level : 1; }
 bool isPowerOfTwo(int n);
 // The smallest power of two not less than n (n >= 1).
 int nextPowerOfTwo(int n);

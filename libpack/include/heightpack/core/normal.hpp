@@ -24,7 +24,6 @@ struct NameTable<SlopeKernel> {
     };
 };
 inline const char* slopeKernelName(SlopeKernel kernel) { return nameOf(kernel); }
-inline std::optional<SlopeKernel> parseSlopeKernel(std::string_view name) { return parseName<SlopeKernel>(name); }
 
 // Which way green points. OpenGL: +y toward the top of the image as stored (row 0); DirectX: toward the
 // bottom (green negated).

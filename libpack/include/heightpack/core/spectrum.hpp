@@ -28,7 +28,6 @@ struct NameTable<SpectrumModel> {
     };
 };
 inline const char* spectrumModelName(SpectrumModel model) { return nameOf(model); }
-inline std::optional<SpectrumModel> parseSpectrumModel(std::string_view name) { return parseName<SpectrumModel>(name); }
 
 // A swell: waves raised far away, summed with the local wind sea. A JONSWAP shape in the Hs-Tp form
 // (Goda 1988; DNV-RP-C205 3.5.5), scaled so that 4 sqrt(m0) is exactly significantHeight, with a narrow

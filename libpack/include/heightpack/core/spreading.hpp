@@ -23,7 +23,6 @@ struct NameTable<Spreading> {
         {Spreading::DonelanBanner, "donelan-banner", "sech^2 with Donelan-Banner's beta(w/wp)"},
     };
 };
-inline std::optional<Spreading> parseSpreading(std::string_view name) { return parseName<Spreading>(name); }
 
 // The cos-2s normalisation G(s) = 2^(2s-1) Gamma(s+1)^2 / (pi Gamma(2s+1)), so that
 // G(s) cos^2s(theta / 2) integrates to 1 over [-pi, pi]. s >= 0.

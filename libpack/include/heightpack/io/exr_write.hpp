@@ -26,8 +26,6 @@ struct NameTable<Compression> {
         {Compression::Piz, "piz", "wavelet"},
     };
 };
-inline const char* compressionName(Compression compression) { return nameOf(compression); }
-inline std::optional<Compression> parseCompression(std::string_view name) { return parseName<Compression>(name); }
 
 // A mip chain as every mip-mapped writer (tiled EXR, KTX2, DDS) takes it: its level-0 size, channel names,
 // and a function that fills any band of rows of any level on demand, so a writer never holds more than a
