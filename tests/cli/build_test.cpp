@@ -764,7 +764,7 @@ TEST_F(BuildTest, TheNinjaPlanMakesTheSameBytesAndRerunsOnlyWhatChanged) {
     const auto actions = nlohmann::json::parse(json.out)["actions"];
     ASSERT_EQ(actions.size(), 4u + 3u + 1u);  // four outputs, three frames, material.json
     EXPECT_EQ(actions.back()["outputs"][0], dir.file("planned") + "/material.json");
-    EXPECT_EQ(actions.back()["inputs"].size(), 2u + 7u);  // the program, the manifest, every output
+    EXPECT_EQ(actions.back()["inputs"].size(), 2u + 3u + 7u);  // the program, the manifest, every map, every output
     EXPECT_EQ(actions[0]["inputs"][2], dir.file("maps/a.png"));
 
     auto ninja = [&](const std::string& plan, const std::string& jobs) {
@@ -798,4 +798,34 @@ TEST_F(BuildTest, TheNinjaPlanMakesTheSameBytesAndRerunsOnlyWhatChanged) {
     EXPECT_EQ(unknown.code, 2) << unknown.err;
     EXPECT_NE(unknown.err.find("nope.exr"), std::string::npos) << unknown.err;
     EXPECT_EQ(heightpackRun({"build", manifest, "-o", out, "--plan", "ninja", "--check-only"}).code, 2);
+}
+
+// --plan bazel names every file by a label of the package in the folder the plan is made in (issue 37):
+// a path outside it, or absolute, is a usage error of one line, before anything is printed. The plan
+// itself is run by Bazel in tests/cli/bazel_plan_test.cpp (label bazel).
+TEST_F(BuildTest, TheBazelPlanRefusesPathsOutsideItsPackage) {
+    const ProcessResult absolute = build({"--plan", "bazel"});
+    EXPECT_EQ(absolute.code, 2) << absolute.err;
+    expectOneLineError(absolute, manifest);
+    auto inFolder = [&](const std::string& line) {
+        return runProcess({"bash", "-c", "cd \"$1\" && \"$0\" " + line, HEIGHTPACK_EXE, dir.path().string()});
+    };
+    const ProcessResult escaping = inFolder("build water.toml -o ../out --plan bazel");
+    EXPECT_EQ(escaping.code, 2) << escaping.err;
+    expectOneLineError(escaping, "../out/");
+    const ProcessResult plan = inFolder("build ./water.toml -o out/sea --plan bazel");
+    ASSERT_EQ(plan.code, 0) << plan.err;
+    size_t rules = 0;
+    for (size_t at = plan.out.find("genrule("); at != std::string::npos; at = plan.out.find("genrule(", at + 1)) ++rules;
+    EXPECT_EQ(rules, 4u + 1u) << plan.out;  // four outputs and material.json
+    EXPECT_NE(plan.out.find("outs = [\"out/sea/long.exr\"]"), std::string::npos) << plan.out;
+    EXPECT_NE(plan.out.find("\"maps/a.png\""), std::string::npos) << plan.out;
+
+    const ProcessResult workspace = heightpackRun({"build", "--plan", "bazel-workspace"});
+    EXPECT_EQ(workspace.code, 0) << workspace.err;
+    EXPECT_NE(workspace.out.find("new_local_repository("), std::string::npos) << workspace.out;
+    EXPECT_NE(workspace.out.find("\"" + fs::path(HEIGHTPACK_EXE).parent_path().string() + "\""), std::string::npos)
+        << workspace.out;
+    EXPECT_EQ(heightpackRun({"build", manifest, "--plan", "bazel-workspace"}).code, 2);
+    EXPECT_EQ(heightpackRun({"build", "-o", out}).code, 2);  // no manifest
 }
