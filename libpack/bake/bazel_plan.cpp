@@ -71,8 +71,8 @@ std::string list(const std::vector<std::string>& labels) {
 
 Result<std::string> bazelBuildFile(const std::vector<BuildAction>& actions) {
     std::string text =
-        "# heightpack build, as Bazel actions: with the WORKSPACE rule `heightpack build --plan bazel-workspace`\n"
-        "# prints, `bazel build //...` makes every output under bazel-bin/.\n";
+        "# heightpack build, as Bazel actions: with heightpack's WORKSPACE rule for Bazel, `bazel build //...`\n"
+        "# makes every output under bazel-bin/.\n";
     for (const BuildAction& a : actions) {
         std::vector<std::string> srcs, outs;
         for (size_t i = 1; i < a.inputs.size(); ++i) {  // the first, the program, is the tool
@@ -111,8 +111,7 @@ std::string bazelWorkspace(const std::string& executable) {
                                   ? "exports_files([\"heightpack\"])"
                                   : "filegroup(name = \"heightpack\", srcs = [" + starlark(file) +
                                         "], visibility = [\"//visibility:public\"])";
-    return std::string("# heightpack, the tool of every action `heightpack build --plan bazel` writes (") + kBazelTool +
-           ")\n"
+    return std::string("# heightpack, the tool of every action of heightpack's Bazel plans (") + kBazelTool + ")\n"
            "new_local_repository(\n"
            "    name = \"heightpack\",\n"
            "    path = " + starlark(program.parent_path().string()) + ",\n"

@@ -105,7 +105,10 @@ public:
     explicit DavServer(const fs::path& folder) : folder_(folder), port_(freePort()) {
         fs::create_directories(folder / "store");
         fs::create_directories(folder / "tmp");
-        // Under root, nginx's workers run as nobody: they write the store.
+        // Under root, nginx's workers run as nobody: they reach and write the store.
+        const fs::perms reach = fs::perms::group_exec | fs::perms::others_exec;
+        fs::permissions(folder.parent_path(), reach, fs::perm_options::add);
+        fs::permissions(folder, reach, fs::perm_options::add);
         fs::permissions(folder / "store", fs::perms::all);
         fs::permissions(folder / "tmp", fs::perms::all);
         const std::string f = folder.string();
