@@ -127,6 +127,9 @@ public:
         if (plan_->count() && (checkOnly_ || !only_.empty() || !depfile_.empty() || !stamp_.empty() || force_))
             return usage("--plan writes the build as actions and builds nothing: it goes without --check-only, --only, "
                          "--force, --depfile and --stamp");
+        if (plan_->count() && planFormat_ == PlanFormat::Bazel && cache_)
+            return usage("--plan bazel's actions share results through Bazel's own cache (bazel build "
+                         "--remote_cache=URL), not --cache");
         if (!only_.empty() && manifests_.size() != 1) return usage("--only names an output of one manifest: give one");
         setLibraryThreads(common_.threads);
 

@@ -828,4 +828,5 @@ TEST_F(BuildTest, TheBazelPlanRefusesPathsOutsideItsPackage) {
         << workspace.out;
     EXPECT_EQ(heightpackRun({"build", manifest, "--plan", "bazel-workspace"}).code, 2);
     EXPECT_EQ(heightpackRun({"build", "-o", out}).code, 2);  // no manifest
+    EXPECT_EQ(inFolder("build water.toml -o out --plan bazel --cache cache").code, 2);  // Bazel has its own
 }
