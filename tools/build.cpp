@@ -86,7 +86,8 @@ public:
             ->check(byteSizeValidator());
         plan_ = addEnumOption(*cmd, "--plan", planFormat_,
                               "write the build as actions on stdout (one per output, each `build --only OUTPUT`) "
-                              "for Ninja or a farm to run; build nothing")
+                              "for Ninja, Bazel or a farm to run (bazel-workspace: Bazel's rule for this heightpack, "
+                              "no manifest); build nothing")
                     ->default_str("");
         cmd->add_option("--only", only_, "make this one output (as the plan names it), or with material.json record "
                                          "every output made and describe the material: a plan's action")

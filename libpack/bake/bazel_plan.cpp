@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "heightpack/bake/action_plan.hpp"
+#include "heightpack/bake/build_report.hpp"
 
 namespace heightpack {
 
@@ -61,8 +62,9 @@ std::string ruleName(const std::string& text) {
 }
 
 std::string list(const std::vector<std::string>& labels) {
-    if (labels.size() == 1) return "[" + starlark(labels.front()) + "]";
-    std::string out = "[\n";
+    std::string out = "[";
+    if (labels.size() == 1) return out.append(starlark(labels.front())).append("]");
+    out += '\n';
     for (const std::string& l : labels) out.append("        ").append(starlark(l)).append(",\n");
     return out + "    ]";
 }
@@ -89,7 +91,8 @@ Result<std::string> bazelBuildFile(const std::vector<BuildAction>& actions) {
         for (size_t i = 1; i < a.command.size(); ++i) {
             const std::string& word = a.command[i];
             cmd += ' ';
-            cmd += word == a.folder ? "$(RULEDIR)/" + commandWord(word) : commandWord(word);
+            if (word == a.folder) cmd += "$(RULEDIR)/";
+            cmd += commandWord(word);
         }
         // The last action is named after the material (bazel build //:NAME); the others after their output.
         const std::string name = ruleName(a.only == kMaterialFile ? a.material : a.material + "." + a.only);
@@ -107,10 +110,11 @@ std::string bazelWorkspace(const std::string& executable) {
     const fs::path program = fs::absolute(executable).lexically_normal();
     const std::string file = program.filename().string();
     // The tool's label is @heightpack//:heightpack whatever the program's file is called.
-    const std::string build = file == "heightpack"
-                                  ? "exports_files([\"heightpack\"])"
-                                  : "filegroup(name = \"heightpack\", srcs = [" + starlark(file) +
-                                        "], visibility = [\"//visibility:public\"])";
+    std::string build = "exports_files([\"heightpack\"])";
+    if (file != "heightpack")
+        build = std::string("filegroup(name = \"heightpack\", srcs = [")
+                    .append(starlark(file))
+                    .append("], visibility = [\"//visibility:public\"])");
     return std::string("# heightpack, the tool of every action of heightpack's Bazel plans (") + kBazelTool + ")\n"
            "new_local_repository(\n"
            "    name = \"heightpack\",\n"
