@@ -69,8 +69,9 @@ cp ws/WORKSPACE ws/BUILD.bazel ws/sea.toml other/
 bazelrun() {
   local start end
   start=$(date +%s.%N)
-  (cd "$1" && bazel --nohome_rc --noworkspace_rc --batch --output_base="$work/$2" --host_jvm_args=-Xmx1g build //... \
-    --jobs "$jobs" --remote_cache="http://127.0.0.1:$port/hp" >"$work/$2.log" 2>&1)
+  (cd "$1" && bazel --nohome_rc --noworkspace_rc --batch --output_user_root="$work/bazel-root" \
+    --output_base="$work/$2" --host_jvm_args=-Xmx1g build //... --jobs "$jobs" \
+    --remote_cache="http://127.0.0.1:$port/hp" --repository_cache="$work/bazel-repositories" >"$work/$2.log" 2>&1)
   end=$(date +%s.%N)
   echo "$(echo "$end - $start" | bc -l) $(grep -o 'Elapsed time: [0-9.]*s' "$work/$2.log" | tail -1 | cut -d' ' -f3)" \
     "$(grep -o '[0-9]* processes: .*' "$work/$2.log" | tail -1)"

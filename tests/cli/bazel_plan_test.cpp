@@ -183,7 +183,8 @@ protected:
     std::vector<Spawn> bazel(const std::string& folder, const std::string& outputBase, std::vector<std::string> extra) {
         const std::string log = dir.file("exec." + std::to_string(++builds) + ".json");
         std::vector<std::string> argv = {"bash", "-c", "cd \"$0\" && exec \"$@\"", folder, "bazel", "--nohome_rc", "--noworkspace_rc",
-                                         "--batch", "--output_base=" + dir.file(outputBase), "--host_jvm_args=-Xmx1g",
+                                         "--batch", "--output_user_root=" + dir.file("bazel-root"),
+                                         "--output_base=" + dir.file(outputBase), "--host_jvm_args=-Xmx1g",
                                          "build", "//...", "--jobs=2", "--spawn_strategy=linux-sandbox",
                                          "--repository_cache=" + dir.file("bazel-repositories"),
                                          "--execution_log_json_file=" + log};
