@@ -22,6 +22,8 @@ packages=(
                                                 # EGL (surfaceless platform) loaded at run time
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks
   time                                          # peak memory in tests/bench/bench_pack.sh
+  bazel-bootstrap nginx                         # the Bazel plan's test (label bazel): Bazel 4.2.3, and nginx's
+                                                # WebDAV module as its HTTP cache
 )
 
 missing=()

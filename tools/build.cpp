@@ -67,7 +67,7 @@ class BuildCommand final : public Command {
 public:
     CLI::App* attach(CLI::App& app) override {
         CLI::App* cmd = app.add_subcommand("build", "build every texture of a water material manifest, incrementally");
-        cmd->add_option("manifests", manifests_, "material manifests (.toml; see " + manifestReference() + ")")->required();
+        cmd->add_option("manifests", manifests_, "material manifests (.toml; see " + manifestReference() + ")");
         cmd->add_option("-o,--output", output_,
                         "output folder: the material's own for one manifest, else one subfolder per material name");
         cmd->add_option("-j,--jobs", jobs_, "assets built at once (output bytes are the same for any number)")
@@ -86,7 +86,8 @@ public:
             ->check(byteSizeValidator());
         plan_ = addEnumOption(*cmd, "--plan", planFormat_,
                               "write the build as actions on stdout (one per output, each `build --only OUTPUT`) "
-                              "for Ninja or a farm to run; build nothing")
+                              "for Ninja, Bazel or a farm to run (bazel-workspace: Bazel's rule for this heightpack, "
+                              "no manifest); build nothing")
                     ->default_str("");
         cmd->add_option("--only", only_, "make this one output (as the plan names it), or with material.json record "
                                          "every output made and describe the material: a plan's action")
@@ -96,6 +97,7 @@ public:
             "Examples:\n"
             "  heightpack build examples/ocean.toml -o out/ocean\n"
             "  heightpack build examples/ocean.toml -o out/ocean --plan ninja > ocean.ninja && ninja -f ocean.ninja -j 8\n"
+            "  heightpack build --plan bazel-workspace > WORKSPACE && heightpack build ocean.toml -o out/ocean --plan bazel > BUILD.bazel\n"
             "  heightpack build examples/*.toml -o out --jobs 2 --json\n"
             "  heightpack build examples/ocean.toml --check-only\n"
             "  heightpack build examples/ocean.toml -o out/ocean --cache /mnt/share/hp-cache --cache-size 50G\n"
@@ -109,6 +111,11 @@ public:
     }
 
     ExitCode run() override {
+        const bool workspace = plan_->count() && planFormat_ == PlanFormat::BazelWorkspace;
+        if (workspace && (!manifests_.empty() || !output_.empty()))
+            return usage("--plan bazel-workspace prints how Bazel finds this heightpack: it takes no manifest and no -o");
+        if (workspace) return printPlan({}, "");
+        if (manifests_.empty()) return usage("give the material manifests to build (.toml)");
         if (!checkOnly_ && output_.empty()) return usage("give the output folder with -o (or use --check-only)");
         if (checkOnly_ && (!depfile_.empty() || !stamp_.empty()))
             return usage("--depfile and --stamp write files; --check-only writes nothing");
@@ -121,11 +128,16 @@ public:
         if (plan_->count() && (checkOnly_ || !only_.empty() || !depfile_.empty() || !stamp_.empty() || force_))
             return usage("--plan writes the build as actions and builds nothing: it goes without --check-only, --only, "
                          "--force, --depfile and --stamp");
+        if (plan_->count() && planFormat_ == PlanFormat::Bazel && cache_)
+            return usage("--plan bazel's actions share results through Bazel's own cache (bazel build "
+                         "--remote_cache=URL), not --cache");
         if (!only_.empty() && manifests_.size() != 1) return usage("--only names an output of one manifest: give one");
         setLibraryThreads(common_.threads);
 
         // Everything is parsed before anything is built: a bad manifest stops the build before it starts.
-        auto manifests = parseManifests(manifests_);
+        // An action that makes one output may run where only the files that output reads are (Bazel's sandbox).
+        const bool oneOutput = !only_.empty() && only_ != kMaterialFile;
+        auto manifests = parseManifests(manifests_, oneOutput ? SourceCheck::MayBeAbsent : SourceCheck::MustExist);
         if (!manifests) return fail(manifests.error());
         if (plan_->count()) return printPlan(*manifests, cacheFolder);
 
@@ -198,20 +210,31 @@ public:
     }
 
 private:
-    // The plan on stdout; each action carries the cache this build would use.
+    // The plan on stdout; each action carries the cache this build would use (but Bazel's, which has
+    // its own: --remote_cache).
     ExitCode printPlan(const std::vector<Manifest>& manifests, const std::string& cacheFolder) const {
         std::error_code ec;
         const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+        const bool bazel = planFormat_ == PlanFormat::Bazel;
         std::vector<std::string> extra;
-        if (!cacheFolder.empty()) extra = {"--cache", cacheFolder};
-        if (!cacheFolder.empty() && !cacheSize_.empty()) extra.insert(extra.end(), {"--cache-size", cacheSize_});
+        if (!cacheFolder.empty() && !bazel) extra = {"--cache", cacheFolder};
+        if (!cacheFolder.empty() && !bazel && !cacheSize_.empty()) extra.insert(extra.end(), {"--cache-size", cacheSize_});
         const std::string program = ec ? std::string("heightpack") : self.string();
-        auto actions = planActions(manifests, output_, program, kVersion);
+        auto actions = planActions(manifests, output_, program, kVersion, bazel);
         for (BuildAction& a : actions) {
             a.command = {program, "build", a.manifest, "-o", a.folder, "--only", a.only, "-q"};
             a.command.insert(a.command.end(), extra.begin(), extra.end());
         }
-        const std::string text = planFormat_ == PlanFormat::Ninja ? ninjaFile(actions) : actionsJson(actions);
+        std::string text;
+        if (planFormat_ == PlanFormat::BazelWorkspace) {
+            text = bazelWorkspace(program);
+        } else if (bazel) {
+            auto build = bazelBuildFile(actions);
+            if (!build) return fail(build.error());
+            text = *build;
+        } else {
+            text = planFormat_ == PlanFormat::Ninja ? ninjaFile(actions) : actionsJson(actions);
+        }
         std::fwrite(text.data(), 1, text.size(), stdout);
         return ExitCode::Ok;
     }

@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <map>
+#include <set>
 
 #include "heightpack/bake/build_materials.hpp"
 #include "heightpack/bake/build_report.hpp"
@@ -44,26 +46,46 @@ std::string ninjaCommand(const std::vector<std::string>& argv) {
 }  // namespace
 
 std::vector<BuildAction> planActions(const std::vector<Manifest>& manifests, const std::string& output,
-                                     const std::string& executable, const std::string& version) {
+                                     const std::string& executable, const std::string& version, bool sandboxed) {
     std::vector<BuildAction> actions;
     for (const Manifest& m : manifests) {
         const std::string folder = materialOutputDir(output, m, manifests.size());
-        BuildAction last;
-        last.manifest = m.path;
-        last.folder = folder;
-        last.only = kMaterialFile;
-        last.inputs = {executable, m.path};
-        last.outputs = {(fs::path(folder) / kMaterialFile).string(), (fs::path(folder) / kBuildStateFile).string()};
-        last.description = std::string("describe ").append(m.name).append(": ").append(kMaterialFile);
-        for (const detail::Step& s : detail::planSteps(m, version)) {
+        auto action = [&](const std::string& only, const char* verb) {
             BuildAction a;
             a.manifest = m.path;
             a.folder = folder;
-            a.only = s.report.output;
+            a.only = only;
+            a.material = m.name;
             a.inputs = {executable, m.path};
-            if (!s.report.input.empty()) a.inputs.push_back(s.report.input);
-            a.outputs = {(fs::path(folder) / s.report.output).string()};
-            a.description = std::string("bake ").append(m.name).append(": ").append(s.report.output);
+            a.outputs = {(fs::path(folder) / only).string()};
+            a.description = std::string(verb).append(" ").append(m.name).append(": ").append(only);
+            return a;
+        };
+        BuildAction last = action(kMaterialFile, "describe");
+        last.outputs.push_back((fs::path(folder) / kBuildStateFile).string());
+        std::set<std::string> shared;  // inside the output folder
+        if (sandboxed)
+            for (const detail::Step& s : detail::planSharedSteps(m, version)) {
+                shared.insert(s.report.output);
+                actions.push_back(action(s.report.output, "prepare"));
+            }
+        const std::vector<detail::Step> steps = detail::planSteps(m, version);
+        // A frame of a painted sequence reads one file, but every frame's must be there: which of them
+        // are there decides how many frames the sequence has, so what each output is named.
+        std::map<std::string, std::vector<std::string>> sequences;  // kind and name -> every frame's file
+        for (const detail::Step& s : steps)
+            if (sandboxed && s.report.frame >= 0 && !s.report.input.empty())
+                sequences[s.report.kind + "/" + s.report.name].push_back(s.report.input);
+        // The last action hashes every source too (the state records its key): each once.
+        std::set<std::string> sources;
+        for (const detail::Step& s : steps) {
+            BuildAction a = action(s.report.output, "bake");
+            const auto sequence = sequences.find(s.report.kind + "/" + s.report.name);
+            if (sequence != sequences.end()) a.inputs.insert(a.inputs.end(), sequence->second.begin(), sequence->second.end());
+            else if (!s.report.input.empty()) a.inputs.push_back(s.report.input);
+            for (const std::string& file : s.intermediates)
+                if (shared.count(file)) a.inputs.push_back((fs::path(folder) / file).string());
+            if (!s.report.input.empty() && sources.insert(s.report.input).second) last.inputs.push_back(s.report.input);
             last.inputs.push_back(a.outputs.front());
             actions.push_back(std::move(a));
         }

@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 using detail::forEachParallel;
 using detail::describeFailure;
 using detail::guarded;
+using detail::planSharedSteps;
 using detail::planSteps;
 using detail::readText;
 using detail::Step;
@@ -102,6 +103,7 @@ Status MaterialBuild::Impl::prepare() {
     report.outputDir = options.outputDir;
     steps = planSteps(m, options.version);
     if (!options.only.empty() && options.only != kMaterialFile) {
+        for (Step& shared : planSharedSteps(m, options.version)) steps.push_back(std::move(shared));
         const auto one = std::find_if(steps.begin(), steps.end(), [&](const Step& s) { return s.report.output == options.only; });
         if (one == steps.end())
             return Error{ErrorKind::InconsistentOptions, m.path, "makes no output named '" + options.only + "'",
@@ -131,7 +133,8 @@ Status MaterialBuild::Impl::prepare() {
     // not leave half its outputs behind.
     if (!options.checkOnly) {
         std::vector<fs::path> outputs{statePath, folder / kMaterialFile};
-        for (const Step& s : steps) outputs.push_back(folder / s.report.output);
+        if (options.only != kMaterialFile)  // which only reads them (in a sandbox, links to an executor's files)
+            for (const Step& s : steps) outputs.push_back(folder / s.report.output);
         for (const fs::path& p : outputs)
             if (Status ok = checkOutputPath(p); !ok) return ok.error();
         state = readBuildState(statePath);

@@ -59,11 +59,11 @@ std::string materialOutputDir(const std::string& output, const Manifest& m, std:
     return count == 1 ? output : (fs::path(output) / m.name).string();
 }
 
-Result<std::vector<Manifest>> parseManifests(const std::vector<std::string>& paths) {
+Result<std::vector<Manifest>> parseManifests(const std::vector<std::string>& paths, SourceCheck sources) {
     std::vector<Manifest> manifests;
     std::map<std::string, std::string> names;
     for (const std::string& path : paths) {
-        auto m = parseManifest(path);
+        auto m = parseManifest(path, sources);
         if (!m) return m.error();
         if (Status s = uniqueName(names, *m, paths.size()); !s) return s.error();
         manifests.push_back(std::move(*m));

@@ -247,4 +247,23 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
     return steps;
 }
 
+std::vector<Step> planSharedSteps(const Manifest& m, const std::string& version) {
+    std::vector<Step> steps;
+    for (const DisplacementAsset& d : m.displacement) {
+        if (!d.synth || !d.synth->foam) continue;
+        const FoamLoop loop = foamLoopOf(*d.synth, d.layer.name, version);
+        Step step;
+        step.report.name = d.layer.name;
+        step.report.kind = "foam loop";
+        step.report.line = d.line;
+        step.report.output = (fs::path(d.output).parent_path() / loop.file).string();
+        step.optionsText = "kind=foamLoop\nloop=" + loop.key + "\n";
+        step.make = [loop](const std::string& output, int threads, const ProgressFn& progress) {
+            return writeFoamLoop(loop, output, threads, progress);
+        };
+        steps.push_back(std::move(step));
+    }
+    return steps;
+}
+
 }  // namespace heightpack::detail

@@ -36,4 +36,9 @@ struct Step {
 // every output.
 std::vector<Step> planSteps(const Manifest& m, const std::string& version);
 
+// The files several of m's steps read and one may make for all (a synthesised sea's foam loop), as steps
+// of their own for a plan that runs them as actions the others depend on: report.output is the file's
+// path inside the output folder, as the steps that read it list it first among their intermediates.
+std::vector<Step> planSharedSteps(const Manifest& m, const std::string& version);
+
 }  // namespace heightpack::detail

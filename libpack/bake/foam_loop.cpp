@@ -114,6 +114,10 @@ Result<Image> foamLoopFrame(const FoamLoop& loop, const fs::path& folder, int fr
     return image;
 }
 
+Status writeFoamLoop(const FoamLoop& loop, const fs::path& path, int threads, const ProgressFn& progress) {
+    return writeLoop(path, loop, computeLoop(loop.sea, threads, progress));
+}
+
 std::vector<std::string> foamLoopFiles(const FoamLoop& loop) { return {loop.file, loop.file + ".lock"}; }
 
 }  // namespace heightpack::detail

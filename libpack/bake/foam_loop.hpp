@@ -40,6 +40,10 @@ FoamLoop foamLoopOf(const SynthSource& sea, const std::string& name, const std::
 Result<Image> foamLoopFrame(const FoamLoop& loop, const std::filesystem::path& folder, int frame, int threads,
                             const ProgressFn& progress);
 
+// Every frame of the loop, computed and written to path (atomically) whatever is there: a plan's action
+// that makes the loop alone, for the frames' actions to declare and read (Bazel).
+Status writeFoamLoop(const FoamLoop& loop, const std::filesystem::path& path, int threads, const ProgressFn& progress);
+
 // The files foamLoopFrame may leave, relative to the output's folder: the loop and its lock.
 std::vector<std::string> foamLoopFiles(const FoamLoop& loop);
 

@@ -153,7 +153,7 @@ SourcedAsset ManifestParser::sourced(Section& s, const std::string& name, bool s
     if (a.source.empty()) a.source = ".";
     a.frames = expandSequence(a.source);
     std::error_code ec;
-    if (!fs::is_regular_file(a.frames[0], ec))
+    if (sources_ == SourceCheck::MustExist && !fs::is_regular_file(a.frames[0], ec))
         throw s.error("source", "names '" + shorten(*source) + "', which " +
                                     (fs::exists(a.frames[0], ec) ? "is not a file" : "does not exist") + " (looked for " +
                                     a.source + ")",
@@ -234,7 +234,7 @@ void ManifestParser::claimFrames(Section& s, const SourcedAsset& a) {
 
 }  // namespace detail
 
-Result<Manifest> parseManifest(const std::string& path) {
+Result<Manifest> parseManifest(const std::string& path, SourceCheck sources) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec))
         return badInput(path, fs::exists(path, ec) ? "is not a file" : "does not exist", "give a manifest .toml file");
@@ -246,7 +246,7 @@ Result<Manifest> parseManifest(const std::string& path) {
                         "TOML syntax error: " + std::string(e.description()), "fix the manifest's syntax");
     }
     try {
-        return detail::ManifestParser(path).parse(root);
+        return detail::ManifestParser(path, sources).parse(root);
     } catch (const Error& e) {
         return e;
     }

@@ -31,7 +31,8 @@ bool validName(const std::string& name);
 
 class ManifestParser {
 public:
-    explicit ManifestParser(std::string path) : path_(std::move(path)), folder_(std::filesystem::path(path_).parent_path()) {}
+    ManifestParser(std::string path, SourceCheck sources)
+        : path_(std::move(path)), folder_(std::filesystem::path(path_).parent_path()), sources_(sources) {}
 
     Manifest parse(const toml::table& root);
 
@@ -73,6 +74,7 @@ private:
 
     std::string path_;
     std::filesystem::path folder_;
+    SourceCheck sources_;
     MapSettings defaults_;
     std::optional<bool> defaultsMustTile_;
     std::map<std::string, int> outputs_;  // output path -> line that claimed it

@@ -764,7 +764,7 @@ TEST_F(BuildTest, TheNinjaPlanMakesTheSameBytesAndRerunsOnlyWhatChanged) {
     const auto actions = nlohmann::json::parse(json.out)["actions"];
     ASSERT_EQ(actions.size(), 4u + 3u + 1u);  // four outputs, three frames, material.json
     EXPECT_EQ(actions.back()["outputs"][0], dir.file("planned") + "/material.json");
-    EXPECT_EQ(actions.back()["inputs"].size(), 2u + 7u);  // the program, the manifest, every output
+    EXPECT_EQ(actions.back()["inputs"].size(), 2u + 3u + 7u);  // the program, the manifest, every map, every output
     EXPECT_EQ(actions[0]["inputs"][2], dir.file("maps/a.png"));
 
     auto ninja = [&](const std::string& plan, const std::string& jobs) {
@@ -798,4 +798,83 @@ TEST_F(BuildTest, TheNinjaPlanMakesTheSameBytesAndRerunsOnlyWhatChanged) {
     EXPECT_EQ(unknown.code, 2) << unknown.err;
     EXPECT_NE(unknown.err.find("nope.exr"), std::string::npos) << unknown.err;
     EXPECT_EQ(heightpackRun({"build", manifest, "-o", out, "--plan", "ninja", "--check-only"}).code, 2);
+}
+
+// --plan bazel names every file by a label of the package in the folder the plan is made in (issue 37):
+// a path outside it, or absolute, is a usage error of one line, before anything is printed. The plan
+// itself is run by Bazel in tests/cli/bazel_plan_test.cpp (label bazel).
+TEST_F(BuildTest, TheBazelPlanRefusesPathsOutsideItsPackage) {
+    const ProcessResult absolute = build({"--plan", "bazel"});
+    EXPECT_EQ(absolute.code, 2) << absolute.err;
+    expectOneLineError(absolute, manifest);
+    auto inFolder = [&](const std::string& line) {
+        return runProcess({"bash", "-c", "cd \"$1\" && \"$0\" " + line, HEIGHTPACK_EXE, dir.path().string()});
+    };
+    const ProcessResult escaping = inFolder("build water.toml -o ../out --plan bazel");
+    EXPECT_EQ(escaping.code, 2) << escaping.err;
+    expectOneLineError(escaping, "../out/");
+    const ProcessResult plan = inFolder("build ./water.toml -o out/sea --plan bazel");
+    ASSERT_EQ(plan.code, 0) << plan.err;
+    size_t rules = 0;
+    for (size_t at = plan.out.find("genrule("); at != std::string::npos; at = plan.out.find("genrule(", at + 1)) ++rules;
+    EXPECT_EQ(rules, 4u + 1u) << plan.out;  // four outputs and material.json
+    EXPECT_NE(plan.out.find("outs = [\"out/sea/long.exr\"]"), std::string::npos) << plan.out;
+    EXPECT_NE(plan.out.find("\"maps/a.png\""), std::string::npos) << plan.out;
+
+    const ProcessResult workspace = heightpackRun({"build", "--plan", "bazel-workspace"});
+    EXPECT_EQ(workspace.code, 0) << workspace.err;
+    EXPECT_NE(workspace.out.find("new_local_repository("), std::string::npos) << workspace.out;
+    EXPECT_NE(workspace.out.find("\"" + fs::path(HEIGHTPACK_EXE).parent_path().string() + "\""), std::string::npos)
+        << workspace.out;
+    EXPECT_EQ(heightpackRun({"build", manifest, "--plan", "bazel-workspace"}).code, 2);
+    EXPECT_EQ(heightpackRun({"build", "-o", out}).code, 2);  // no manifest
+    EXPECT_EQ(inFolder("build water.toml -o out --plan bazel --cache cache").code, 2);  // Bazel has its own
+}
+
+// In Bazel's sandbox an action sees only what it declares (issue 37): each frame of a painted sequence
+// declares every frame (which are there decides the outputs' names), each frame of a sea with foam the
+// loop's own action's output, and material.json every map once and every output.
+TEST_F(BuildTest, TheBazelPlanDeclaresEveryFileEachActionReads) {
+    for (int f = 0; f < 3; ++f)
+        writeImage(dir.file("maps/seq.000" + std::to_string(f) + ".png"), periodicMap(32, 0.05, f), OIIO::TypeDesc::UINT8);
+    writeText(manifest, "format = 1\nname = \"sea\"\n[[displacement]]\nname = \"seq\"\nsource = \"maps/seq.png\"\n"
+                        "tile_size = 32.0\n[[displacement]]\nname = \"foamy\"\ntile_size = 64.0\n"
+                        "synth = { wind = 9.0, size = 16, seed = 2, loop = 4.0, frames = 2, foam = true }\n"
+                        "[normals]\nname = \"n\"\nsource = \"maps/seq.0001.png\"\ntile_size = 8.0\nheight = 0.05\n");
+    const ProcessResult plan = runProcess({"bash", "-c", "cd \"$1\" && \"$0\" build water.toml -o out --plan bazel",
+                                           HEIGHTPACK_EXE, dir.path().string()});
+    ASSERT_EQ(plan.code, 0) << plan.err;
+    // Each rule's outs and srcs, by the rule's first output.
+    std::map<std::string, std::pair<std::string, std::string>> rules;  // first output -> srcs, outs text
+    for (size_t at = plan.out.find("genrule("); at != std::string::npos;) {
+        const size_t next = plan.out.find("genrule(", at + 1);
+        const std::string rule = plan.out.substr(at, next == std::string::npos ? std::string::npos : next - at);
+        const size_t srcs = rule.find("srcs = "), outs = rule.find("outs = "), tools = rule.find("tools = ");
+        const std::string outsText = rule.substr(outs, tools - outs);
+        const size_t quote = outsText.find('"');
+        rules[outsText.substr(quote + 1, outsText.find('"', quote + 1) - quote - 1)] = {rule.substr(srcs, outs - srcs), outsText};
+        at = next;
+    }
+    ASSERT_EQ(rules.size(), 1u + 3u + 2u + 1u + 1u) << plan.out;  // the loop, 3 + 2 frames, normals, material.json
+    auto declares = [&](const std::string& output, const std::string& file) {
+        return rules[output].first.find("\"" + file + "\"") != std::string::npos;
+    };
+    ASSERT_TRUE(rules.count("out/.heightpack-synth/foamy.foam")) << plan.out;
+    for (const char* frame : {"out/seq.0000.exr", "out/seq.0001.exr", "out/seq.0002.exr"})
+        for (const char* map : {"maps/seq.0000.png", "maps/seq.0001.png", "maps/seq.0002.png"})
+            EXPECT_TRUE(declares(frame, map)) << frame << " " << map;
+    for (const char* frame : {"out/foamy.0000.exr", "out/foamy.0001.exr"}) {
+        EXPECT_TRUE(declares(frame, "out/.heightpack-synth/foamy.foam")) << frame;
+        EXPECT_FALSE(declares(frame, "maps/seq.0000.png")) << frame;
+    }
+    EXPECT_TRUE(declares("out/n.exr", "maps/seq.0001.png"));
+    EXPECT_FALSE(declares("out/n.exr", "maps/seq.0000.png"));
+    const std::string& last = rules["out/material.json"].first;
+    for (const char* file : {"maps/seq.0000.png", "maps/seq.0001.png", "maps/seq.0002.png", "out/seq.0002.exr",
+                             "out/foamy.0001.exr", "out/n.exr"}) {
+        const std::string quoted = std::string("\"") + file + "\"";
+        EXPECT_NE(last.find(quoted), std::string::npos) << file;
+        EXPECT_EQ(last.find(quoted), last.rfind(quoted)) << file << " once";
+    }
+    EXPECT_NE(rules["out/material.json"].second.find("\"out/.heightpack-build.json\""), std::string::npos);
 }

@@ -36,8 +36,9 @@ struct MaterialsReport {
 std::string materialOutputDir(const std::string& output, const Manifest& m, std::size_t count);
 
 // Parses the manifests at paths, in order, stopping at the first that is bad; with more than one, two
-// that name the same material are refused (each is built into OUTPUT/NAME).
-Result<std::vector<Manifest>> parseManifests(const std::vector<std::string>& paths);
+// that name the same material are refused (each is built into OUTPUT/NAME). sources: see parseManifest.
+Result<std::vector<Manifest>> parseManifests(const std::vector<std::string>& paths,
+                                             SourceCheck sources = SourceCheck::MustExist);
 
 // Builds the manifests: options.outputDir is the output folder (see materialOutputDir); options.onEvent
 // sees every material's assets. Prepares every material (MaterialBuild::prepare), then, when not

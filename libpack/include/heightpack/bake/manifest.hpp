@@ -107,9 +107,15 @@ struct Manifest {
     std::optional<FoamAsset> foam;
 };
 
-// Reads and validates the manifest at path: TOML syntax, keys, types, ranges, that every source exists,
-// that output names are unique and stay inside the output folder. Errors are BadInput with path
-// "FILE:LINE" and the key in the message.
-Result<Manifest> parseManifest(const std::string& path);
+// Whether a source the manifest names must be there when it is read. MayBeAbsent is for an action that
+// makes one output where only the files that output reads are (a Bazel sandbox): another asset's source
+// may be missing (its asset keeps the path as given, one frame), and the output's own is read, so
+// reported, when it is made.
+enum class SourceCheck { MustExist, MayBeAbsent };
+
+// Reads and validates the manifest at path: TOML syntax, keys, types, ranges, that every source exists
+// (unless sources is MayBeAbsent), that output names are unique and stay inside the output folder.
+// Errors are BadInput with path "FILE:LINE" and the key in the message.
+Result<Manifest> parseManifest(const std::string& path, SourceCheck sources = SourceCheck::MustExist);
 
 }  // namespace heightpack
