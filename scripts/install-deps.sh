@@ -21,6 +21,7 @@ packages=(
                                                 # EGL (surfaceless platform) loaded at run time
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks
   time                                          # peak memory in tests/bench/bench_pack.sh
+  groff-base                                    # tests: rendering the man pages (tests/manual)
 )
 
 missing=()
