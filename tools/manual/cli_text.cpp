@@ -47,6 +47,7 @@ OptionText readOption(const CLI::Option& o) {
     option.description = o.get_description();
     option.required = o.get_required();
     option.list = o.get_delimiter() == ',';
+    option.many = option.positional && o.get_items_expected_max() > 1;
     return option;
 }
 

@@ -19,6 +19,7 @@ struct OptionText {
     bool positional = false;
     bool required = false;
     bool list = false;                 // several values, separated by commas
+    bool many = false;                 // a positional that takes several words
 };
 
 struct Example {

@@ -72,12 +72,13 @@ std::string synopsis(const CommandText& command, bool hasSubcommands) {
     text += hasSubcommands ? italic("COMMAND") + " [" + italic("OPTIONS") + "]" : "[" + italic("OPTIONS") + "]";
     for (const OptionText& option : command.options) {
         if (!option.required) continue;
-        const std::string word = option.positional ? italic(option.names.front())
+        const std::string word = option.positional ? italic(option.names.front()) + (option.many ? "..." : "")
                                                    : bold(option.names.back()) + " " + italic(option.value);
         text += " " + word;
     }
     for (const OptionText& option : command.options)
-        if (option.positional && !option.required) text += " [" + italic(option.names.front()) + "]";
+        if (option.positional && !option.required)
+            text += " [" + italic(option.names.front()) + (option.many ? "..." : "") + "]";
     return text + "\n";
 }
 
@@ -101,6 +102,7 @@ std::string optionEntry(const OptionText& option) {
 std::string manPage(const CommandText& command, const std::vector<CommandText>& subcommands, const PageContext& context) {
     const std::string name = summary(command.description, context.program, false);
     std::string page = ".TH " + roff(upper(command.page)) + " 1 \"\" \"" + roff(context.version) + "\" \"User Commands\"\n";
+    page += ".nh\n.ad l\n";  // option names are never hyphenated; ragged right, as most pages are
     page += ".SH NAME\n" + roff(command.page).substr(2) + " \\- " + roff(name).substr(2) + "\n";
     page += ".SH SYNOPSIS\n" + synopsis(command, !subcommands.empty());
     page += ".SH DESCRIPTION\n" + roff(summary(command.description, context.program, true)) + "\n";
@@ -117,9 +119,9 @@ std::string manPage(const CommandText& command, const std::vector<CommandText>& 
     if (!command.examples.empty()) {
         page += ".SH EXAMPLES\n";
         for (const Example& example : command.examples) {
-            page += ".PP\n";
-            if (!example.comment.empty()) page += roff(summary(example.comment, context.program, true)) + "\n.br\n";
-            page += ".nf\n.RS 4\n" + roff(brokenCommand(example.command, 68)) + "\n.RE\n.fi\n";
+            // What the footer says beside a command follows it as a shell comment, as in --help.
+            const std::string comment = example.comment.empty() ? "" : "\n# " + example.comment;
+            page += ".PP\n.nf\n.RS 4\n" + roff(brokenCommand(example.command, 68) + comment) + "\n.RE\n.fi\n";
         }
     }
     page += ".SH EXIT STATUS\n";
