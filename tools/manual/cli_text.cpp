@@ -61,6 +61,12 @@ Example readExample(const std::string& line) {
     return {line.substr(0, gap), comment};
 }
 
+// Whether a footer line ends its paragraph ("... timestamps).", "Exit codes:") or goes on in the next.
+bool endsSentence(const std::string& line) {
+    size_t end = line.find_last_not_of(" )'\"");
+    return end != std::string::npos && (line[end] == '.' || line[end] == ':' || line[end] == '?' || line[end] == '!');
+}
+
 }  // namespace
 
 std::vector<const CLI::App*> subcommandsOf(const CLI::App& app) {
@@ -78,7 +84,6 @@ CommandText describe(const CLI::App& app, const std::string& invocation, const s
     std::string footer = app.get_footer();
     if (const size_t at = omitted.empty() ? std::string::npos : footer.find(omitted); at != std::string::npos)
         footer.erase(at, omitted.size());
-    const std::string program = invocation.substr(0, invocation.find(' '));
     std::stringstream lines(footer);
     bool examples = false;
     for (std::string line; std::getline(lines, line);) {
@@ -90,8 +95,10 @@ CommandText describe(const CLI::App& app, const std::string& invocation, const s
         if (line.empty()) continue;
         if (line == "Examples:") {
             examples = true;
-        } else if (examples && line.rfind("  " + program + " ", 0) == 0) {
+        } else if (examples && line.size() > 2 && line.compare(0, 2, "  ") == 0 && line[2] != ' ') {
             text.examples.push_back(readExample(line.substr(2)));
+        } else if (!text.notes.empty() && !endsSentence(text.notes.back()) && !examples) {
+            text.notes.back() += " " + line;  // a paragraph the footer wrapped by hand
         } else {
             examples = false;
             text.notes.push_back(line);
