@@ -7,10 +7,13 @@ namespace heightpack::manual {
 
 namespace {
 
+// A validator's description that is one capitalised word ("LENGTH") names the kind of value it reads.
 bool isValueName(const std::string& word) {
     if (word.empty()) return false;
-    for (char c : word)
-        if (!(std::isupper(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_')) return false;
+    for (char c : word) {
+        const auto u = static_cast<unsigned char>(c);
+        if (!std::isupper(u) && !std::isdigit(u) && c != '_') return false;
+    }
     return true;
 }
 
@@ -54,10 +57,12 @@ OptionText readOption(const CLI::Option& o) {
 // "command   (a comment)" or "command   # a comment": the command ends where a run of spaces begins.
 Example readExample(const std::string& line) {
     const size_t gap = line.find("  ");
-    if (gap == std::string::npos) return {line, {}};
+    if (gap == std::string::npos || line.find_first_not_of(' ', gap) == std::string::npos)
+        return {line.substr(0, gap), {}};
     std::string comment = line.substr(line.find_first_not_of(' ', gap));
     if (comment.rfind("# ", 0) == 0) comment.erase(0, 2);
-    if (comment.size() > 2 && comment.front() == '(' && comment.back() == ')') comment = comment.substr(1, comment.size() - 2);
+    if (comment.size() > 2 && comment.front() == '(' && comment.back() == ')')
+        comment = comment.substr(1, comment.size() - 2);
     return {line.substr(0, gap), comment};
 }
 

@@ -132,7 +132,8 @@ std::string manPage(const CommandText& command, const std::vector<CommandText>& 
         for (size_t i = 0; i < context.seeAlso.size(); ++i) {
             const std::string& see = context.seeAlso[i];
             const size_t paren = see.find('(');
-            page += ".BR " + roff(see.substr(0, paren)) + " " + see.substr(paren) + (i + 1 < context.seeAlso.size() ? "," : "") + "\n";
+            const bool last = i + 1 == context.seeAlso.size();
+            page += ".BR " + roff(see.substr(0, paren)) + " " + see.substr(paren) + (last ? "" : ",") + "\n";
         }
     }
     return page;
