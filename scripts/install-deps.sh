@@ -24,6 +24,7 @@ packages=(
   time                                          # peak memory in tests/bench/bench_pack.sh
   bazel-bootstrap nginx                         # the Bazel plan's test (label bazel): Bazel 4.2.3, and nginx's
                                                 # WebDAV module as its HTTP cache
+  groff-base                                    # tests: rendering the man pages (tests/manual)
 )
 
 missing=()

@@ -19,21 +19,12 @@
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/read.hpp"
 
+#include "exit_codes.hpp"
 #include "option_values.hpp"
 #include "progress.hpp"
 #include "report_json.hpp"
 
 namespace heightpack::cli {
-
-// The documented exit codes (README, "Exit codes").
-enum class ExitCode : int {
-    Ok = 0,
-    CheckFailed = 1,  // a check ran and the input failed it
-    Usage = 2,        // the command line is wrong
-    BadInput = 3,     // unreadable, unsupported, corrupt, NaN, wrong size
-    CannotWrite = 4,  // the output cannot be written
-    Internal = 70,    // a bug
-};
 
 ExitCode exitCodeFor(ErrorKind kind);
 

@@ -6,6 +6,8 @@
 #include "heightpack/core/names.hpp"
 #include "heightpack/version.hpp"
 
+#include "exit_codes.hpp"
+
 namespace heightpack::cli {
 
 std::unique_ptr<CommandLine> makeCommandLine() {
@@ -24,8 +26,8 @@ std::unique_ptr<CommandLine> makeCommandLine() {
         "  heightpack tile examples/maps/painted_not_tileable.png -o out/painted_tiled.png\n"
         "  heightpack info out/swell.exr\n"
         "  heightpack build examples/ocean.toml -o out/ocean\n"
-        "Run 'heightpack <command> --help' for a command's options.\n"
-        "Exit codes: 0 done, 1 a check failed, 2 usage error, 3 bad input, 4 cannot write output, 70 internal error.\n");
+        "Run 'heightpack <command> --help' for a command's options.\n" +
+        exitCodesLine() + "\n");
     line->commands.push_back(makePackCommand());
     line->commands.push_back(makeNormalCommand());
     line->commands.push_back(makeFresnelCommand());

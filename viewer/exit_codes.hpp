@@ -1,7 +1,8 @@
-// heightpack-view's documented exit codes (--help, docs/viewer.md), and the one place that turns an error
-// into its message and code. The codes agree with the CLI's contract where the meanings overlap.
+// heightpack-view's documented exit codes (--help, the man page, docs/viewer.md), and the one place that
+// turns an error into its message and code. The codes agree with the CLI's contract where the meanings overlap.
 #pragma once
 
+#include <array>
 #include <cstdio>
 #include <string>
 
@@ -21,6 +22,21 @@ enum class ExitCode : int {
     NoOpenGL = 5,
     Internal = 70,    // a bug: an embedded shader that does not build, or an unexpected library failure
 };
+
+// What each code means, for --help's footer and the man page's EXIT STATUS.
+struct ExitCodeMeaning {
+    ExitCode code;
+    const char* meaning;
+};
+inline constexpr std::array<ExitCodeMeaning, 6> kExitCodeMeanings{{
+    {ExitCode::Ok, "done"},
+    {ExitCode::Usage, "usage error"},
+    {ExitCode::BadInput, "bad input: a map, sequence frame, normal map, Fresnel ramp, foam texture or material.json"},
+    {ExitCode::CannotWrite, "cannot write the screenshot or the grid heights"},
+    {ExitCode::NoOpenGL, "no usable OpenGL: no display, no OpenGL 3.3 core context (window or EGL), no render target of "
+                         "that --size (run it under xvfb-run, or --headless with Mesa's EGL)"},
+    {ExitCode::Internal, "internal: a shader that does not build, or a bug"},
+}};
 
 inline ExitCode exitCodeFor(ErrorKind kind) {
     switch (kind) {

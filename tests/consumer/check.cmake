@@ -43,6 +43,39 @@ if(NOT EXISTS "${reference}" OR NOT reference STREQUAL installed_reference)
   message(FATAL_ERROR "the manifest error names ${reference}, not the installed ${installed_reference}:\n${err}")
 endif()
 
+# The man pages and bash completion (tools/manual): a page for the program and for each command its
+# --help lists, and the completion where bash-completion looks for it by the program's name; the same
+# for the viewer when it was built (none of it in a build configured with HEIGHTPACK_BUILD_MANUAL=OFF).
+if(MANUAL)
+  execute_process(COMMAND ${WORK_DIR}/prefix/bin/heightpack --help OUTPUT_VARIABLE help RESULT_VARIABLE rc)
+  string(REGEX MATCH "Subcommands:\n([^\n]+\n)+" subcommands "${help}")  # up to the blank line
+  string(REGEX MATCHALL "\n  [a-z]+" commands "${subcommands}")
+  set(expected heightpack)
+  foreach(command IN LISTS commands)
+    string(STRIP "${command}" command)
+    list(APPEND expected heightpack-${command})
+  endforeach()
+  list(LENGTH expected pages)
+  if(NOT rc EQUAL 0 OR pages LESS 3)
+    message(FATAL_ERROR "the installed heightpack --help lists no commands (${rc}):\n${help}")
+  endif()
+  set(programs heightpack)
+  if(EXISTS ${WORK_DIR}/prefix/bin/heightpack-view)
+    list(APPEND expected heightpack-view)
+    list(APPEND programs heightpack-view)
+  endif()
+  foreach(page IN LISTS expected)
+    if(NOT EXISTS ${WORK_DIR}/prefix/share/man/man1/${page}.1)
+      message(FATAL_ERROR "cmake --install put no man page share/man/man1/${page}.1")
+    endif()
+  endforeach()
+  foreach(program IN LISTS programs)
+    if(NOT EXISTS ${WORK_DIR}/prefix/share/bash-completion/completions/${program})
+      message(FATAL_ERROR "cmake --install put no bash completion share/bash-completion/completions/${program}")
+    endif()
+  endforeach()
+endif()
+
 # A pure asset project (LANGUAGES NONE: no compiler) finds the package and builds a material with it;
 # asking it for a library instead says that the libraries need C++.
 set(assets_build ${WORK_DIR}/assets_build)
