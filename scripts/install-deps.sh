@@ -9,6 +9,7 @@ packages=(
   libopenexr-dev libdeflate-dev                 # writing tiled, mip-mapped EXRs; fast deflate for zip tiles
   libcli11-dev nlohmann-json3-dev               # command line, --json
   libtomlplusplus-dev                           # material manifests (heightpack build)
+  libcurl4-openssl-dev                          # heightpack build's shared cache on an HTTP server
   libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
   libzstd-dev                                   # Zstandard supercompression of KTX2 levels
   zstd libnvtt-bin                              # tests' independent readers: the zstd tool for supercompressed
@@ -21,6 +22,7 @@ packages=(
                                                 # EGL (surfaceless platform) loaded at run time
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks
   time                                          # peak memory in tests/bench/bench_pack.sh
+  nginx                                         # a WebDAV cache server the HTTP cache tests start (label server)
 )
 
 missing=()

@@ -129,7 +129,7 @@ protected:
         return doc;
     }
     static nlohmann::json counts(int hits, int misses, int stored, int rejected) {
-        return {{"hits", hits}, {"misses", misses}, {"stored", stored}, {"rejected", rejected}};
+        return {{"hits", hits}, {"misses", misses}, {"stored", stored}, {"rejected", rejected}, {"errors", 0}};
     }
     // Output -> status, from a report's one material.
     static std::map<std::string, std::string> statuses(const nlohmann::json& doc) {
@@ -165,6 +165,7 @@ TEST_F(BuildCacheTest, SecondFolderRestoresEverythingAndIsThenUpToDateWithoutThe
     ASSERT_EQ(text.code, 0) << text.err;
     EXPECT_NE(text.out.find("restored from cache"), std::string::npos) << text.out;
     EXPECT_NE(text.out.find(std::to_string(kOutputs) + " hit(s), 0 miss(es)"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("(folder, read-write)"), std::string::npos) << text.out;
 
     const auto third = build("two", false);
     EXPECT_EQ(third["materials"][0]["upToDate"], kOutputs) << third.dump(1);
@@ -299,4 +300,59 @@ TEST_F(BuildCacheTest, CacheThatIsAFileIsRefusedBeforeAnyWork) {
     EXPECT_EQ(r.code, 4) << r.err;
     expectOneLineError(r, file);
     EXPECT_FALSE(fs::exists(dir.file("one")));
+}
+
+// Read-only: hits are restored, misses baked and not stored, and nothing in the folder changes (not even
+// an entry's time, which a read-write hit renews). A read-only folder that is not there is a warning.
+TEST_F(BuildCacheTest, ReadOnlyRestoresAndWritesNothing) {
+    build("one", true);
+    writeImage(dir.file("maps/b.png"), waves(32, 1, 1, 0.2), OIIO::TypeDesc::UINT16);  // short.exr: a miss
+    const auto hourAgo = fs::file_time_type::clock::now() - std::chrono::hours(1);
+    for (const auto& [output, path] : entries(cache)) fs::last_write_time(path, hourAgo);
+    auto snapshot = [&] {
+        std::map<std::string, std::pair<std::string, fs::file_time_type>> files;
+        for (const auto& e : fs::recursive_directory_iterator(cache))
+            files[e.path().string()] = {e.is_regular_file() ? bytesOf(e.path()) : "", e.last_write_time()};
+        return files;
+    };
+    const auto before = snapshot();
+    const auto second = build("two", true, {"--cache-mode", "read-only"});
+    EXPECT_EQ(second["cache"]["mode"], "read-only") << second.dump(1);
+    EXPECT_EQ(second["materials"][0]["cache"], counts(kOutputs - 1, 1, 0, 0)) << second.dump(1);
+    EXPECT_EQ(snapshot(), before);
+
+    // The same from the environment; a mode that is none is a usage error.
+    const std::vector<std::string> args = {HEIGHTPACK_EXE, "build", manifest, "-o", dir.file("three"), "--json"};
+    const ProcessResult fromVariable =
+        runProcess(args, {"HEIGHTPACK_CACHE=" + cache, "HEIGHTPACK_CACHE_MODE=read-only"});
+    ASSERT_EQ(fromVariable.code, 0) << fromVariable.err;
+    EXPECT_EQ(nlohmann::json::parse(fromVariable.out)["cache"]["stored"], 0) << fromVariable.out;
+    EXPECT_EQ(snapshot(), before);
+    const ProcessResult bad = runProcess(args, {"HEIGHTPACK_CACHE=" + cache, "HEIGHTPACK_CACHE_MODE=sometimes"});
+    EXPECT_EQ(bad.code, 2) << bad.err;
+    expectOneLineError(bad, "");
+
+    const std::string missing = dir.file("no-such-cache");
+    const ProcessResult none =
+        heightpackRun({"build", manifest, "-o", dir.file("four"), "--cache", missing, "--cache-mode", "read-only"});
+    ASSERT_EQ(none.code, 0) << none.err;
+    EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
+    EXPECT_NE(none.err.find(missing), std::string::npos) << none.err;
+    EXPECT_FALSE(fs::exists(missing));
+}
+
+// Text that is neither a folder nor an http(s) URL is a usage error that does not repeat the text.
+TEST_F(BuildCacheTest, OtherSchemesAreRefusedWithoutEchoingThem) {
+    for (const std::string& bad : {"ftp://user:hunter2@host/cache", "http://user:hunter2@/nohost"}) {
+        const ProcessResult r = heightpackRun({"build", manifest, "-o", dir.file("one"), "--cache", bad});
+        EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
+        expectOneLineError(r, "");
+        EXPECT_EQ(r.err.find("hunter2"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir.file("one")));
+    }
+    // --cache-size is a folder's: with a server it is a usage error.
+    const ProcessResult sized = heightpackRun(
+        {"build", manifest, "-o", dir.file("one"), "--cache", "http://127.0.0.1:9/hp", "--cache-size", "1G"});
+    EXPECT_EQ(sized.code, 2) << sized.err;
+    expectOneLineError(sized, "");
 }
