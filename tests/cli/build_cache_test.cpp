@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "cli/cache_material.hpp"
 #include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
@@ -24,63 +25,6 @@ using namespace heightpack::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-// Waves with whole periods across the tile: every level tiles, so the build's checks pass.
-Image waves(int size, int kx, int ky, double phase) {
-    return makeImage(size, size, [=](int x, int y) {
-        double h = 0.5;
-        for (int n = 1; n <= 6; ++n) {
-            const double t = 2 * std::numbers::pi * ((kx * n % 7) * double(x) / size + (ky + n) % 5 * double(y) / size);
-            h += 0.1 / n * std::sin(t + phase * n);
-        }
-        return static_cast<float>(h);
-    });
-}
-
-// Two painted maps, a normal map, the Fresnel ramp and a synthesised sea of two frames: six outputs.
-const char* kSea = R"(format = 1
-name = "sea"
-
-[[displacement]]
-name = "long"
-source = "maps/a.png"
-tile_size = 64.0
-
-[[displacement]]
-name = "short"
-source = "maps/b.png"
-tile_size = 16.0
-
-[[displacement]]
-name = "swell"
-tile_size = 32.0
-synth = { wind = 9.0, size = 32, seed = 2, loop = 4.0, frames = 2 }
-
-[normals]
-name = "ripple_n"
-source = "maps/r.png"
-tile_size = 8.0
-height = 0.05
-
-[fresnel]
-ior = 1.333
-)";
-constexpr int kOutputs = 6;
-
-std::string bytesOf(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// Every file under root, relative path -> bytes.
-std::map<std::string, std::string> filesUnder(const fs::path& root) {
-    std::map<std::string, std::string> files;
-    for (const auto& e : fs::recursive_directory_iterator(root))
-        if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = bytesOf(e.path());
-    return files;
-}
 
 // The cache's entries: output -> entry file, read from each entry's header line.
 std::map<std::string, fs::path> entries(const fs::path& cache) {
@@ -343,7 +287,7 @@ TEST_F(BuildCacheTest, ReadOnlyRestoresAndWritesNothing) {
 
 // Text that is neither a folder nor an http(s) URL is a usage error that does not repeat the text.
 TEST_F(BuildCacheTest, OtherSchemesAreRefusedWithoutEchoingThem) {
-    for (const std::string& bad : {"ftp://user:hunter2@host/cache", "http://user:hunter2@/nohost"}) {
+    for (const std::string bad : {"ftp://user:hunter2@host/cache", "http://user:hunter2@/nohost"}) {
         const ProcessResult r = heightpackRun({"build", manifest, "-o", dir.file("one"), "--cache", bad});
         EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
         expectOneLineError(r, "");
