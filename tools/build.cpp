@@ -348,7 +348,7 @@ private:
     ExitCode resolveCacheMode(bool cached) {
         if (cacheModeOption_->count()) return cached ? ExitCode::Ok : usage("--cache-mode says how to use a cache: give one with --cache");
         const char* fromEnvironment = std::getenv("HEIGHTPACK_CACHE_MODE");
-        if (!fromEnvironment || !*fromEnvironment) return ExitCode::Ok;
+        if (!cached || !fromEnvironment || !*fromEnvironment) return ExitCode::Ok;  // set per machine, used by builds with a cache
         const auto mode = parseName<CacheMode>(fromEnvironment);
         if (!mode)
             return usage("HEIGHTPACK_CACHE_MODE: " + std::string(fromEnvironment) + " not in {" +
