@@ -35,7 +35,9 @@ Result<std::shared_ptr<SharedCache>> SharedCache::open(const CacheOptions& optio
             if (!fs::is_directory(where.where, ec)) cache->fail({"is not a folder (a cache only read is not made)", false});
             break;
         }
-        case CacheBackend::Http: detail::initialiseHttp(); break;
+        case CacheBackend::Http:
+            if (std::string why = detail::initialiseHttp(); !why.empty()) cache->fail({why, false});
+            break;
     }
     return cache;
 }

@@ -1,6 +1,5 @@
 #include "http_cache.hpp"
 
-#include <curl/curl.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -8,13 +7,13 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <mutex>
 
 #include "heightpack/bake/build_state.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/version.hpp"
 
 #include "cache_entry.hpp"
+#include "curl_library.hpp"
 
 namespace heightpack::detail {
 
@@ -22,14 +21,23 @@ namespace {
 
 // The handles of one request, released whatever happens.
 struct Request {
-    CURL* curl = curl_easy_init();
+    const CurlLibrary& lib;
+    CURL* curl = lib.easyInit();
     curl_slist* headers = nullptr;
-    Request() = default;
+    explicit Request(const CurlLibrary& library) : lib(library) {}
     Request(const Request&) = delete;
     Request& operator=(const Request&) = delete;
     ~Request() {
-        curl_slist_free_all(headers);
-        if (curl) curl_easy_cleanup(curl);
+        lib.slistFreeAll(headers);
+        if (curl) lib.easyCleanup(curl);
+    }
+    template <class Value>
+    void set(CURLoption option, Value value) {
+        lib.easySetopt(curl, option, value);
+    }
+    template <class Value>
+    void get(CURLINFO info, Value* value) {
+        lib.easyGetinfo(curl, info, value);
     }
 };
 
@@ -47,30 +55,30 @@ struct Fd {
 // own, never into the URL, so no message libcurl makes can hold them.
 void prepare(Request& r, const HttpServer& server, const std::string& url) {
     static const std::string agent = std::string("heightpack/") + kVersion;
-    curl_easy_setopt(r.curl, CURLOPT_URL, url.c_str());
-    curl_easy_setopt(r.curl, CURLOPT_PROTOCOLS_STR, "http,https");
-    curl_easy_setopt(r.curl, CURLOPT_USERAGENT, agent.c_str());
-    curl_easy_setopt(r.curl, CURLOPT_NOSIGNAL, 1L);  // timeouts without SIGALRM: requests run on several threads
-    curl_easy_setopt(r.curl, CURLOPT_CONNECTTIMEOUT_MS, static_cast<long>(server.connectMilliseconds));
+    r.set(CURLOPT_URL, url.c_str());
+    r.set(CURLOPT_PROTOCOLS_STR, "http,https");
+    r.set(CURLOPT_USERAGENT, agent.c_str());
+    r.set(CURLOPT_NOSIGNAL, 1L);  // timeouts without SIGALRM: requests run on several threads
+    r.set(CURLOPT_CONNECTTIMEOUT_MS, static_cast<long>(server.connectMilliseconds));
     // A server that accepted the connection but sends (or takes) nothing for stallSeconds is down.
-    curl_easy_setopt(r.curl, CURLOPT_LOW_SPEED_LIMIT, 1L);
-    curl_easy_setopt(r.curl, CURLOPT_LOW_SPEED_TIME, static_cast<long>(server.stallSeconds));
+    r.set(CURLOPT_LOW_SPEED_LIMIT, 1L);
+    r.set(CURLOPT_LOW_SPEED_TIME, static_cast<long>(server.stallSeconds));
     if (!server.token.empty()) {
-        r.headers = curl_slist_append(r.headers, ("Authorization: Bearer " + server.token).c_str());
+        r.headers = r.lib.slistAppend(r.headers, ("Authorization: Bearer " + server.token).c_str());
     } else if (!server.user.empty() || !server.password.empty()) {
-        curl_easy_setopt(r.curl, CURLOPT_HTTPAUTH, CURLAUTH_BASIC);
-        curl_easy_setopt(r.curl, CURLOPT_USERNAME, server.user.c_str());
-        curl_easy_setopt(r.curl, CURLOPT_PASSWORD, server.password.c_str());
+        r.set(CURLOPT_HTTPAUTH, CURLAUTH_BASIC);
+        r.set(CURLOPT_USERNAME, server.user.c_str());
+        r.set(CURLOPT_PASSWORD, server.password.c_str());
     }
     // No "Expect: 100-continue" wait before a PUT's body: a cache entry is sent whole either way.
-    r.headers = curl_slist_append(r.headers, "Expect:");
-    curl_easy_setopt(r.curl, CURLOPT_HTTPHEADER, r.headers);
+    r.headers = r.lib.slistAppend(r.headers, "Expect:");
+    r.set(CURLOPT_HTTPHEADER, r.headers);
 }
 
 // What a failed transfer says about the server, in words without its address or credentials.
-ServerFailure transferFailure(CURL* curl, CURLcode code, const HttpServer& server) {
+ServerFailure transferFailure(Request& r, CURLcode code, const HttpServer& server) {
     curl_off_t connected = 0;
-    curl_easy_getinfo(curl, CURLINFO_CONNECT_TIME_T, &connected);
+    r.get(CURLINFO_CONNECT_TIME_T, &connected);
     std::string why;
     if (code == CURLE_COULDNT_CONNECT)
         why = "refuses connections (not running, or nothing listens on its port)";
@@ -81,7 +89,7 @@ ServerFailure transferFailure(CURL* curl, CURLcode code, const HttpServer& serve
     else if (code == CURLE_OPERATION_TIMEDOUT)
         why = "stalled: nothing came or went for " + std::to_string(server.stallSeconds) + " s";
     else
-        why = std::string("cannot be reached (") + curl_easy_strerror(code) + ")";
+        why = std::string("cannot be reached (") + r.lib.easyStrerror(code) + ")";
     return {ServerTrouble::Down, why};
 }
 
@@ -96,7 +104,7 @@ ServerFailure statusFailure(long status) {
 // A GET's body: its first kEntryHeaderBytes kept as the header, the rest written to fd. Only a 200's body
 // is kept (an error page is nobody's entry).
 struct Download {
-    CURL* curl = nullptr;
+    Request* request = nullptr;
     int fd = -1;
     std::string header;
     std::uint64_t bytes = 0;
@@ -107,7 +115,7 @@ size_t onBody(char* data, size_t size, size_t count, void* user) {
     auto& d = *static_cast<Download*>(user);
     const size_t n = size * count;
     long status = 0;
-    curl_easy_getinfo(d.curl, CURLINFO_RESPONSE_CODE, &status);
+    d.request->get(CURLINFO_RESPONSE_CODE, &status);
     if (status != 200) return n;
     size_t at = 0;
     if (d.header.size() < kEntryHeaderBytes) {
@@ -158,37 +166,43 @@ std::string entryUrl(const HttpServer& server, const std::string& key, const std
 
 }  // namespace
 
-void initialiseHttp() {
-    static std::once_flag once;
-    std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
+std::string initialiseHttp() {
+    std::string why;
+    curlLibrary(why);
+    return why;
 }
 
 Result<CacheLookup> restoreFromServer(const HttpServer& server, const std::string& key, const std::string& output,
                                       const std::string& destination, ServerFailure& failure) {
-    initialiseHttp();
     CacheLookup lookup;
-    Request r;
+    const CurlLibrary* lib = curlLibrary(failure.why);
+    if (!lib) {
+        failure.trouble = ServerTrouble::Down;
+        lookup.unavailable = true;
+        return lookup;
+    }
+    Request r(*lib);
     if (!r.curl) return Error{ErrorKind::Internal, destination, "libcurl could not start a request", "please report this"};
     prepare(r, server, entryUrl(server, key, output));
     TemporaryFile temp(destination);
     const Fd out(::open(temp.path().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666));
     if (out.fd < 0) return cannotWrite(destination, std::string("cannot be written: ") + std::strerror(errno));
     Download d;
-    d.curl = r.curl;
+    d.request = &r;
     d.fd = out.fd;
-    curl_easy_setopt(r.curl, CURLOPT_WRITEFUNCTION, onBody);
-    curl_easy_setopt(r.curl, CURLOPT_WRITEDATA, &d);
-    const CURLcode code = curl_easy_perform(r.curl);
+    r.set(CURLOPT_WRITEFUNCTION, onBody);
+    r.set(CURLOPT_WRITEDATA, &d);
+    const CURLcode code = r.lib.easyPerform(r.curl);
     if (d.writeErrno == ENOSPC || d.writeErrno == EDQUOT)
         return cannotWrite(destination, std::string("cannot be written: ") + std::strerror(d.writeErrno), "free some disk space");
     if (d.writeErrno != 0) return cannotWrite(destination, std::string("cannot be written: ") + std::strerror(d.writeErrno));
     if (code != CURLE_OK) {
-        failure = transferFailure(r.curl, code, server);
+        failure = transferFailure(r, code, server);
         lookup.unavailable = true;
         return lookup;
     }
     long status = 0;
-    curl_easy_getinfo(r.curl, CURLINFO_RESPONSE_CODE, &status);
+    r.get(CURLINFO_RESPONSE_CODE, &status);
     if (status == 404 || status == 410) return lookup;  // not there: a miss
     if (status != 200) {
         failure = statusFailure(status);
@@ -212,29 +226,33 @@ Result<CacheLookup> restoreFromServer(const HttpServer& server, const std::strin
 
 Status storeOnServer(const HttpServer& server, const std::string& key, const std::string& output,
                      const std::string& source, const std::string& hash, ServerFailure& failure) {
-    initialiseHttp();
     const std::string url = entryUrl(server, key, output);
     const Fd in(::open(source.c_str(), O_RDONLY | O_CLOEXEC));
     struct stat st {};
     if (in.fd < 0 || ::fstat(in.fd, &st) != 0) return badInput(source, "cannot be read to store it in the cache");
     const std::string header = entryHeader(key, output, static_cast<std::uint64_t>(st.st_size), hash);
     if (header.empty()) return cannotWrite(url, "the entry's header would not fit its 4096 bytes (a very long output name)");
-    Request r;
+    const CurlLibrary* lib = curlLibrary(failure.why);
+    if (!lib) {
+        failure.trouble = ServerTrouble::Down;
+        return cannotWrite(server.url, failure.why);
+    }
+    Request r(*lib);
     if (!r.curl) return Error{ErrorKind::Internal, url, "libcurl could not start a request", "please report this"};
     prepare(r, server, url);
     Upload u{&header, in.fd, 0};
-    curl_easy_setopt(r.curl, CURLOPT_UPLOAD, 1L);  // PUT
-    curl_easy_setopt(r.curl, CURLOPT_INFILESIZE_LARGE, static_cast<curl_off_t>(header.size() + st.st_size));
-    curl_easy_setopt(r.curl, CURLOPT_READFUNCTION, onSend);
-    curl_easy_setopt(r.curl, CURLOPT_READDATA, &u);
+    r.set(CURLOPT_UPLOAD, 1L);  // PUT
+    r.set(CURLOPT_INFILESIZE_LARGE, static_cast<curl_off_t>(header.size() + st.st_size));
+    r.set(CURLOPT_READFUNCTION, onSend);
+    r.set(CURLOPT_READDATA, &u);
     // The answer's body (an error page, or nothing) is not needed.
-    curl_easy_setopt(r.curl, CURLOPT_WRITEFUNCTION, +[](char*, size_t size, size_t count, void*) { return size * count; });
-    const CURLcode code = curl_easy_perform(r.curl);
+    r.set(CURLOPT_WRITEFUNCTION, +[](char*, size_t size, size_t count, void*) { return size * count; });
+    const CURLcode code = r.lib.easyPerform(r.curl);
     if (code == CURLE_ABORTED_BY_CALLBACK) return badInput(source, "could not be read to store it in the cache");
     long status = 0;
-    if (code == CURLE_OK) curl_easy_getinfo(r.curl, CURLINFO_RESPONSE_CODE, &status);
+    if (code == CURLE_OK) r.get(CURLINFO_RESPONSE_CODE, &status);
     if (code == CURLE_OK && status >= 200 && status < 300) return Done{};
-    failure = code != CURLE_OK ? transferFailure(r.curl, code, server) : statusFailure(status);
+    failure = code != CURLE_OK ? transferFailure(r, code, server) : statusFailure(status);
     return cannotWrite(server.url, failure.why);
 }
 

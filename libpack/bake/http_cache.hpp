@@ -30,8 +30,9 @@ struct ServerFailure {
     std::string why;  // "cannot connect (Couldn't connect to server)", "answered HTTP 503", ...
 };
 
-// Makes libcurl ready for requests from any thread; the first call does the work, later ones nothing.
-void initialiseHttp();
+// Loads libcurl and makes it ready for requests from any thread (the first call does the work, later
+// ones nothing); why it cannot, or empty.
+std::string initialiseHttp();
 
 // GETs the entry of (key, output) and, when it is sound, writes its bytes to destination atomically,
 // as restoreFromCache does with a folder's. 404 is a miss; any other failure of the server sets failure
