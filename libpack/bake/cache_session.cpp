@@ -1,6 +1,7 @@
 #include "heightpack/bake/cache_session.hpp"
 
 #include <filesystem>
+#include <utility>
 
 #include "cache_entry.hpp"
 #include "http_cache.hpp"
@@ -43,20 +44,14 @@ Result<std::shared_ptr<SharedCache>> SharedCache::open(const CacheOptions& optio
 }
 
 std::string SharedCache::entryAddress(const std::string& key, const std::string& output) const {
-    switch (location().backend) {
-        case CacheBackend::Folder: return cacheEntryPath(location().where, key, output);
-        case CacheBackend::Http: break;
-    }
+    if (location().backend == CacheBackend::Folder) return cacheEntryPath(location().where, key, output);
     return location().where + "/" + detail::entryName(key, output);
 }
 
 Result<CacheLookup> SharedCache::restore(const std::string& key, const std::string& output, const std::string& destination) {
     if (down()) return CacheLookup{false, {}, {}, true};
-    switch (location().backend) {
-        case CacheBackend::Folder:
-            return restoreFromCache(location().where, key, output, destination, options_.mode == CacheMode::ReadWrite);
-        case CacheBackend::Http: break;
-    }
+    if (location().backend == CacheBackend::Folder)
+        return restoreFromCache(location().where, key, output, destination, options_.mode == CacheMode::ReadWrite);
     detail::ServerFailure failure;
     auto found = detail::restoreFromServer(serverOf(options_), key, output, destination, failure);
     // A server that refuses to be read is as useless as one that is down: both stop every request.
@@ -72,14 +67,11 @@ CacheStore SharedCache::store(const std::string& key, const std::string& output,
         result.unavailable = true;
         return result;
     }
-    switch (location().backend) {
-        case CacheBackend::Folder: {
-            Status stored = storeInCache(location().where, key, output, source, hash);
-            result.stored = stored.ok();
-            if (!stored) result.failed = stored.error().path + ": " + stored.error().what;
-            return result;
-        }
-        case CacheBackend::Http: break;
+    if (location().backend == CacheBackend::Folder) {
+        Status stored = storeInCache(location().where, key, output, source, hash);
+        result.stored = stored.ok();
+        if (!stored) result.failed = stored.error().path + ": " + stored.error().what;
+        return result;
     }
     detail::ServerFailure failure;
     Status stored = detail::storeOnServer(serverOf(options_), key, output, source, hash, failure);
