@@ -27,7 +27,7 @@ enum class ServerTrouble {
 };
 struct ServerFailure {
     ServerTrouble trouble = ServerTrouble::None;
-    std::string why;  // "cannot connect (Couldn't connect to server)", "answered HTTP 503", ...
+    std::string why;  // "refuses connections (...)", "stalled: ...", "answered HTTP 503", ...
 };
 
 // Loads libcurl and makes it ready for requests from any thread (the first call does the work, later
