@@ -38,7 +38,7 @@ public:
             "  heightpack info out/ripple_seq.exr   (the frames out/ripple_seq.0000.exr ...)\n"
             "  heightpack info out/swell.ktx2 --engine three,godot\n"
             "  heightpack info out/ocean/material.json   (what a build made: every texture and its parameters)\n"
-            "Engines: what each loader reads, with its source, is in README, 'Which engine loads what'.\n");
+            "Engines: what each loader reads, with its source, is in docs/formats.md, 'Which engine loads what'.\n");
         return cmd;
     }
 

@@ -23,7 +23,7 @@ std::string resizeNote(int fromWidth, int fromHeight, int toWidth, int toHeight)
 nlohmann::json resizeJson(int fromWidth, int fromHeight, int toWidth, int toHeight);
 
 // One edge pair's seam scores as JSON: measured, value, slope, pass. A score is a number, or the string
-// "inf" when it is infinite (README, "Seam scores"); an unmeasured pair is {"measured": false}.
+// "inf" when it is infinite (docs/tiling.md, "Seam scores"); an unmeasured pair is {"measured": false}.
 nlohmann::json seamScoreJson(const SeamScore& score, double threshold);
 // A chain's per-level scores: [{level, width, height, leftRight, topBottom, pass}, ...].
 nlohmann::json seamLevelsJson(const std::vector<LevelSeams>& levels, double threshold);

@@ -1,4 +1,4 @@
-// heightpack-view's documented exit codes (--help, README "Viewer"), and the one place that turns an error
+// heightpack-view's documented exit codes (--help, docs/viewer.md), and the one place that turns an error
 // into its message and code. The codes agree with the CLI's contract where the meanings overlap.
 #pragma once
 

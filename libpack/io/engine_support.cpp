@@ -1,4 +1,4 @@
-// The loaders' behaviour behind every entry is cited in README, "Which engine loads what".
+// The loaders' behaviour behind every entry is cited in docs/formats.md, "Which engine loads what".
 #include "heightpack/io/engine_support.hpp"
 
 #include <string>

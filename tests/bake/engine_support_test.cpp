@@ -1,6 +1,6 @@
 // Which engine loads what (issue 25): for every container and texel format heightpack writes, made by the
 // pack and normal jobs and read back by readTextureLayout, engineSupport's verdict per engine is the one
-// README's "Which engine loads what" table gives from each loader's source or documentation (the
+// docs/formats.md's "Which engine loads what" table gives from each loader's source or documentation (the
 // expectations below are that table, written out independently of the code's own).
 #include <gtest/gtest.h>
 

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -44,7 +46,17 @@ std::string fileText(const std::string& path) {
     return text.str();
 }
 
-std::string readme() { return fileText(std::string(HEIGHTPACK_SOURCE_DIR) + "/README.md"); }
+// The README and the docs/ pages it links, as one text: a table may live on either.
+std::string documentation() {
+    const std::filesystem::path source(HEIGHTPACK_SOURCE_DIR);
+    std::vector<std::filesystem::path> pages{source / "README.md"};
+    for (const auto& e : std::filesystem::directory_iterator(source / "docs"))
+        if (e.path().extension() == ".md") pages.push_back(e.path());
+    std::sort(pages.begin() + 1, pages.end());
+    std::string text;
+    for (const auto& page : pages) text += fileText(page.string()) + "\n";
+    return text;
+}
 
 // The line of text that contains marker (whole, without its newline); "" when none does.
 std::string lineWith(const std::string& text, const std::string& marker) {
@@ -175,13 +187,13 @@ TEST(FirstHour, InfoDescribesAMaterialAndPointsAManifestAtBuild) {
     expectOneLineError(other, dir.file("other.json"));
 }
 
-// pack --help and the README's pack table list the same input formats, as many as the formats the reader
+// pack --help and the pack table of docs/commands.md list the same input formats, as many as the formats the reader
 // names when it refuses a file.
 TEST(FirstHour, HelpAndReadmeListTheSameInputFormats) {
     const ProcessResult help = heightpackRun({"pack", "--help"});
     ASSERT_EQ(help.code, 0);
     const std::string fromHelp = between(lineWith(help.out, "height map: "), "height map: ", "; 8/16-bit");
-    const std::string fromReadme = between(lineWith(readme(), "| `INPUT` |"), "| `INPUT` | ", " (see \"Input formats\")");
+    const std::string fromReadme = between(lineWith(documentation(), "| `INPUT` |"), "| `INPUT` | ", " (see \"Input formats\")");
     ASSERT_FALSE(fromHelp.empty()) << help.out;
     EXPECT_EQ(fromReadme, fromHelp);
     EXPECT_EQ(fromHelp, readableFormats());
@@ -194,7 +206,7 @@ TEST(FirstHour, HelpAndReadmeListTheSameInputFormats) {
     EXPECT_EQ(split(named, ", ").size(), split(fromHelp, ", ").size()) << named << " against " << fromHelp;
 }
 
-// --channel's names, in every command's help and in the README, are ChannelSelect's table.
+// --channel's names, in every command's help and in docs/commands.md, are ChannelSelect's table.
 TEST(FirstHour, ChannelNamesAreTheTablesInHelpAndReadme) {
     const std::string names = joinedNames<ChannelSelect>(", ");
     for (const char* command : {"pack", "normal", "check", "tile"}) {
@@ -202,7 +214,7 @@ TEST(FirstHour, ChannelNamesAreTheTablesInHelpAndReadme) {
         const std::string line = lineWith(help.out, "where the height is in a colour image: ");
         EXPECT_NE(line.find("colour image: " + names + ", or a channel's name"), std::string::npos) << command << ": " << line;
     }
-    EXPECT_NE(readme().find("| `--channel " + joinedNames<ChannelSelect>("\\|") + "\\|NAME` | which channel of a colour "
+    EXPECT_NE(documentation().find("| `--channel " + joinedNames<ChannelSelect>("\\|") + "\\|NAME` | which channel of a colour "
                             "image holds the height: " + names + ", or a channel's name"),
               std::string::npos);
 }
@@ -210,7 +222,7 @@ TEST(FirstHour, ChannelNamesAreTheTablesInHelpAndReadme) {
 // The exit-code table says which extensions each command writes: what the command itself says when it is
 // given another.
 TEST(FirstHour, ReadmeSaysWhichOutputsEachCommandWrites) {
-    const std::string row = lineWith(readme(), "| 2 | usage error (the message points at `--help`)");
+    const std::string row = lineWith(documentation(), "| 2 | usage error (the message points at `--help`)");
     const std::string list = between(row, "an output whose extension is not one the command writes (", ")");
     ASSERT_FALSE(list.empty()) << row;
     std::map<std::string, std::set<std::string>> documented;  // "pack" or "check --preview" -> extensions
@@ -237,19 +249,19 @@ TEST(FirstHour, ReadmeSaysWhichOutputsEachCommandWrites) {
         EXPECT_EQ(run.code, 2) << run.err;
         std::set<std::string> said;
         for (const std::string& e : split(between(run.err, " must end in ", ";"), ", ")) said.insert(e);
-        EXPECT_EQ(documented[name], said) << name << ": " << run.err << " against the README's " << list;
+        EXPECT_EQ(documented[name], said) << name << ": " << run.err << " against the documentation's " << list;
     }
     EXPECT_EQ(documented.size(), runs.size()) << list;
 }
 
-// --resize's default is what the help and the README say it is: none, which refuses a map whose sides are
+// --resize's default is what the help and docs/commands.md say it is: none, which refuses a map whose sides are
 // not powers of two, exactly as --resize none does.
 TEST(FirstHour, ResizeDefaultIsWhatTheDocsSay) {
     for (const char* command : {"pack", "normal"}) {
         const ProcessResult help = heightpackRun({command, "--help"});
         EXPECT_NE(lineWith(help.out, "--resize").find("--resize TEXT:{none,pow2}=none"), std::string::npos) << help.out;
     }
-    EXPECT_NE(readme().find("| `--resize none\\|pow2` | `none` refuses a map whose sides are not powers of two (exit 3); "
+    EXPECT_NE(documentation().find("| `--resize none\\|pow2` | `none` refuses a map whose sides are not powers of two (exit 3); "
                             "`pow2` resamples it up to the next powers of two with the mip filter | none |"),
               std::string::npos);
     ScratchDir dir;

@@ -1,7 +1,7 @@
 // pack keeps what its source records of the world (issue 35, item 1): a synthesised sea's tile size, the
 // metres of its heights and its loop period, in every container pack writes, so the viewer (and an
 // engine) can take them from the packed file. Each header is read as its format defines it: OpenImageIO
-// for EXR, KTX2's key/value data and heightpack's DDS record (README, "GPU containers") decoded from the
+// for EXR, KTX2's key/value data and heightpack's DDS record (docs/formats.md, "GPU containers") decoded from the
 // bytes here, not through heightpack's readers.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>

@@ -28,7 +28,7 @@ json runJson(const std::vector<std::string>& args) {
     return r.code == 0 ? json::parse(r.out) : json();
 }
 
-// XXH3 of values as 16 hex digits, as the README says sourceHash is.
+// XXH3 of values as 16 hex digits, as docs/formats.md says sourceHash is.
 std::string xxh3(const std::vector<float>& values) {
     char text[17];
     std::snprintf(text, sizeof text, "%016llx",

@@ -45,7 +45,7 @@ double halfValue(std::uint16_t h) {
 
 // A DDS as Microsoft's layout defines it: magic, the 124-byte DDS_HEADER (height at byte 8, width at 12,
 // mip count at 24, dwReserved1 from 28), DDS_HEADER_DXT10 (dxgiFormat, dimension, misc, arraySize), then
-// each layer's chain, level 0 first; heightpack's record in dwReserved1 as the README documents it.
+// each layer's chain, level 0 first; heightpack's record in dwReserved1 as docs/formats.md documents it.
 Decoded decodeDds(const std::string& path) {
     const std::vector<unsigned char> b = readBytes(path);
     Decoded d;

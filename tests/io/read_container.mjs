@@ -120,7 +120,7 @@ if (file.toLowerCase().endsWith('.ktx2')) {
     return { width: Math.max(1, width >> i), height: Math.max(1, height >> i), byteLength: data.byteLength,
              sha256: sha256(data), values: decode(data, kind) };
   });
-  // heightpack's record in dwReserved1 (README, "GPU containers"): 'HPCK', version 1, then the layout
+  // heightpack's record in dwReserved1 (docs/formats.md, "GPU containers"): 'HPCK', version 1, then the layout
   // code and the wrap code, and in word 6 the flags: bit 1 the uint16 normalisation in words 7 and 8,
   // bits 2 and 3 the layers after the heights (Dx, Dy; Foam). Read from the header's bytes as
   // documented, not through heightpack.

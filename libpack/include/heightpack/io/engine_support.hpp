@@ -1,5 +1,5 @@
 // Whether a texture file loads in a game or web engine as it is: the container and texel format against
-// what each engine's loader reads, from the loaders' own source or documentation (README, "Which engine
+// what each engine's loader reads, from the loaders' own source or documentation (docs/formats.md, "Which engine
 // loads what", gives the source of every entry). heightpack's outputs are data, not colour: a loader that
 // converts them (to 8 bits, dropping the file's mip levels) does not load them faithfully.
 #pragma once
