@@ -44,7 +44,7 @@ nlohmann::json assetJson(const AssetReport& a, double threshold) {
     if (a.cache.looked) {
         auto reason = [](const std::string& why) { return why.empty() ? nlohmann::json(nullptr) : nlohmann::json(why); };
         j["cache"] = {{"hit", a.cache.hit}, {"stored", a.cache.stored}, {"rejected", reason(a.cache.rejected)},
-                      {"storeFailed", reason(a.cache.storeFailed)}, {"unavailable", a.cache.unavailable}};
+                      {"storeFailed", reason(a.cache.storeFailed)}, {"unavailable", a.cache.unavailable || a.cache.storeUnavailable}};
     }
     if (a.check) {
         const AssetCheck& c = *a.check;

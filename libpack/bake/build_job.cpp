@@ -43,7 +43,7 @@ int BuildReport::restored() const {
 
 void CacheCounts::add(const AssetCacheUse& use) {
     stored += use.stored;
-    errors += use.unavailable || !use.storeFailed.empty();
+    errors += use.unavailable || use.storeUnavailable || !use.storeFailed.empty();
     if (!use.looked) return;
     hits += use.hit;
     misses += !use.hit && !use.unavailable;
@@ -271,7 +271,7 @@ void MaterialBuild::Impl::storeStep(Step& s, const std::string& output, const st
     if (!options.sharedCache) return;
     const CacheStore stored = options.sharedCache->store(s.report.key, s.report.output, output, hash);
     s.report.cache.stored = stored.stored;
-    s.report.cache.unavailable = s.report.cache.unavailable || stored.unavailable;
+    s.report.cache.storeUnavailable = stored.unavailable;
     s.report.cache.storeFailed = stored.failed;
 }
 

@@ -1,6 +1,7 @@
 // `heightpack build --cache http://...` end to end (issue 37, part 2) against an nginx WebDAV server the
 // test starts: a second output folder bakes nothing and gets a cache-less build's bytes; damaged entries
-// on the server are rejected, rebaked and replaced; read-only stores nothing; two builders at once agree;
+// on the server are rejected, rebaked and replaced; read-only stores nothing; a server that refuses to
+// store is still read; two builders at once agree;
 // a server that is not there, answers 503, never answers or dies mid-build costs one warning and the
 // build succeeds; no credential ever shows. Entries are read from the server's folder by their headers
 // (one JSON line) and compared with the build's own outputs, not found by the library's addressing.
@@ -209,6 +210,19 @@ TEST_F(HttpCacheServerTest, ReadOnlyStoresNothing) {
     const std::string requests = server.accessLog().substr(logBefore.size());
     EXPECT_EQ(count(requests, "PUT "), 0u) << requests;
     EXPECT_EQ(count(server.accessLog(), "PUT "), size_t(kOutputs));
+}
+
+// A server that serves entries but refuses to store them (405): one warning, hits still restored.
+TEST_F(HttpCacheServerTest, ServerThatRefusesToStoreIsStillRead) {
+    run("one", url);
+    writeImage(dir.file("maps/b.png"), waves(32, 1, 1, 0.2), OIIO::TypeDesc::UINT16);  // short.exr: a miss
+    const std::string readOnly = server.url("readonly/hp");
+    const ProcessResult r = run("two", readOnly);
+    EXPECT_EQ(cacheCounts(), counts(kOutputs - 1, 1, 0, 0, 1)) << doc.dump(1);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("heightpack: warning: cache " + readOnly + " refuses to store entries", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("405"), std::string::npos) << r.err;
+    EXPECT_EQ(entriesUnder(stored).size(), size_t(kOutputs));
 }
 
 // Two builders at once, several outputs each at once, on one server: the same bytes, and every entry

@@ -54,7 +54,8 @@ std::string configuration(const std::string& dir, int port) {
     c << "  server {\n    listen 127.0.0.1:" << port << ";\n    root " << dir << "/www;\n"
       << "    client_max_body_size 0;\n"
       << "    location / { dav_methods PUT DELETE MKCOL; create_full_put_path on; dav_access user:rw; }\n"
-      << "    location /broken/ { return 503; }\n  }\n}\n";
+      << "    location /broken/ { return 503; }\n"
+      << "    location /readonly/ { alias " << dir << "/www/; }\n  }\n}\n";
     return c.str();
 }
 

@@ -22,7 +22,8 @@ public:
     bool started() const { return pid_ > 0; }
     const std::string& why() const { return why_; }
     int port() const { return port_; }
-    // http://127.0.0.1:PORT/path. Under /broken/ every request is answered 503.
+    // http://127.0.0.1:PORT/path. Under /broken/ every request is answered 503; /readonly/ serves what
+    // "/" holds and refuses PUT (405), as a server that lets this user read only.
     std::string url(const std::string& path) const;
     // The folder served at "/": what PUTs wrote, to look at or damage.
     std::string root() const { return dir_.file("www"); }

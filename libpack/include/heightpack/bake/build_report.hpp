@@ -56,7 +56,8 @@ struct AssetCacheUse {
     bool stored = false;      // baked, then stored in the cache
     std::string rejected;     // the cache held an entry that failed verification: why (then baked and stored)
     std::string storeFailed;  // baked but not stored: why (the build goes on; the cache only saves time)
-    bool unavailable = false; // the cache could not be asked or written (down or refusing: its outage says why)
+    bool unavailable = false;       // the cache could not be asked (down or refusing: its outage says why)
+    bool storeUnavailable = false;  // baked, and not stored: the cache was down or refused to store
 };
 
 // One output of the material (a sequence gives one per frame).
