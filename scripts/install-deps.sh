@@ -9,6 +9,7 @@ packages=(
   libopenexr-dev libdeflate-dev                 # writing tiled, mip-mapped EXRs; fast deflate for zip tiles
   libcli11-dev nlohmann-json3-dev               # command line, --json
   libtomlplusplus-dev                           # material manifests (heightpack build)
+  libcurl4-openssl-dev                          # heightpack build's shared cache on an HTTP server
   libxxhash-dev zlib1g-dev                      # pixel hashes; CRCs in tests
   libzstd-dev                                   # Zstandard supercompression of KTX2 levels
   strace                                        # tests: which files a command opens (io_safety_test)

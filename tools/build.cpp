@@ -11,11 +11,14 @@
 
 #include "heightpack/bake/action_plan.hpp"
 #include "heightpack/bake/build_materials.hpp"
+#include "heightpack/bake/cache_session.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/threads.hpp"
 #include "heightpack/version.hpp"
 
+#include "build_report_json.hpp"
+#include "cache_report.hpp"
 #include "command.hpp"
 #include "enum_option.hpp"
 #include "hints.hpp"
@@ -27,41 +30,6 @@ namespace heightpack::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-nlohmann::json cacheJson(const CacheCounts& c) {
-    return {{"hits", c.hits}, {"misses", c.misses}, {"stored", c.stored}, {"rejected", c.rejected}};
-}
-
-nlohmann::json assetJson(const AssetReport& a, double threshold) {
-    nlohmann::json j = {{"name", a.name},
-                        {"kind", a.kind},
-                        {"line", a.line},
-                        {"input", a.input.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.input)},
-                        {"inputHash", a.inputHash.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.inputHash)},
-                        {"output", a.output},
-                        {"key", a.key},
-                        {"status", assetStatusName(a.status)},
-                        {"seconds", a.seconds}};
-    if (a.frame >= 0) j["frame"] = a.frame;
-    if (a.cache.looked) {
-        auto reason = [](const std::string& why) { return why.empty() ? nlohmann::json(nullptr) : nlohmann::json(why); };
-        j["cache"] = {{"hit", a.cache.hit}, {"stored", a.cache.stored}, {"rejected", reason(a.cache.rejected)},
-                      {"storeFailed", reason(a.cache.storeFailed)}};
-    }
-    if (a.check) {
-        const AssetCheck& c = *a.check;
-        j["check"] = {{"ran", c.ran}, {"passedEarlier", c.earlier}, {"tiles", c.tiles}};
-        if (c.ran) {
-            j["check"]["worst"] = {{"leftRight", seamScoreJson(c.worst.leftRight, threshold)},
-                                   {"topBottom", seamScoreJson(c.worst.topBottom, threshold)}};
-            j["check"]["look"] = lookJson(c.look, c.lookThresholds);
-        }
-        if (!c.failure.empty()) j["check"]["failure"] = c.failure;
-    } else {
-        j["check"] = nullptr;
-    }
-    return j;
-}
 
 class BuildCommand final : public Command {
 public:
@@ -78,11 +46,16 @@ public:
         cmd->add_option("--depfile", depfile_, "write a Make/Ninja depfile listing the manifest and every source it reads");
         cmd->add_option("--stamp", stamp_, "touch this file after a successful build; the depfile's target (for CMake)");
         cmd->add_option("--cache", cache_,
-                        "shared cache folder (local or a network share; default: $HEIGHTPACK_CACHE): outputs another "
+                        "shared cache: a folder (local or a network share) or an http(s):// server that takes PUT "
+                        "(default: $HEIGHTPACK_CACHE; a server's token from $HEIGHTPACK_CACHE_TOKEN): outputs another "
                         "build made with the same inputs and options are copied from it, not baked; what is baked is stored")
-            ->type_name("FOLDER");
+            ->type_name("FOLDER|URL");
+        cacheModeOption_ = addEnumOption(*cmd, "--cache-mode", cacheMode_,
+                                         "read-only: restore from the cache, never write to it (default: "
+                                         "$HEIGHTPACK_CACHE_MODE, else read-write)");
         cmd->add_option("--cache-size", cacheSize_,
-                        "the most the cache may hold after the build; least recently used entries go (default 10G)")
+                        "the most a cache folder may hold after the build; least recently used entries go (default 10G; "
+                        "not for a server, which keeps its own size)")
             ->check(byteSizeValidator());
         plan_ = addEnumOption(*cmd, "--plan", planFormat_,
                               "write the build as actions on stdout (one per output, each `build --only OUTPUT`) "
@@ -101,6 +74,7 @@ public:
             "  heightpack build examples/*.toml -o out --jobs 2 --json\n"
             "  heightpack build examples/ocean.toml --check-only\n"
             "  heightpack build examples/ocean.toml -o out/ocean --cache /mnt/share/hp-cache --cache-size 50G\n"
+            "  heightpack build examples/ocean.toml -o out/ocean --cache http://cache.studio:8080/hp --cache-mode read-only\n"
             "  heightpack-view out/ocean/material.json\n"
             "Only outputs whose source bytes or options changed are rebuilt (content hashes, not timestamps).\n"
             "With --cache, each output to rebuild is first looked up by its key (inputs, options, version) and,\n"
@@ -122,9 +96,22 @@ public:
         // An explicit --cache with --check-only is a mistake to point out; $HEIGHTPACK_CACHE, set once for
         // every build of a machine, is simply not used by a build that writes nothing.
         if (checkOnly_ && cache_) return usage("--cache stores what a build writes; --check-only writes nothing");
-        if (cache_ && cache_->empty()) return usage("--cache needs a folder");
+        if (cache_ && cache_->empty()) return usage("--cache needs a folder or a URL");
         const char* cacheFromEnvironment = std::getenv("HEIGHTPACK_CACHE");
-        const std::string cacheFolder = cache_ ? *cache_ : checkOnly_ || !cacheFromEnvironment ? "" : cacheFromEnvironment;
+        const std::string cacheText = cache_ ? *cache_ : checkOnly_ || !cacheFromEnvironment ? "" : cacheFromEnvironment;
+        std::optional<CacheLocation> cacheLocation;
+        if (!cacheText.empty()) {
+            auto parsed = parseCacheLocation(cacheText);
+            if (!parsed)
+                return usage(std::string(cache_ ? "--cache" : "HEIGHTPACK_CACHE") + ": " + parsed.error().what + " (" +
+                             parsed.error().hint + ")");
+            cacheLocation = *parsed;
+        }
+        if (ExitCode e = resolveCacheMode(cacheLocation.has_value()); e != ExitCode::Ok) return e;
+        if (cacheLocation && cacheLocation->backend == CacheBackend::Http && !cacheSize_.empty())
+            return usage("--cache-size limits a cache folder; a server keeps its own size (leave --cache-size out)");
+        // Printed, recorded and handed on: never holds a URL's credentials.
+        const std::string cacheFolder = cacheLocation ? cacheLocation->where : "";
         if (plan_->count() && (checkOnly_ || !only_.empty() || !depfile_.empty() || !stamp_.empty() || force_))
             return usage("--plan writes the build as actions and builds nothing: it goes without --check-only, --only, "
                          "--force, --depfile and --stamp");
@@ -150,8 +137,15 @@ public:
         options.checkOnly = checkOnly_;
         options.force = force_;
         options.only = only_;
-        options.cache.folder = cacheFolder;
+        options.cache.location = cacheLocation;
+        options.cache.mode = cacheMode_;
+        if (const char* token = std::getenv("HEIGHTPACK_CACHE_TOKEN")) options.cache.token = token;
         if (!cacheSize_.empty()) options.cache.sizeLimit = *parseByteSize(cacheSize_);
+        if (cacheLocation) {
+            auto opened = SharedCache::open(options.cache);
+            if (!opened) return fail(opened.error());
+            options.sharedCache = *opened;
+        }
         options.onEvent = [&tracker](const BuildEvent& e) { tracker.event(e); };
         MaterialsOptions files;
         files.depfile = depfile_;
@@ -167,7 +161,7 @@ public:
         };
         files.onBuilt = [&](const BuildReport& r, double seconds) {
             tracker.progress.clear();
-            if (!common_.quiet) warnAboutCache(r, cacheFolder);
+            if (!common_.quiet && options.sharedCache) warnAboutEntries(r, *options.sharedCache);
             if (chatty()) printSummary(r, seconds);
         };
         auto built = buildMaterials(*manifests, options, files);
@@ -180,10 +174,8 @@ public:
         CacheCounts cacheCounts;
         for (const BuildReport& report : built->materials) cacheCounts += report.cache();
         const CacheTrim& trim = built->cacheTrim;
-        if (!cacheFolder.empty() && chatty() && checksPassed && !checkOnly_)
-            std::printf("cache %s: %d hit(s), %d miss(es), %d stored, %d rejected; %d evicted, %.1f MiB kept\n",
-                        cacheFolder.c_str(), cacheCounts.hits, cacheCounts.misses, cacheCounts.stored, cacheCounts.rejected,
-                        trim.removed, static_cast<double>(trim.bytesLeft) / (1 << 20));
+        if (!common_.quiet && cacheLocation) warnAboutOutages(options.cache, built->cacheOutages);
+        if (cacheLocation && chatty() && checksPassed && !checkOnly_) printCacheSummary(options.cache, cacheCounts, trim);
         nlohmann::json materials = nlohmann::json::array();
         for (size_t i = 0; i < built->materials.size(); ++i) {
             const BuildReport& report = built->materials[i];
@@ -193,16 +185,11 @@ public:
                 else
                     std::printf("%s: nothing written: another material's maps failed their checks\n", report.material.c_str());
             }
-            materials.push_back(reportJson(report, (*manifests)[i].threshold));
+            materials.push_back(buildReportJson(report, (*manifests)[i].threshold, checkOnly_));
         }
         if (common_.json) {
             nlohmann::json cache = nullptr;
-            if (!cacheFolder.empty()) {
-                cache = cacheJson(cacheCounts);
-                cache["folder"] = cacheFolder;
-                cache["evicted"] = trim.removed;
-                cache["bytes"] = trim.bytesLeft;
-            }
+            if (cacheLocation) cache = cacheReportJson(options.cache, cacheCounts, trim, built->cacheOutages);
             printJson({{"command", "build"}, {"checkOnly", checkOnly_}, {"ok", checksPassed}, {"jobs", jobs_},
                        {"seconds", seconds}, {"cache", cache}, {"materials", materials}});
         }
@@ -217,8 +204,11 @@ private:
         const fs::path self = fs::read_symlink("/proc/self/exe", ec);
         const bool bazel = planFormat_ == PlanFormat::Bazel;
         std::vector<std::string> extra;
-        if (!cacheFolder.empty() && !bazel) extra = {"--cache", cacheFolder};
-        if (!cacheFolder.empty() && !bazel && !cacheSize_.empty()) extra.insert(extra.end(), {"--cache-size", cacheSize_});
+        if (!cacheFolder.empty() && !bazel) {
+            extra = {"--cache", cacheFolder};
+            if (!cacheSize_.empty()) extra.insert(extra.end(), {"--cache-size", cacheSize_});
+            if (cacheMode_ == CacheMode::ReadOnly) extra.insert(extra.end(), {"--cache-mode", "read-only"});
+        }
         const std::string program = ec ? std::string("heightpack") : self.string();
         auto actions = planActions(manifests, output_, program, kVersion, bazel);
         for (BuildAction& a : actions) {
@@ -328,40 +318,22 @@ private:
                         r.upToDate(), r.materialWritten ? "written" : "unchanged", seconds);
     }
 
-    nlohmann::json reportJson(const BuildReport& r, double threshold) const {
-        nlohmann::json assets = nlohmann::json::array();
-        for (const AssetReport& a : r.assets) assets.push_back(assetJson(a, threshold));
-        nlohmann::json failures = nlohmann::json::array();
-        for (const Error& e : r.checkFailures) failures.push_back({{"where", e.path}, {"what", e.what}});
-        return {{"name", r.material},
-                {"manifest", r.manifest},
-                {"outputDir", checkOnly_ ? nlohmann::json(nullptr) : nlohmann::json(r.outputDir)},
-                {"material", checkOnly_ ? nlohmann::json(nullptr)
-                                        : nlohmann::json((fs::path(r.outputDir) / kMaterialFile).string())},
-                {"materialWritten", r.materialWritten},
-                {"rebuilt", r.rebuilt()},
-                {"upToDate", r.upToDate()},
-                {"restored", r.restored()},
-                {"cache", cacheJson(r.cache())},
-                {"staleTemporariesRemoved", r.staleTemporariesRemoved},
-                {"checkFailures", failures},
-                {"assets", assets}};
+    // The cache's mode: --cache-mode, else $HEIGHTPACK_CACHE_MODE, else read-write; a usage error for a
+    // name outside the table, or for --cache-mode without a cache.
+    ExitCode resolveCacheMode(bool cached) {
+        if (cacheModeOption_->count()) return cached ? ExitCode::Ok : usage("--cache-mode says how to use a cache: give one with --cache");
+        const char* fromEnvironment = std::getenv("HEIGHTPACK_CACHE_MODE");
+        if (!cached || !fromEnvironment || !*fromEnvironment) return ExitCode::Ok;  // set per machine, used by builds with a cache
+        const auto mode = parseName<CacheMode>(fromEnvironment);
+        if (!mode)
+            return usage("HEIGHTPACK_CACHE_MODE: " + std::string(fromEnvironment) + " not in {" +
+                         joinedNames<CacheMode>(",") + "}");
+        cacheMode_ = *mode;
+        return ExitCode::Ok;
     }
 
-    // A cache entry that was not trusted, or an output that could not be stored: the build went on (the
-    // output was baked), but a person should know the cache is not doing its job.
-    static void warnAboutCache(const BuildReport& r, const std::string& folder) {
-        for (const AssetReport& a : r.assets) {
-            const std::string entry = cacheEntryPath(folder, a.key, a.output);
-            if (!a.cache.rejected.empty())
-                std::fprintf(stderr, "heightpack: warning: %s: cache entry for %s not used: %s; baked and stored again\n",
-                             entry.c_str(), a.output.c_str(), a.cache.rejected.c_str());
-            if (!a.cache.storeFailed.empty())
-                std::fprintf(stderr, "heightpack: warning: %s not stored in the cache: %s\n", a.output.c_str(),
-                             a.cache.storeFailed.c_str());
-        }
-    }
-
+    CLI::Option* cacheModeOption_ = nullptr;
+    CacheMode cacheMode_ = CacheMode::ReadWrite;
     CLI::Option* plan_ = nullptr;
     PlanFormat planFormat_ = PlanFormat::Ninja;
     std::string only_;

@@ -44,9 +44,10 @@ int BuildReport::restored() const {
 
 void CacheCounts::add(const AssetCacheUse& use) {
     stored += use.stored;
+    errors += use.unavailable || use.storeUnavailable || !use.storeFailed.empty();
     if (!use.looked) return;
     hits += use.hit;
-    misses += !use.hit;
+    misses += !use.hit && !use.unavailable;
     rejected += !use.rejected.empty();
 }
 CacheCounts& CacheCounts::operator+=(const CacheCounts& other) {
@@ -54,6 +55,7 @@ CacheCounts& CacheCounts::operator+=(const CacheCounts& other) {
     misses += other.misses;
     stored += other.stored;
     rejected += other.rejected;
+    errors += other.errors;
     return *this;
 }
 CacheCounts BuildReport::cache() const {
@@ -254,13 +256,14 @@ void MaterialBuild::Impl::makeStep(Step& s, std::atomic<bool>& stop) {
 // entry, or one not trusted: why goes into the report). A forced build bakes (and stores) every output:
 // whoever forces a rebuild doubts what is there, the cache included.
 Result<std::string> MaterialBuild::Impl::restoreStep(Step& s, const std::string& output) {
-    if (options.cache.folder.empty() || options.force) return std::string();
+    if (!options.sharedCache || options.force) return std::string();
     emit(BuildEvent::Type::Start, s, "restore", 0.0);
     s.report.cache.looked = true;
-    auto found = restoreFromCache(options.cache.folder, s.report.key, s.report.output, output);
+    auto found = options.sharedCache->restore(s.report.key, s.report.output, output);
     if (!found) return found.error();
     s.report.cache.hit = found->hit;
     s.report.cache.rejected = found->rejected;
+    s.report.cache.unavailable = found->unavailable;
     if (!found->hit) return std::string();
     s.report.status = AssetStatus::Restored;
     return found->hash;
@@ -268,10 +271,11 @@ Result<std::string> MaterialBuild::Impl::restoreStep(Step& s, const std::string&
 
 // With a cache: the output just baked stored in it. A failure is reported, not fatal: the output is made.
 void MaterialBuild::Impl::storeStep(Step& s, const std::string& output, const std::string& hash) {
-    if (options.cache.folder.empty()) return;
-    Status stored = storeInCache(options.cache.folder, s.report.key, s.report.output, output, hash);
-    s.report.cache.stored = stored.ok();
-    if (!stored) s.report.cache.storeFailed = stored.error().path + ": " + stored.error().what;
+    if (!options.sharedCache) return;
+    const CacheStore stored = options.sharedCache->store(s.report.key, s.report.output, output, hash);
+    s.report.cache.stored = stored.stored;
+    s.report.cache.storeUnavailable = stored.unavailable;
+    s.report.cache.storeFailed = stored.failed;
 }
 
 // The plan's last action: every output, made by the actions before it, recorded as a build that made
@@ -364,6 +368,12 @@ Result<MaterialBuild> MaterialBuild::prepare(const Manifest& manifest, const Bui
     auto impl = std::make_unique<Impl>();
     impl->m = manifest;
     impl->options = options;
+    if (!options.checkOnly && options.cache.location && !options.sharedCache) {
+        auto cache = SharedCache::open(options.cache);
+        if (!cache) return cache.error();
+        impl->options.sharedCache = *cache;
+    }
+    if (options.checkOnly) impl->options.sharedCache.reset();
     if (Status s = impl->prepare(); !s) return s.error();
     return MaterialBuild(std::move(impl));
 }

@@ -3,7 +3,9 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <memory>
 
+#include "heightpack/bake/cache_session.hpp"
 #include "heightpack/bake/depfile.hpp"
 #include "heightpack/io/files.hpp"
 
@@ -78,15 +80,19 @@ Result<MaterialsReport> buildMaterials(const std::vector<Manifest>& manifests, c
         if (Status s = uniqueName(names, m, manifests.size()); !s) return s.error();
 
     // The cache is judged before any work, as the output folders are.
-    const bool cached = !options.checkOnly && !options.cache.folder.empty();
-    if (cached)
-        if (Status s = openCache(options.cache.folder); !s) return s.error();
+    std::shared_ptr<SharedCache> cache = options.sharedCache;
+    if (!options.checkOnly && options.cache.location && !cache) {
+        auto opened = SharedCache::open(options.cache);
+        if (!opened) return opened.error();
+        cache = *opened;
+    }
 
     // 1. Every material hashed and checked before any is written.
     MaterialsReport report;
     std::vector<MaterialBuild> builds;
     for (const Manifest& m : manifests) {
         BuildOptions one = options;
+        one.sharedCache = cache;
         one.outputDir = materialOutputDir(options.outputDir, m, manifests.size());
         auto build = MaterialBuild::prepare(m, one);
         if (!build) return build.error();
@@ -114,7 +120,8 @@ Result<MaterialsReport> buildMaterials(const std::vector<Manifest>& manifests, c
     }
 
     // Least recently used entries beyond the cache's size go once every material has used it.
-    if (writes && cached) report.cacheTrim = trimCache(options.cache.folder, options.cache.sizeLimit);
+    if (writes && cache) report.cacheTrim = cache->trim();
+    if (cache) report.cacheOutages = cache->outages();
 
     // 3. The depfile and the stamp, for a build system.
     if (writes) {

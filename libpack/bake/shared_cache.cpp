@@ -6,8 +6,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -18,15 +16,15 @@
 #include "heightpack/bake/build_state.hpp"
 #include "heightpack/io/files.hpp"
 
+#include "cache_entry.hpp"
+
 namespace heightpack {
 
 namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kEntryFormat = 1;
-constexpr off_t kHeaderBytes = 4096;  // the output's bytes start on a block boundary, so they can be cloned
-constexpr const char* kEntryMark = "heightpack cache entry";
+constexpr off_t kHeaderBytes = detail::kEntryHeaderBytes;
 
 // A file descriptor closed when it goes out of scope.
 struct Fd {
@@ -67,36 +65,6 @@ bool copyToEnd(int from, off_t fromAt, int to, off_t toAt) {
     }
 }
 
-std::string headerText(const std::string& key, const std::string& output, std::uint64_t size, const std::string& hash) {
-    return nlohmann::json{{"entry", kEntryMark}, {"format", kEntryFormat}, {"key", key}, {"output", output},
-                          {"size", size}, {"hash", hash}}
-               .dump() +
-           "\n";
-}
-
-// Why the entry whose header is text and whose file holds fileBytes is not the one of (key, output), or
-// empty when it is; size and hash are then what its bytes must be. Whatever the header holds (it may be
-// anything: a damaged entry, another program's file), it is only read, never trusted.
-std::string judgeHeader(const std::string& text, off_t fileBytes, const std::string& key, const std::string& output,
-                        std::uint64_t& size, std::string& hash) {
-    const nlohmann::json header = nlohmann::json::parse(text.substr(0, text.find('\n')), nullptr, false);
-    auto field = [&](const char* name) {
-        const auto it = header.is_object() ? header.find(name) : header.end();
-        return it != header.end() && it->is_string() ? it->get<std::string>() : std::string("?");
-    };
-    if (!header.is_object() || field("entry") != kEntryMark || !header.contains("format") ||
-        header["format"] != kEntryFormat || !header.contains("size") || !header["size"].is_number_unsigned())
-        return "its header is not a heightpack cache entry's";
-    if (field("key") != key || field("output") != output)
-        return "it holds another output (" + field("output") + ", key " + field("key") + ")";
-    size = header["size"].get<std::uint64_t>();
-    hash = field("hash");
-    if (static_cast<std::uint64_t>(fileBytes) != kHeaderBytes + size)
-        return "it holds " + std::to_string(fileBytes - kHeaderBytes) + " bytes where its header says " +
-               std::to_string(size) + " (truncated or altered)";
-    return {};
-}
-
 }  // namespace
 
 Status openCache(const std::string& folder) {
@@ -112,25 +80,22 @@ Status openCache(const std::string& folder) {
 }
 
 std::string cacheEntryPath(const std::string& folder, const std::string& key, const std::string& output) {
-    const std::string name = hashText("key=" + key + "\noutput=" + std::to_string(output.size()) + ":" + output + "\n");
-    return (fs::path(folder) / name.substr(0, 2) / (name + ".bin")).string();
+    return (fs::path(folder) / detail::entryName(key, output)).string();
 }
 
 Result<CacheLookup> restoreFromCache(const std::string& folder, const std::string& key, const std::string& output,
-                                     const std::string& destination) {
+                                     const std::string& destination, bool markUsed) {
     const std::string path = cacheEntryPath(folder, key, output);
     CacheLookup lookup;
     const Fd entry(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
     struct stat st {};
     if (entry.fd < 0 || ::fstat(entry.fd, &st) != 0 || !S_ISREG(st.st_mode)) return lookup;  // not there: a miss
     std::string text(kHeaderBytes, '\0');
-    if (::pread(entry.fd, text.data(), text.size(), 0) != kHeaderBytes) {
-        lookup.rejected = "it is shorter than an entry's header (truncated)";
-        return lookup;
-    }
+    const ssize_t got = ::pread(entry.fd, text.data(), text.size(), 0);
+    text.resize(got > 0 ? static_cast<size_t>(got) : 0);
     std::uint64_t size = 0;
     std::string hash;
-    lookup.rejected = judgeHeader(text, st.st_size, key, output, size, hash);
+    lookup.rejected = detail::judgeEntryHeader(text, static_cast<std::uint64_t>(st.st_size), key, output, size, hash);
     if (!lookup.rejected.empty()) return lookup;
 
     TemporaryFile temp(destination);
@@ -154,7 +119,7 @@ Result<CacheLookup> restoreFromCache(const std::string& folder, const std::strin
         return lookup;
     }
     if (Status s = temp.commit(); !s) return s.error();
-    ::utimensat(AT_FDCWD, path.c_str(), nullptr, 0);  // just used: the last to go (a read-only share keeps its time)
+    if (markUsed) ::utimensat(AT_FDCWD, path.c_str(), nullptr, 0);  // just used: the last to go (a read-only share keeps its time)
     lookup.hit = true;
     lookup.hash = hash;
     return lookup;
@@ -168,10 +133,8 @@ Status storeInCache(const std::string& folder, const std::string& key, const std
     const Fd in(::open(source.c_str(), O_RDONLY | O_CLOEXEC));
     struct stat st {};
     if (in.fd < 0 || ::fstat(in.fd, &st) != 0) return badInput(source, "cannot be read to store it in the cache");
-    std::string header = headerText(key, output, static_cast<std::uint64_t>(st.st_size), hash);
-    if (static_cast<off_t>(header.size()) > kHeaderBytes)
-        return cannotWrite(path, "the entry's header would not fit its 4096 bytes (a very long output name)");
-    header.resize(kHeaderBytes, '\0');
+    const std::string header = detail::entryHeader(key, output, static_cast<std::uint64_t>(st.st_size), hash);
+    if (header.empty()) return cannotWrite(path, "the entry's header would not fit its 4096 bytes (a very long output name)");
     TemporaryFile temp(path, TemporaryScope::SharedFolder);
     {
         const Fd out(::open(temp.path().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666));

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "cli/cache_material.hpp"
 #include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
@@ -24,63 +25,6 @@ using namespace heightpack::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-// Waves with whole periods across the tile: every level tiles, so the build's checks pass.
-Image waves(int size, int kx, int ky, double phase) {
-    return makeImage(size, size, [=](int x, int y) {
-        double h = 0.5;
-        for (int n = 1; n <= 6; ++n) {
-            const double t = 2 * std::numbers::pi * ((kx * n % 7) * double(x) / size + (ky + n) % 5 * double(y) / size);
-            h += 0.1 / n * std::sin(t + phase * n);
-        }
-        return static_cast<float>(h);
-    });
-}
-
-// Two painted maps, a normal map, the Fresnel ramp and a synthesised sea of two frames: six outputs.
-const char* kSea = R"(format = 1
-name = "sea"
-
-[[displacement]]
-name = "long"
-source = "maps/a.png"
-tile_size = 64.0
-
-[[displacement]]
-name = "short"
-source = "maps/b.png"
-tile_size = 16.0
-
-[[displacement]]
-name = "swell"
-tile_size = 32.0
-synth = { wind = 9.0, size = 32, seed = 2, loop = 4.0, frames = 2 }
-
-[normals]
-name = "ripple_n"
-source = "maps/r.png"
-tile_size = 8.0
-height = 0.05
-
-[fresnel]
-ior = 1.333
-)";
-constexpr int kOutputs = 6;
-
-std::string bytesOf(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// Every file under root, relative path -> bytes.
-std::map<std::string, std::string> filesUnder(const fs::path& root) {
-    std::map<std::string, std::string> files;
-    for (const auto& e : fs::recursive_directory_iterator(root))
-        if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = bytesOf(e.path());
-    return files;
-}
 
 // The cache's entries: output -> entry file, read from each entry's header line.
 std::map<std::string, fs::path> entries(const fs::path& cache) {
@@ -129,7 +73,7 @@ protected:
         return doc;
     }
     static nlohmann::json counts(int hits, int misses, int stored, int rejected) {
-        return {{"hits", hits}, {"misses", misses}, {"stored", stored}, {"rejected", rejected}};
+        return {{"hits", hits}, {"misses", misses}, {"stored", stored}, {"rejected", rejected}, {"errors", 0}};
     }
     // Output -> status, from a report's one material.
     static std::map<std::string, std::string> statuses(const nlohmann::json& doc) {
@@ -165,6 +109,7 @@ TEST_F(BuildCacheTest, SecondFolderRestoresEverythingAndIsThenUpToDateWithoutThe
     ASSERT_EQ(text.code, 0) << text.err;
     EXPECT_NE(text.out.find("restored from cache"), std::string::npos) << text.out;
     EXPECT_NE(text.out.find(std::to_string(kOutputs) + " hit(s), 0 miss(es)"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("(folder, read-write)"), std::string::npos) << text.out;
 
     const auto third = build("two", false);
     EXPECT_EQ(third["materials"][0]["upToDate"], kOutputs) << third.dump(1);
@@ -299,4 +244,59 @@ TEST_F(BuildCacheTest, CacheThatIsAFileIsRefusedBeforeAnyWork) {
     EXPECT_EQ(r.code, 4) << r.err;
     expectOneLineError(r, file);
     EXPECT_FALSE(fs::exists(dir.file("one")));
+}
+
+// Read-only: hits are restored, misses baked and not stored, and nothing in the folder changes (not even
+// an entry's time, which a read-write hit renews). A read-only folder that is not there is a warning.
+TEST_F(BuildCacheTest, ReadOnlyRestoresAndWritesNothing) {
+    build("one", true);
+    writeImage(dir.file("maps/b.png"), waves(32, 1, 1, 0.2), OIIO::TypeDesc::UINT16);  // short.exr: a miss
+    const auto hourAgo = fs::file_time_type::clock::now() - std::chrono::hours(1);
+    for (const auto& [output, path] : entries(cache)) fs::last_write_time(path, hourAgo);
+    auto snapshot = [&] {
+        std::map<std::string, std::pair<std::string, fs::file_time_type>> files;
+        for (const auto& e : fs::recursive_directory_iterator(cache))
+            files[e.path().string()] = {e.is_regular_file() ? bytesOf(e.path()) : "", e.last_write_time()};
+        return files;
+    };
+    const auto before = snapshot();
+    const auto second = build("two", true, {"--cache-mode", "read-only"});
+    EXPECT_EQ(second["cache"]["mode"], "read-only") << second.dump(1);
+    EXPECT_EQ(second["materials"][0]["cache"], counts(kOutputs - 1, 1, 0, 0)) << second.dump(1);
+    EXPECT_EQ(snapshot(), before);
+
+    // The same from the environment; a mode that is none is a usage error.
+    const std::vector<std::string> args = {HEIGHTPACK_EXE, "build", manifest, "-o", dir.file("three"), "--json"};
+    const ProcessResult fromVariable =
+        runProcess(args, {"HEIGHTPACK_CACHE=" + cache, "HEIGHTPACK_CACHE_MODE=read-only"});
+    ASSERT_EQ(fromVariable.code, 0) << fromVariable.err;
+    EXPECT_EQ(nlohmann::json::parse(fromVariable.out)["cache"]["stored"], 0) << fromVariable.out;
+    EXPECT_EQ(snapshot(), before);
+    const ProcessResult bad = runProcess(args, {"HEIGHTPACK_CACHE=" + cache, "HEIGHTPACK_CACHE_MODE=sometimes"});
+    EXPECT_EQ(bad.code, 2) << bad.err;
+    expectOneLineError(bad, "");
+
+    const std::string missing = dir.file("no-such-cache");
+    const ProcessResult none =
+        heightpackRun({"build", manifest, "-o", dir.file("four"), "--cache", missing, "--cache-mode", "read-only"});
+    ASSERT_EQ(none.code, 0) << none.err;
+    EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
+    EXPECT_NE(none.err.find(missing), std::string::npos) << none.err;
+    EXPECT_FALSE(fs::exists(missing));
+}
+
+// Text that is neither a folder nor an http(s) URL is a usage error that does not repeat the text.
+TEST_F(BuildCacheTest, OtherSchemesAreRefusedWithoutEchoingThem) {
+    for (const std::string bad : {"ftp://user:hunter2@host/cache", "http://user:hunter2@/nohost"}) {
+        const ProcessResult r = heightpackRun({"build", manifest, "-o", dir.file("one"), "--cache", bad});
+        EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
+        expectOneLineError(r, "");
+        EXPECT_EQ(r.err.find("hunter2"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir.file("one")));
+    }
+    // --cache-size is a folder's: with a server it is a usage error.
+    const ProcessResult sized = heightpackRun(
+        {"build", manifest, "-o", dir.file("one"), "--cache", "http://127.0.0.1:9/hp", "--cache-size", "1G"});
+    EXPECT_EQ(sized.code, 2) << sized.err;
+    expectOneLineError(sized, "");
 }

@@ -23,7 +23,7 @@ export PATH="$ROOT/bin:$PATH"
 # ~/.cache/heightpack in the README is this folder's; Mesa's compiled shaders stay where they were.
 export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/mesa_shader_cache}"
 export HOME="$ROOT/home"
-unset XDG_CACHE_HOME HEIGHTPACK_CACHE
+unset XDG_CACHE_HOME HEIGHTPACK_CACHE HEIGHTPACK_CACHE_MODE HEIGHTPACK_CACHE_TOKEN
 mkdir -p "$HOME"
 
 # The command lines of the plain (unlabelled) fenced blocks, continuation lines joined, in page order.

@@ -360,6 +360,10 @@ expect build 3 missing.toml missing.toml -o out
 expect build 2 "" m1.toml
 expect build 2 "" m1.toml -o out --jobs 0
 expect build 2 "" m1.toml --check-only --depfile d.d
+expect build 2 "" ok.toml -o out --cache ftp://u:pw@host/c          # a cache neither a folder nor http(s)
+expect build 2 "" ok.toml -o out --cache-mode sometimes
+expect build 2 "" ok.toml -o out --cache-mode read-only              # a mode without a cache
+expect build 2 "" ok.toml -o out --cache http://127.0.0.1:9/hp --cache-size 1G   # a size is a folder's
 
 # ---- This shard's rows of the table ----
 for cmd in "${order[@]}"; do echo "row $cmd ${cases[$cmd]} ${passed[$cmd]}"; done

@@ -13,7 +13,7 @@
 #include "heightpack/bake/build_report.hpp"
 #include "heightpack/bake/manifest.hpp"
 #include "heightpack/bake/material.hpp"
-#include "heightpack/bake/shared_cache.hpp"
+#include "heightpack/bake/cache_session.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/version.hpp"
 
@@ -25,9 +25,12 @@ struct BuildOptions {
     int threads = 0;          // threads per asset; 0 = the cores shared among the jobs
     bool checkOnly = false;   // validate and run the tileability checks; write nothing
     bool force = false;       // rebuild every output whatever its key (baked, not restored from a cache)
-    // The shared cache (shared_cache.hpp): an output to make is first looked for there (by its key), and
-    // what is baked is stored there. Not used by a check-only build. The folder must have passed openCache.
+    // The shared cache (cache_session.hpp): an output to make is first looked for there (by its key), and
+    // what is baked is stored there (unless read-only). Not used by a check-only build. sharedCache is the
+    // cache opened from `cache`, shared by every material of a build (buildMaterials opens it; prepare
+    // opens one of its own when it is empty and `cache` names one).
     CacheOptions cache;
+    std::shared_ptr<SharedCache> sharedCache;
     // One action of a plan (action_plan.hpp), run side by side with the others by an executor that
     // decided it is due: an output's name (as the plan and the state name it) makes that output alone,
     // always (restored from the cache where it holds it), and writes neither the build state nor

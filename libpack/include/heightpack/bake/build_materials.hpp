@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "heightpack/bake/build_job.hpp"
+#include "heightpack/bake/cache_session.hpp"
 #include "heightpack/bake/manifest.hpp"
 #include "heightpack/core/result.hpp"
 
@@ -29,6 +30,7 @@ struct MaterialsReport {
     std::vector<BuildReport> materials;     // in the order given: after the build, else after the checks
     std::vector<std::string> dependencies;  // every material's, in order (the depfile's list)
     CacheTrim cacheTrim;                    // with a cache: what trimming it to its size after the build did
+    std::vector<CacheOutage> cacheOutages;  // with a cache: why the build stopped using it, if it did
 };
 
 // The folder material m is built into when count materials are built to output: output itself for one,

@@ -56,6 +56,8 @@ struct AssetCacheUse {
     bool stored = false;      // baked, then stored in the cache
     std::string rejected;     // the cache held an entry that failed verification: why (then baked and stored)
     std::string storeFailed;  // baked but not stored: why (the build goes on; the cache only saves time)
+    bool unavailable = false;       // the cache could not be asked (down or refusing: its outage says why)
+    bool storeUnavailable = false;  // baked, and not stored: the cache was down or refused to store
 };
 
 // One output of the material (a sequence gives one per frame).
@@ -74,10 +76,11 @@ struct AssetReport {
     AssetCacheUse cache;
 };
 
-// What the shared cache did for a build: how many outputs it restored (hits), how many it had to let be
-// baked (misses, the rejected among them), how many of those it stored.
+// What the shared cache did for a build: how many outputs it restored (hits), how many it answered
+// without a sound entry for (misses, the rejected among them), how many of the baked it stored, and for
+// how many it failed (errors: it could not be asked or written, or an entry could not be stored).
 struct CacheCounts {
-    int hits = 0, misses = 0, stored = 0, rejected = 0;
+    int hits = 0, misses = 0, stored = 0, rejected = 0, errors = 0;
     void add(const AssetCacheUse& use);
     CacheCounts& operator+=(const CacheCounts& other);
 };
