@@ -4,6 +4,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
@@ -129,6 +130,8 @@ void setFormatModuleThreads(int threads) {
     Loaded& l = loaded();
     if (l.done.load() && l.module) l.module->setThreads(threads);
 }
+
+int libraryThreads() { return std::max(0, pendingThreads().load()); }
 
 }  // namespace detail
 

@@ -16,4 +16,8 @@ Result<ImageModule*> formatModule(const std::string& path, const char* failed);
 // OpenImageIO's thread count: applied now if the module is loaded, else when it loads.
 void setFormatModuleThreads(int threads);
 
+// The thread count setLibraryThreads gave (0 = all cores, as when it was not called), for heightpack's own
+// decoders where they stand in for OpenImageIO's.
+int libraryThreads();
+
 }  // namespace heightpack::detail

@@ -5,8 +5,10 @@
 #include <cstring>
 #include <memory>
 
+#include "exr_source.hpp"
 #include "format_module_loader.hpp"
 #include "input_format.hpp"
+#include "png_source.hpp"
 #include "text.hpp"
 
 namespace heightpack::detail {
@@ -52,6 +54,14 @@ std::vector<unsigned char> OpenedImage::releaseBytes() {
     return std::move(bytes_);
 }
 
+Result<OpenedImage> judgeOpened(const std::string& path, OpenedImage opened, const SizeLimits& limits,
+                                uint64_t fileBytes) {
+    const SourceSpec& top = opened->spec();
+    if (Status s = judgeSize(path, top, limits); !s) return s.error();
+    if (Status s = judgeDecodedSize(path, int64_t(top.width) * top.height, top.nchannels, fileBytes); !s) return s.error();
+    return opened;
+}
+
 Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits) {
     auto read = readInputBytes(path);
     if (!read) return read.error();
@@ -65,6 +75,12 @@ Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits)
     if (judged.format == InputFormat::Bmp && isRleBmp(opened.bytes_))
         return badInput(path, "is an RLE-compressed BMP, which heightpack cannot decode faithfully",
                         "re-export it as PNG (or as an uncompressed BMP)");
+    // OpenEXR reads an EXR, and heightpack a grey PNG, where they present it as OpenImageIO would: the
+    // module is not loaded.
+    if (judged.format == InputFormat::Exr)
+        opened.input_ = openExrDirectly(opened.bytes_.data(), opened.bytes_.size(), path);
+    if (judged.format == InputFormat::Png) opened.input_ = openPngDirectly(opened.bytes_, path);
+    if (opened.input_) return judgeOpened(path, std::move(opened), limits, fileBytes);
     auto module = formatModule(path, "cannot be read");
     if (!module) return module.error();
     std::string why;
@@ -75,10 +91,7 @@ Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits)
     if (!opened.input_)
         return badInput(path, "cannot be read as " + std::string(nameOf(judged.format)) + ": " + firstLine(why),
                         "export it again as PNG, TIFF or EXR");
-    const SourceSpec& top = opened.input_->spec();
-    if (Status s = judgeSize(path, top, limits); !s) return s.error();
-    if (Status s = judgeDecodedSize(path, int64_t(top.width) * top.height, top.nchannels, fileBytes); !s) return s.error();
-    return opened;
+    return judgeOpened(path, std::move(opened), limits, fileBytes);
 }
 
 Status readPixels(ImageSource& in, const std::string& path, int level, int chBegin, int chEnd, float* dst,
