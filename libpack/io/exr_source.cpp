@@ -9,6 +9,7 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfLineOrderAttribute.h>
 #include <OpenEXR/ImfMultiPartInputFile.h>
@@ -159,8 +160,10 @@ bool presentAttributes(const Imf::Header& header, bool mipmapped, bool roundDown
             out.push_back(textAttribute(name, numberText(c.x) + ", " + numberText(c.y)));
             continue;
         }
+        // The capture date, which OpenImageIO's own writer records (from DateTime), goes back under that name.
+        const std::string shown = name == "capDate" ? "DateTime" : name;
         // Names OpenImageIO renames or skips, and every other type, are its to present.
-        static const char* const renamed[] = {"cameraTransform", "capDate", "comments", "owner", "xDensity",
+        static const char* const renamed[] = {"cameraTransform", "comments", "owner", "xDensity",
                                               "expTime", "aperture", "chunkCount", "maxSamplesPerPixel",
                                               "dwaCompressionLevel", "envmap", "tiledesc", "preview",
                                               "name", "timeCode", "keyCode"};
@@ -168,11 +171,15 @@ bool presentAttributes(const Imf::Header& header, bool mipmapped, bool roundDown
         if (type == "string") {
             const auto* s = header.findTypedAttribute<Imf::StringAttribute>(name);
             if (!s || s->value().empty()) return false;
-            out.push_back(textAttribute(name, s->value()));
+            out.push_back(textAttribute(shown, s->value()));
         } else if (type == "float") {
             const auto* f = header.findTypedAttribute<Imf::FloatAttribute>(name);
             if (!f) return false;
-            out.push_back(floatAttribute(name, f->value()));
+            out.push_back(floatAttribute(shown, f->value()));
+        } else if (type == "int") {
+            const auto* i = header.findTypedAttribute<Imf::IntAttribute>(name);
+            if (!i) return false;
+            out.push_back(textAttribute(shown, std::to_string(i->value())));  // get_float gives no number for an int
         } else {
             return false;
         }
