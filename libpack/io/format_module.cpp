@@ -2,6 +2,9 @@
 #include "heightpack/io/format_module.hpp"
 
 #include <dlfcn.h>
+#ifdef HEIGHTPACK_OIIO_AT_START
+#include <OpenImageIO/imageio.h>
+#endif
 #include <unistd.h>
 
 #include <algorithm>
@@ -98,6 +101,9 @@ void load(Loaded& l) {
 }  // namespace
 
 FormatModuleState formatModuleState() {
+#ifdef HEIGHTPACK_OIIO_AT_START
+    (void)&OIIO::openimageio_version;  // keeps OpenImageIO a library the program maps at start (CMakeLists.txt)
+#endif
     Loaded& l = loaded();
     if (l.done.load()) return l.state;
     FormatModuleState state;
