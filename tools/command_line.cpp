@@ -16,6 +16,7 @@ std::unique_ptr<CommandLine> makeCommandLine() {
     app.description("heightpack: water height maps to tileable, mip-chained, 4-neighbour packed RGBA32F textures");
     app.name("heightpack");  // the usage lines say heightpack, not the path it was run by
     app.set_version_flag("--version", std::string("heightpack ") + kVersion);
+    app.add_flag("--verbose")->description("with --version: the formats heightpack decodes itself, and where its OpenImageIO module is");
     app.require_subcommand(1);
     app.footer(
         "Examples:\n"

@@ -26,6 +26,10 @@ struct CommandLine {
 // hence the pointer).
 std::unique_ptr<CommandLine> makeCommandLine();
 
+// For --version --verbose: the formats heightpack decodes itself, and where the OpenImageIO module is and
+// whether it loads (tested by loading it). The exit code: 0, or 70 when the module does not load.
+int printFormatReport();
+
 // The first word of args (the command line without the program's name) that names no command, or no
 // option of the command chosen: a usage error "unknown command 'chek'" or "unknown option --tilesize"
 // whose hint names the nearest command or option ("did you mean --tile-size?") when one is within two

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <csignal>
 #include <iostream>
+#include <string_view>
 #include <vector>
 
 #if defined(__GLIBC__)
@@ -50,7 +51,10 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
-        return app.exit(e);  // --help, --version: printed by CLI11 for the chosen subcommand
+        const int code = app.exit(e);  // --help, --version: printed by CLI11 for the chosen subcommand
+        const bool verbose = std::find(argv, argv + argc, std::string_view("--verbose")) != argv + argc;
+        if (code == 0 && verbose && dynamic_cast<const CLI::CallForVersion*>(&e)) return printFormatReport();
+        return code;
     } catch (const CLI::ParseError& e) {
         printError(usageError(*line, e));
         return static_cast<int>(ExitCode::Usage);

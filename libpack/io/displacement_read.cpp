@@ -1,6 +1,5 @@
 #include "heightpack/io/displacement_read.hpp"
 
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,13 +13,13 @@ namespace heightpack {
 
 namespace {
 
-int findChannel(const OIIO::ImageSpec& spec, const std::string& name) {
+int findChannel(const detail::SourceSpec& spec, const std::string& name) {
     const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
     return it == spec.channelnames.end() ? -1 : static_cast<int>(it - spec.channelnames.begin());
 }
 
 // The channels holding D(i,j) of level 0, x then y; {-1, -1} when the file has none.
-std::pair<int, int> displacementChannels(const OIIO::ImageSpec& spec) {
+std::pair<int, int> displacementChannels(const detail::SourceSpec& spec) {
     const std::string stored = spec.get_string_attribute(attr::displacement.name);
     const std::string suffix = stored == "neighbour4" ? ".R" : "";  // R = D(i,j) of a packed layer
     const int x = findChannel(spec, "Dx" + suffix), y = findChannel(spec, "Dy" + suffix);
@@ -39,8 +38,8 @@ Result<Image> loadDisplacement(const std::string& path, const LoadOptions& optio
     detail::StderrSilencer quiet(options.silenceDecoderMessages);
     auto opened = detail::openImage(path, detail::sizeLimitsOf(options));
     if (!opened) return opened.error();
-    OIIO::ImageInput& in = **opened;
-    const OIIO::ImageSpec spec = in.spec();
+    detail::ImageSource& in = **opened;
+    const detail::SourceSpec spec = in.spec();
     const auto [cx, cy] = displacementChannels(spec);
     if (cx < 0) {
         std::string list;
@@ -52,7 +51,7 @@ Result<Image> loadDisplacement(const std::string& path, const LoadOptions& optio
     Image d(spec.width, spec.height, 2);
     std::vector<float> channel(d.texelCount());
     for (const int c : {cx, cy}) {
-        if (Status s = detail::readPixels(in, path, 0, 0, c, c + 1, channel.data()); !s) return s.error();
+        if (Status s = detail::readPixels(in, path, 0, c, c + 1, channel.data()); !s) return s.error();
         const int k = c == cx ? 0 : 1;
         for (size_t i = 0; i < channel.size(); ++i) d.pixels[2 * i + k] = channel[i];
     }

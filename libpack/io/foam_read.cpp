@@ -1,6 +1,5 @@
 #include "heightpack/io/foam_read.hpp"
 
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +14,7 @@ namespace heightpack {
 namespace {
 
 // The channel holding F(i,j) of level 0; -1 when the file has none.
-int foamChannel(const OIIO::ImageSpec& spec) {
+int foamChannel(const detail::SourceSpec& spec) {
     const std::string stored = spec.get_string_attribute(attr::foam.name);
     const std::string name = stored == "neighbour4" ? "Foam.R" : "Foam";  // R = F(i,j) of a packed layer
     const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
@@ -34,8 +33,8 @@ Result<Image> loadFoam(const std::string& path, const LoadOptions& options) {
     detail::StderrSilencer quiet(options.silenceDecoderMessages);
     auto opened = detail::openImage(path, detail::sizeLimitsOf(options));
     if (!opened) return opened.error();
-    OIIO::ImageInput& in = **opened;
-    const OIIO::ImageSpec spec = in.spec();
+    detail::ImageSource& in = **opened;
+    const detail::SourceSpec spec = in.spec();
     const int c = foamChannel(spec);
     if (c < 0) {
         std::string list;
@@ -45,7 +44,7 @@ Result<Image> loadFoam(const std::string& path, const LoadOptions& options) {
                        Fix::AddFoam);
     }
     Image foam(spec.width, spec.height, 1);
-    if (Status s = detail::readPixels(in, path, 0, 0, c, c + 1, foam.pixels.data()); !s) return s.error();
+    if (Status s = detail::readPixels(in, path, 0, c, c + 1, foam.pixels.data()); !s) return s.error();
     for (size_t t = 0; t < foam.pixels.size(); ++t) {
         if (std::isfinite(foam.pixels[t])) continue;
         return badInput(path,

@@ -2,15 +2,14 @@
 // refuses the same things the same way before a pixel is read.
 #pragma once
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/read.hpp"
+
+#include "image_source.hpp"
 
 namespace heightpack::detail {
 
@@ -30,10 +29,11 @@ inline SizeLimits sizeLimitsOf(const LoadOptions& options) {
 }
 
 // Fails with BadInput when spec (one level of path) is empty, 3D, or larger than limits.
-Status judgeSize(const std::string& path, const OIIO::ImageSpec& spec, const SizeLimits& limits);
+Status judgeSize(const std::string& path, const SourceSpec& spec, const SizeLimits& limits);
 
-// An image being read: OpenImageIO's reader over the file's bytes, which heightpack read and judged
-// itself (input_format.hpp). Use it as the reader (->, *); the bytes live as long as it does.
+// An image being read: a decoder (OpenEXR's, or OpenImageIO's through the format module) over the file's
+// bytes, which heightpack read and judged itself (input_format.hpp). Use it as the decoder (->, *); the
+// bytes live as long as it does.
 class OpenedImage {
 public:
     OpenedImage() = default;
@@ -41,19 +41,18 @@ public:
     OpenedImage& operator=(OpenedImage&&) noexcept;
     ~OpenedImage();
 
-    OIIO::ImageInput* operator->() const { return input_.get(); }
-    OIIO::ImageInput& operator*() const { return *input_; }
+    ImageSource* operator->() const { return input_.get(); }
+    ImageSource& operator*() const { return *input_; }
     // The file's bytes, read once: decoders of heightpack's own (png_fast.hpp) take them from here.
     const std::vector<unsigned char>& bytes() const { return bytes_; }
     // Closes the reader and hands over the file's bytes, for a decoder that frees them as it goes. The
-    // image is closed afterwards: open the file again to read it through OpenImageIO.
+    // image is closed afterwards: open the file again to read it through its decoder.
     std::vector<unsigned char> releaseBytes();
 
 private:
     friend Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits);
     std::vector<unsigned char> bytes_;
-    std::unique_ptr<OIIO::Filesystem::IOProxy> proxy_;
-    std::unique_ptr<OIIO::ImageInput> input_;
+    std::unique_ptr<ImageSource> input_;
 };
 
 // Opens path for reading, after checking that it is a readable, non-empty regular file (checkReadable)
@@ -63,10 +62,10 @@ private:
 // is BadInput naming path, with a hint.
 Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits);
 
-// Reads channels [chBegin, chEnd) of the current subimage and level as floats into dst, failing with
-// BadInput when the decoder reports any error, even one it did not fail on (OpenImageIO 2.4 returns
-// true for a TIFF with missing strips and fills them with zeros).
-Status readPixels(OIIO::ImageInput& in, const std::string& path, int subimage, int level, int chBegin, int chEnd,
+// Reads channels [chBegin, chEnd) of mip level `level` as floats into dst, failing with BadInput when the
+// decoder reports any error, even one it did not fail on (OpenImageIO 2.4 returns true for a TIFF with
+// missing strips and fills them with zeros).
+Status readPixels(ImageSource& in, const std::string& path, int level, int chBegin, int chEnd,
                   float* dst, const std::string& what = "is damaged or truncated");
 
 }  // namespace heightpack::detail

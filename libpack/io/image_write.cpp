@@ -1,5 +1,5 @@
-// Flat image files through OpenImageIO (a float EXR through exr_write.cpp), written to a temporary file and renamed into place.
-#include <OpenImageIO/imageio.h>
+// Flat image files: a float EXR through exr_write.cpp, a grey PNG through png_write.cpp, the rest through
+// OpenImageIO (the format module), written to a temporary file and renamed into place.
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +13,7 @@
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
 
+#include "format_module_loader.hpp"
 #include "png_write.hpp"
 #include "texel_encode.hpp"
 #include "text.hpp"
@@ -46,24 +47,23 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
     const std::string ext = lowerExtension(path);
     if (std::find(kFlatImageExtensions.begin(), kFlatImageExtensions.end(), ext) == kFlatImageExtensions.end())
         return cannotWrite(path, "names no format heightpack writes", "use .png, .tif or .exr");
-    const OIIO::TypeDesc type = options.bits == 8    ? OIIO::TypeDesc::UINT8
-                                : options.bits == 16 ? OIIO::TypeDesc::UINT16
-                                : options.half      ? OIIO::TypeDesc::HALF
-                                                     : OIIO::TypeDesc::FLOAT;
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, type);
-    if (image.channels == 1) spec.channelnames = {"Y"};
-    if (image.channels == 4) spec.alpha_channel = 3;
+    // OpenImageIO's default names (Y; R, G; R, G, B; R, G, B and alpha A) unless given.
+    detail::ModuleWrite spec;
+    spec.channelNames = image.channels == 1 ? std::vector<std::string>{"Y"}
+                                            : std::vector<std::string>{"R", "G", "B", "A"};
+    spec.channelNames.resize(size_t(image.channels));
+    if (image.channels == 4) spec.alphaChannel = 3;
     if (!options.channelNames.empty()) {
         assert(int(options.channelNames.size()) == image.channels);
-        spec.channelnames = options.channelNames;
-        spec.alpha_channel = -1;
+        spec.channelNames = options.channelNames;
+        spec.alphaChannel = -1;
     }
     if (ext == ".exr" && options.bits == 32) {
         // Our own ZIP writer: libdeflate on all threads, where OpenImageIO deflates with zlib.
         ScanlineExrContent content;
         content.width = image.width;
         content.height = image.height;
-        content.channelNames = spec.channelnames;
+        content.channelNames = spec.channelNames;
         content.pixels = image.pixels.data();
         content.attributes = options.attributes;
         return writeScanlineExr(path, content, options.half, options.threads, options.compression);
@@ -89,18 +89,20 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
         return temp.commit();
     }
     TemporaryFile temp(path);
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    // OpenImageIO's EXR writer stamps the current time (capDate) when no DateTime is given; a fixed,
-    // empty one keeps the same inputs giving the same bytes.
-    spec.attribute("DateTime", "");
-    if (options.srgbChannels > 0 && options.bits != 32) spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.path = temp.path();
+    spec.width = image.width;
+    spec.height = image.height;
+    spec.channels = image.channels;
+    spec.bits = options.bits;
+    spec.half = options.half;
+    spec.srgb = options.srgbChannels > 0 && options.bits != 32;
     for (const ExrAttribute& a : options.attributes) {
         if (const auto* text = std::get_if<std::string>(&a.value))
-            spec.attribute(a.name, *text);
+            spec.attributes.push_back({a.name, *text});
         else if (ext == ".png")
-            spec.attribute(a.name, detail::floatText(std::get<float>(a.value)));
+            spec.attributes.push_back({a.name, detail::floatText(std::get<float>(a.value))});
         else
-            spec.attribute(a.name, std::get<float>(a.value));
+            spec.attributes.push_back({a.name, {}, true, std::get<float>(a.value)});
     }
 
     std::vector<float> pixels = image.pixels;
@@ -118,11 +120,15 @@ Status writeFlatImage(const std::string& path, const Image& image, const FlatIma
         for (size_t at; (at = text.find(temp.path())) != std::string::npos;) text.replace(at, temp.path().size(), path);
         return detail::firstLine(text);
     };
-    auto out = OIIO::ImageOutput::create(temp.path());
-    if (!out) return cannotWrite(path, "no writer for this file type: " + named(OIIO::geterror()), "use .png, .tif or .exr");
-    if (!out->open(temp.path(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close())
-        return cannotWrite(path, "writing failed: " + named(out->geterror()), "check free disk space and permissions");
-    out.reset();
+    auto module = detail::formatModule(path, "cannot be written");
+    if (!module) return module.error();
+    spec.pixels = pixels.data();
+    std::string error;
+    bool createFailed = false;
+    if (!(*module)->write(spec, error, createFailed)) {
+        if (createFailed) return cannotWrite(path, "no writer for this file type: " + named(error), "use .png, .tif or .exr");
+        return cannotWrite(path, "writing failed: " + named(error), "check free disk space and permissions");
+    }
     return temp.commit();
 }
 

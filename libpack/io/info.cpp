@@ -1,7 +1,6 @@
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/map_units.hpp"
 
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -26,13 +25,13 @@ Result<detail::OpenedImage> openTexture(const std::string& path, TextureHeader& 
     detail::OpenedImage in = std::move(*opened);
     header.path = path;
     header.format = in->format_name();
-    const OIIO::ImageSpec& top = in->spec();
+    const detail::SourceSpec& top = in->spec();
     header.pixelType = top.format.c_str();
     header.channelNames = top.channelnames;
     header.tiled = top.tile_width > 0;
     header.tileWidth = top.tile_width;
     header.tileHeight = top.tile_height;
-    for (const OIIO::ParamValue& p : top.extra_attribs) header.attributes.emplace_back(p.name().string(), p.get_string());
+    for (const detail::SourceAttribute& p : top.extra_attribs) header.attributes.emplace_back(p.name, p.text);
     return in;
 }
 
@@ -69,8 +68,8 @@ Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoder
     TextureFile file;
     auto in = openTexture(path, file);
     if (!in) return in.error();
-    for (int mip = 0; (*in)->seek_subimage(0, mip); ++mip) {
-        const OIIO::ImageSpec spec = (*in)->spec();
+    for (int mip = 0; (*in)->seekLevel(mip); ++mip) {
+        const detail::SourceSpec spec = (*in)->spec();
         // Every level's header is judged before its pixels are allocated.
         if (Status s = detail::judgeSize(path, spec, detail::SizeLimits{}); !s) return s.error();
         Image level;
@@ -80,7 +79,7 @@ Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoder
             return badInput(path, "level " + std::to_string(mip) + " is too large for this machine's memory",
                             "split or downsize the map");
         }
-        if (Status s = detail::readPixels(**in, path, 0, mip, 0, spec.nchannels, level.pixels.data(),
+        if (Status s = detail::readPixels(**in, path, mip, 0, spec.nchannels, level.pixels.data(),
                                           "level " + std::to_string(mip) + " is damaged or truncated");
             !s)
             return s.error();
@@ -101,7 +100,7 @@ Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDec
     }
     auto in = openTexture(path, layout);
     if (!in) return in.error();
-    for (int mip = 0; (*in)->seek_subimage(0, mip); ++mip)
+    for (int mip = 0; (*in)->seekLevel(mip); ++mip)
         layout.levelSizes.emplace_back((*in)->spec().width, (*in)->spec().height);
     return layout;
 }

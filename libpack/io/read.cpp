@@ -1,6 +1,5 @@
 #include "heightpack/io/read.hpp"
 
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -40,7 +39,7 @@ std::string lower(std::string s) {
 std::string sizeText(long long w, long long h) { return std::to_string(w) + "x" + std::to_string(h); }
 
 // Finds the channel that --channel names: by name first (R, red, ...), then by position.
-int findChannel(const OIIO::ImageSpec& spec, ChannelSelect select) {
+int findChannel(const detail::SourceSpec& spec, ChannelSelect select) {
     static const char* names[][2] = {{"r", "red"}, {"g", "green"}, {"b", "blue"}, {"a", "alpha"}};
     const int which = select == ChannelSelect::R ? 0 : select == ChannelSelect::G ? 1 : select == ChannelSelect::B ? 2 : 3;
     for (int c = 0; c < spec.nchannels; ++c) {
@@ -53,7 +52,7 @@ int findChannel(const OIIO::ImageSpec& spec, ChannelSelect select) {
 
 // Finds the channel called name: exactly, then ignoring case, then as a layer holding one channel
 // ("height" for "height.Y"). -1 when none or several match.
-int findNamedChannel(const OIIO::ImageSpec& spec, const std::string& name) {
+int findNamedChannel(const detail::SourceSpec& spec, const std::string& name) {
     const auto& names = spec.channelnames;
     for (int c = 0; c < spec.nchannels; ++c)
         if (names[c] == name) return c;
@@ -67,18 +66,18 @@ int findNamedChannel(const OIIO::ImageSpec& spec, const std::string& name) {
     return count == 1 ? found : -1;
 }
 
-std::string channelList(const OIIO::ImageSpec& spec) {
+std::string channelList(const detail::SourceSpec& spec) {
     std::string list;
     for (const std::string& n : spec.channelnames) list += (list.empty() ? "" : ", ") + n;
     return list;
 }
 
 // A number the file records: a float in an EXR header, text in a PNG or TIFF.
-std::optional<double> recordedNumber(const OIIO::ImageSpec& spec, const char* name) {
-    const OIIO::ParamValue* p = spec.find_attribute(name);
+std::optional<double> recordedNumber(const detail::SourceSpec& spec, const char* name) {
+    const detail::SourceAttribute* p = spec.find_attribute(name);
     if (!p) return std::nullopt;
-    if (p->type() == OIIO::TypeFloat) return p->get_float();
-    const std::string text = p->get_string();
+    if (p->isFloat) return p->number;
+    const std::string text = p->text;
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     if (end == text.c_str() || !std::isfinite(v)) return std::nullopt;
@@ -98,7 +97,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     auto opened = detail::openImage(path, detail::sizeLimitsOf(options));
     if (!opened) return opened.error();
     detail::OpenedImage& in = *opened;
-    const OIIO::ImageSpec spec = in->spec();
+    const detail::SourceSpec spec = in->spec();
 
     LoadedHeights out;
     SourceInfo& src = out.source;
@@ -110,8 +109,8 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     src.channels = spec.nchannels;
     // Float in an EXR, text in a PNG: heightpack's attributes as text, read into numbers once.
     Attributes recordedText;
-    for (const OIIO::ParamValue& p : spec.extra_attribs)
-        if (p.name().string().rfind(attr::kPrefix, 0) == 0) recordedText.emplace_back(p.name().string(), p.get_string());
+    for (const detail::SourceAttribute& p : spec.extra_attribs)
+        if (p.name.rfind(attr::kPrefix, 0) == 0) recordedText.emplace_back(p.name, p.text);
     auto units = readMapUnits(recordedText, path);
     if (!units) return units.error();
     src.units = *units;
@@ -211,7 +210,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
             in = std::move(*reopened);
         }
     }
-    src.decoder = "openimageio";
+    src.decoder = in->decoder();
 
     const int chBegin = luma ? 0 : channel;
     const int chCount = luma ? 3 : 1;
@@ -222,7 +221,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
         return badInput(path, "is " + sizeText(spec.width, spec.height) + ", too large for this machine's memory",
                         "split or downsize the map");
     }
-    if (Status read = detail::readPixels(*in, path, 0, 0, chBegin, chBegin + chCount, pixels.data()); !read)
+    if (Status read = detail::readPixels(*in, path, 0, chBegin, chBegin + chCount, pixels.data()); !read)
         return read.error();
     in->close();
 
