@@ -11,6 +11,7 @@
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/core/tileable.hpp"
 
+#include "enlargement.hpp"
 #include "field.hpp"
 #include "gaussian_model.hpp"
 #include "gaussianise.hpp"
@@ -139,6 +140,10 @@ struct Resynthesiser::State {
     std::optional<detail::Gaussianiser> ranks;
     Field gaussian{0, 0};  // the ranks' Gaussians as a field (moved out of ranks)
     double gaussianMean = 0;
+    // Where the map is an enlargement: its source, whose own re-synthesis the attempts enlarge.
+    detail::Enlargement enlargement;
+    Image source;
+    std::unique_ptr<Resynthesiser> ofSource;
     State(const Image& m, int t) : map(m), threads(t) {}
     // The large scales at sigma and the ranks of the values less them, unless they are at sigma already.
     void useSigma(double newSigma, int w, int h) {
@@ -161,7 +166,10 @@ struct Resynthesiser::State {
     }
 };
 
-Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : state_(std::make_unique<State>(map, threads)) {
+Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : Resynthesiser(map, quantum, threads, false) {}
+
+Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads, bool asSource)
+    : state_(std::make_unique<State>(map, threads)) {
     const int w = map.width, h = map.height;
     if (w < 16 || h < 16) return;
     // 1. Ranks to Gaussians, of the map with its quantisation undone (otherwise a smooth 8-bit painting is a
@@ -170,6 +178,17 @@ Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : st
     //    Gaussianisation serves the model and every attempt whose bands ask no larger sigma.
     State& s = *state_;
     s.mapRange = sampleRange(map, threads);
+    // 0. An enlarged map (a painting resized before packing) is re-synthesised at its source's resolution
+    //    and the result enlarged the same way: a Gaussian model of the enlarged map itself carries finer
+    //    grain than the smooth map around the bands shows, and costs factor^2 more.
+    if (!asSource) s.enlargement = detail::findEnlargement(map, quantum, threads);
+    if (s.enlargement.factor > 1) {
+        s.source = detail::fitSource(map, s.enlargement, threads);
+        for (float& v : s.source.pixels)  // the source's own levels, within the map's range
+            v = std::clamp(quantum > 0 ? static_cast<float>(std::round(v / quantum) * quantum) : v, s.mapRange.low, s.mapRange.high);
+        s.ofSource.reset(new Resynthesiser(s.source, quantum, threads, true));
+        return;
+    }
     const bool terraced = quantum > 0 && detail::hasTerraces(map, threads);
     if (terraced) {
         s.dequantised = detail::dequantised(map, quantum, threads);
@@ -189,6 +208,7 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
     const Image& map = s.map;
     const int w = map.width, h = map.height, threads = s.threads;
     ResynthesisResult result;
+    if (s.ofSource) return enlargedAttempt(s.ofSource->attempt(seed, band));
     if (!s.model) {
         result.map = periodicComponent(map, PeriodicContinuity::Heights);
         return result;
@@ -251,6 +271,38 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
         }
     });
     detail::easeIntoRange(result.map, s.mapRange, threads);
+    return result;
+}
+
+ResynthesisResult Resynthesiser::enlargedAttempt(const ResynthesisResult& fromSource) const {
+    const State& s = *state_;
+    const detail::Enlargement e = s.enlargement;
+    const int f = e.factor, w = s.map.width, h = s.map.height, sw = s.source.width, sh = s.source.height;
+    // The source's change (beyond its bands, its smooth large-scale field), enlarged as a tile. The map plus
+    // it beyond the bands; in them, it plus the source enlarged as a tile: the enlarged source result. The
+    // two differ by what the fitted source misses of the map (its rounding), so the band edge, widened by
+    // the kernel's reach, shows nothing.
+    Image change(sw, sh, 1);
+    for (size_t i = 0; i < change.pixels.size(); ++i) change.pixels[i] = fromSource.map.pixels[i] - s.source.pixels[i];
+    ResynthesisResult result;
+    result.map = detail::enlarge(change, e, true, s.threads);
+    result.bandX = fromSource.bandX * f;
+    result.bandY = fromSource.bandY * f;
+    const Image sourceAsTile = detail::enlarge(s.source, e, true, s.threads);
+    constexpr int kReach = 4;  // source texels: the widest kernel's radius, and one to spare
+    parallelFor(h, s.threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y) {
+            const int sy = y / f, dy = std::min(sy, sh - 1 - sy);
+            const bool rowInBand = dy < (fromSource.bandY + 1) / 2 + 1 + kReach;
+            for (int x = 0; x < w; ++x) {
+                const int sx = x / f, dx = std::min(sx, sw - 1 - sx);
+                const size_t i = size_t(y) * w + x;
+                const bool inBand = rowInBand || dx < (fromSource.bandX + 1) / 2 + 1 + kReach;
+                result.map.pixels[i] += inBand ? sourceAsTile.pixels[i] : s.map.pixels[i];
+            }
+        }
+    });
+    detail::easeIntoRange(result.map, s.mapRange, s.threads);
     return result;
 }
 
