@@ -21,6 +21,11 @@ double enlargeKernelAt(Kernel kernel, double t) {
         case Kernel::Linear: return std::max(0.0, 1 - a);
         case Kernel::CatmullRom:
             return a < 1 ? 1.5 * a * a * a - 2.5 * a * a + 1 : a < 2 ? -0.5 * a * a * a + 2.5 * a * a - 4 * a + 2 : 0.0;
+        case Kernel::BlackmanHarris: {  // OpenImageIO's, 3 texels wide: its default for enlarging
+            if (a >= 1.5) return 0.0;
+            const double x = 2 * std::numbers::pi * (a / 1.5 + 1) / 2;
+            return 0.35875 - 0.48829 * std::cos(x) + 0.14128 * std::cos(2 * x) - 0.01168 * std::cos(3 * x);
+        }
         case Kernel::Lanczos3: {
             if (a < 1e-9) return 1.0;
             if (a >= 3) return 0.0;
@@ -31,7 +36,16 @@ double enlargeKernelAt(Kernel kernel, double t) {
     return 0.0;
 }
 
-int kernelRadius(Kernel kernel) { return kernel == Kernel::Nearest ? 0 : kernel == Kernel::Linear ? 1 : kernel == Kernel::CatmullRom ? 2 : 3; }
+int kernelRadius(Kernel kernel) {
+    switch (kernel) {
+        case Kernel::Nearest: return 0;
+        case Kernel::Linear: return 1;
+        case Kernel::CatmullRom:
+        case Kernel::BlackmanHarris: return 2;
+        case Kernel::Lanczos3: return 3;
+    }
+    return 3;
+}
 
 // The taps of an enlargement by `factor`: output texel x reads source texels x / factor + first[p] + t,
 // t < count, with weights weight[p][t], p = x % factor.
@@ -200,7 +214,7 @@ Enlargement findEnlargement(const Image& map, double quantum, int threads) {
         if (w % factor != 0 || h % factor != 0 || w / factor < 32 || h / factor < 32) continue;
         Enlargement best;
         double bestResidual = 0;
-        for (Kernel kernel : {Kernel::Nearest, Kernel::Linear, Kernel::CatmullRom, Kernel::Lanczos3}) {
+        for (Kernel kernel : {Kernel::Nearest, Kernel::Linear, Kernel::CatmullRom, Kernel::BlackmanHarris, Kernel::Lanczos3}) {
             const Enlargement e{factor, kernel};
             const int margin = factor * (kernelRadius(kernel) + 2);
             if (cw <= 4 * margin || ch <= 4 * margin) continue;

@@ -10,7 +10,8 @@ namespace heightpack::detail {
 
 // The interpolation kernels of common resizers (OpenImageIO, ImageMagick, GIMP, Photoshop), in source
 // texels: a texel's centre at (x + 0.5) / factor - 0.5 in the source, the taps' weights normalised.
-enum class Kernel { Nearest, Linear, CatmullRom, Lanczos3 };
+// BlackmanHarris is OpenImageIO's default for enlarging (3 source texels wide).
+enum class Kernel { Nearest, Linear, CatmullRom, BlackmanHarris, Lanczos3 };
 
 struct Enlargement {
     int factor = 1;  // 1: the map is not (recognisably) an enlargement

@@ -1,6 +1,7 @@
 // Maps enlarged before they are tiled (core/enlargement.hpp, and the band re-synthesis and seam measure on
 // them), judged from outside: crops of periodic fields enlarged 2x, 4x and 8x by this file's own resampler
-// (nearest, bilinear, bicubic, Lanczos3, as image tools resize: texel centres, clamped edges), stored in
+// (nearest, bilinear, bicubic, Lanczos3, Blackman-Harris, as image tools resize: texel centres, clamped
+// edges), stored in
 // 8 and 16 bits and float. The enlargement is recognised at a measured rate and its source recovered; maps
 // at their own resolution are not taken for enlargements; the re-synthesis' attempts (as tile makes them)
 // tile and look right at a measured rate, so the crossfade is not reached; a tiling map enlarged by nearest
@@ -26,7 +27,8 @@ using namespace heightpack::test;
 
 namespace {
 
-const char* const kKernelNames[] = {"nearest", "bilinear", "bicubic", "lanczos3"};
+const char* const kKernelNames[] = {"nearest", "bilinear", "bicubic", "lanczos3", "blackman-harris"};
+constexpr int kKernels = 5;
 
 // The kernels in source texels, written out here (Catmull-Rom for bicubic, as OpenImageIO and GIMP).
 double enlargeWeight(int kernel, double t) {
@@ -34,6 +36,12 @@ double enlargeWeight(int kernel, double t) {
     if (kernel == 0) return a < 0.5 || t == -0.5 ? 1.0 : 0.0;
     if (kernel == 1) return a < 1 ? 1 - a : 0.0;
     if (kernel == 2) return a < 1 ? (1.5 * a - 2.5) * a * a + 1 : a < 2 ? ((-0.5 * a + 2.5) * a - 4) * a + 2 : 0.0;
+    if (kernel == 4) {  // the four-term Blackman-Harris window over [-1.5, 1.5] (OpenImageIO's enlarging default)
+        if (a >= 1.5) return 0.0;
+        const double u = (t / 1.5 + 1) / 2;
+        return 0.35875 - 0.48829 * std::cos(2 * std::numbers::pi * u) + 0.14128 * std::cos(4 * std::numbers::pi * u) -
+               0.01168 * std::cos(6 * std::numbers::pi * u);
+    }
     if (a == 0) return 1.0;
     if (a >= 3) return 0.0;
     return 3 * std::sin(std::numbers::pi * a) * std::sin(std::numbers::pi * a / 3) / (std::numbers::pi * std::numbers::pi * a * a);
@@ -92,9 +100,9 @@ struct EnlargedCase {
 EnlargedCase makeEnlargedCase(int i) {
     EnlargedCase c;
     c.factor = 2 << (i % 3);
-    c.kernel = (i / 3) % 4;
+    c.kernel = (i / 3) % kKernels;
     const double quanta[] = {1.0 / 255, 1.0 / 65535, 0.0};
-    c.quantum = quanta[(i / 12) % 3];
+    c.quantum = quanta[(i / (3 * kKernels)) % 3];
     const int size = c.factor == 2 ? 128 : 64;
     const double beta = 2.2 + 0.3 * (i % 5);
     const Image big = periodicField(2 * size, 2 * size, 101u + unsigned(i), beta, 1.0 + (i % 2), 0.4 * i);
@@ -116,7 +124,7 @@ const EnlargedCase& enlargedCase(int i) {
 }
 
 TEST(Enlargement, AFloatEnlargementIsFoundAndItsSourceRecovered) {
-    for (int i = 24; i < 36; ++i) {  // the float cases: every kernel and factor
+    for (int i = 6 * kKernels; i < 9 * kKernels; ++i) {  // the float cases: every kernel and factor
         const EnlargedCase& c = enlargedCase(i);
         ASSERT_EQ(c.quantum, 0.0);
         const detail::Enlargement e = detail::findEnlargement(c.map, 0.0, 0);
@@ -131,13 +139,14 @@ TEST(Enlargement, AFloatEnlargementIsFoundAndItsSourceRecovered) {
 
 TEST(Enlargement, QuantisedEnlargementsAreFoundAtTheMeasuredRate) {
     int found = 0;
-    const int count = 24;  // 8- and 16-bit cases
+    const int count = 6 * kKernels;  // 8- and 16-bit cases
     for (int i = 0; i < count; ++i) {
         const EnlargedCase& c = enlargedCase(i);
         const detail::Enlargement e = detail::findEnlargement(c.map, c.quantum, 0);
         found += e.factor > 1;
         if (e.factor == 1) std::printf("not found: %s\n", c.name.c_str());
     }
+    // Measured: 30 of 30.
     EXPECT_GE(found, count * 9 / 10) << found << " of " << count;
 }
 
@@ -154,13 +163,14 @@ TEST(Enlargement, MapsAtTheirOwnResolutionAreNotTakenForEnlargements) {
             taken += e.factor > 1;
             if (e.factor > 1) std::printf("taken for %dx: %s\n", e.factor, describe(spec).c_str());
         }
+    // Measured: none of 40 (none of 80 at HEIGHTPACK_SEAM_SCALE=2).
     EXPECT_LE(taken, 2 * count / 20) << taken << " of " << 2 * count;
 }
 
 TEST(Enlargement, EnlargedCropsTileAndLookRightWithinTheReSynthesisAttempts) {
     // tile's attempts: seeds 1 to 4, the last two with the band 1.5 and 2 times the first; each judged as
     // stored (seams at the finest level, the look against the crop).
-    const int count = 36;
+    const int count = 9 * kKernels;
     int passed = 0;
     for (int i = 0; i < count; ++i) {
         const EnlargedCase& c = enlargedCase(i);
@@ -180,6 +190,7 @@ TEST(Enlargement, EnlargedCropsTileAndLookRightWithinTheReSynthesisAttempts) {
         passed += ok;
         if (!ok) std::printf("no attempt passes: %s\n", c.name.c_str());
     }
+    // Measured: 44 of 45 (the miss: 8x Lanczos3 of a 64-texel float crop).
     EXPECT_GE(passed, count * 9 / 10) << passed << " of " << count;
 }
 
