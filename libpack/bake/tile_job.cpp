@@ -133,10 +133,22 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         looked = measureTileLook(asStored, lookOptions);
         return looked->passes(options.look);
     };
+    // Which attempt of the chain is running (re-synthesis 4, quilt 3, then the fallbacks), for a progress bar.
+    auto step = [&](const char* what, int index, int of, int done) {
+        if (!options.progress) return;
+        char text[64];
+        if (of > 1)
+            std::snprintf(text, sizeof text, "tile: %s %d of %d", what, index + 1, of);
+        else
+            std::snprintf(text, sizeof text, "tile: %s", what);
+        options.progress(text, done / 12.0);
+    };
+    step("re-synthesis", 0, 4, 0);
     Resynthesiser resynthesiser(map, seamOptions.quantum, options.mip.threads);
     double firstBand = 0;
     for (int attempt = 0; attempt < 4; ++attempt) {
         const uint64_t seed = options.seed + uint64_t(attempt);
+        step("re-synthesis", attempt, 4, attempt);
         const double band = attempt < 2 ? 0.0 : std::min(0.25, firstBand * (attempt == 2 ? 1.5 : 2.0));
         ResynthesisResult r = resynthesiser.attempt(seed, band);
         if (attempt == 0) firstBand = double(std::max(r.bandX, 1)) / map.width;
@@ -152,6 +164,7 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
     QuiltOptions quilt;
     quilt.threads = options.mip.threads;
     for (int attempt = 0; attempt < 3; ++attempt) {
+        step("quilt", attempt, 3, 4 + attempt);
         quilt.match = attempt == 1 ? 1 : 0;
         quilt.band = attempt == 2 ? 1.5 / 8 : 0.0;
         QuiltResult q = quiltTile(map, quilt);
@@ -164,9 +177,11 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
     lookRequired = false;
     report.bandX = report.bandY = 0;
     report.match = 0;
+    step("moisan+bend", 0, 1, 7);
     Image result = periodicComponent(map, PeriodicContinuity::HeightsAndSlopes);
     report.methodUsed = "moisan+bend";
     if (acceptable(result)) return result;
+    step("crossfade", 0, 1, 8);
     const Image moisan = periodicComponent(map, PeriodicContinuity::Heights);
     for (double width : {options.width, 0.2}) {
         char text[64];
