@@ -8,6 +8,8 @@
 
 #include "heightpack/core/parallel.hpp"
 
+#include "range.hpp"
+
 namespace heightpack::detail {
 
 namespace {
@@ -191,12 +193,42 @@ Image enlarge(const Image& source, Enlargement e, bool periodic, int threads) {
     return out;
 }
 
+Image enlargedTile(const Image& map, const Image& source, const Image& sourceTiled, Enlargement e, int reachX, int reachY,
+                   SampleRange range, int threads) {
+    const int f = e.factor, w = map.width, h = map.height, sw = source.width, sh = source.height;
+    Image change(sw, sh, 1);
+    for (size_t i = 0; i < change.pixels.size(); ++i) change.pixels[i] = sourceTiled.pixels[i] - source.pixels[i];
+    Image out = enlarge(change, e, true, threads);
+    const Image sourceAsTile = enlarge(source, e, true, threads);  // with the change: sourceTiled enlarged
+    constexpr int kReach = 4;  // source texels: the widest kernel's radius, and one to spare
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y) {
+            const int sy = y / f;
+            const bool rowInBand = std::min(sy, sh - 1 - sy) < reachY + kReach;
+            for (int x = 0; x < w; ++x) {
+                const int sx = x / f;
+                const size_t i = size_t(y) * w + x;
+                out.pixels[i] += rowInBand || std::min(sx, sw - 1 - sx) < reachX + kReach ? sourceAsTile.pixels[i] : map.pixels[i];
+            }
+        }
+    });
+    easeIntoRange(out, range, threads);
+    return out;
+}
+
+Image roundedSource(const Image& map, Enlargement e, double quantum, SampleRange range, int threads) {
+    Image source = fitSource(map, e, threads);
+    for (float& v : source.pixels)
+        v = std::clamp(quantum > 0 ? static_cast<float>(std::round(v / quantum) * quantum) : v, range.low, range.high);
+    return source;
+}
+
 Enlargement findEnlargement(const Image& map, double quantum, int threads) {
     const int w = map.width, h = map.height;
     if (map.channels != 1) return {};
     // A central window aligned to every factor's grid.
-    const int cw = std::min(w, 512) / 8 * 8, ch = std::min(h, 512) / 8 * 8;
-    const int x0 = (w - cw) / 2 / 8 * 8, y0 = (h - ch) / 2 / 8 * 8;
+    const int cw = std::min(w, 512) / 16 * 16, ch = std::min(h, 512) / 16 * 16;
+    const int x0 = (w - cw) / 2 / 16 * 16, y0 = (h - ch) / 2 / 16 * 16;
     const Image window = windowOf(map, x0, y0, cw, ch);
     // The map's finest detail: its mean square difference from its 3 x 3 mean, away from the window's edge.
     double fine = 0;
@@ -210,7 +242,7 @@ Enlargement findEnlargement(const Image& map, double quantum, int threads) {
         }
     fine /= double(cw - 2) * (ch - 2);
     const double rounding = quantum * quantum / 12;
-    for (int factor : {8, 4, 2}) {
+    for (int factor : {16, 8, 4, 2}) {
         if (w % factor != 0 || h % factor != 0 || w / factor < 32 || h / factor < 32) continue;
         Enlargement best;
         double bestResidual = 0;

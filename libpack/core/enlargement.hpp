@@ -18,7 +18,7 @@ struct Enlargement {
     Kernel kernel = Kernel::Nearest;
 };
 
-// The largest factor (8, 4 or 2, dividing both sides, leaving at least 32 texels a side) and the kernel
+// The largest factor (16, 8, 4 or 2, dividing both sides, leaving at least 32 texels a side) and the kernel
 // with which map is an enlargement of some smaller map to within its quantisation (quantum: the map's
 // height step, 0 for float): the least-squares fit of a source, enlarged again, leaves no more than the
 // rounding's noise and a small part of the map's finest detail. Judged on a central window of at most
@@ -30,5 +30,16 @@ Image fitSource(const Image& map, Enlargement e, int threads);
 
 // source enlarged by e; periodic: the source wraps (a tile), else its edges are clamped.
 Image enlarge(const Image& source, Enlargement e, bool periodic, int threads);
+
+// The tile of map (an enlargement of source under e) made from sourceTiled, a tile of source whose new
+// content reaches reachX source texels from its left/right wrap line and reachY from its top/bottom one:
+// within them, widened by the kernel's reach, sourceTiled enlarged as a tile; beyond them, the map plus
+// the source's change (a smooth field there) enlarged. The two differ by what source misses of the map
+// (its rounding), so the seam between them shows nothing. Eased into range (the map's).
+Image enlargedTile(const Image& map, const Image& source, const Image& sourceTiled, Enlargement e, int reachX, int reachY,
+                   SampleRange range, int threads);
+
+// map's source under e (fitSource) on map's levels (quantum; 0 for float) and within range.
+Image roundedSource(const Image& map, Enlargement e, double quantum, SampleRange range, int threads);
 
 }  // namespace heightpack::detail

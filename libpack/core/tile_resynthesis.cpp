@@ -183,9 +183,7 @@ Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads, bool
     //    grain than the smooth map around the bands shows, and costs factor^2 more.
     if (!asSource) s.enlargement = detail::findEnlargement(map, quantum, threads);
     if (s.enlargement.factor > 1) {
-        s.source = detail::fitSource(map, s.enlargement, threads);
-        for (float& v : s.source.pixels)  // the source's own levels, within the map's range
-            v = std::clamp(quantum > 0 ? static_cast<float>(std::round(v / quantum) * quantum) : v, s.mapRange.low, s.mapRange.high);
+        s.source = detail::roundedSource(map, s.enlargement, quantum, s.mapRange, threads);
         s.ofSource.reset(new Resynthesiser(s.source, quantum, threads, true));
         return;
     }
@@ -276,33 +274,11 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
 
 ResynthesisResult Resynthesiser::enlargedAttempt(const ResynthesisResult& fromSource) const {
     const State& s = *state_;
-    const detail::Enlargement e = s.enlargement;
-    const int f = e.factor, w = s.map.width, h = s.map.height, sw = s.source.width, sh = s.source.height;
-    // The source's change (beyond its bands, its smooth large-scale field), enlarged as a tile. The map plus
-    // it beyond the bands; in them, it plus the source enlarged as a tile: the enlarged source result. The
-    // two differ by what the fitted source misses of the map (its rounding), so the band edge, widened by
-    // the kernel's reach, shows nothing.
-    Image change(sw, sh, 1);
-    for (size_t i = 0; i < change.pixels.size(); ++i) change.pixels[i] = fromSource.map.pixels[i] - s.source.pixels[i];
     ResynthesisResult result;
-    result.map = detail::enlarge(change, e, true, s.threads);
-    result.bandX = fromSource.bandX * f;
-    result.bandY = fromSource.bandY * f;
-    const Image sourceAsTile = detail::enlarge(s.source, e, true, s.threads);
-    constexpr int kReach = 4;  // source texels: the widest kernel's radius, and one to spare
-    parallelFor(h, s.threads, [&](int begin, int end) {
-        for (int y = begin; y < end; ++y) {
-            const int sy = y / f, dy = std::min(sy, sh - 1 - sy);
-            const bool rowInBand = dy < (fromSource.bandY + 1) / 2 + 1 + kReach;
-            for (int x = 0; x < w; ++x) {
-                const int sx = x / f, dx = std::min(sx, sw - 1 - sx);
-                const size_t i = size_t(y) * w + x;
-                const bool inBand = rowInBand || dx < (fromSource.bandX + 1) / 2 + 1 + kReach;
-                result.map.pixels[i] += inBand ? sourceAsTile.pixels[i] : s.map.pixels[i];
-            }
-        }
-    });
-    detail::easeIntoRange(result.map, s.mapRange, s.threads);
+    result.map = detail::enlargedTile(s.map, s.source, fromSource.map, s.enlargement, (fromSource.bandX + 1) / 2 + 1,
+                                      (fromSource.bandY + 1) / 2 + 1, s.mapRange, s.threads);
+    result.bandX = fromSource.bandX * s.enlargement.factor;
+    result.bandY = fromSource.bandY * s.enlargement.factor;
     return result;
 }
 

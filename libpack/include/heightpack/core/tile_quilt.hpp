@@ -16,6 +16,9 @@ struct QuiltOptions {
     // Which source: 0 the best match, 1 the best one not within half a strip of it, and so on (for each
     // wrap line).
     int match = 0;
+    // The map's height step (1/255 for 8 bits, 1/65535 for 16, 0 for float): a map recognised as an
+    // enlargement of a smaller one (resized 2x to 16x) is quilted at that one's size and enlarged back.
+    double quantum = 0.0;
     int threads = 0;  // 0 = all cores; the result does not depend on it
 };
 
