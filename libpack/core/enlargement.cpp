@@ -200,15 +200,14 @@ Image enlargedTile(const Image& map, const Image& source, const Image& sourceTil
     for (size_t i = 0; i < change.pixels.size(); ++i) change.pixels[i] = sourceTiled.pixels[i] - source.pixels[i];
     Image out = enlarge(change, e, true, threads);
     const Image sourceAsTile = enlarge(source, e, true, threads);  // with the change: sourceTiled enlarged
-    constexpr int kReach = 4;  // source texels: the widest kernel's radius, and one to spare
     parallelFor(h, threads, [&](int begin, int end) {
         for (int y = begin; y < end; ++y) {
             const int sy = y / f;
-            const bool rowInBand = std::min(sy, sh - 1 - sy) < reachY + kReach;
+            const bool rowInBand = std::min(sy, sh - 1 - sy) < reachY + kEnlargedTileReach;
             for (int x = 0; x < w; ++x) {
                 const int sx = x / f;
                 const size_t i = size_t(y) * w + x;
-                out.pixels[i] += rowInBand || std::min(sx, sw - 1 - sx) < reachX + kReach ? sourceAsTile.pixels[i] : map.pixels[i];
+                out.pixels[i] += rowInBand || std::min(sx, sw - 1 - sx) < reachX + kEnlargedTileReach ? sourceAsTile.pixels[i] : map.pixels[i];
             }
         }
     });
@@ -225,7 +224,9 @@ Image roundedSource(const Image& map, Enlargement e, double quantum, SampleRange
 
 Enlargement findEnlargement(const Image& map, double quantum, int threads) {
     const int w = map.width, h = map.height;
-    if (map.channels != 1) return {};
+    // Smaller maps are tiled at their own size: cheap already, and their source would leave the model
+    // little to learn from (the bundled 512^2 painting is an 8x enlargement of 64^2).
+    if (map.channels != 1 || std::min(w, h) < kLeastEnlargedSide) return {};
     // A central window aligned to every factor's grid.
     const int cw = std::min(w, 512) / 16 * 16, ch = std::min(h, 512) / 16 * 16;
     const int x0 = (w - cw) / 2 / 16 * 16, y0 = (h - ch) / 2 / 16 * 16;

@@ -18,6 +18,13 @@ struct Enlargement {
     Kernel kernel = Kernel::Nearest;
 };
 
+// Maps smaller than this a side are not taken for enlargements.
+inline constexpr int kLeastEnlargedSide = 1024;
+
+// How far, in source texels, enlargedTile's new content reaches beyond the source tile's (the widest
+// kernel's radius, and one to spare).
+inline constexpr int kEnlargedTileReach = 4;
+
 // The largest factor (16, 8, 4 or 2, dividing both sides, leaving at least 32 texels a side) and the kernel
 // with which map is an enlargement of some smaller map to within its quantisation (quantum: the map's
 // height step, 0 for float): the least-squares fit of a source, enlarged again, leaves no more than the

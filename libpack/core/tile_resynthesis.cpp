@@ -277,8 +277,10 @@ ResynthesisResult Resynthesiser::enlargedAttempt(const ResynthesisResult& fromSo
     ResynthesisResult result;
     result.map = detail::enlargedTile(s.map, s.source, fromSource.map, s.enlargement, (fromSource.bandX + 1) / 2 + 1,
                                       (fromSource.bandY + 1) / 2 + 1, s.mapRange, s.threads);
-    result.bandX = fromSource.bandX * s.enlargement.factor;
-    result.bandY = fromSource.bandY * s.enlargement.factor;
+    // The texels replaced: those enlargedTile takes from the source's tile.
+    const int f = s.enlargement.factor;
+    result.bandX = std::min(s.map.width, 2 * ((fromSource.bandX + 1) / 2 + 1 + detail::kEnlargedTileReach) * f);
+    result.bandY = std::min(s.map.height, 2 * ((fromSource.bandY + 1) / 2 + 1 + detail::kEnlargedTileReach) * f);
     return result;
 }
 
