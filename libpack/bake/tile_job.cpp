@@ -170,15 +170,23 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
     QuiltOptions quilt;
     quilt.threads = options.mip.threads;
     quilt.quantum = seamOptions.quantum;
-    for (int attempt = 0; attempt < 3; ++attempt) {
-        step("quilt", attempt, 3, 4 + attempt);
-        quilt.match = attempt == 1 ? 1 : 0;
-        quilt.band = attempt == 2 ? 1.5 / 8 : 0.0;
-        QuiltResult q = quiltTile(map, quilt);
-        report.bandX = q.bandX;
-        report.bandY = q.bandY;
-        report.match = quilt.match + 1;
-        if (acceptable(q.map)) return std::move(q.map);
+    // An enlarged map is quilted at its source's size first, then at its own (a source can be too small to
+    // hold a good match).
+    for (bool atSourceSize : {true, false}) {
+        quilt.atSourceSize = atSourceSize;
+        int enlargement = 1;
+        for (int attempt = 0; attempt < 3; ++attempt) {
+            step("quilt", attempt, 3, 4 + attempt);
+            quilt.match = attempt == 1 ? 1 : 0;
+            quilt.band = attempt == 2 ? 1.5 / 8 : 0.0;
+            QuiltResult q = quiltTile(map, quilt);
+            enlargement = q.enlargement;
+            report.bandX = q.bandX;
+            report.bandY = q.bandY;
+            report.match = quilt.match + 1;
+            if (acceptable(q.map)) return std::move(q.map);
+        }
+        if (enlargement == 1) break;
     }
     // The fallbacks are judged by their seams alone (as before the look existed); their look is reported.
     lookRequired = false;
