@@ -40,8 +40,10 @@ void Progress::update(std::string_view stage, double fraction) {
     if (!stages_.empty()) {
         double total = 0, before = 0, share = 0;
         bool found = false;
+        // "tile: quilt 2 of 3" counts as the stage "tile" and is shown whole.
+        const std::string_view name = stage.substr(0, stage.find(':'));
         for (const ProgressStage& s : stages_) {
-            if (s.name == stage) found = true, share = s.weight;
+            if (s.name == name) found = true, share = s.weight;
             if (!found) before += s.weight;
             total += s.weight;
         }

@@ -17,7 +17,8 @@ struct ProgressStage {
 
 // A one-line progress display on stderr, shown only on a terminal and never with --quiet. The bar
 // shows the whole job: with stages, a stage's fraction counts toward the stages before it plus its own
-// share; without, update's fraction is the whole. The percentage shown never goes down. At most one
+// share; without, update's fraction is the whole. A stage named "NAME: what" counts as NAME, and the
+// whole is shown (which attempt a long stage is at). The percentage shown never goes down. At most one
 // bar is on screen; printError, printJson and clearProgressLine() remove it before other output.
 class Progress {
 public:

@@ -90,8 +90,8 @@ struct Storage {
 // look does not pass). No candidate may stretch the height span past 1.5x the input's. The last is returned
 // when none passes, and the caller writes nothing. `judged` (and `looked`, when the look was judged) is the
 // verdict on the returned candidate as stored, and `stored` that candidate as stored, so the caller need
-// not round or judge it again. judging(asStored, bits) is told of each candidate, as stored, as its
-// judging starts.
+// not round or judge it again. judging(asStored, bits) is told of each candidate, as stored, whose seams
+// pass, before its look is judged.
 Image applyMethod(const Image& map, const TileOptions& options, const SeamOptions& seamOptions, const Storage& storage,
                   TileReport& report, std::optional<ChainSeams>& judged, std::optional<TileLook>& looked,
                   std::shared_ptr<Image>& stored, const std::function<void(std::shared_ptr<const Image> asStored, int bits)>& judging) {
@@ -101,6 +101,7 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         case TileMethod::Quilt: {
             QuiltOptions quilt;
             quilt.threads = options.mip.threads;
+            quilt.quantum = seamOptions.quantum;
             QuiltResult q = quiltTile(map, quilt);
             report.bandX = q.bandX;
             report.bandY = q.bandY;
@@ -126,24 +127,41 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         storedSeams.quantum = Storage::quantum(c.bits);
         stored = std::make_shared<Image>(Storage::rounded(candidate, c.bits, options.mip.threads));
         const Image& asStored = *stored;
-        judging(stored, c.bits);
         judged = measureSeamChain(asStored, options.mip, options.threshold, storedSeams);
-        if (!judged->tiles() || !lookRequired) return judged->tiles();
+        if (!judged->tiles()) return false;
+        judging(stored, c.bits);  // compressed while its look is judged; one whose seams fail costs none
+        if (!lookRequired) return true;
         if (!lookOptions.sourceEcho) lookOptions.sourceEcho = sourceEchoOf(map, options.mip.threads);
         looked = measureTileLook(asStored, lookOptions);
         return looked->passes(options.look);
     };
-    Resynthesiser resynthesiser(map, seamOptions.quantum, options.mip.threads);
-    double firstBand = 0;
-    for (int attempt = 0; attempt < 4; ++attempt) {
-        const uint64_t seed = options.seed + uint64_t(attempt);
-        const double band = attempt < 2 ? 0.0 : std::min(0.25, firstBand * (attempt == 2 ? 1.5 : 2.0));
-        ResynthesisResult r = resynthesiser.attempt(seed, band);
-        if (attempt == 0) firstBand = double(std::max(r.bandX, 1)) / map.width;
-        report.bandX = r.bandX;
-        report.bandY = r.bandY;
-        report.seed = seed;
-        if (acceptable(r.map)) return std::move(r.map);
+    // Which attempt of the chain is running (re-synthesis 4, quilt 3, then the fallbacks), for a progress bar.
+    auto step = [&](const char* what, int index, int of, int done) {
+        if (!options.progress) return;
+        char text[64];
+        if (of > 1)
+            std::snprintf(text, sizeof text, "tile: %s %d of %d", what, index + 1, of);
+        else
+            std::snprintf(text, sizeof text, "tile: %s", what);
+        options.progress(text, done / 12.0);
+    };
+    step("re-synthesis", 0, 4, 0);
+    {
+        // Scoped: what the re-synthesis holds (the model, the Gaussianised map, its sorted values) is released
+        // before the quilt makes its own.
+        Resynthesiser resynthesiser(map, seamOptions.quantum, options.mip.threads);
+        double firstBand = 0;
+        for (int attempt = 0; attempt < 4; ++attempt) {
+            const uint64_t seed = options.seed + uint64_t(attempt);
+            step("re-synthesis", attempt, 4, attempt);
+            const double band = attempt < 2 ? 0.0 : std::min(0.25, firstBand * (attempt == 2 ? 1.5 : 2.0));
+            ResynthesisResult r = resynthesiser.attempt(seed, band);
+            if (attempt == 0) firstBand = double(std::max(r.bandX, 1)) / map.width;
+            report.bandX = r.bandX;
+            report.bandY = r.bandY;
+            report.seed = seed;
+            if (acceptable(r.map)) return std::move(r.map);
+        }
     }
     // Quilting, for maps a Gaussian field does not describe (pebbles, cells, strokes): the best match, the
     // next best, then the best with strips half as wide again; judged like the re-synthesis.
@@ -151,22 +169,34 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
     report.methodUsed = nameOf(TileMethod::Quilt);
     QuiltOptions quilt;
     quilt.threads = options.mip.threads;
-    for (int attempt = 0; attempt < 3; ++attempt) {
-        quilt.match = attempt == 1 ? 1 : 0;
-        quilt.band = attempt == 2 ? 1.5 / 8 : 0.0;
-        QuiltResult q = quiltTile(map, quilt);
-        report.bandX = q.bandX;
-        report.bandY = q.bandY;
-        report.match = quilt.match + 1;
-        if (acceptable(q.map)) return std::move(q.map);
+    quilt.quantum = seamOptions.quantum;
+    // An enlarged map is quilted at its source's size first, then at its own (a source can be too small to
+    // hold a good match).
+    for (bool atSourceSize : {true, false}) {
+        quilt.atSourceSize = atSourceSize;
+        int enlargement = 1;
+        for (int attempt = 0; attempt < 3; ++attempt) {
+            step("quilt", attempt, 3, 4 + attempt);
+            quilt.match = attempt == 1 ? 1 : 0;
+            quilt.band = attempt == 2 ? 1.5 / 8 : 0.0;
+            QuiltResult q = quiltTile(map, quilt);
+            enlargement = q.enlargement;
+            report.bandX = q.bandX;
+            report.bandY = q.bandY;
+            report.match = quilt.match + 1;
+            if (acceptable(q.map)) return std::move(q.map);
+        }
+        if (enlargement == 1) break;
     }
     // The fallbacks are judged by their seams alone (as before the look existed); their look is reported.
     lookRequired = false;
     report.bandX = report.bandY = 0;
     report.match = 0;
+    step("moisan+bend", 0, 1, 7);
     Image result = periodicComponent(map, PeriodicContinuity::HeightsAndSlopes);
     report.methodUsed = "moisan+bend";
     if (acceptable(result)) return result;
+    step("crossfade", 0, 1, 8);
     const Image moisan = periodicComponent(map, PeriodicContinuity::Heights);
     for (double width : {options.width, 0.2}) {
         char text[64];
@@ -234,8 +264,8 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     std::optional<ChainSeams> judged;
     std::optional<TileLook> looked;
     // A grey PNG's pixels are compressed while the candidate is judged (the deflate is serial, the judging
-    // leaves a core idle at times): the one that passes is then written at once. (A candidate that does
-    // not pass costs its compression on the side.)
+    // leaves a core idle at times): the one that passes is then written at once. (A candidate whose seams
+    // pass but whose look does not costs its compression on the side.)
     std::future<std::pair<PreparedPixels, int>> compressing;
     std::shared_ptr<const Image> compressed;  // the candidate being compressed
     std::shared_ptr<Image> judgedStored;      // the result as stored, where applyMethod judged it so

@@ -12,6 +12,7 @@
 #include "heightpack/core/tileable.hpp"
 
 #include "dft.hpp"
+#include "enlargement.hpp"
 #include "field.hpp"
 #include "quilt_kernels.hpp"
 #include "range.hpp"
@@ -217,7 +218,9 @@ int stripTexels(double fraction, int size) {
 
 }  // namespace
 
-QuiltResult quiltTile(const Image& map, const QuiltOptions& options) {
+namespace {
+
+QuiltResult quiltAtOwnSize(const Image& map, const QuiltOptions& options) {
     const int w = map.width, h = map.height;
     if (std::min(w, h) < 16) return {periodicComponent(map, PeriodicContinuity::Heights)};  // no room for two overlaps
     QuiltResult result;
@@ -239,6 +242,25 @@ QuiltResult quiltTile(const Image& map, const QuiltOptions& options) {
     result.map = Image(w, h, 1);
     std::transform(f.v.begin(), f.v.end(), result.map.pixels.begin(), [](double x) { return static_cast<float>(x); });
     detail::easeIntoRange(result.map, sampleRange(map, options.threads), options.threads);
+    return result;
+}
+
+}  // namespace
+
+QuiltResult quiltTile(const Image& map, const QuiltOptions& options) {
+    const detail::Enlargement e = options.atSourceSize ? detail::findEnlargement(map, options.quantum, options.threads)
+                                                       : detail::Enlargement{};
+    if (e.factor == 1) return quiltAtOwnSize(map, options);
+    const SampleRange range = sampleRange(map, options.threads);
+    const Image source = detail::roundedSource(map, e, options.quantum, range, options.threads);
+    QuiltResult result = quiltAtOwnSize(source, options);
+    result.map = detail::enlargedTile(map, source, result.map, e, (result.bandX + 1) / 2 + 1, (result.bandY + 1) / 2 + 1, range,
+                                      options.threads);
+    // The texels changed: those enlargedTile takes from the source's tile.
+    result.enlargement = e.factor;
+    result.bandX = std::min(map.width, 2 * ((result.bandX + 1) / 2 + 1 + detail::kEnlargedTileReach) * e.factor);
+    result.bandY = std::min(map.height, 2 * ((result.bandY + 1) / 2 + 1 + detail::kEnlargedTileReach) * e.factor);
+    for (int* offset : {&result.sourceX[0], &result.sourceX[1], &result.sourceY[0], &result.sourceY[1]}) *offset *= e.factor;
     return result;
 }
 

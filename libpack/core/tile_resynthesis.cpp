@@ -11,6 +11,7 @@
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/core/tileable.hpp"
 
+#include "enlargement.hpp"
 #include "field.hpp"
 #include "gaussian_model.hpp"
 #include "gaussianise.hpp"
@@ -139,6 +140,10 @@ struct Resynthesiser::State {
     std::optional<detail::Gaussianiser> ranks;
     Field gaussian{0, 0};  // the ranks' Gaussians as a field (moved out of ranks)
     double gaussianMean = 0;
+    // Where the map is an enlargement: its source, whose own re-synthesis the attempts enlarge.
+    detail::Enlargement enlargement;
+    Image source;
+    std::unique_ptr<Resynthesiser> ofSource;
     State(const Image& m, int t) : map(m), threads(t) {}
     // The large scales at sigma and the ranks of the values less them, unless they are at sigma already.
     void useSigma(double newSigma, int w, int h) {
@@ -161,7 +166,10 @@ struct Resynthesiser::State {
     }
 };
 
-Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : state_(std::make_unique<State>(map, threads)) {
+Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : Resynthesiser(map, quantum, threads, false) {}
+
+Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads, bool asSource)
+    : state_(std::make_unique<State>(map, threads)) {
     const int w = map.width, h = map.height;
     if (w < 16 || h < 16) return;
     // 1. Ranks to Gaussians, of the map with its quantisation undone (otherwise a smooth 8-bit painting is a
@@ -170,6 +178,15 @@ Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads) : st
     //    Gaussianisation serves the model and every attempt whose bands ask no larger sigma.
     State& s = *state_;
     s.mapRange = sampleRange(map, threads);
+    // 0. An enlarged map (a painting resized before packing) is re-synthesised at its source's resolution
+    //    and the result enlarged the same way: a Gaussian model of the enlarged map itself carries finer
+    //    grain than the smooth map around the bands shows, and costs factor^2 more.
+    if (!asSource) s.enlargement = detail::findEnlargement(map, quantum, threads);
+    if (s.enlargement.factor > 1) {
+        s.source = detail::roundedSource(map, s.enlargement, quantum, s.mapRange, threads);
+        s.ofSource.reset(new Resynthesiser(s.source, quantum, threads, true));
+        return;
+    }
     const bool terraced = quantum > 0 && detail::hasTerraces(map, threads);
     if (terraced) {
         s.dequantised = detail::dequantised(map, quantum, threads);
@@ -189,6 +206,7 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
     const Image& map = s.map;
     const int w = map.width, h = map.height, threads = s.threads;
     ResynthesisResult result;
+    if (s.ofSource) return enlargedAttempt(s.ofSource->attempt(seed, band));
     if (!s.model) {
         result.map = periodicComponent(map, PeriodicContinuity::Heights);
         return result;
@@ -251,6 +269,18 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
         }
     });
     detail::easeIntoRange(result.map, s.mapRange, threads);
+    return result;
+}
+
+ResynthesisResult Resynthesiser::enlargedAttempt(const ResynthesisResult& fromSource) const {
+    const State& s = *state_;
+    ResynthesisResult result;
+    result.map = detail::enlargedTile(s.map, s.source, fromSource.map, s.enlargement, (fromSource.bandX + 1) / 2 + 1,
+                                      (fromSource.bandY + 1) / 2 + 1, s.mapRange, s.threads);
+    // The texels replaced: those enlargedTile takes from the source's tile.
+    const int f = s.enlargement.factor;
+    result.bandX = std::min(s.map.width, 2 * ((fromSource.bandX + 1) / 2 + 1 + detail::kEnlargedTileReach) * f);
+    result.bandY = std::min(s.map.height, 2 * ((fromSource.bandY + 1) / 2 + 1 + detail::kEnlargedTileReach) * f);
     return result;
 }
 

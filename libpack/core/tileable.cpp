@@ -212,8 +212,37 @@ SeamScore scoreOfSums(std::array<std::vector<double>, kOperators> sums, int m, d
 
 }  // namespace
 
+// The largest of 8, 4 and 2 that the map repeats every texel of along x (or y) exactly that many times,
+// leaving at least `least` texels: a map enlarged by nearest neighbour; 1 when there is none.
+int repetition(const Image& map, bool alongX, int least) {
+    const int n = alongX ? map.width : map.height, m = alongX ? map.height : map.width;
+    auto at = [&](int along, int across) { return alongX ? map.at(along, across) : map.at(across, along); };
+    for (int times : {8, 4, 2}) {
+        if (n % times != 0 || n / times < least) continue;
+        bool repeats = true;
+        for (int j = 0; j < m && repeats; ++j)
+            for (int i = 0; i < n && repeats; ++i)
+                repeats = i % times == 0 || at(i, j) == at(i - 1, j);
+        if (repeats) return times;
+    }
+    return 1;
+}
+
 LevelSeams measureSeams(const Image& level, const SeamOptions& options) {
     assert(level.channels == 1);
+    // A map whose texels come in repeated blocks (enlarged by nearest neighbour) is judged as the map it
+    // repeats: within the blocks every cut is a non-step, and the block edges' steps would be measured
+    // against them.
+    const int timesX = repetition(level, true, kMinimumTexels), timesY = repetition(level, false, kMinimumTexels);
+    if (timesX > 1 || timesY > 1) {
+        Image repeated(level.width / timesX, level.height / timesY, 1);
+        for (int y = 0; y < repeated.height; ++y)
+            for (int x = 0; x < repeated.width; ++x) repeated.at(x, y) = level.at(x * timesX, y * timesY);
+        LevelSeams seams = measureSeams(repeated, options);
+        seams.width = level.width;
+        seams.height = level.height;
+        return seams;
+    }
     LevelSeams seams;
     seams.width = level.width;
     seams.height = level.height;

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# heightpack tile against heightpack pack on the same map (issue 22 asks tile within 2x of pack), on two
-# 4096x4096 16-bit maps that do not tile: a crop of a synthesised sea twice its size (what tile is for), and
+# heightpack tile against heightpack pack on the same map (issue 22 asks tile within 2x of pack), on three
+# 4096x4096 16-bit maps that do not tile: a crop of a synthesised sea twice its size (what tile is for),
 # a crop of the periodic sum of waves bench_pack.sh uses (a line spectrum, not a Gaussian sea: the
-# re-synthesis' look is borderline there, so tile may try more). Each is tiled to a 16-bit PNG and packed
+# re-synthesis' look is borderline there, so tile may try more), and a crop a quarter the size enlarged 4x
+# with Lanczos3 (a map painted small and resized before packing: tile works at the source's size, issue 36). Each is tiled to a 16-bit PNG and packed
 # to the default mip-mapped EXR. Runs alternate (tile, pack, tile, ...); prints median seconds, peak memory,
 # the ratio, and what tile chose (the attempt that passed: its seed, band and look scores).
 #   tests/bench/bench_tile.sh [BUILD_DIR] [RUNS] [SIZE]
@@ -24,9 +25,11 @@ oiiotool "$work/sea.png" --cut "${size}x${size}+0+0" -d uint16 -o "$work/sea_cro
 big=$((size * 5 / 4))
 "$mk" "$big" "$big" "$work/big.png"
 oiiotool "$work/big.png" --cut "${size}x${size}+0+0" -d uint16 -o "$work/waves_crop.png"
-echo "inputs: ${size}x${size} 16-bit crops of a synthesised sea and of a sum of waves; $(nproc) cores; $runs runs each"
+oiiotool "$work/sea.png" --cut "$((size / 4))x$((size / 4))+0+0" --resize:filter=lanczos3 "${size}x${size}" -d uint16 \
+  -o "$work/sea_enlarged.png"
+echo "inputs: ${size}x${size} 16-bit crops of a synthesised sea and of a sum of waves, and a sea crop enlarged 4x; $(nproc) cores; $runs runs each"
 
-for map in sea_crop waves_crop; do
+for map in sea_crop waves_crop sea_enlarged; do
   : >"$work/tile"
   : >"$work/pack"
   for ((i = 0; i < runs; i++)); do

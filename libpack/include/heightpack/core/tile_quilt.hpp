@@ -16,6 +16,10 @@ struct QuiltOptions {
     // Which source: 0 the best match, 1 the best one not within half a strip of it, and so on (for each
     // wrap line).
     int match = 0;
+    // The map's height step (1/255 for 8 bits, 1/65535 for 16, 0 for float): a map recognised as an
+    // enlargement of a smaller one (resized 2x to 16x) is quilted at that one's size and enlarged back.
+    double quantum = 0.0;
+    bool atSourceSize = true;  // false: an enlarged map quilted at its own size all the same
     int threads = 0;  // 0 = all cores; the result does not depend on it
 };
 
@@ -23,6 +27,7 @@ struct QuiltResult {
     Image map;
     int bandX = 0;  // texels changed across the left/right wrap line (a vertical strip)
     int bandY = 0;  // texels changed across the top/bottom wrap line
+    int enlargement = 1;  // the factor of the source it was quilted at; 1: at its own size
     // Where each strip was copied from: the offset from a texel to its source, in texels.
     int sourceX[2] = {0, 0};  // the left/right strip's (dx, dy)
     int sourceY[2] = {0, 0};  // the top/bottom strip's (dx, dy)
