@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -33,9 +34,8 @@ bool parseFloats(const std::string& text, std::vector<float>& out) {
     return !out.empty();
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// Parses, loads and draws; every documented failure returns its code here.
+int view(int argc, char** argv) {
     using namespace heightpack::view;
     CommandLineValues values;
     CLI::App app;
@@ -156,4 +156,19 @@ int main(int argc, char** argv) {
     for (size_t k = 0; k < o.settings.layers.size() && !choppinessFlags.empty(); ++k)
         o.settings.layers[k].choppiness = choppinessFlags[std::min(k, choppinessFlags.size() - 1)];
     return runViewer(o, *scene);
+}
+
+}  // namespace
+
+// What escapes (an exception from a library underneath, an allocation that fails) is a bug: one line and
+// exit 70, as the command line does, never an abort with a core dump.
+int main(int argc, char** argv) {
+    using heightpack::view::ExitCode;
+    try {
+        return view(argc, argv);
+    } catch (const std::exception& e) {
+        return heightpack::view::fail(std::string("internal error: ") + e.what(), "please report this", ExitCode::Internal);
+    } catch (...) {
+        return heightpack::view::fail("internal error: an unknown exception", "please report this", ExitCode::Internal);
+    }
 }
