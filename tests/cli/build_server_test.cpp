@@ -82,13 +82,7 @@ size_t count(const std::string& text, const std::string& what) {
 
 class HttpCacheTest : public ::testing::Test {
 protected:
-    void SetUp() override {
-        fs::create_directories(dir.path() / "maps");
-        writeImage(dir.file("maps/a.png"), waves(64, 1, 2, 0.3), OIIO::TypeDesc::UINT16);
-        writeImage(dir.file("maps/b.png"), waves(32, 3, 1, 1.1), OIIO::TypeDesc::UINT16);
-        writeImage(dir.file("maps/r.png"), waves(32, 2, 3, 2.0), OIIO::TypeDesc::UINT8);
-        std::ofstream(manifest) << kSea;
-    }
+    void SetUp() override { writeCacheMaterial(dir.path(), manifest); }
 
     // heightpack build MANIFEST -o FOLDER [--cache CACHE] EXTRA... --json, in environment (this
     // process's when empty): the process, its JSON report in doc.

@@ -55,6 +55,15 @@ height = 0.05
 [fresnel]
 ior = 1.333
 )";
+
+// Writes the material's maps under folder/maps and kSea at manifest.
+inline void writeCacheMaterial(const std::filesystem::path& folder, const std::string& manifest) {
+    std::filesystem::create_directories(folder / "maps");
+    writeImage((folder / "maps/a.png").string(), waves(64, 1, 2, 0.3), OIIO::TypeDesc::UINT16);
+    writeImage((folder / "maps/b.png").string(), waves(32, 3, 1, 1.1), OIIO::TypeDesc::UINT16);
+    writeImage((folder / "maps/r.png").string(), waves(32, 2, 3, 2.0), OIIO::TypeDesc::UINT8);
+    std::ofstream(manifest) << kSea;
+}
 inline constexpr int kOutputs = 6;
 
 inline std::string bytesOf(const std::filesystem::path& path) {
