@@ -27,23 +27,27 @@ std::string ninjaPath(const std::string& path) {
     return out;
 }
 
-// A command for /bin/sh as Ninja runs it: each word single-quoted, then '$' doubled for Ninja.
+// A command for /bin/sh as Ninja runs it: each word single-quoted, '$' doubled for Ninja.
 std::string ninjaCommand(const std::vector<std::string>& argv) {
     std::string out;
     for (const std::string& word : argv) {
         if (!out.empty()) out += ' ';
-        out += '\'';
-        for (char c : word) {
-            if (c == '\'') out.append("'\\''");
-            else if (c == '$') out.append("$$");
-            else out.push_back(c);
-        }
-        out += '\'';
+        out += detail::quotedForExecutor(word);
     }
     return out;
 }
 
 }  // namespace
+
+std::string detail::quotedForExecutor(const std::string& word) {
+    std::string out = "'";
+    for (char c : word) {
+        if (c == '\'') out.append("'\\''");
+        else if (c == '$') out.append("$$");
+        else out.push_back(c);
+    }
+    return out + "'";
+}
 
 std::vector<BuildAction> planActions(const std::vector<Manifest>& manifests, const std::string& output,
                                      const std::string& executable, const std::string& version, bool sandboxed) {

@@ -5,6 +5,8 @@
 #include "heightpack/bake/action_plan.hpp"
 #include "heightpack/bake/build_report.hpp"
 
+#include "build_plan.hpp"
+
 namespace heightpack {
 
 namespace {
@@ -41,18 +43,9 @@ std::string starlark(const std::string& text) {
     return out + "\"";
 }
 
-// One word of a genrule's command: as it is when plain, else single-quoted for the shell, with '$'
-// doubled for Bazel's own expansion of $(...) before the shell sees it.
-std::string commandWord(const std::string& word) {
-    if (plain(word)) return word;
-    std::string out = "'";
-    for (char c : word) {
-        if (c == '\'') out.append("'\\''");
-        else if (c == '$') out.append("$$");
-        else out.push_back(c);
-    }
-    return out + "'";
-}
+// One word of a genrule's command: as it is when plain, else quoted for the shell and for Bazel's own
+// expansion of $(...).
+std::string commandWord(const std::string& word) { return plain(word) ? word : detail::quotedForExecutor(word); }
 
 // A genrule's name: the material's and the output's, in the characters a target name takes.
 std::string ruleName(const std::string& text) {

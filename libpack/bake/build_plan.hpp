@@ -41,4 +41,8 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version);
 // path inside the output folder, as the steps that read it list it first among their intermediates.
 std::vector<Step> planSharedSteps(const Manifest& m, const std::string& version);
 
+// word as one word for /bin/sh, single-quoted, with '$' doubled for the executor that expands its own
+// variables before the shell sees the command (Ninja's $var, Bazel's $(...)).
+std::string quotedForExecutor(const std::string& word);
+
 }  // namespace heightpack::detail
