@@ -174,7 +174,7 @@ int draw(ViewerOptions& o, Scene& scene, const ContextInfo& context, GLFWwindow*
                                                        " context is " + std::to_string(context.major) + "." +
                                                        std::to_string(context.minor);
         std::fprintf(stderr, "heightpack-view: note: --lookup %s: %s; drawing with the packed lookup instead\n",
-                     lookupName(o.settings.lookup), why.c_str());
+                     nameOf(o.settings.lookup), why.c_str());
         o.settings.lookup = o.settings.lookup == Lookup::GatherBilinear ? Lookup::PackedBilinear : Lookup::PackedTrilinear;
     }
     const bool offscreen = !o.screenshot.empty() || !o.gridHeights.empty() || o.bench > 0;

@@ -23,6 +23,12 @@ std::string defaultsOf(float LayerSettings::*field) {
 
 }  // namespace
 
+std::vector<std::string> lookupChoices() {
+    std::vector<std::string> names = allNames<Lookup>();
+    names.insert(names.end() - 2, kGatherAlias);  // before the two it stands beside
+    return names;
+}
+
 std::string screenshotFormats() {
     std::string text;
     const auto& formats = heightpack::kFlatImageExtensions;
@@ -102,11 +108,10 @@ void defineCommandLine(CLI::App& app, CommandLineValues& values) {
     app.add_option("--lookup", lookup,
                    "height lookup in the vertex shader; gather (= gather-trilinear) uses textureGather, OpenGL 4.0")
         ->capture_default_str()
-        ->check(CLI::IsMember({"bilinear", "trilinear", "reference-bilinear", "reference-trilinear", "gather",
-                               "gather-bilinear", "gather-trilinear"}));
+        ->check(CLI::IsMember(lookupChoices()));
     app.add_option("--view", view, "shaded, height (grey), lod (colour per level)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"shaded", "height", "lod"}));
+        ->check(CLI::IsMember(allNames<ViewMode>()));
     app.add_flag("--two-pass", o.settings.twoPass, "combine the maps into an fp32 texture first (render-to-texture)");
     app.add_flag("--no-frustum-branch", frustumOff, "sample every vertex, even outside the guard-banded frustum");
     app.add_flag("--wireframe", o.settings.wireframe, "draw the grid as lines");

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <string>
+#include <vector>
 
 #include "app.hpp"
 
@@ -21,6 +22,12 @@ struct CommandLineValues {
     bool headless = false;
     float time = -1.0f;  // negative: the clock runs
 };
+
+// --lookup gather: gather-trilinear, trilinear as the packed lookup's default.
+inline constexpr const char* kGatherAlias = "gather";
+
+// --lookup's choices: the Lookup table's names and kGatherAlias.
+std::vector<std::string> lookupChoices();
 
 // "a.png, b.tif or c.exr" of the formats a --screenshot is written in.
 std::string screenshotFormats();

@@ -135,10 +135,9 @@ int view(int argc, char** argv) {
         o.settings.explosions.push_back({{v[0], v[1]}, v.size() > 2 ? v[2] : 0.0f, v.size() > 3 ? v[3] : 40.0f});
     }
     if (time >= 0) o.time = time;
-    if (lookup == "gather") lookup = "gather-trilinear";  // trilinear, as the packed lookup's default
-    for (int l = 0; l < 6; ++l)
-        if (lookup == lookupName(static_cast<Lookup>(l))) o.settings.lookup = static_cast<Lookup>(l);
-    o.settings.view = view == "height" ? ViewMode::Height : view == "lod" ? ViewMode::Lod : ViewMode::Shaded;
+    // The names were checked when parsed (lookupChoices, allNames<ViewMode>).
+    o.settings.lookup = lookup == kGatherAlias ? Lookup::GatherTrilinear : heightpack::parseName<Lookup>(lookup).value();
+    o.settings.view = heightpack::parseName<ViewMode>(view).value();
     o.settings.frustumBranch = !frustumOff;
     o.settings.bakedFoam = !noBakedFoam;
     if (!o.gridHeights.empty()) {

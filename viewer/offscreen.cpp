@@ -46,7 +46,7 @@ PassTimes benchFrames(const ViewerOptions& o, const RenderSettings& settings, Re
     const float time = o.time.value_or(0.0f);
     const bool progress = !o.json && isatty(STDERR_FILENO);
     auto show = [&](int frame) {
-        if (progress) std::fprintf(stderr, "\rbench: lookup %s, frame %d of %d ", lookupName(settings.lookup), frame, o.bench);
+        if (progress) std::fprintf(stderr, "\rbench: lookup %s, frame %d of %d ", nameOf(settings.lookup), frame, o.bench);
     };
     PassTimes total;
     show(0);
@@ -107,10 +107,10 @@ void printBench(const ViewerOptions& o, const Scene& scene, const Renderer& rend
                                     {"renderer", gl},
                                     {"glVersion", version},
                                     {"context", context.platform},
-                                    {"lookup", lookupName(o.settings.lookup)}};
+                                    {"lookup", nameOf(o.settings.lookup)}};
         nlohmann::ordered_json each = nlohmann::ordered_json::object();
         for (const auto& [lookup, t] : lookups)
-            each[lookupName(lookup)] = {{"waterMs", t.water}, {"waterWallMs", t.waterWall}, {"combineMs", t.combine},
+            each[nameOf(lookup)] = {{"waterMs", t.water}, {"waterWallMs", t.waterWall}, {"combineMs", t.combine},
                                         {"combineWallMs", t.combineWall}};
         j["lookups"] = each;
         j["gpuBytes"] = bytesJson(b);
@@ -126,11 +126,11 @@ void printBench(const ViewerOptions& o, const Scene& scene, const Renderer& rend
     if (o.settings.tiledView) {
         std::printf("  tiled view   %8.3f / %8.3f\n", chosen.tiled, chosen.tiledWall);
     } else {
-        std::printf("  water pass   %8.3f / %8.3f   (lookup %s)\n", chosen.water, chosen.waterWall, lookupName(o.settings.lookup));
+        std::printf("  water pass   %8.3f / %8.3f   (lookup %s)\n", chosen.water, chosen.waterWall, nameOf(o.settings.lookup));
         if (o.settings.twoPass) std::printf("  combine pass %8.3f / %8.3f\n", chosen.combine, chosen.combineWall);
     }
     for (const auto& [lookup, t] : lookups)
-        std::printf("  lookup %-20s water %8.3f / %8.3f   combine %8.3f / %8.3f\n", lookupName(lookup), t.water, t.waterWall,
+        std::printf("  lookup %-20s water %8.3f / %8.3f   combine %8.3f / %8.3f\n", nameOf(lookup), t.water, t.waterWall,
                     t.combine, t.combineWall);
     std::printf("GPU bytes: packed %lld, plain %lld, gather %lld, normals %lld, Fresnel %lld, foam %lld, foam coverage %lld, "
                 "Dx and Dy %lld, total %lld\n",
@@ -182,9 +182,10 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer, co
         // With --compare-lookups, each lookup on the same frames (the tiled view reads no lookup): the one
         // asked for is measured once.
         std::vector<std::pair<Lookup, PassTimes>> lookups;
-        for (int l = 0; l < 6 && o.compareLookups && !o.settings.tiledView; ++l) {
+        for (const EnumName<Lookup>& each : NameTable<Lookup>::entries) {
+            if (!o.compareLookups || o.settings.tiledView) break;
             RenderSettings s = o.settings;
-            s.lookup = static_cast<Lookup>(l);
+            s.lookup = each.value;
             if (isGather(s.lookup) && !renderer.gatherAvailable()) continue;
             lookups.emplace_back(s.lookup, s.lookup == o.settings.lookup ? chosen : benchFrames(o, s, renderer, target.framebuffer));
         }
@@ -219,7 +220,7 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer, co
                                               {"renderer", reinterpret_cast<const char*>(glGetString(GL_RENDERER))},
                                               {"glVersion", reinterpret_cast<const char*>(glGetString(GL_VERSION))},
                                               {"context", context.platform},
-                                              {"lookup", lookupName(o.settings.lookup)},
+                                              {"lookup", nameOf(o.settings.lookup)},
                                               {"gpuBytes", bytesJson(renderer.textureBytes())},
                                               {"samplers", samplersJson(renderer)},
                                               {"layers", layersJson(o.settings, scene)}};

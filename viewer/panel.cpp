@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <iterator>
 #include <string>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -48,9 +49,8 @@ void drawPanel(RenderSettings& s, PanelState& state, Camera& camera, const Scene
         ImGui::SliderFloat("water level (m)", &s.waterLevel, -10.0f, 10.0f);
     }
     if (ImGui::CollapsingHeader("Sampling (18.2.4)", ImGuiTreeNodeFlags_DefaultOpen)) {
-        const char* lookups[] = {"packed bilinear", "packed trilinear", "reference bilinear (GL_LINEAR)",
-                                 "reference trilinear (GL_LINEAR)", "gather bilinear (textureGather)",
-                                 "gather trilinear (textureGather)"};
+        const char* lookups[std::size(NameTable<Lookup>::entries)];
+        for (size_t l = 0; l < std::size(lookups); ++l) lookups[l] = NameTable<Lookup>::entries[l].description;
         int lookup = static_cast<int>(s.lookup);
         if (ImGui::Combo("lookup", &lookup, lookups, state.gatherAvailable ? 6 : 4)) s.lookup = static_cast<Lookup>(lookup);
         ImGui::SliderFloat2("LOD bands", glm::value_ptr(s.bands), 0.0f, 1.0f);

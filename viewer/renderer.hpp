@@ -12,6 +12,7 @@
 
 #include "camera.hpp"
 #include "heightpack/core/fresnel.hpp"
+#include "heightpack/core/names.hpp"
 #include "gl_util.hpp"
 #include "scene.hpp"
 
@@ -29,13 +30,34 @@ enum class Lookup {
     GatherTrilinear = 5
 };
 inline bool isGather(Lookup l) { return l == Lookup::GatherBilinear || l == Lookup::GatherTrilinear; }
-// The --lookup names, in the enum's order.
-inline const char* lookupName(Lookup l) {
-    static const char* names[] = {"bilinear", "trilinear", "reference-bilinear", "reference-trilinear", "gather-bilinear",
-                                  "gather-trilinear"};
-    return names[static_cast<int>(l)];
-}
 enum class ViewMode { Shaded = 0, Height = 1, Lod = 2 };
+
+}  // namespace heightpack::view
+
+namespace heightpack {
+// --lookup's names (in the enum's order: the panel's list follows it) and the panel's words for them.
+template <>
+struct NameTable<view::Lookup> {
+    static constexpr EnumName<view::Lookup> entries[] = {
+        {view::Lookup::PackedBilinear, "bilinear", "packed bilinear"},
+        {view::Lookup::PackedTrilinear, "trilinear", "packed trilinear"},
+        {view::Lookup::ReferenceBilinear, "reference-bilinear", "reference bilinear (GL_LINEAR)"},
+        {view::Lookup::ReferenceTrilinear, "reference-trilinear", "reference trilinear (GL_LINEAR)"},
+        {view::Lookup::GatherBilinear, "gather-bilinear", "gather bilinear (textureGather)"},
+        {view::Lookup::GatherTrilinear, "gather-trilinear", "gather trilinear (textureGather)"},
+    };
+};
+template <>
+struct NameTable<view::ViewMode> {
+    static constexpr EnumName<view::ViewMode> entries[] = {
+        {view::ViewMode::Shaded, "shaded", "lit water"},
+        {view::ViewMode::Height, "height", "grey by height"},
+        {view::ViewMode::Lod, "lod", "a colour per mip level"},
+    };
+};
+}  // namespace heightpack
+
+namespace heightpack::view {
 
 // The maps that displace the grid, common.glsl's kMaxLayers: the four tiles of synth --cascades 4 (the
 // chapter displaces with two; a cascaded sea needs every tile to be the spectrum once).
