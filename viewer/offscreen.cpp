@@ -149,7 +149,7 @@ int writeGridHeights(const ViewerOptions& o, Renderer& renderer, float time, GLu
     auto number = [](const char* name, float value) { return attribute(AttributeKey<float>{name}, value); };
     FlatImageOptions flat;
     flat.bits = 32;
-    flat.channelNames = {"Y", "Dx", "Dy"};
+    flat.channelNames = {"Y", layerName::dx, layerName::dy};
     flat.attributes = {attribute(attr::layout, attr::gridHeights), attribute(attr::time, time),
                        number("heightpack:cameraX", o.camera.position.x), number("heightpack:cameraY", o.camera.position.y),
                        number("heightpack:cameraZ", o.camera.position.z),

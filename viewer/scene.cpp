@@ -7,6 +7,7 @@
 #include "heightpack/bake/pack_job.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/height_sequence.hpp"
+#include "heightpack/io/pixel_type.hpp"
 #include "heightpack/io/read.hpp"
 #include "scene_displacement.hpp"
 #include "scene_foam.hpp"
@@ -64,6 +65,10 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
         measure(file->levels, frame);
         return Done{};
     }
+    // KTX2 and DDS hold what heightpack wrote; only heights are drawn as water.
+    if (const auto container = containerForPath(path); container && *container != Container::Exr)
+        return badInput(path, std::string("holds ") + describe(texture.kind) + ", not heights",
+                        "give a texture heightpack pack wrote");
     // A painted map: the same load, mip and pack as `heightpack pack` (periodic, kaiser).
     LoadOptions load;
     load.silenceDecoderMessages = true;

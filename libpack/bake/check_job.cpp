@@ -55,7 +55,7 @@ void scoreChain(ChainSeams seams, const Image& level0, const SeamOptions& seamOp
 }  // namespace
 
 double sampleQuantum(const SourceInfo& source) {
-    return source.pixelType == "uint8" ? 1.0 / 255 : source.pixelType == "uint16" ? 1.0 / 65535 : 0.0;
+    return source.integerBits > 0 ? 1.0 / double((1 << source.integerBits) - 1) : 0.0;
 }
 
 ChainSeams measureSeamChain(const Image& heights, const MipOptions& mip, double threshold, const SeamOptions& seams,

@@ -50,8 +50,9 @@ constexpr std::uint32_t kFourCCFlag = 0x4;
 constexpr std::uint32_t kCapsComplex = 0x8, kCapsTexture = 0x1000, kCapsMipMap = 0x400000;
 constexpr std::uint32_t kTexture2D = 3;
 
-// The record's layout codes, 1 and up, in this order; new layouts only ever join at the end.
-constexpr std::array<const char*, 5> kLayouts = {"neighbour4", "plain", "normal", "fresnel", "normalXY"};
+// The record's layout codes, 1 and up, in this order (the header's words); new layouts only ever join at the end.
+const std::array<const char*, 5> kLayouts = {attributeText(Layout::Neighbour4), attributeText(Layout::Plain),
+                                             attributeText(Layout::Rgb), attr::fresnelRamp, attributeText(Layout::Xy)};
 // The record's wrap codes, 1 and up, in this order (the names come from Wrap's table).
 constexpr std::array<const char*, 2> kWraps = {nameOf(Wrap::Periodic), nameOf(Wrap::Clamp)};
 

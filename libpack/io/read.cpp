@@ -93,6 +93,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     src.path = path;
     src.format = in->format_name();
     src.pixelType = spec.format.c_str();
+    src.integerBits = src.pixelType == "uint8" ? 8 : src.pixelType == "uint16" ? 16 : 0;
     src.width = spec.width;
     src.height = spec.height;
     src.channels = spec.nchannels;

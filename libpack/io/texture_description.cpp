@@ -182,7 +182,6 @@ Result<TextureDescription> describeTexture(const std::string& path, const Attrib
         const auto v = finiteNumber(text);
         if (!v) return damaged(path, key.name, text, "a finite number");
         *to = *v;
-        d.scaleRecorded = true;
     }
     // synth writes metres = heightOffset + heightScale * value (heightScale 1 in a float EXR, which a
     // manifest's synthesised frames leave out).

@@ -53,7 +53,6 @@ struct TextureDescription {
     std::optional<Filter> filter;     // the mip filter, where recorded
     // stored = heightOffset + heightScale * value (1 and 0 where not recorded).
     double heightScale = 1.0, heightOffset = 0.0;
-    bool scaleRecorded = false;       // heightScale or heightOffset came from the header
     // The stored texels' type, where heightpack writes it (float, half, uint16); nullopt for other
     // sample types (8-bit, 32-bit integers), whose width componentBytes gives.
     std::optional<PixelType> pixelType;
