@@ -36,22 +36,6 @@ Result<detail::OpenedImage> openTexture(const std::string& path, TextureHeader& 
     return in;
 }
 
-// The per-level lookup errors a file records (attr::lookupError), or none.
-std::vector<double> recordedLookupErrors(const Attributes& attributes) {
-    std::vector<double> errors;
-    const std::string text = findAttribute(attributes, attr::lookupError);
-    const char* p = text.c_str();
-    while (*p) {
-        char* end = nullptr;
-        const double v = std::strtod(p, &end);
-        if (end == p || !std::isfinite(v) || v < 0) return {};  // not ours, or damaged: report nothing
-        errors.push_back(v);
-        p = *end == ',' ? end + 1 : end;
-        if (*end != ',' && *end != '\0') return {};
-    }
-    return errors;
-}
-
 }  // namespace
 
 Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoderMessages) {
@@ -103,7 +87,7 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
     if (!file) return file.error();
     FileInfo info;
     static_cast<TextureHeader&>(info) = *file;
-    const std::vector<double> errors = recordedLookupErrors(file->attributes);
+    const std::vector<double>& errors = file->description.lookupErrors;
     const bool floatTexels = file->description.pixelType == PixelType::Float;
     for (const Image& image : file->levels) {
         LevelInfo level;

@@ -201,6 +201,15 @@ Result<TextureDescription> describeTexture(const std::string& path, const Attrib
             at = comma + 1;
         }
     }
+    if (const std::string errors = findAttribute(attributes, attr::lookupError); !errors.empty()) {
+        for (size_t at = 0; at <= errors.size();) {
+            const size_t comma = std::min(errors.find(',', at), errors.size());
+            const auto v = finiteNumber(errors.substr(at, comma - at));
+            if (!v || *v < 0) return damaged(path, attr::lookupError.name, errors, "a list of numbers, one a level");
+            d.lookupErrors.push_back(*v);
+            at = comma + 1;
+        }
+    }
     d.pixelType = parsePixelType(sampleType);
     d.componentBytes = sampleType == "uint8" || sampleType == "int8" ? 1
                        : sampleType == "half" || sampleType == "uint16" || sampleType == "int16" ? 2

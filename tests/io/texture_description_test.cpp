@@ -118,6 +118,14 @@ TEST(TextureDescription, ChannelsOfEveryLayoutPackAndSynthWrite) {
     expectDamaged({{"heightpack:layers", "heights,Dz"}}, "heightpack:layers");
 }
 
+TEST(TextureDescription, LookupErrorsAreOneNonNegativeNumberALevel) {
+    const auto d = describe({{"heightpack:lookupError", "0.5,0.25,0"}});
+    ASSERT_TRUE(d) << d.error().what;
+    EXPECT_EQ(d->lookupErrors, (std::vector<double>{0.5, 0.25, 0.0}));
+    for (const char* bad : {"x", "0.5,,0", "0.5,", "-1", "0.5;0.25", "nan,0"})
+        expectDamaged({{"heightpack:lookupError", bad}}, "heightpack:lookupError");
+}
+
 TEST(TextureDescription, PixelTypesAreTheWritersEnum) {
     EXPECT_EQ(describe({}, {"R"}, "half")->pixelType, PixelType::Half);
     EXPECT_EQ(describe({}, {"R"}, "uint16")->pixelType, PixelType::Uint16);

@@ -62,6 +62,8 @@ struct TextureDescription {
     // How the companions beside the heights are laid out (heightpack:displacement, heightpack:foam).
     std::optional<Layout> displacement, foam;
     TextureChannels channels;
+    // Half and uint16 textures: the worst lookup error of each level, level 0 first (heightpack:lookupError).
+    std::vector<double> lookupErrors;
     std::optional<NormalConvention> convention;  // normal maps
     std::optional<FresnelIndex> fresnelIndex;    // Fresnel ramps
     bool isHeights() const { return kind == TextureKind::Heights; }
