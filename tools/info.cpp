@@ -153,18 +153,14 @@ private:
     // Metres per unit of a height file's lookup errors, when it records its height range; 0 otherwise
     // (stored units, or normal units for a normal map).
     static double metresPerUnit(const FileInfo& info) {
-        const auto layout = layoutFromAttribute(findAttribute(info, attr::layout.name));
-        const std::string range = findAttribute(info, attr::heightRange.name);
-        if (!layout || !isHeightLayout(*layout) || range.empty()) return 0.0;
-        const double metres = std::strtod(range.c_str(), nullptr);
-        return std::isfinite(metres) && metres > 0.0 ? metres : 0.0;
+        const TextureDescription& d = info.description;
+        return d.isHeights() ? d.units.heightRange.value_or(0.0) : 0.0;
     }
 
     // What a file's lookup errors are counted in when not metres: a normal map's components, else the
     // stored values.
     static const char* unitsOf(const FileInfo& info) {
-        const auto layout = layoutFromAttribute(findAttribute(info, attr::layout.name));
-        return layout && !isHeightLayout(*layout) ? "normal" : "stored";
+        return info.description.kind == TextureKind::Normals ? "normal" : "stored";
     }
 
     static nlohmann::json toJson(const FileInfo& info) {

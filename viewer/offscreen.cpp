@@ -149,8 +149,8 @@ int writeGridHeights(const ViewerOptions& o, Renderer& renderer, float time, GLu
     auto number = [](const char* name, float value) { return attribute(AttributeKey<float>{name}, value); };
     FlatImageOptions flat;
     flat.bits = 32;
-    flat.channelNames = {"Y", "Dx", "Dy"};
-    flat.attributes = {attribute(attr::layout, "grid heights"), attribute(attr::time, time),
+    flat.channelNames = {"Y", layerName::dx, layerName::dy};
+    flat.attributes = {attribute(attr::layout, attr::gridHeights), attribute(attr::time, time),
                        number("heightpack:cameraX", o.camera.position.x), number("heightpack:cameraY", o.camera.position.y),
                        number("heightpack:cameraZ", o.camera.position.z),
                        number("heightpack:pixelAngle", pixelAngle(o.camera, o.height)),
@@ -208,7 +208,7 @@ int renderOffscreen(ViewerOptions& o, const Scene& scene, Renderer& renderer, co
         for (size_t i = 0; i < rgb.size(); ++i) image.pixels[i] = rgb[i] / 255.0f;
         FlatImageOptions flat;
         flat.bits = 8;
-        flat.attributes = {attribute(attr::layout, "screenshot"), attribute(attr::time, time)};
+        flat.attributes = {attribute(attr::layout, attr::screenshot), attribute(attr::time, time)};
         const Status written = writeFlatImage(o.screenshot, image, flat);
         target.destroy();
         if (!written) return fail(written.error());

@@ -6,7 +6,8 @@
 
 #include "heightpack/bake/pack_job.hpp"
 #include "heightpack/io/files.hpp"
-#include "heightpack/io/info.hpp"
+#include "heightpack/io/height_sequence.hpp"
+#include "heightpack/io/pixel_type.hpp"
 #include "heightpack/io/read.hpp"
 #include "scene_displacement.hpp"
 #include "scene_foam.hpp"
@@ -29,27 +30,31 @@ void measure(const std::vector<Image>& levels, HeightFrame& frame) {
     frame.meanStored = levels.back().pixels[0];
 }
 
-// One file's chain into frame; fills the layer's wrap, mid value and timing from the first file.
+// One file's chain into frame; fills the layer's wrap and units from the first file.
 Status loadFrame(const std::string& path, const std::string& channelChoice, HeightLayer& layer, HeightFrame& frame,
                  bool first) {
     auto file = readViewerTexture(path);
     if (!file) return file.error();
-    const std::optional<Layout> layout = layoutFromAttribute(findAttribute(file->attributes, attr::layout));
-    auto units = readMapUnits(file->attributes, path);
-    if (!units) return units.error();
-    if (first) {
-        layer.loopPeriod = units->loopPeriod.value_or(0.0);
-        layer.units = *units;  // the file's own values: a texture goes up as stored
-    }
-    if (layout == Layout::Neighbour4 || layout == Layout::Plain) {
+    const TextureDescription& texture = file->description;
+    if (first) layer.units = texture.units;  // the file's own values: a texture goes up as stored
+    if (texture.isHeights()) {
         if (first) {
-            layer.wrap = findAttribute(file->attributes, attr::wrap).value_or(Wrap::Periodic);
-            layer.source = layout == Layout::Neighbour4 ? "packed texture" : "plain texture, packed in memory";
+            layer.wrap = texture.wrap;
+            layer.source = texture.layout == Layout::Neighbour4 ? "packed texture" : "plain texture, packed in memory";
         }
-        if (Status s = takeFoam(path, *file, frame); !s) return s;  // first: it leaves the channels as without foam
-        if (Status s = takeDisplacement(path, *file, layer.wrap, frame); !s) return s;
+        // An EXR's companions share its texels: split off, its levels keep the heights alone (R, G, B, A
+        // or Y), which then go up as floats (a half EXR's stored texels hold every channel; floats hold
+        // every half).
+        HeightChains split;
+        if (file->layers.empty() && (texture.channels.displacement() || texture.channels.hasFoam())) {
+            split = splitHeightChains(file->levels, texture.channels);
+            file->levels = split.heights;
+            file->stored.reset();
+        }
+        if (Status s = takeFoam(path, *file, split, frame); !s) return s;
+        if (Status s = takeDisplacement(path, *file, split, layer.wrap, frame); !s) return s;
         StoredChain stored = file->stored ? std::move(*file->stored) : storeFloats(file->levels);
-        if (layout == Layout::Neighbour4) {
+        if (texture.layout == Layout::Neighbour4) {
             if (stored.channels != 4) return badInput(path, "is marked neighbour4 but has no 4 channels", "pack it again");
             frame.plain = firstChannel(stored);
             frame.packed = std::move(stored);
@@ -60,6 +65,10 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
         measure(file->levels, frame);
         return Done{};
     }
+    // KTX2 and DDS hold what heightpack wrote; only heights are drawn as water.
+    if (const auto container = containerForPath(path); container && *container != Container::Exr)
+        return badInput(path, std::string("holds ") + describe(texture.kind) + ", not heights",
+                        "give a texture heightpack pack wrote");
     // A painted map: the same load, mip and pack as `heightpack pack` (periodic, kaiser).
     LoadOptions load;
     load.silenceDecoderMessages = true;
@@ -93,32 +102,26 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
 Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& channel) {
     HeightLayer layer;
     layer.path = path;
-    const std::vector<std::string> files = expandSequence(path);
-    for (size_t f = 0; f < files.size(); ++f) {
+    auto readFrame = [&](const std::string& file, size_t index) -> Result<SequenceFrame> {
         HeightFrame frame;
-        if (Status s = loadFrame(files[f], channel, layer, frame, f == 0); !s) return s.error();
-        if (f > 0 && (frame.packed.levels.size() != layer.frames[0].packed.levels.size() ||
-                      frame.packed.width != layer.frames[0].packed.width ||
-                      frame.packed.height != layer.frames[0].packed.height))
-            return badInput(files[f], "differs in size from the sequence's first frame", "make every frame the same size");
-        // The frames share one array texture on the GPU: one texel type for all.
-        const HeightFrame& first = f > 0 ? layer.frames[0] : frame;
-        if (frame.packed.kind != first.packed.kind || frame.plain.kind != first.plain.kind ||
-            frame.shiftX.kind != first.shiftX.kind || frame.foam.kind != first.foam.kind)
-            return badInput(files[f], "differs in pixel type from the sequence's first frame",
-                            "write every frame with the same pixel type");
-        if (f > 0 && frame.shiftX.levels.empty() != layer.frames[0].shiftX.levels.empty())
-            return badInput(files[f], "differs from the sequence's first frame in holding Dx, Dy",
-                            "make every frame with the displacement, or none");
-        if (f > 0 && frame.foam.levels.empty() != layer.frames[0].foam.levels.empty())
-            return badInput(files[f], "differs from the sequence's first frame in holding foam",
-                            "make every frame with foam, or none");
+        if (Status s = loadFrame(file, channel, layer, frame, index == 0); !s) return s.error();
+        SequenceFrame shape;
+        shape.width = frame.packed.width;
+        shape.height = frame.packed.height;
+        shape.levels = frame.packed.levels.size();
+        // The frames share one array texture on the GPU: one texel type for each chain.
+        for (const StoredChain* chain : {&frame.packed, &frame.plain, &frame.shiftX, &frame.foam})
+            shape.texelType = shape.texelType * 4 + static_cast<int>(chain->kind);
+        shape.displacement = !frame.shiftX.levels.empty();
+        shape.foam = !frame.foam.levels.empty();
+        shape.loopPeriod = index == 0 ? layer.units.loopPeriod : std::nullopt;
         layer.frames.push_back(std::move(frame));
-    }
-    if (files.size() > 1) {
-        layer.source += ", " + std::to_string(files.size()) + " frames";
-        if (layer.loopPeriod <= 0.0) layer.loopPeriod = files.size() / 4.0;  // untimed: 4 frames a second
-    }
+        return shape;
+    };
+    auto sequence = readHeightSequence(path, readFrame);
+    if (!sequence) return sequence.error();
+    layer.loopPeriod = sequence->loopPeriod;
+    if (sequence->files.size() > 1) layer.source += ", " + std::to_string(sequence->files.size()) + " frames";
     layer.minStored = layer.frames[0].minStored;
     layer.maxStored = layer.frames[0].maxStored;
     for (const HeightFrame& frame : layer.frames) {
@@ -149,7 +152,7 @@ Result<NormalMap> loadNormalMap(const std::string& path) {
     // colour-renderable format (16-bit snorm is not required to be): such a level goes up as floats.
     const bool keepStored = file->stored && !(file->levels.size() == 1 && file->stored->kind == ComponentKind::Snorm16);
     map.levels = keepStored ? std::move(*file->stored) : storeFloats(file->levels);
-    const bool directx = findAttribute(file->attributes, attr::convention) == NormalConvention::DirectX;
+    const bool directx = file->description.convention == NormalConvention::DirectX;
     map.greenSign = directx ? 1.0f : -1.0f;
     return map;
 }
@@ -170,7 +173,7 @@ Result<FresnelRamp> loadFresnelRamp(const std::string& path) {
                 if (i % 4 != 3) level.pixels[i] = static_cast<float>(srgbToLinear(level.pixels[i]));
         ramp.ramp = storeFloats({level});
     }
-    ramp.indexScale = findAttribute(file->attributes, attr::index) == FresnelIndex::TwoNdotV ? 2.0f : 1.0f;
+    ramp.indexScale = file->description.fresnelIndex == FresnelIndex::TwoNdotV ? 2.0f : 1.0f;
     return ramp;
 }
 

@@ -5,18 +5,18 @@
 #include <string>
 
 #include "heightpack/bake/pack_job.hpp"
+#include "heightpack/io/height_sequence.hpp"
 #include "scene.hpp"
 #include "texture_reader.hpp"
 
 namespace heightpack::view {
 
-// For a heightpack texture (layout neighbour4 or plain) that records heightpack:displacement: puts its
-// Dx, Dy into frame.shiftX / shiftY (packed, per level). An array texture's layers Dx, Dy go as stored (a
-// plain one's packed texel by texel); an EXR's channels go as floats, and file's levels are left holding
-// the heights alone (R, G, B, A or Y), as a texture without displacement has them (a half EXR's stored
-// texels are dropped: the heights then upload as floats, which hold every half). Does nothing for any
-// other file.
-Status takeDisplacement(const std::string& path, ViewerTexture& file, Wrap wrap, HeightFrame& frame);
+// For a heightpack height texture that holds Dx, Dy (its description's channels): puts them into
+// frame.shiftX / shiftY (packed, per level). An array texture's layers Dx, Dy go as stored (a plain one's
+// packed texel by texel); an EXR's go as floats, from split (its levels split by splitHeightChains).
+// Does nothing for any other file.
+Status takeDisplacement(const std::string& path, const ViewerTexture& file, const HeightChains& split, Wrap wrap,
+                        HeightFrame& frame);
 
 // For a map packed in memory: when the file at path has Dx, Dy channels, packs them as packHeights packed
 // its heights with the same options, into frame.shiftX / shiftY.

@@ -3,6 +3,7 @@
 #include <numeric>
 
 #include "heightpack/io/gpu_texture.hpp"
+#include "heightpack/io/info.hpp"
 #include "heightpack/io/pixel_type.hpp"
 
 namespace heightpack::view {
@@ -46,7 +47,7 @@ Result<ViewerTexture> readViewerTexture(const std::string& path) {
         auto gpu = readGpuTexture(path);
         if (!gpu) return gpu.error();
         texture.levels = std::move(gpu->levels);
-        texture.attributes = std::move(gpu->keyValues);
+        texture.description = std::move(gpu->description);
         texture.stored = storeGpuTexture(*gpu);
         if (gpu->layerNames.size() > 1) splitLayers(texture, gpu->layerNames);
         return texture;
@@ -54,10 +55,10 @@ Result<ViewerTexture> readViewerTexture(const std::string& path) {
     auto file = readTextureFile(path, true);
     if (!file) return file.error();
     texture.levels = std::move(file->levels);
-    texture.attributes = std::move(file->attributes);
-    texture.channelNames = std::move(file->channelNames);
-    if (file->pixelType == "half") texture.stored = storeFloats(texture.levels, ComponentKind::Float16);
-    texture.unitIntegers = file->pixelType != "float" && file->pixelType != "half";
+    texture.description = std::move(file->description);
+    const std::optional<PixelType> type = texture.description.pixelType;
+    if (type == PixelType::Half) texture.stored = storeFloats(texture.levels, ComponentKind::Float16);
+    texture.unitIntegers = type != PixelType::Float && type != PixelType::Half;
     return texture;
 }
 

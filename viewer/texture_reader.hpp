@@ -9,7 +9,7 @@
 
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
-#include "heightpack/io/info.hpp"
+#include "heightpack/io/texture_description.hpp"
 #include "stored_chain.hpp"
 
 namespace heightpack::view {
@@ -17,8 +17,9 @@ namespace heightpack::view {
 struct ViewerTexture {
     std::vector<Image> levels;          // level 0 first, every channel, mapped back to the file's values
     std::optional<StoredChain> stored;  // KTX2, DDS and half EXR: the texels as stored
-    Attributes attributes;              // the EXR header, KTX2 key/values, or what a DDS header records
-    std::vector<std::string> channelNames;  // of levels' channels, where the file names them (EXR)
+    // What its header says (EXR attributes, KTX2 key/values, a DDS record), typed; its channels are
+    // levels' channels (an EXR's, every channel) or, for an array, every layer's in turn.
+    TextureDescription description;
     // A KTX2 or DDS array texture (pack --displacement, --foam) is split into its layers: levels and stored
     // then hold layer 0, the heights, alone, as a texture without the other layers has them, and each
     // further layer (Dx, Dy, Foam) is here by name, its texels as stored, so it goes to the GPU in the

@@ -135,10 +135,10 @@ Status makeSynthesised(const SynthSource& sea, int frame, const std::string& int
     if (withD) to.displacementX = {first + 1, channels}, to.displacementY = {first + 2, channels};
     Ocean(sea.spectrum, threads).fieldsInto(t, to, 1.0, threads);
     FlatImageOptions flat;
-    if (withD) flat.channelNames = {"Y", "Dx", "Dy"};
+    if (withD) flat.channelNames = {"Y", layerName::dx, layerName::dy};
     if (foam) {
         for (size_t i = 0; i < image.texelCount(); ++i) image.pixels[i * channels + 3] = foam->pixels[i];
-        flat.channelNames.push_back("Foam");
+        flat.channelNames.push_back(layerName::foam);
     }
     flat.threads = threads;
     // The tile's size, as synth records it: the packed frame carries it (heights in metres, synthesised).

@@ -55,7 +55,7 @@ void scoreChain(ChainSeams seams, const Image& level0, const SeamOptions& seamOp
 }  // namespace
 
 double sampleQuantum(const SourceInfo& source) {
-    return source.pixelType == "uint8" ? 1.0 / 255 : source.pixelType == "uint16" ? 1.0 / 65535 : 0.0;
+    return source.integerBits > 0 ? 1.0 / double((1 << source.integerBits) - 1) : 0.0;
 }
 
 ChainSeams measureSeamChain(const Image& heights, const MipOptions& mip, double threshold, const SeamOptions& seams,
@@ -112,12 +112,12 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
         texture = std::move(*file);
     }
     if (texture && texture->levels.size() > 1) {
-        const std::string layout = findAttribute(texture->attributes, attr::layout);
-        report.kind = layout.empty() ? "texture" : layout;
-        if (layout == "neighbour4" && texture->levels[0].channels == 4) {
-            const Wrap wrap = findAttribute(texture->attributes, attr::wrap).value_or(Wrap::Periodic);
-            report.packing = checkPacking(texture->levels, wrap);
-        }
+        const TextureDescription& described = texture->description;
+        report.kind = described.layout ? attributeText(*described.layout)
+                      : described.kind == TextureKind::Image ? "texture"
+                                                             : layoutWord(described.kind);
+        if (described.layout == Layout::Neighbour4 && texture->levels[0].channels == 4)
+            report.packing = checkPacking(texture->levels, described.wrap);
         for (const Image& level : texture->levels) {
             chain.push_back(channelZero(level));
             // A NaN is bad input, not a seam: the verdict would be meaningless.
@@ -136,7 +136,7 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     if (!options.previewPath.empty()) {
         FlatImageOptions flat;
         flat.bits = 8;
-        flat.attributes = {attribute(attr::layout, "seamPreview"), attribute(attr::source, path),
+        flat.attributes = {attribute(attr::layout, attr::seamPreview), attribute(attr::source, path),
                            attribute(attr::threshold, static_cast<float>(options.threshold))};
         if (Status s = writeFlatImage(options.previewPath, seamPreview(chain[0], report.worst, options.threshold), flat);
             !s)

@@ -23,7 +23,7 @@ Status writeFresnelRamp(const std::string& output, const FresnelOptions& options
     flat.bits = format == RampFormat::Png8 ? 8 : 32;
     flat.srgbChannels = 3;  // the water colours; the reflectance in alpha stays linear
     flat.attributes = {
-        attribute(attr::layout, "fresnel"),
+        attribute(attr::layout, attr::fresnelRamp),
         attribute(attr::ior, static_cast<float>(options.ior)),
         attribute(attr::model, options.model),
         attribute(attr::index, options.index),

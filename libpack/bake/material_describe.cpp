@@ -23,13 +23,10 @@ Result<MaterialTexture> describeTexture(const std::string& folder, const std::st
     t.height = layout->levelSizes[0].second;
     t.levels = static_cast<int>(layout->levelSizes.size());
     t.frames = frames;
-    if (loopPeriod) {
-        const std::string period = findAttribute(layout->attributes, attr::loopPeriod);
-        *loopPeriod = period.empty() ? 0.0 : std::stod(period);
-    }
-    if (horizontalDisplacement)
-        *horizontalDisplacement = findAttribute(layout->attributes, attr::displacement) == "neighbour4";
-    if (foam) *foam = findAttribute(layout->attributes, attr::foam) == "neighbour4";
+    const TextureDescription& described = layout->description;
+    if (loopPeriod) *loopPeriod = described.units.loopPeriod.value_or(0.0);
+    if (horizontalDisplacement) *horizontalDisplacement = described.displacement == Layout::Neighbour4;
+    if (foam) *foam = described.foam == Layout::Neighbour4;
     return t;
 }
 

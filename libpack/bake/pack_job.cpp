@@ -175,7 +175,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     writeOptions.threads = options.mip.threads;
     writeOptions.writer = "heightpack " + options.version;
     // A painted 8- or 16-bit map lies on a 16-bit grid (8-bit k/255 = 257k/65535): uint16 keeps it.
-    if (!report.resized && (report.source.pixelType == "uint8" || report.source.pixelType == "uint16")) {
+    if (!report.resized && report.source.integerBits > 0) {
         writeOptions.gridOrigin = options.offset;
         writeOptions.gridSpan = options.scale;
     }
@@ -230,7 +230,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*stored);
     const auto record = [&](MipChainSource& c, bool packedChain) {
         c.attributes.insert(c.attributes.end(), errors.begin(), errors.end());
-        const char* laidOut = packedChain ? "neighbour4" : "plain";
+        const std::string laidOut = attributeText(packedChain ? Layout::Neighbour4 : Layout::Plain);
         if (displacement) c.attributes.push_back(attribute(attr::displacement, laidOut));
         if (foam) c.attributes.push_back(attribute(attr::foam, laidOut));
     };

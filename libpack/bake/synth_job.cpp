@@ -178,8 +178,8 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
         if (written != channels) compact = firstChannels(images[f], written, options.threads);
         const Image& image = written == channels ? images[f] : compact;
         FlatImageOptions flat;
-        if (withD) flat.channelNames = {"Y", "Dx", "Dy"};
-        if (options.foam) flat.channelNames.push_back("Foam");
+        if (withD) flat.channelNames = {"Y", layerName::dx, layerName::dy};
+        if (options.foam) flat.channelNames.push_back(layerName::foam);
         flat.bits = metres ? 32 : 16;
         flat.threads = options.threads;
         flat.compression = options.compression;

@@ -238,8 +238,7 @@ Result<TileReport> tileFile(const std::string& input, const std::string& output,
     progress("tile", 0.0);
 
     const std::string ext = lowerExtension(output);
-    const std::string& type = loaded->source.pixelType;
-    const int inputBits = type == "uint8" ? 8 : type == "uint16" ? 16 : 32;
+    const int inputBits = loaded->source.integerBits > 0 ? loaded->source.integerBits : 32;
     if (report.alreadyTiled && loaded->source.channels == 1 && lowerExtension(input) == ext) {
         // The file itself: bit-exact, metadata and all.
         report.after = report.before;

@@ -50,8 +50,9 @@ constexpr std::uint32_t kFourCCFlag = 0x4;
 constexpr std::uint32_t kCapsComplex = 0x8, kCapsTexture = 0x1000, kCapsMipMap = 0x400000;
 constexpr std::uint32_t kTexture2D = 3;
 
-// The record's layout codes, 1 and up, in this order; new layouts only ever join at the end.
-constexpr std::array<const char*, 5> kLayouts = {"neighbour4", "plain", "normal", "fresnel", "normalXY"};
+// The record's layout codes, 1 and up, in this order (the header's words); new layouts only ever join at the end.
+const std::array<const char*, 5> kLayouts = {attributeText(Layout::Neighbour4), attributeText(Layout::Plain),
+                                             attributeText(Layout::Rgb), attr::fresnelRamp, attributeText(Layout::Xy)};
 // The record's wrap codes, 1 and up, in this order (the names come from Wrap's table).
 constexpr std::array<const char*, 2> kWraps = {nameOf(Wrap::Periodic), nameOf(Wrap::Clamp)};
 
@@ -206,8 +207,13 @@ Result<GpuTexture> readDds(const std::string& path) {
     if (word(7) == kRecord && word(8) == 1) {
         const std::uint32_t layout = word(9), wrap = word(10);
         flags = word(13);
-        if (layout >= 1 && layout <= kLayouts.size()) t.keyValues.emplace_back(attr::layout.name, kLayouts[layout - 1]);
-        if (wrap >= 1 && wrap <= kWraps.size()) t.keyValues.emplace_back(attr::wrap.name, kWraps[wrap - 1]);
+        // Code 0: not recorded; a code past the tables is a damaged record.
+        if (layout > kLayouts.size() || wrap > kWraps.size())
+            return badInput(path, std::string("its heightpack record's ") + (layout > kLayouts.size() ? attr::layout.name : attr::wrap.name) +
+                                      " code " + std::to_string(layout > kLayouts.size() ? layout : wrap) + " is not one heightpack writes",
+                            "write the texture again");
+        if (layout >= 1) t.keyValues.emplace_back(attr::layout.name, kLayouts[layout - 1]);
+        if (wrap >= 1) t.keyValues.emplace_back(attr::wrap.name, kWraps[wrap - 1]);
         if (flags & kScaleOffsetFlag) {
             t.keyValues.emplace_back(attr::heightScale.name, floatText(bitsFloat(word(11))));
             t.keyValues.emplace_back(attr::heightOffset.name, floatText(bitsFloat(word(12))));

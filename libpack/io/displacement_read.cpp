@@ -13,17 +13,10 @@ namespace heightpack {
 
 namespace {
 
-int findChannel(const detail::SourceSpec& spec, const std::string& name) {
-    const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
-    return it == spec.channelnames.end() ? -1 : static_cast<int>(it - spec.channelnames.begin());
-}
-
-// The channels holding D(i,j) of level 0, x then y; {-1, -1} when the file has none.
-std::pair<int, int> displacementChannels(const detail::SourceSpec& spec) {
-    const std::string stored = spec.get_string_attribute(attr::displacement.name);
-    const std::string suffix = stored == "neighbour4" ? ".R" : "";  // R = D(i,j) of a packed layer
-    const int x = findChannel(spec, "Dx" + suffix), y = findChannel(spec, "Dy" + suffix);
-    return x >= 0 && y >= 0 ? std::pair{x, y} : std::pair{-1, -1};
+// The channels holding D(i,j) of level 0, x then y (R of a packed layer); {-1, -1} when the file has none.
+std::pair<int, int> displacementChannels(const TextureDescription& texture) {
+    const TextureChannels& c = texture.channels;
+    return c.displacement() ? std::pair{c.dx.front(), c.dy.front()} : std::pair{-1, -1};
 }
 
 }  // namespace
@@ -31,7 +24,9 @@ std::pair<int, int> displacementChannels(const detail::SourceSpec& spec) {
 bool hasDisplacement(const std::string& path) {
     detail::StderrSilencer quiet(true);
     auto opened = detail::openImage(path, detail::SizeLimits{});
-    return opened && displacementChannels((*opened)->spec()).first >= 0;
+    if (!opened) return false;
+    auto texture = detail::describeSpec(path, (*opened)->spec());
+    return texture && displacementChannels(*texture).first >= 0;
 }
 
 Result<Image> loadDisplacement(const std::string& path, const LoadOptions& options) {
@@ -40,7 +35,9 @@ Result<Image> loadDisplacement(const std::string& path, const LoadOptions& optio
     if (!opened) return opened.error();
     detail::ImageSource& in = **opened;
     const detail::SourceSpec spec = in.spec();
-    const auto [cx, cy] = displacementChannels(spec);
+    auto texture = detail::describeSpec(path, spec);
+    if (!texture) return texture.error();
+    const auto [cx, cy] = displacementChannels(*texture);
     if (cx < 0) {
         std::string list;
         for (const std::string& n : spec.channelnames) list += (list.empty() ? "" : ", ") + n;
@@ -56,10 +53,10 @@ Result<Image> loadDisplacement(const std::string& path, const LoadOptions& optio
         for (size_t i = 0; i < channel.size(); ++i) d.pixels[2 * i + k] = channel[i];
     }
     // A heightpack texture stores scale * D: D follows the heights' scale but not their offset.
-    if (!spec.get_string_attribute(attr::displacement.name).empty()) {
-        const float scale = spec.get_float_attribute(attr::heightScale.name, 1.0f);
-        if (scale != 0.0f && scale != 1.0f)
-            for (float& v : d.pixels) v /= scale;
+    if (texture->displacement) {
+        const double scale = texture->heightScale;
+        if (scale != 0.0 && scale != 1.0)
+            for (float& v : d.pixels) v = static_cast<float>(v / scale);
     }
     for (size_t t = 0; t < d.pixels.size(); ++t) {
         if (std::isfinite(d.pixels[t])) continue;

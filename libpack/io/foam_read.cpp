@@ -13,12 +13,9 @@ namespace heightpack {
 
 namespace {
 
-// The channel holding F(i,j) of level 0; -1 when the file has none.
-int foamChannel(const detail::SourceSpec& spec) {
-    const std::string stored = spec.get_string_attribute(attr::foam.name);
-    const std::string name = stored == "neighbour4" ? "Foam.R" : "Foam";  // R = F(i,j) of a packed layer
-    const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
-    return it == spec.channelnames.end() ? -1 : static_cast<int>(it - spec.channelnames.begin());
+// The channel holding F(i,j) of level 0 (R of a packed layer); -1 when the file has none.
+int foamChannel(const TextureDescription& texture) {
+    return texture.channels.hasFoam() ? texture.channels.foam.front() : -1;
 }
 
 }  // namespace
@@ -26,7 +23,9 @@ int foamChannel(const detail::SourceSpec& spec) {
 bool hasFoam(const std::string& path) {
     detail::StderrSilencer quiet(true);
     auto opened = detail::openImage(path, detail::SizeLimits{});
-    return opened && foamChannel((*opened)->spec()) >= 0;
+    if (!opened) return false;
+    auto texture = detail::describeSpec(path, (*opened)->spec());
+    return texture && foamChannel(*texture) >= 0;
 }
 
 Result<Image> loadFoam(const std::string& path, const LoadOptions& options) {
@@ -35,7 +34,9 @@ Result<Image> loadFoam(const std::string& path, const LoadOptions& options) {
     if (!opened) return opened.error();
     detail::ImageSource& in = **opened;
     const detail::SourceSpec spec = in.spec();
-    const int c = foamChannel(spec);
+    auto texture = detail::describeSpec(path, spec);
+    if (!texture) return texture.error();
+    const int c = foamChannel(*texture);
     if (c < 0) {
         std::string list;
         for (const std::string& n : spec.channelnames) list += (list.empty() ? "" : ", ") + n;

@@ -103,4 +103,12 @@ Status readPixels(ImageSource& in, const std::string& path, int level, int chBeg
     return Done{};
 }
 
+Result<TextureDescription> describeSpec(const std::string& path, const SourceSpec& spec) {
+    // Float in an EXR, text in a PNG: heightpack's attributes as text, read into typed values once.
+    Attributes recorded;
+    for (const SourceAttribute& p : spec.extra_attribs)
+        if (p.name.rfind(attr::kPrefix, 0) == 0) recorded.emplace_back(p.name, p.text);
+    return describeTexture(path, recorded, spec.channelnames, spec.format);
+}
+
 }  // namespace heightpack::detail

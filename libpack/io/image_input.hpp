@@ -8,6 +8,7 @@
 
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/read.hpp"
+#include "heightpack/io/texture_description.hpp"
 
 #include "image_source.hpp"
 
@@ -67,5 +68,9 @@ Result<OpenedImage> openImage(const std::string& path, const SizeLimits& limits)
 // missing strips and fills them with zeros).
 Status readPixels(ImageSource& in, const std::string& path, int level, int chBegin, int chEnd,
                   float* dst, const std::string& what = "is damaged or truncated");
+
+// What spec's header says (its heightpack:* attributes, channel names and sample type), typed; BadInput
+// naming path and the key for a damaged value.
+Result<TextureDescription> describeSpec(const std::string& path, const SourceSpec& spec);
 
 }  // namespace heightpack::detail

@@ -1,6 +1,4 @@
 #include "heightpack/io/info.hpp"
-#include "heightpack/io/map_units.hpp"
-
 
 #include <algorithm>
 #include <cmath>
@@ -32,31 +30,10 @@ Result<detail::OpenedImage> openTexture(const std::string& path, TextureHeader& 
     header.tileWidth = top.tile_width;
     header.tileHeight = top.tile_height;
     for (const detail::SourceAttribute& p : top.extra_attribs) header.attributes.emplace_back(p.name, p.text);
+    auto description = describeTexture(path, header.attributes, header.channelNames, header.pixelType);
+    if (!description) return description.error();
+    header.description = std::move(*description);
     return in;
-}
-
-// Bytes per component of a pixel type as OpenImageIO or heightpack's reader names it.
-size_t componentBytes(const std::string& pixelType) {
-    if (pixelType == "half" || pixelType == "uint16" || pixelType == "int16") return 2;
-    if (pixelType == "uint8" || pixelType == "int8") return 1;
-    if (pixelType == "double") return 8;
-    return 4;
-}
-
-// The per-level lookup errors a file records (attr::lookupError), or none.
-std::vector<double> recordedLookupErrors(const Attributes& attributes) {
-    std::vector<double> errors;
-    const std::string text = findAttribute(attributes, attr::lookupError);
-    const char* p = text.c_str();
-    while (*p) {
-        char* end = nullptr;
-        const double v = std::strtod(p, &end);
-        if (end == p || !std::isfinite(v) || v < 0) return {};  // not ours, or damaged: report nothing
-        errors.push_back(v);
-        p = *end == ',' ? end + 1 : end;
-        if (*end != ',' && *end != '\0') return {};
-    }
-    return errors;
 }
 
 }  // namespace
@@ -108,13 +85,10 @@ Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDec
 Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages) {
     auto file = readTextureFile(path, silenceDecoderMessages);
     if (!file) return file.error();
-    // The recorded world (tile size, height range and scale, loop period, time) read as numbers, so a
-    // damaged value is bad input here as in pack and the viewer, never printed as if it were one.
-    if (auto units = readMapUnits(file->attributes, path); !units) return units.error();
     FileInfo info;
     static_cast<TextureHeader&>(info) = *file;
-    const std::vector<double> errors = recordedLookupErrors(file->attributes);
-    const bool floatTexels = file->pixelType == "float";
+    const std::vector<double>& errors = file->description.lookupErrors;
+    const bool floatTexels = file->description.pixelType == PixelType::Float;
     for (const Image& image : file->levels) {
         LevelInfo level;
         level.width = image.width;
@@ -123,7 +97,7 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
         const size_t layers = std::max<size_t>(1, file->layerNames.size());
         const int perLayer = image.channels / int(layers);
         level.gpuBytes = image.texelCount() * layers * size_t(perLayer == 3 ? 4 : perLayer) *
-                         componentBytes(file->pixelType);
+                         size_t(file->description.componentBytes);
         const size_t index = info.levels.size();
         if (floatTexels) level.lookupError = 0.0;  // the float chain itself
         else if (errors.size() == file->levels.size()) level.lookupError = errors[index];

@@ -10,7 +10,9 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <numeric>
@@ -300,11 +302,19 @@ Result<GpuTexture> readKtx2(const std::string& path) {
     if (layerCount > 1) t.layerNames = layerNamesOf(findAttribute(t.keyValues, attr::layers), layerCount);
     const std::string off = findAttribute(t.keyValues, kOffsetKey), scale = findAttribute(t.keyValues, kScaleKey);
     if (f.kind == ComponentKind::Unorm16 && !off.empty() && !scale.empty()) {
-        try {
-            t.normalisation = Normalisation{std::stof(off), std::stof(scale)};
-        } catch (const std::exception&) {
-            return corrupt("its normalisation key/values are not numbers");
+        // Read before the levels are decoded through them, so checked here rather than by describeTexture.
+        float value[2];
+        for (int k = 0; k < 2; ++k) {
+            const std::string& text = k == 0 ? off : scale;
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || std::abs(v) > 1e30)
+                return badInput(path, std::string("its ") + (k == 0 ? kOffsetKey : kScaleKey) + " metadata '" +
+                                          text.substr(0, 64) + "' is not a finite number",
+                                "remove or correct that metadata in the file");
+            value[k] = float(v);
         }
+        t.normalisation = Normalisation{value[0], value[1]};
     }
 
     for (int level = 0; level < levels; ++level) {

@@ -7,9 +7,9 @@ namespace heightpack {
 
 namespace {
 
-enum class Kind { Length, Number };
+enum class Kind { Positive, Number };
 
-// The recorded value of key, if any: the whole text one finite number (positive for a length).
+// The recorded value of key, if any: the whole text one finite number (positive for a length or a loop period).
 Result<std::optional<double>> recorded(const Attributes& attributes, AttributeKey<float> key, Kind kind,
                                        const std::string& path) {
     const std::string text = findAttribute(attributes, key);
@@ -17,10 +17,10 @@ Result<std::optional<double>> recorded(const Attributes& attributes, AttributeKe
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     const bool number = end != text.c_str() && *end == '\0' && std::isfinite(v) && std::abs(v) <= 1e30;
-    if (!number || (kind == Kind::Length && !(v > 0.0)))
+    if (!number || (kind == Kind::Positive && !(v > 0.0)))
         return badInput(path,
                         std::string("its ") + key.name + " metadata '" + text.substr(0, 64) + "' is not " +
-                            (kind == Kind::Length ? "a positive number" : "a finite number"),
+                            (kind == Kind::Positive ? "a positive number" : "a finite number"),
                         "remove or correct that metadata in the file");
     return std::optional<double>{v};
 }
@@ -34,21 +34,15 @@ Result<MapUnits> readMapUnits(const Attributes& attributes, const std::string& p
         Kind kind;
         std::optional<double>* to;
     };
-    std::optional<double> heightScale;
-    for (const Field& f : {Field{attr::tileWidth, Kind::Length, &units.tileWidth},
-                           Field{attr::tileHeight, Kind::Length, &units.tileHeight},
-                           Field{attr::heightRange, Kind::Length, &units.heightRange},
-                           Field{attr::loopPeriod, Kind::Number, &units.loopPeriod},
-                           Field{attr::time, Kind::Number, &units.time},
-                           Field{attr::heightScale, Kind::Number, &heightScale}}) {
+    for (const Field& f : {Field{attr::tileWidth, Kind::Positive, &units.tileWidth},
+                           Field{attr::tileHeight, Kind::Positive, &units.tileHeight},
+                           Field{attr::heightRange, Kind::Positive, &units.heightRange},
+                           Field{attr::loopPeriod, Kind::Positive, &units.loopPeriod},
+                           Field{attr::time, Kind::Number, &units.time}}) {
         auto value = recorded(attributes, f.key, f.kind, path);
         if (!value) return value.error();
         *f.to = *value;
     }
-    // synth writes metres = heightOffset + heightScale * value (heightScale 1 in a float EXR, which a
-    // manifest's synthesised frames leave out).
-    if (!units.heightRange && findAttribute(attributes, attr::layout) == attr::synthesised)
-        units.heightRange = heightScale.value_or(1.0);
     return units;
 }
 

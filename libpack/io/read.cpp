@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "heightpack/io/attributes.hpp"
+#include "heightpack/io/texture_description.hpp"
 
 #include "image_input.hpp"
 #include "input_format.hpp"
@@ -72,18 +73,6 @@ std::string channelList(const detail::SourceSpec& spec) {
     return list;
 }
 
-// A number the file records: a float in an EXR header, text in a PNG or TIFF.
-std::optional<double> recordedNumber(const detail::SourceSpec& spec, const char* name) {
-    const detail::SourceAttribute* p = spec.find_attribute(name);
-    if (!p) return std::nullopt;
-    if (p->isFloat) return p->number;
-    const std::string text = p->text;
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() || !std::isfinite(v)) return std::nullopt;
-    return v;
-}
-
 std::string numberText(double v) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", v);
@@ -104,40 +93,33 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     src.path = path;
     src.format = in->format_name();
     src.pixelType = spec.format.c_str();
+    src.integerBits = src.pixelType == "uint8" ? 8 : src.pixelType == "uint16" ? 16 : 0;
     src.width = spec.width;
     src.height = spec.height;
     src.channels = spec.nchannels;
-    // Float in an EXR, text in a PNG: heightpack's attributes as text, read into numbers once.
-    Attributes recordedText;
-    for (const detail::SourceAttribute& p : spec.extra_attribs)
-        if (p.name.rfind(attr::kPrefix, 0) == 0) recordedText.emplace_back(p.name, p.text);
-    auto units = readMapUnits(recordedText, path);
-    if (!units) return units.error();
-    src.units = *units;
+    auto described = detail::describeSpec(path, spec);
+    if (!described) return described.error();
+    const TextureDescription& texture = *described;
+    src.units = texture.units;
 
     const int colourChannels = spec.nchannels - (spec.alpha_channel >= 0 ? 1 : 0);
     const bool colour = colourChannels > 1;
     // A texture heightpack wrote: packed (R = H(i,j)) or plain (Y), its values recorded as offset + scale * value.
-    const std::string layout = spec.get_string_attribute(attr::layout.name);
-    const bool heightTexture = layout == "neighbour4" || layout == "plain";
-    const auto findName = [&](const char* name) {
-        const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
-        return it == spec.channelnames.end() ? -1 : static_cast<int>(it - spec.channelnames.begin());
-    };
+    const bool heightTexture = texture.isHeights();
     int channel = 0;
     bool luma = false;
     switch (options.channel) {
         case ChannelSelect::Auto:
-            if (const auto known = layoutFromAttribute(layout); known && !isHeightLayout(*known))
+            if (texture.kind == TextureKind::Normals)
                 return badInput(path, "is a normal map heightpack wrote, not a height map",
                                 "give the height map it was made from");
             if (heightTexture) {
-                channel = std::max(0, findName(layout == "neighbour4" ? "R" : "Y"));
+                channel = texture.channels.heights.front();  // R = H(i,j) of a packed texel
                 break;
             }
             // A height with companions (synth's displacement) names its height channel Y.
-            if (const int y = findName("Y"); colour && y >= 0) {
-                channel = y;
+            if (colour && !texture.channels.heights.empty()) {
+                channel = texture.channels.heights.front();
                 break;
             }
             if (colour) {
@@ -182,11 +164,11 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
     // Values back from a heightpack texture: value = (stored - offset) / scale.
     double scale = 1.0, offset = 0.0;
     if (heightTexture && !luma) {
-        scale = recordedNumber(spec, attr::heightScale.name).value_or(1.0);
-        offset = recordedNumber(spec, attr::heightOffset.name).value_or(0.0);
+        scale = texture.heightScale;
+        offset = texture.heightOffset;
         if (scale == 0.0) scale = 1.0;
         if (src.units.heightRange) *src.units.heightRange *= scale;  // metres per unit of the values returned
-        src.channelNote = std::string(layout == "neighbour4" ? "packed" : "plain") + " heightpack texture: heights from '" +
+        src.channelNote = std::string(texture.layout == Layout::Neighbour4 ? "packed" : "plain") + " heightpack texture: heights from '" +
                           src.channelUsed + "' of level 0, mapped back to values through its heightScale " +
                           numberText(scale) + " and heightOffset " + numberText(offset);
     }

@@ -50,7 +50,9 @@ MipChainSource content(int width, int height, int channels, int layers) {
     } else {
         c.fillRows = [fill](int level, int y0, int rows, float* dst) { fill(0, level, y0, rows, dst); };
     }
-    c.attributes = {{"heightpack:layout", std::string("plain")}};
+    // The layout pack would record for such texels (four channels are packed heights), so a reader that
+    // holds the header to its schema reads the file.
+    c.attributes = {{"heightpack:layout", std::string(channels == 4 ? "neighbour4" : "plain")}};
     return c;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "heightpack/io/attributes.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/texture_write.hpp"
 #include "support/heightpack_process.hpp"
@@ -44,7 +45,7 @@ MipChainSource xyContent(int width, int height) {
                 *dst++ = float(0.8 * std::sin(a));
             }
     };
-    c.attributes = {{"heightpack:layout", std::string("xy")}, {"heightpack:tileWidth", 8.0f}};
+    c.attributes = {{"heightpack:layout", std::string(attributeText(Layout::Xy))}, {"heightpack:tileWidth", 8.0f}};
     return c;
 }
 

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/image.hpp"
@@ -38,6 +39,12 @@ inline constexpr const char* kPrefix = "heightpack:";  // every key below starts
 inline constexpr AttributeKey<std::string> layout{"heightpack:layout"};
 // The layout word of synth's seas: heights in metres = heightOffset + heightScale * value.
 inline constexpr const char* synthesised = "synthesised";
+// The layout words of the other files heightpack writes: Fresnel ramps, check's seam previews, and
+// heightpack-view's captures (its grid's heights, a screenshot).
+inline constexpr const char* fresnelRamp = "fresnel";
+inline constexpr const char* seamPreview = "seamPreview";
+inline constexpr const char* gridHeights = "grid heights";
+inline constexpr const char* screenshot = "screenshot";
 inline constexpr AttributeKey<std::string> version{"heightpack:version"};
 inline constexpr AttributeKey<float> texelCentre{"heightpack:texelCentre"};
 inline constexpr AttributeKey<std::string> source{"heightpack:source"};  // the input's file name
@@ -154,6 +161,25 @@ inline const char* attributeText(Layout layout) {
 // The layout a header's word names; nullopt for other words (fresnel, synthesised, ...).
 inline std::optional<Layout> layoutFromAttribute(std::string_view text) {
     for (const EnumName<Layout>& e : NameTable<Layout>::entries)
+        if (text == attributeText(e.value)) return e.value;
+    return std::nullopt;
+}
+
+// A header's attributes as text, in the order the file lists them (a float as %g).
+using Attributes = std::vector<std::pair<std::string, std::string>>;
+
+// The value of the attribute called name, or empty.
+std::string findAttribute(const Attributes& attributes, const std::string& name);
+// The text of a schema key, or empty.
+template <class T>
+std::string findAttribute(const Attributes& attributes, AttributeKey<T> key) {
+    return findAttribute(attributes, key.name);
+}
+
+// The enum value a header's word names (attributeText's inverse); nullopt for any other word.
+template <class E>
+std::optional<E> enumFromAttribute(std::string_view text) {
+    for (const EnumName<E>& e : NameTable<E>::entries)
         if (text == attributeText(e.value)) return e.value;
     return std::nullopt;
 }

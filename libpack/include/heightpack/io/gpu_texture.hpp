@@ -76,6 +76,10 @@ struct GpuTexture {
     std::vector<Image> levels;
     std::optional<Normalisation> normalisation;  // how uint16 texels were mapped, when recorded
     Attributes keyValues;  // KTX2: every key/value, in file order; DDS: what its header records
+    // Its channels named as the EXR holding the same layers names them (R, G, B, A or Y, then Dx.R ...),
+    // and what its key/values say, typed (readGpuTexture fails on a damaged one).
+    std::vector<std::string> channelNames;
+    TextureDescription description;
 };
 
 // Reads a KTX2 or DDS file (by extension) that holds one of the formats above. Fails with BadInput

@@ -10,6 +10,7 @@
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/attributes.hpp"
+#include "heightpack/io/texture_description.hpp"
 
 namespace heightpack {
 
@@ -33,13 +34,11 @@ struct LevelInfo {
     std::optional<double> lookupError;
 };
 
-using Attributes = std::vector<std::pair<std::string, std::string>>;
-
 // What a texture file's header says.
 struct TextureHeader {
     std::string path;
     std::string format;     // OpenImageIO's format name
-    std::string pixelType;  // of the file's channels: "float", "half", "uint16", ...
+    std::string pixelType;  // the decoder's word for its samples, for reports: "float", "half", "uint16", "uint8", ...
     std::vector<std::string> channelNames;
     // An array texture's layers (KTX2, DDS), in order; empty for a single texture. Its channels are then
     // named as the EXR holding the same layers names them: the heights' R, G, B, A (Y when plain), then
@@ -48,7 +47,8 @@ struct TextureHeader {
     bool tiled = false;
     int tileWidth = 0;
     int tileHeight = 0;
-    Attributes attributes;  // header metadata, as text
+    Attributes attributes;  // header metadata, as text, for reports
+    TextureDescription description;  // what the header says, typed: what every reader asks
 };
 
 // A file's header and per-level statistics.
@@ -74,22 +74,8 @@ Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDec
 // readTextureFile, summarised: per-level, per-channel statistics instead of pixels.
 Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages = false);
 
-// The value of the attribute called name, or empty.
-std::string findAttribute(const Attributes& attributes, const std::string& name);
 inline std::string findAttribute(const FileInfo& info, const std::string& name) {
     return findAttribute(info.attributes, name);
-}
-// The text of a schema key (see attributes.hpp), or empty.
-inline std::string findAttribute(const Attributes& attributes, AttributeKey<std::string> key) {
-    return findAttribute(attributes, key.name);
-}
-inline std::string findAttribute(const Attributes& attributes, AttributeKey<float> key) {
-    return findAttribute(attributes, key.name);
-}
-// The value of an enum key through its table; nullopt when absent or not a name the table lists.
-template <class E>
-std::optional<E> findAttribute(const Attributes& attributes, AttributeKey<E> key) {
-    return parseName<E>(findAttribute(attributes, key.name));
 }
 
 }  // namespace heightpack

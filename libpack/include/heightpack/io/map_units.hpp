@@ -7,7 +7,7 @@
 #include <string>
 
 #include "heightpack/core/result.hpp"
-#include "heightpack/io/info.hpp"
+#include "heightpack/io/attributes.hpp"
 
 namespace heightpack {
 
@@ -17,14 +17,15 @@ struct MapUnits {
     std::optional<double> tileWidth, tileHeight;
     // Metres between a height of 0 and a height of 1 of the file's values: heightpack:heightRange where
     // recorded (packed, plain and normal maps), else for a synthesised sea its heightScale (its values are
-    // metres = heightOffset + heightScale * value: 1 in a float EXR). Absent: the file does not say.
+    // metres = heightOffset + heightScale * value: 1 in a float EXR; describeTexture fills that in).
+    // Absent: the file does not say.
     std::optional<double> heightRange;
     // Seconds a looping sequence spans, and where this frame sits in it (heightpack:loopPeriod, :time).
     std::optional<double> loopPeriod, time;
 };
 
-// The units attributes records. A recorded value that is no number, not finite, or (for the lengths)
-// not positive is damaged metadata: BadInput naming path and the attribute.
+// The units attributes records. A recorded value that is no number, not finite, or (for the lengths and the loop
+// period) not positive is damaged metadata: BadInput naming path and the attribute.
 Result<MapUnits> readMapUnits(const Attributes& attributes, const std::string& path);
 
 }  // namespace heightpack

@@ -52,7 +52,10 @@ struct LoadOptions {
 struct SourceInfo {
     std::string path;
     std::string format;     // OpenImageIO's format name: "png", "openexr", "tiff", ...
-    std::string pixelType;  // "uint8", "uint16", "half", "float", ...
+    std::string pixelType;  // the decoder's word for its samples, for reports: "uint8", "uint16", "half", "float", ...
+    // 8 or 16 for unsigned integer samples (values on a grid of 1/255 or 1/65535 before any scale); 0 for
+    // anything else (floats).
+    int integerBits = 0;
     int width = 0;
     int height = 0;
     int channels = 0;

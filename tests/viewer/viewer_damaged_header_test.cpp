@@ -1,0 +1,38 @@
+// heightpack-view given a texture from pack with one header value damaged (issue 38): bad input, exit 3,
+// one line naming the file and the key, and nothing drawn; the undamaged file draws.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include "support/damaged_header.hpp"
+#include "support/heightpack_process.hpp"
+#include "viewer_support.hpp"
+
+using namespace heightpack::test;
+
+TEST(ViewerDamagedHeader, RefusesEachDamagedKeyNamingTheFileAndTheKeyAndDrawsNothing) {
+    ScratchDir dir;
+    ASSERT_EQ(heightpackRun({"synth", "--wind", "10", "--tile-size", "64m", "--size", "32", "--frames", "2", "--loop", "12s",
+                             "-o", dir.file("seq.exr"), "-q"}).code, 0);
+    for (const char* ext : {".exr", ".ktx2", ".dds"})
+        ASSERT_EQ(heightpackRun({"pack", dir.file("seq.0000.exr"), "--scale", "0.25", "-o", dir.file(std::string("good") + ext), "-q"}).code, 0);
+    const ViewRun good = viewWithoutDisplay({dir.file("good.ktx2"), "--screenshot", dir.file("good.png")});
+    ASSERT_EQ(good.code, 0) << good.err;
+    ASSERT_TRUE(std::filesystem::exists(dir.file("good.png")));
+    int cases = 0;
+    for (const HeaderDamage& damage : headerDamages()) {
+        SCOPED_TRACE(damage.name());
+        const std::string path = dir.file("damaged" + std::to_string(cases++) + damage.ext);
+        std::filesystem::copy_file(dir.file("good" + damage.ext), path);
+        damageHeader(path, damage);
+        const std::string shot = dir.file("shot" + std::to_string(cases) + ".png");
+        const ViewRun r = viewWithoutDisplay({path, "--screenshot", shot});
+        EXPECT_EQ(r.code, 3) << r.err;
+        EXPECT_EQ(r.err.rfind("heightpack-view: error: " + path, 0), 0u) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_NE(r.err.find(damage.key), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(shot));
+    }
+}
