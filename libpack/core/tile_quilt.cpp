@@ -247,21 +247,30 @@ QuiltResult quiltAtOwnSize(const Image& map, const QuiltOptions& options) {
 
 }  // namespace
 
-QuiltResult quiltTile(const Image& map, const QuiltOptions& options) {
-    const detail::Enlargement e = options.atSourceSize ? detail::findEnlargement(map, options.quantum, options.threads)
-                                                       : detail::Enlargement{};
+namespace {
+
+// isSource: map is an enlarged map's source, taken for an enlargement in turn by a source's rules, so a
+// composed enlargement (8x, then 4x) is quilted at its first source's size.
+QuiltResult quiltAtSourceSize(const Image& map, const QuiltOptions& options, bool isSource) {
+    const detail::Enlargement e = detail::findEnlargement(map, options.quantum, options.threads, isSource);
     if (e.factor == 1) return quiltAtOwnSize(map, options);
     const SampleRange range = sampleRange(map, options.threads);
     const Image source = detail::roundedSource(map, e, options.quantum, range, options.threads);
-    QuiltResult result = quiltAtOwnSize(source, options);
+    QuiltResult result = quiltAtSourceSize(source, options, true);
     result.map = detail::enlargedTile(map, source, result.map, e, (result.bandX + 1) / 2 + 1, (result.bandY + 1) / 2 + 1, range,
                                       options.threads);
     // The texels changed: those enlargedTile takes from the source's tile.
-    result.enlargement = e.factor;
+    result.enlargement *= e.factor;
     result.bandX = std::min(map.width, 2 * ((result.bandX + 1) / 2 + 1 + detail::kEnlargedTileReach) * e.factor);
     result.bandY = std::min(map.height, 2 * ((result.bandY + 1) / 2 + 1 + detail::kEnlargedTileReach) * e.factor);
     for (int* offset : {&result.sourceX[0], &result.sourceX[1], &result.sourceY[0], &result.sourceY[1]}) *offset *= e.factor;
     return result;
+}
+
+}  // namespace
+
+QuiltResult quiltTile(const Image& map, const QuiltOptions& options) {
+    return options.atSourceSize ? quiltAtSourceSize(map, options, false) : quiltAtOwnSize(map, options);
 }
 
 }  // namespace heightpack

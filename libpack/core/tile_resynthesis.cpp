@@ -181,10 +181,12 @@ Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads, bool
     // 0. An enlarged map (a painting resized before packing) is re-synthesised at its source's resolution
     //    and the result enlarged the same way: a Gaussian model of the enlarged map itself carries finer
     //    grain than the smooth map around the bands shows, and costs factor^2 more.
-    if (!asSource) s.enlargement = detail::findEnlargement(map, quantum, threads);
+    //    A source that is itself an enlargement (a painting made at 64, enlarged 8x, then the whole 4x) is
+    //    re-synthesised at its own source's size in turn: a model of it would put the grain the map lacks.
+    s.enlargement = detail::findEnlargement(map, quantum, threads, asSource);
     if (s.enlargement.factor > 1) {
         s.source = detail::roundedSource(map, s.enlargement, quantum, s.mapRange, threads);
-        s.ofSource.reset(new Resynthesiser(s.source, quantum, threads, true));
+        s.ofSource.reset(new Resynthesiser(s.source, quantum, threads, true));  // composes
         return;
     }
     const bool terraced = quantum > 0 && detail::hasTerraces(map, threads);
