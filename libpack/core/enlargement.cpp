@@ -215,11 +215,23 @@ Image enlargedTile(const Image& map, const Image& source, const Image& sourceTil
     return out;
 }
 
-Image roundedSource(const Image& map, Enlargement e, double quantum, SampleRange range, int threads) {
+Image roundedSource(const Image& map, Enlargement e, double& quantum, SampleRange range, int threads) {
     Image source = fitSource(map, e, threads);
-    for (float& v : source.pixels)
-        v = std::clamp(quantum > 0 ? static_cast<float>(std::round(v / quantum) * quantum) : v, range.low, range.high);
+    // On 8-bit levels: a fit's value within a tenth of a step of one, where a value off them would be one
+    // time in five. The enlargement's own rounding (16 bits) moves a fit's value by far less.
+    constexpr double kEightBits = 1.0 / 255;
+    if (quantum < kEightBits) {
+        size_t on = 0;
+        for (float v : source.pixels) on += std::abs(v / kEightBits - std::round(v / kEightBits)) < 0.1;
+        if (double(on) >= 0.9 * double(source.pixels.size())) quantum = kEightBits;
+    }
+    putOnLevels(source, quantum, range);
     return source;
+}
+
+void putOnLevels(Image& image, double quantum, SampleRange range) {
+    for (float& v : image.pixels)
+        v = std::clamp(quantum > 0 ? static_cast<float>(std::round(v / quantum) * quantum) : v, range.low, range.high);
 }
 
 Enlargement findEnlargement(const Image& map, double quantum, int threads, bool isSource) {

@@ -50,7 +50,14 @@ Image enlarge(const Image& source, Enlargement e, bool periodic, int threads);
 Image enlargedTile(const Image& map, const Image& source, const Image& sourceTiled, Enlargement e, int reachX, int reachY,
                    SampleRange range, int threads);
 
-// map's source under e (fitSource) on map's levels (quantum; 0 for float) and within range.
-Image roundedSource(const Image& map, Enlargement e, double quantum, SampleRange range, int threads);
+// image's values on levels of quantum (0: as they are) and within range. A source's tile goes to the source's
+// levels before it is enlarged: the map was made from a source so stored, whose rounding it shows smoothed
+// (a band made of values between the levels would lack that fine detail: a frame).
+void putOnLevels(Image& image, double quantum, SampleRange range);
+
+// map's source under e (fitSource) within range, on its own levels: 8-bit ones where nearly every value
+// of the fit lies on them (a painting made in 8 bits, enlarged and stored in 16 bits or float), else map's
+// (quantum; 0 for float). quantum becomes the source's.
+Image roundedSource(const Image& map, Enlargement e, double& quantum, SampleRange range, int threads);
 
 }  // namespace heightpack::detail

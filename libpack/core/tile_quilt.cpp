@@ -255,8 +255,10 @@ QuiltResult quiltAtSourceSize(const Image& map, const QuiltOptions& options, boo
     const detail::Enlargement e = detail::findEnlargement(map, options.quantum, options.threads, isSource);
     if (e.factor == 1) return quiltAtOwnSize(map, options);
     const SampleRange range = sampleRange(map, options.threads);
-    const Image source = detail::roundedSource(map, e, options.quantum, range, options.threads);
-    QuiltResult result = quiltAtSourceSize(source, options, true);
+    QuiltOptions atSource = options;
+    const Image source = detail::roundedSource(map, e, atSource.quantum, range, options.threads);
+    QuiltResult result = quiltAtSourceSize(source, atSource, true);
+    detail::putOnLevels(result.map, atSource.quantum, range);
     result.map = detail::enlargedTile(map, source, result.map, e, (result.bandX + 1) / 2 + 1, (result.bandY + 1) / 2 + 1, range,
                                       options.threads);
     // The texels changed: those enlargedTile takes from the source's tile.

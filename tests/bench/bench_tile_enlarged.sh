@@ -36,8 +36,9 @@ for src in $sources; do
       if [ -s "$work/out.png" ]; then
         method=$("$hp" info "$work/out.png" | sed -nE 's/.*tileMethod[^a-z]*([a-z+]+).*/\1/p' | head -1)
         look=$("$hp" check "$work/out.png" | grep -oE "frame [0-9.]+, blobs [0-9.]+, echo [0-9.-]+" | head -1)
+        method=${method:-none}  # the map tiled already: copied
       else
-        method="(none)" look=""
+        method="(nothing)" look=""
       fi
       echo "$method" >>"$work/methods"
       printf "%-28s %-7s %-12s %-40s %7.2f %6d\n" "$base" "${factor}x-$filter" "$method" "$look" "$wall" "$((peak / 1024))"

@@ -300,10 +300,11 @@ TEST(Enlargement, ComposedEnlargementsAreFoundStepByStep) {
         const detail::Enlargement outer = detail::findEnlargement(c.map, c.quantum, 0);
         bool ok = outer.factor == c.second;
         if (ok) {
-            const Image source = detail::roundedSource(c.map, outer, c.quantum, sampleRange(c.map, 0), 0);
+            double quantum = c.quantum;
+            const Image source = detail::roundedSource(c.map, outer, quantum, sampleRange(c.map, 0), 0);
             // A source is examined whatever its size; the given map's floor does not apply to it.
-            ok = detail::findEnlargement(source, c.quantum, 0, true).factor == c.first &&
-                 detail::findEnlargement(source, c.quantum, 0).factor == 1;
+            ok = detail::findEnlargement(source, quantum, 0, true).factor == c.first &&
+                 detail::findEnlargement(source, quantum, 0).factor == 1;
         }
         found += ok;
         if (!ok) std::printf("not found step by step: %s\n", c.name.c_str());

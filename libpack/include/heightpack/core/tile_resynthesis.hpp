@@ -62,7 +62,7 @@ private:
     Resynthesiser(const Image& map, double quantum, int threads, bool asSource);
     // An attempt on an enlarged map's source, enlarged back: the map beyond the bands (plus the source's
     // smooth change), the enlarged source result within them.
-    ResynthesisResult enlargedAttempt(const ResynthesisResult& fromSource) const;
+    ResynthesisResult enlargedAttempt(ResynthesisResult fromSource) const;
 };
 
 }  // namespace heightpack
