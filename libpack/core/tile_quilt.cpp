@@ -254,18 +254,24 @@ Field coarseOf(const Field& f, int step, int threads) {
     return out;
 }
 
-// The sum of squared differences between the strip's overlaps and the copy shifted by (du, dv), directly.
+// The sum of squared differences between the strip's overlaps and the copy shifted by (du, dv), directly:
+// over the overlaps' lines, each line's texels in order (a row of f where the strip is across y).
 double overlapError(const Field& f, const Strip& s, int du, int dv, int threads) {
-    std::vector<double> perLine(size_t(s.along), 0.0);  // summed in order after: the same on any thread count
-    parallelFor(s.along, threads, [&](int begin, int end) {
-        for (int v = begin; v < end; ++v) {
+    std::vector<int> lines;  // the overlaps' lines
+    for (int u = 0; u < s.width; ++u)
+        if (u < s.overlap || u >= s.width - s.overlap) lines.push_back(u);
+    std::vector<double> perLine(lines.size(), 0.0);  // summed in order after: the same on any thread count
+    parallelFor(int(lines.size()), threads, [&](int begin, int end) {
+        std::vector<double> copy(size_t(s.along));
+        for (int k = begin; k < end; ++k) {
+            const int line = s.line(lines[size_t(k)]), from = wrapped(line + du, s.across);
+            for (int v = 0; v < s.along; ++v) copy[size_t(v)] = s.at(f, from, wrapped(v + dv, s.along));
             double sum = 0;
-            for (int u = 0; u < s.width; ++u) {
-                if (u >= s.overlap && u < s.width - s.overlap) continue;
-                const double d = s.at(f, s.line(u), v) - s.at(f, wrapped(s.line(u) + du, s.across), wrapped(v + dv, s.along));
+            for (int v = 0; v < s.along; ++v) {
+                const double d = s.at(f, line, v) - copy[size_t(v)];
                 sum += d * d;
             }
-            perLine[v] = sum;
+            perLine[size_t(k)] = sum;
         }
     });
     double total = 0;
@@ -274,7 +280,7 @@ double overlapError(const Field& f, const Strip& s, int du, int dv, int threads)
 }
 
 // The shift (du, dv) of the strip's copy: the match-th best by the errors of every shift, on a large map
-// found on its coarse version and refined at full size among the shifts within a coarse texel of it.
+// found on its coarse version and refined at full size: across within a coarse texel of it, then along.
 std::pair<int, int> findShift(const Field& f, const Strip& s, bool anyAlong, int match, int threads) {
     if (std::min(f.w, f.h) < kCoarseSearchSide || f.w % kCoarseStep != 0 || f.h % kCoarseStep != 0) {
         auto [target, mask] = overlapsOf(f, s);
@@ -287,17 +293,21 @@ std::pair<int, int> findShift(const Field& f, const Strip& s, bool anyAlong, int
         auto [target, mask] = overlapsOf(small, c);
         coarse = chooseShift(detail::maskedSquaredErrors(std::move(target), std::move(mask), small, threads), c, anyAlong, match);
     }
-    std::pair<int, int> best{-1, 0};
-    double bestError = std::numeric_limits<double>::infinity();
-    const int reachAlong = anyAlong ? kCoarseStep : 0;
-    for (int dv = coarse.second * kCoarseStep - reachAlong; dv <= coarse.second * kCoarseStep + reachAlong; ++dv)
-        for (int du = coarse.first * kCoarseStep - kCoarseStep; du <= coarse.first * kCoarseStep + kCoarseStep; ++du) {
-            const int u = wrapped(du, s.across), v = wrapped(dv, s.along);
-            if (!s.onePiece(u)) continue;
-            const double e = overlapError(f, s, u, v, threads);
-            if (e < bestError) bestError = e, best = {u, v};
-        }
-    return best.first >= 0 ? best : std::pair{wrapped(coarse.first * kCoarseStep, s.across), wrapped(coarse.second * kCoarseStep, s.along)};
+    std::pair<int, int> best{wrapped(coarse.first * kCoarseStep, s.across), wrapped(coarse.second * kCoarseStep, s.along)};
+    double bestError = s.onePiece(best.first) ? overlapError(f, s, best.first, best.second, threads)
+                                              : std::numeric_limits<double>::infinity();
+    auto tryShift = [&](int du, int dv) {
+        if (!s.onePiece(du) || (du == best.first && dv == best.second)) return;
+        const double e = overlapError(f, s, du, dv, threads);
+        if (e < bestError) bestError = e, best = {du, dv};
+    };
+    const int u0 = coarse.first * kCoarseStep, v0 = best.second;
+    for (int du = u0 - kCoarseStep; du <= u0 + kCoarseStep; ++du) tryShift(wrapped(du, s.across), v0);
+    if (anyAlong) {
+        const int u1 = best.first;
+        for (int dv = v0 - kCoarseStep; dv <= v0 + kCoarseStep; ++dv) tryShift(u1, wrapped(dv, s.along));
+    }
+    return best;
 }
 
 // Finds the source of the strip and quilts it in; returns the shift as (dx, dy). anyAlong: the field wraps
