@@ -127,6 +127,18 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
         storedSeams.quantum = Storage::quantum(c.bits);
         stored = std::make_shared<Image>(Storage::rounded(candidate, c.bits, options.mip.threads));
         const Image& asStored = *stored;
+        if (lookRequired) {
+            // An attempt whose finest level fails is not worth a mip chain (most that fail, fail there): its
+            // verdict is that level's, the same first failure the chain would name.
+            ChainSeams finest;
+            finest.threshold = options.threshold;
+            finest.levels.push_back(measureSeams(asStored, storedSeams));
+            finest.failure = firstSeamFailure(finest.levels, options.threshold);
+            if (!finest.tiles()) {
+                judged = std::move(finest);
+                return false;
+            }
+        }
         judged = measureSeamChain(asStored, options.mip, options.threshold, storedSeams);
         if (!judged->tiles()) return false;
         judging(stored, c.bits);  // compressed while its look is judged; one whose seams fail costs none

@@ -215,18 +215,30 @@ Image enlargedTile(const Image& map, const Image& source, const Image& sourceTil
     return out;
 }
 
-Image roundedSource(const Image& map, Enlargement e, double quantum, SampleRange range, int threads) {
+Image roundedSource(const Image& map, Enlargement e, double& quantum, SampleRange range, int threads) {
     Image source = fitSource(map, e, threads);
-    for (float& v : source.pixels)
-        v = std::clamp(quantum > 0 ? static_cast<float>(std::round(v / quantum) * quantum) : v, range.low, range.high);
+    // On 8-bit levels: a fit's value within a tenth of a step of one, where a value off them would be one
+    // time in five. The enlargement's own rounding (16 bits) moves a fit's value by far less.
+    constexpr double kEightBits = 1.0 / 255;
+    if (quantum < kEightBits) {
+        size_t on = 0;
+        for (float v : source.pixels) on += std::abs(v / kEightBits - std::round(v / kEightBits)) < 0.1;
+        if (double(on) >= 0.9 * double(source.pixels.size())) quantum = kEightBits;
+    }
+    putOnLevels(source, quantum, range);
     return source;
 }
 
-Enlargement findEnlargement(const Image& map, double quantum, int threads) {
+void putOnLevels(Image& image, double quantum, SampleRange range) {
+    for (float& v : image.pixels)
+        v = std::clamp(quantum > 0 ? static_cast<float>(std::round(v / quantum) * quantum) : v, range.low, range.high);
+}
+
+Enlargement findEnlargement(const Image& map, double quantum, int threads, bool isSource) {
     const int w = map.width, h = map.height;
     // Smaller maps are tiled at their own size: cheap already, and their source would leave the model
     // little to learn from (the bundled 512^2 painting is an 8x enlargement of 64^2).
-    if (map.channels != 1 || std::min(w, h) < kLeastEnlargedSide) return {};
+    if (map.channels != 1 || (!isSource && std::min(w, h) < kLeastEnlargedSide)) return {};
     // A central window aligned to every factor's grid.
     const int cw = std::min(w, 512) / 16 * 16, ch = std::min(h, 512) / 16 * 16;
     const int x0 = (w - cw) / 2 / 16 * 16, y0 = (h - ch) / 2 / 16 * 16;
@@ -244,7 +256,7 @@ Enlargement findEnlargement(const Image& map, double quantum, int threads) {
     fine /= double(cw - 2) * (ch - 2);
     const double rounding = quantum * quantum / 12;
     for (int factor : {16, 8, 4, 2}) {
-        if (w % factor != 0 || h % factor != 0 || w / factor < 32 || h / factor < 32) continue;
+        if (w % factor != 0 || h % factor != 0 || w / factor < kLeastSourceSide || h / factor < kLeastSourceSide) continue;
         Enlargement best;
         double bestResidual = 0;
         for (Kernel kernel : {Kernel::Nearest, Kernel::Linear, Kernel::CatmullRom, Kernel::BlackmanHarris, Kernel::Lanczos3}) {

@@ -20,17 +20,21 @@ struct Enlargement {
 
 // Maps smaller than this a side are not taken for enlargements.
 inline constexpr int kLeastEnlargedSide = 1024;
+// Nor is any map taken for an enlargement of a source smaller than this a side.
+inline constexpr int kLeastSourceSide = 64;
 
 // How far, in source texels, enlargedTile's new content reaches beyond the source tile's (the widest
 // kernel's radius, and one to spare).
 inline constexpr int kEnlargedTileReach = 4;
 
-// The largest factor (16, 8, 4 or 2, dividing both sides, leaving at least 32 texels a side) and the kernel
-// with which map is an enlargement of some smaller map to within its quantisation (quantum: the map's
-// height step, 0 for float): the least-squares fit of a source, enlarged again, leaves no more than the
-// rounding's noise and a small part of the map's finest detail. Judged on a central window of at most
-// 512 x 512 texels.
-Enlargement findEnlargement(const Image& map, double quantum, int threads);
+// The largest factor (16, 8, 4 or 2, dividing both sides, leaving at least kLeastSourceSide texels a side)
+// and the kernel with which map is an enlargement of some smaller map to within its quantisation (quantum:
+// the map's height step, 0 for float): the least-squares fit of a source, enlarged again, leaves no more
+// than the rounding's noise and a small part of the map's finest detail. Judged on a central window of at
+// most 512 x 512 texels. isSource: map is the source found for an enlargement, examined whatever its size
+// (a painting made at 64, enlarged 8x and then the whole 4x, is tiled at 64: a model of the 512 map puts
+// grain along the wrap lines).
+Enlargement findEnlargement(const Image& map, double quantum, int threads, bool isSource = false);
 
 // The least-squares source of map under e (edges clamped, as resizers do): w / factor x h / factor.
 Image fitSource(const Image& map, Enlargement e, int threads);
@@ -46,7 +50,14 @@ Image enlarge(const Image& source, Enlargement e, bool periodic, int threads);
 Image enlargedTile(const Image& map, const Image& source, const Image& sourceTiled, Enlargement e, int reachX, int reachY,
                    SampleRange range, int threads);
 
-// map's source under e (fitSource) on map's levels (quantum; 0 for float) and within range.
-Image roundedSource(const Image& map, Enlargement e, double quantum, SampleRange range, int threads);
+// image's values on levels of quantum (0: as they are) and within range. A source's tile goes to the source's
+// levels before it is enlarged: the map was made from a source so stored, whose rounding it shows smoothed
+// (a band made of values between the levels would lack that fine detail: a frame).
+void putOnLevels(Image& image, double quantum, SampleRange range);
+
+// map's source under e (fitSource) within range, on its own levels: 8-bit ones where nearly every value
+// of the fit lies on them (a painting made in 8 bits, enlarged and stored in 16 bits or float), else map's
+// (quantum; 0 for float). quantum becomes the source's.
+Image roundedSource(const Image& map, Enlargement e, double& quantum, SampleRange range, int threads);
 
 }  // namespace heightpack::detail

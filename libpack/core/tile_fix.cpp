@@ -1,10 +1,9 @@
 // The fixes for a map that does not tile: the periodic component (Moisan), crossfades, the mirror.
 // The seam measure that judges them is in tileable.cpp.
-#include <opencv2/core.hpp>
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <numeric>
 #include <vector>
@@ -31,30 +30,46 @@ Image moisanPeriodic(const Image& map, bool relativeToSlope) {
     const int w = map.width, h = map.height;
     // The boundary image v: what the periodic Laplacian of the map has at the texels beside a tile edge
     // that the map's own interior does not: the jump across the edge. Its sum over each line is zero, so
-    // the smooth field has no net curvature to spread over the tile (no dome).
-    cv::Mat v(h, w, CV_64F, cv::Scalar(0.0));
-    auto add = [&](int x, int y, double value) { v.at<double>(y, x) += value; };
+    // the smooth field has no net curvature to spread over the tile (no dome). Nonzero on the edges alone:
+    // kept as the jumps per line and made a row at a time for the transform.
+    std::vector<double> acrossX(h), acrossY(w);  // first - last of each row and column, less the slope term
     for (int y = 0; y < h; ++y) {
         const double first = map.at(0, y), last = map.at(w - 1, y);
-        const double slope = relativeToSlope && w >= 3
-                                 ? 0.5 * (double(map.at(1, y)) - first + last - map.at(w - 2, y)) : 0.0;
-        add(0, y, last - first + slope);
-        add(w - 1, y, first - last - slope);
+        const double slope = relativeToSlope && w >= 3 ? 0.5 * (double(map.at(1, y)) - first + last - map.at(w - 2, y)) : 0.0;
+        acrossX[y] = last - first + slope;
     }
     for (int x = 0; x < w; ++x) {
         const double first = map.at(x, 0), last = map.at(x, h - 1);
-        const double slope = relativeToSlope && h >= 3
-                                 ? 0.5 * (double(map.at(x, 1)) - first + last - map.at(x, h - 2)) : 0.0;
-        add(x, 0, last - first + slope);
-        add(x, h - 1, first - last - slope);
+        const double slope = relativeToSlope && h >= 3 ? 0.5 * (double(map.at(x, 1)) - first + last - map.at(x, h - 2)) : 0.0;
+        acrossY[x] = last - first + slope;
     }
-    // The smooth field s solves the periodic Poisson equation laplacian(s) = v with zero mean; the map
-    // minus s has, everywhere, the Laplacian of the map's interior: no seam, and its mean kept.
-    cv::Mat smooth;
-    detail::solvePeriodicPoisson(v, smooth, 0);
+    // The smooth field s solves the periodic Poisson equation laplacian(s) = v with zero mean (v's spectrum
+    // over the Laplacian's symbol, in float half spectra: s is smooth and small, which floats hold to far
+    // below a 16-bit step); the map minus s has, everywhere, the Laplacian of the map's interior: no seam,
+    // and its mean kept.
+    const int columns = w / 2 + 1;
+    std::vector<std::complex<float>> half = detail::forwardRealDftToHalf(w, h, 0, [&](int y, float* row) {
+        std::fill(row, row + w, 0.0f);
+        double first = acrossX[y], last = -acrossX[y];
+        if (w == 1) first = last = 0;  // the two ends are one texel: they cancel
+        row[0] = float(first);
+        row[w - 1] += float(last);
+        if (y == 0 || y == h - 1) {
+            const double sign = h == 1 ? 0.0 : y == 0 ? 1.0 : -1.0;
+            for (int x = 0; x < w; ++x) row[x] += float(sign * acrossY[x]);
+        }
+    });
+    const double scale = 1.0 / (double(w) * h);  // the inverse is unscaled
+    for (int r = 0; r < h; ++r)
+        for (int q = 0; q < columns; ++q) {
+            const double symbol = 2 * std::cos(2 * std::numbers::pi * q / w) + 2 * std::cos(2 * std::numbers::pi * r / h) - 4;
+            std::complex<float>& z = half[size_t(r) * columns + q];
+            z = (q == 0 && r == 0) ? 0.0f : z * float(scale / symbol);
+        }
     Image out(w, h, 1);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) out.at(x, y) = static_cast<float>(map.at(x, y) - smooth.at<double>(y, x));
+    detail::inverseRealDftOfHalf(half.data(), w, h, 0, [&](int y, const float* row) {
+        for (int x = 0; x < w; ++x) out.at(x, y) = static_cast<float>(map.at(x, y) - double(row[x]));
+    });
     return out;
 }
 
@@ -146,17 +161,24 @@ Image crossfadeTile(const Image& map, double width, CrossfadeBlend blend) {
     // weights whose squares sum to one, so fine contrast is kept in the band (Heitz & Neyret) without the
     // lows swelling by up to sqrt(2).
     const detail::Gaussianiser g(map.pixels, 0);
-    cv::Mat field(h, w, CV_64F), low;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) field.at<double>(y, x) = g.gaussian[size_t(y) * w + x];
-    cv::Mat spectrum = detail::forwardDft(field, 0);
+    auto field = [&](int x, int y) { return g.gaussian[size_t(y) * w + x]; };
+    // The low-pass of the Gaussians, a Gaussian blur in float half spectra (a smooth field; floats hold it
+    // to far below what the blend's weights could show).
+    const int columns = w / 2 + 1;
+    std::vector<std::complex<float>> half = detail::forwardRealDftToHalf(w, h, 0, [&](int y, float* row) {
+        for (int x = 0; x < w; ++x) row[x] = static_cast<float>(field(x, y));
+    });
     const double sigma = std::max(1.0, width * std::min(w, h) / 3.0);
     for (int r = 0; r < h; ++r)
-        for (int q = 0; q < w; ++q) {
-            const double fx = double(std::min(q, w - q)) / w, fy = double(std::min(r, h - r)) / h;
-            spectrum.at<cv::Vec2d>(r, q) *= std::exp(-2 * std::numbers::pi * std::numbers::pi * sigma * sigma * (fx * fx + fy * fy));
+        for (int q = 0; q < columns; ++q) {
+            const double fx = double(q) / w, fy = double(std::min(r, h - r)) / h;
+            half[size_t(r) * columns + q] *=
+                float(std::exp(-2 * std::numbers::pi * std::numbers::pi * sigma * sigma * (fx * fx + fy * fy)) / (double(w) * h));
         }
-    detail::inverseDft(spectrum, low, 0);
+    std::vector<float> lowValues(size_t(w) * h);
+    detail::inverseRealDftOfHalf(half.data(), w, h, 0, [&](int y, const float* row) { std::copy(row, row + w, &lowValues[size_t(y) * w]); });
+    half = {};
+    auto low = [&](int x, int y) { return double(lowValues[size_t(y) * w + x]); };
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const double ax = smoothstep(width, double(std::min(x, w - 1 - x)) / w);
@@ -166,9 +188,9 @@ Image crossfadeTile(const Image& map, double width, CrossfadeBlend blend) {
             const int ys[4] = {y, y, (y + h / 2) % h, (y + h / 2) % h};
             double lowSum = 0, highSum = 0, squares = 0;
             for (int c = 0; c < 4; ++c) {
-                const double l = low.at<double>(ys[c], xs[c]);
+                const double l = low(xs[c], ys[c]);
                 lowSum += weights[c] * l;
-                highSum += weights[c] * (field.at<double>(ys[c], xs[c]) - l);
+                highSum += weights[c] * (field(xs[c], ys[c]) - l);
                 squares += weights[c] * weights[c];
             }
             out.at(x, y) = g.back(lowSum + highSum / std::sqrt(squares));

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include "heightpack/core/parallel.hpp"
@@ -123,6 +125,36 @@ std::pair<int, int> chooseShift(const Field& errors, const Strip& s, bool anyAlo
     return chosen.back();
 }
 
+// Adds to f the zero-mean periodic field whose five-point Laplacian is rhs, given on the strip's lines and
+// one line beside each (as quiltStrip makes it) and 0 elsewhere: its spectrum divided by the Laplacian's
+// symbol, in half spectra of floats (a quarter of the memory of a complex one in doubles; the correction
+// is a small smooth field, which floats hold to far below a 16-bit step), each row added as it comes.
+void addPoissonSolution(Field& f, const Strip& s, const std::vector<double>& rhs, int threads) {
+    const int w = f.w, h = f.h, columns = w / 2 + 1;
+    std::vector<int> stripLine(size_t(s.across), -2);  // the strip's u of each line across, -2 for none
+    for (int u = -1; u <= s.width; ++u) stripLine[size_t(s.line(u))] = u;
+    std::vector<std::complex<float>> half = detail::forwardRealDftToHalf(w, h, threads, [&](int y, float* row) {
+        std::fill(row, row + w, 0.0f);
+        if (s.acrossX) {
+            for (int u = -1; u <= s.width; ++u) row[s.line(u)] = float(rhs[size_t(u + 1) * s.along + y]);
+        } else if (const int u = stripLine[size_t(y)]; u >= -1) {
+            for (int x = 0; x < w; ++x) row[x] = float(rhs[size_t(u + 1) * s.along + x]);
+        }
+    });
+    const double scale = 1.0 / (double(w) * h);  // the inverse is unscaled
+    parallelFor(h, threads, [&](int begin, int end) {
+        for (int r = begin; r < end; ++r)
+            for (int q = 0; q < columns; ++q) {
+                const double symbol = 2 * std::cos(2 * std::numbers::pi * q / w) + 2 * std::cos(2 * std::numbers::pi * r / h) - 4;
+                std::complex<float>& z = half[size_t(r) * columns + q];
+                z = (q == 0 && r == 0) ? 0.0f : z * float(scale / symbol);
+            }
+    });
+    detail::inverseRealDftOfHalf(half.data(), w, h, threads, [&](int y, const float* row) {
+        for (int x = 0; x < w; ++x) f.at(x, y) += row[x];
+    });
+}
+
 // Replaces the strip of f with the copy shifted by (du, dv), cut in along the least visible paths of the
 // overlaps and healed (see tile_quilt.hpp, steps 3 and 4).
 void quiltStrip(Field& f, const Strip& s, int du, int dv, int threads) {
@@ -169,23 +201,23 @@ void quiltStrip(Field& f, const Strip& s, int du, int dv, int threads) {
         if (a == 0) return 0.0;
         return a * (copyValue(u, v) - copyValue(qu, qv) - (mapValue(u, v) - mapValue(qu, qv)));
     };
-    Field rhs(f.w, f.h);
+    // The right-hand side on the strip's lines and the one beside each (u = -1 .. width), as [u + 1][v]:
+    // nothing elsewhere, so no whole field of it is kept.
+    std::vector<double> rhs(size_t(width + 2) * along, 0.0);
+    auto rhsAt = [&](int u, int v) -> double& { return rhs[size_t(u + 1) * along + v]; };
     parallelFor(width, threads, [&](int begin, int end) {
         for (int u = begin; u < end; ++u)
             for (int v = 0; v < along; ++v) {
                 double sum = 0;
                 for (const auto& [qu, qv] : {std::pair{u - 1, v}, {u + 1, v}, {u, v - 1}, {u, v + 1}}) sum += excess(u, v, qu, qv);
-                s.at(rhs, s.line(u), v) = -sum;  // the Laplacian of c is minus that sum
+                rhsAt(u, v) = -sum;  // the Laplacian of c is minus that sum
             }
     });
     for (int v = 0; v < along; ++v) {  // the texels beside the strip take the other end of its edges
-        s.at(rhs, s.line(-1), v) += excess(0, v, -1, v);
-        s.at(rhs, s.line(width), v) += excess(width - 1, v, width, v);
+        rhsAt(-1, v) += excess(0, v, -1, v);
+        rhsAt(width, v) += excess(width - 1, v, width, v);
     }
-    Field correction(f.w, f.h);
-    cv::Mat out = correction.mat();
-    detail::solvePeriodicPoisson(rhs.mat(), out, threads);
-    for (size_t i = 0; i < f.v.size(); ++i) f.v[i] += correction.v[i];
+    addPoissonSolution(f, s, rhs, threads);
 }
 
 // The map's texels on the strip's overlaps (the rest 0), and the mask of them.
@@ -201,12 +233,87 @@ std::pair<Field, Field> overlapsOf(const Field& f, const Strip& s) {
     return {std::move(target), std::move(mask)};
 }
 
+// Maps from this many texels a side are searched coarse to fine: the errors of every shift at a quarter of
+// the size (a sixteenth of the transforms' time and memory), then every shift within a coarse texel of the
+// one chosen there at full size. Below, the full-size search is cheap already.
+constexpr int kCoarseSearchSide = 1024;
+constexpr int kCoarseStep = 4;
+
+// f averaged over step x step blocks (sides that step divides).
+Field coarseOf(const Field& f, int step, int threads) {
+    Field out(f.w / step, f.h / step);
+    parallelFor(out.h, threads, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y)
+            for (int x = 0; x < out.w; ++x) {
+                double sum = 0;
+                for (int j = 0; j < step; ++j)
+                    for (int i = 0; i < step; ++i) sum += f.at(x * step + i, y * step + j);
+                out.at(x, y) = sum / (step * step);
+            }
+    });
+    return out;
+}
+
+// The sum of squared differences between the strip's overlaps and the copy shifted by (du, dv), directly:
+// over the overlaps' lines, each line's texels in order (a row of f where the strip is across y).
+double overlapError(const Field& f, const Strip& s, int du, int dv, int threads) {
+    std::vector<int> lines;  // the overlaps' lines
+    for (int u = 0; u < s.width; ++u)
+        if (u < s.overlap || u >= s.width - s.overlap) lines.push_back(u);
+    std::vector<double> perLine(lines.size(), 0.0);  // summed in order after: the same on any thread count
+    parallelFor(int(lines.size()), threads, [&](int begin, int end) {
+        std::vector<double> copy(size_t(s.along));
+        for (int k = begin; k < end; ++k) {
+            const int line = s.line(lines[size_t(k)]), from = wrapped(line + du, s.across);
+            for (int v = 0; v < s.along; ++v) copy[size_t(v)] = s.at(f, from, wrapped(v + dv, s.along));
+            double sum = 0;
+            for (int v = 0; v < s.along; ++v) {
+                const double d = s.at(f, line, v) - copy[size_t(v)];
+                sum += d * d;
+            }
+            perLine[size_t(k)] = sum;
+        }
+    });
+    double total = 0;
+    for (double e : perLine) total += e;
+    return total;
+}
+
+// The shift (du, dv) of the strip's copy: the match-th best by the errors of every shift, on a large map
+// found on its coarse version and refined at full size: across within a coarse texel of it, then along.
+std::pair<int, int> findShift(const Field& f, const Strip& s, bool anyAlong, int match, int threads) {
+    if (std::min(f.w, f.h) < kCoarseSearchSide || f.w % kCoarseStep != 0 || f.h % kCoarseStep != 0) {
+        auto [target, mask] = overlapsOf(f, s);
+        return chooseShift(detail::maskedSquaredErrors(std::move(target), std::move(mask), f, threads), s, anyAlong, match);
+    }
+    std::pair<int, int> coarse;
+    {
+        const Field small = coarseOf(f, kCoarseStep, threads);
+        const Strip c(s.acrossX, small.w, small.h, std::max(8, s.width / kCoarseStep));
+        auto [target, mask] = overlapsOf(small, c);
+        coarse = chooseShift(detail::maskedSquaredErrors(std::move(target), std::move(mask), small, threads), c, anyAlong, match);
+    }
+    std::pair<int, int> best{wrapped(coarse.first * kCoarseStep, s.across), wrapped(coarse.second * kCoarseStep, s.along)};
+    double bestError = s.onePiece(best.first) ? overlapError(f, s, best.first, best.second, threads)
+                                              : std::numeric_limits<double>::infinity();
+    auto tryShift = [&](int du, int dv) {
+        if (!s.onePiece(du) || (du == best.first && dv == best.second)) return;
+        const double e = overlapError(f, s, du, dv, threads);
+        if (e < bestError) bestError = e, best = {du, dv};
+    };
+    const int u0 = coarse.first * kCoarseStep, v0 = best.second;
+    for (int du = u0 - kCoarseStep; du <= u0 + kCoarseStep; ++du) tryShift(wrapped(du, s.across), v0);
+    if (anyAlong) {
+        const int u1 = best.first;
+        for (int dv = v0 - kCoarseStep; dv <= v0 + kCoarseStep; ++dv) tryShift(u1, wrapped(dv, s.along));
+    }
+    return best;
+}
+
 // Finds the source of the strip and quilts it in; returns the shift as (dx, dy). anyAlong: the field wraps
 // along the strip, so a copy may come from any place along it.
 std::pair<int, int> quiltWrapLine(Field& f, const Strip& s, bool anyAlong, int match, int threads) {
-    auto [target, mask] = overlapsOf(f, s);
-    const Field errors = detail::maskedSquaredErrors(std::move(target), std::move(mask), f, threads);
-    const auto [du, dv] = chooseShift(errors, s, anyAlong, match);
+    const auto [du, dv] = findShift(f, s, anyAlong, match, threads);
     quiltStrip(f, s, du, dv, threads);
     return s.acrossX ? std::pair{du, dv} : std::pair{dv, du};
 }
@@ -247,21 +354,32 @@ QuiltResult quiltAtOwnSize(const Image& map, const QuiltOptions& options) {
 
 }  // namespace
 
-QuiltResult quiltTile(const Image& map, const QuiltOptions& options) {
-    const detail::Enlargement e = options.atSourceSize ? detail::findEnlargement(map, options.quantum, options.threads)
-                                                       : detail::Enlargement{};
+namespace {
+
+// isSource: map is an enlarged map's source, taken for an enlargement in turn by a source's rules, so a
+// composed enlargement (8x, then 4x) is quilted at its first source's size.
+QuiltResult quiltAtSourceSize(const Image& map, const QuiltOptions& options, bool isSource) {
+    const detail::Enlargement e = detail::findEnlargement(map, options.quantum, options.threads, isSource);
     if (e.factor == 1) return quiltAtOwnSize(map, options);
     const SampleRange range = sampleRange(map, options.threads);
-    const Image source = detail::roundedSource(map, e, options.quantum, range, options.threads);
-    QuiltResult result = quiltAtOwnSize(source, options);
+    QuiltOptions atSource = options;
+    const Image source = detail::roundedSource(map, e, atSource.quantum, range, options.threads);
+    QuiltResult result = quiltAtSourceSize(source, atSource, true);
+    detail::putOnLevels(result.map, atSource.quantum, range);
     result.map = detail::enlargedTile(map, source, result.map, e, (result.bandX + 1) / 2 + 1, (result.bandY + 1) / 2 + 1, range,
                                       options.threads);
     // The texels changed: those enlargedTile takes from the source's tile.
-    result.enlargement = e.factor;
+    result.enlargement *= e.factor;
     result.bandX = std::min(map.width, 2 * ((result.bandX + 1) / 2 + 1 + detail::kEnlargedTileReach) * e.factor);
     result.bandY = std::min(map.height, 2 * ((result.bandY + 1) / 2 + 1 + detail::kEnlargedTileReach) * e.factor);
     for (int* offset : {&result.sourceX[0], &result.sourceX[1], &result.sourceY[0], &result.sourceY[1]}) *offset *= e.factor;
     return result;
+}
+
+}  // namespace
+
+QuiltResult quiltTile(const Image& map, const QuiltOptions& options) {
+    return options.atSourceSize ? quiltAtSourceSize(map, options, false) : quiltAtOwnSize(map, options);
 }
 
 }  // namespace heightpack

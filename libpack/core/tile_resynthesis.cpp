@@ -143,6 +143,7 @@ struct Resynthesiser::State {
     // Where the map is an enlargement: its source, whose own re-synthesis the attempts enlarge.
     detail::Enlargement enlargement;
     Image source;
+    double sourceQuantum = 0;  // the source's levels (8 bits where it was painted so, whatever the map's)
     std::unique_ptr<Resynthesiser> ofSource;
     State(const Image& m, int t) : map(m), threads(t) {}
     // The large scales at sigma and the ranks of the values less them, unless they are at sigma already.
@@ -181,10 +182,13 @@ Resynthesiser::Resynthesiser(const Image& map, double quantum, int threads, bool
     // 0. An enlarged map (a painting resized before packing) is re-synthesised at its source's resolution
     //    and the result enlarged the same way: a Gaussian model of the enlarged map itself carries finer
     //    grain than the smooth map around the bands shows, and costs factor^2 more.
-    if (!asSource) s.enlargement = detail::findEnlargement(map, quantum, threads);
+    //    A source that is itself an enlargement (a painting made at 64, enlarged 8x, then the whole 4x) is
+    //    re-synthesised at its own source's size in turn: a model of it would put the grain the map lacks.
+    s.enlargement = detail::findEnlargement(map, quantum, threads, asSource);
     if (s.enlargement.factor > 1) {
-        s.source = detail::roundedSource(map, s.enlargement, quantum, s.mapRange, threads);
-        s.ofSource.reset(new Resynthesiser(s.source, quantum, threads, true));
+        s.sourceQuantum = quantum;
+        s.source = detail::roundedSource(map, s.enlargement, s.sourceQuantum, s.mapRange, threads);
+        s.ofSource.reset(new Resynthesiser(s.source, s.sourceQuantum, threads, true));  // composes
         return;
     }
     const bool terraced = quantum > 0 && detail::hasTerraces(map, threads);
@@ -272,9 +276,10 @@ ResynthesisResult Resynthesiser::attempt(uint64_t seed, double band) {
     return result;
 }
 
-ResynthesisResult Resynthesiser::enlargedAttempt(const ResynthesisResult& fromSource) const {
+ResynthesisResult Resynthesiser::enlargedAttempt(ResynthesisResult fromSource) const {
     const State& s = *state_;
     ResynthesisResult result;
+    detail::putOnLevels(fromSource.map, s.sourceQuantum, s.mapRange);
     result.map = detail::enlargedTile(s.map, s.source, fromSource.map, s.enlargement, (fromSource.bandX + 1) / 2 + 1,
                                       (fromSource.bandY + 1) / 2 + 1, s.mapRange, s.threads);
     // The texels replaced: those enlargedTile takes from the source's tile.

@@ -1,21 +1,29 @@
 // What the eye sees in tiled maps (issue 22): the frame, blob and echo statistics of tile_look.hpp on
 //   - exactly periodic maps (the calibration: every one must pass; the thresholds sit above their maxima),
-//   - crops of larger periodic fields made to tile by each of tile's methods (every result should pass).
+//   - crops of larger periodic fields made to tile by each of tile's methods (every result should pass),
+//   - the same crops enlarged (issue 36: a map painted small and resized before packing), once 2x to 8x or
+//     twice, by nearest, bilinear, bicubic, Lanczos3 and Blackman-Harris, to at least 1024 a side, made to
+//     tile by tile's chain (re-synthesis at four seeds and bands, then the quilt; the crossfade would come
+//     after, and is counted as a failure): the rate beside the crops'.
 // Per family and method: maps, how many pass, and the distribution of each statistic.
 //   build-test/tests/bench/heightpack_look_rates --count 200
 // The maps are those of tests/support/seam_families (map i of a family is the same everywhere), rounded
 // to the 8 or 16 bits of their format (float stays float; JPEG is taken as 8-bit).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "heightpack/core/tile_look.hpp"
+#include "heightpack/core/tile_quilt.hpp"
 #include "heightpack/core/tile_resynthesis.hpp"
 #include "heightpack/core/tileable.hpp"
 
+#include "enlargement.hpp"
 #include "support/seam_families.hpp"
 
 using namespace heightpack;
@@ -48,6 +56,73 @@ const Method kMethods[] = {
     {"moisan", [](const Image& m, double) { return periodicComponent(m, PeriodicContinuity::Heights); }},
     {"crossfade", [](const Image& m, double) { return crossfadeTile(m, 0.1); }},
 };
+
+// Crop i enlarged to at least 1024 a side: by 2, 4 or 8 (every third map twice, by 2 or 4 each time), each
+// kernel in turn, with clamped edges as resizers do; rounded to the crop's format.
+Image enlargedCrop(int i, double& quantum, std::string& what) {
+    const MapSpec spec = drawMap(Family::Crop, i);
+    quantum = quantumOf(spec.format);
+    Image map = rounded(makeMap(spec), quantum);
+    const int shortSide = std::min(map.width, map.height);
+    std::vector<int> factors;
+    if (i % 3 == 2) factors = {2 + 2 * (i % 2), 2};
+    int total = 1;
+    for (int f : factors) total *= f;
+    while (shortSide * total < 1024) {
+        const int f = shortSide * total * 8 <= 1024 ? 8 : shortSide * total * 4 <= 1024 ? 4 : 2;
+        factors.push_back(f);
+        total *= f;
+    }
+    what = describe(spec);
+    for (size_t k = 0; k < factors.size(); ++k) {
+        const detail::Enlargement e{factors[k], detail::Kernel((i + int(k) * 2) % 5)};
+        map = rounded(detail::enlarge(map, e, false, 1), quantum);
+        what += " x" + std::to_string(factors[k]);
+    }
+    return map;
+}
+
+// tile's chain on one map: the re-synthesis' four attempts, then the quilt's three (at the source's size,
+// then at the map's own), each judged by its seams (the finest level) and its look; the first that passes,
+// else the last.
+TileLook tiledLook(const Image& map, double quantum, int threads) {
+    TileLook look;
+    auto passes = [&](const Image& candidate) {
+        const Image stored = rounded(candidate, quantum);
+        SeamOptions seams;
+        seams.quantum = quantum;
+        seams.threads = threads;
+        look = measureTileLook(stored, {&map, threads, std::nullopt});
+        return levelTiles(measureSeams(stored, seams)) && look.passes();
+    };
+    {
+        Resynthesiser resynthesiser(map, quantum, threads);
+        double firstBand = 0;
+        for (int attempt = 0; attempt < 4; ++attempt) {
+            const double band = attempt < 2 ? 0.0 : std::min(0.25, firstBand * (attempt == 2 ? 1.5 : 2.0));
+            const ResynthesisResult r = resynthesiser.attempt(uint64_t(1 + attempt), band);
+            if (attempt == 0) firstBand = double(std::max(r.bandX, 1)) / map.width;
+            if (passes(r.map)) return look;
+        }
+    }
+    for (bool atSourceSize : {true, false}) {
+        int enlargement = 1;
+        for (int attempt = 0; attempt < 3; ++attempt) {
+            QuiltOptions quilt;
+            quilt.threads = threads;
+            quilt.quantum = quantum;
+            quilt.atSourceSize = atSourceSize;
+            quilt.match = attempt == 1 ? 1 : 0;
+            quilt.band = attempt == 2 ? 1.5 / 8 : 0.0;
+            const QuiltResult q = quiltTile(map, quilt);
+            enlargement = q.enlargement;
+            if (passes(q.map)) return look;
+        }
+        if (enlargement == 1) break;
+    }
+    look.frame = std::max(look.frame, LookThresholds{}.frame + 1);  // what reaches the crossfade fails here
+    return look;
+}
 
 }  // namespace
 
@@ -106,6 +181,20 @@ int main(int argc, char** argv) {
             looks[i] = measureTileLook(rounded(tiled, q), {&crop, 1, std::nullopt});
         });
         row("crop", method.name, looks);
+    }
+    {
+        const int enlarged = std::max(1, count / 4);  // each costs a tile at 1024-2048 a side
+        std::vector<TileLook> looks(static_cast<size_t>(enlarged));
+        parallelFor(enlarged, [&](int i) {
+            double q = 0;
+            std::string what;
+            const Image map = enlargedCrop(i, q, what);
+            looks[i] = tiledLook(map, q, 1);
+            if (getenv("LOOK_VERBOSE") && !looks[i].passes())
+                std::printf("  enlarged fails: %s frame %.2f blobs %.2f echo %.2f\n", what.c_str(), looks[i].frame, looks[i].blobs,
+                            looks[i].echo);
+        });
+        row("enlarged", "tile's chain", looks);
     }
     return 0;
 }

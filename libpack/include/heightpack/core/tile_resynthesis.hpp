@@ -58,11 +58,11 @@ public:
 private:
     struct State;
     std::unique_ptr<State> state_;
-    // asSource: the map is an enlarged map's source, not itself taken for an enlargement again.
+    // asSource: the map is an enlarged map's source, taken for an enlargement again by a source's rules.
     Resynthesiser(const Image& map, double quantum, int threads, bool asSource);
     // An attempt on an enlarged map's source, enlarged back: the map beyond the bands (plus the source's
     // smooth change), the enlarged source result within them.
-    ResynthesisResult enlargedAttempt(const ResynthesisResult& fromSource) const;
+    ResynthesisResult enlargedAttempt(ResynthesisResult fromSource) const;
 };
 
 }  // namespace heightpack
