@@ -19,7 +19,7 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Mip
     options.storage.pixelType = type;
     StoredChain stored;
     stored.pixelType = type;
-    if (type == PixelType::Float) {  // the float chain itself; the writer still judges the container
+    if (type == PixelType::Float) {  // the float chain itself; every container holds it
         stored.lookupError.assign(chains.front()->size(), 0.0);
         return stored;
     }
@@ -27,11 +27,10 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Mip
     // packed content's and nothing to pack.
     auto storage = planTexelStorage(outputs.front(), content, options, chains);
     if (!storage) return storage.error();
-    stored.normalisation = storage->normalisation;
+    stored.plan = storage->plan;
     // The same values, so only the container can object: no second scan.
-    options.planned = TextureWriteOptions::Planned{type, storage->normalisation};
     for (size_t i = 1; i < outputs.size(); ++i)
-        if (auto other = planTexelStorage(outputs[i], content, options); !other) return other.error();
+        if (Status s = containerTakes(outputs[i], options.storage); !s) return s.error();
     for (const std::vector<Image>* chain : chains) {
         const std::vector<double> errors = worstLookupError(*chain, storage->storeAndReadRow, options.threads);
         if (stored.lookupError.empty()) stored.lookupError = errors;

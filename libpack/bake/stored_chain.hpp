@@ -16,7 +16,7 @@ namespace heightpack::detail {
 
 struct StoredChain {
     PixelType pixelType = PixelType::Float;
-    std::optional<Normalisation> normalisation;  // uint16: as planned (hand it on as TextureWriteOptions::planned)
+    WritePlan plan;  // as decided for every output: hand it to writeTexture
     std::vector<double> lookupError;  // per level, level 0 first, in the chain's units
     double worst() const;
 };

@@ -25,6 +25,7 @@
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/gpu_texture.hpp"
+#include "heightpack/io/texture_write.hpp"
 #include "level_write.hpp"
 #include "texel_encode.hpp"
 
@@ -94,6 +95,13 @@ std::uint32_t codeOf(const std::array<const char*, N>& names, const std::string&
 }  // namespace
 
 Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
+    auto storage = planTexelStorage({path, Container::Dds}, content, options);
+    if (!storage) return storage.error();
+    return writeDds(path, content, options, storage->plan);
+}
+
+Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+                 const WritePlan& decided) {
     if (Status s = checkWritable(path); !s) return s;
     if (options.storage.supercompression != Supercompression::None)
         return cannotWrite(path, "DDS has no supercompression", "write it uncompressed, or as KTX2");
@@ -106,9 +114,7 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     if (!content.layerNames.empty() && content.layerNames != recordedLayers(layerFlags))
         return Error{ErrorKind::Internal, path, "internal error: a DDS records only the layers heights, Dx, Dy, Foam, in that order",
                      "please report this"};
-    auto planned = detail::planEncoding(path, content, options);
-    if (!planned) return planned.error();
-    const detail::EncodePlan& plan = *planned;
+    const detail::EncodePlan plan = detail::encodePlanOf(content, options, decided);
     const TexelFormatInfo& f = plan.format;
     const int layers = content.layerCount();
 

@@ -18,6 +18,7 @@
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/gpu_texture.hpp"
+#include "heightpack/io/texture_write.hpp"
 #include "level_write.hpp"
 #include "texel_encode.hpp"
 
@@ -108,10 +109,15 @@ struct ZstdFree {
 }  // namespace
 
 Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
+    auto storage = planTexelStorage({path, Container::Ktx2}, content, options);
+    if (!storage) return storage.error();
+    return writeKtx2(path, content, options, storage->plan);
+}
+
+Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+                 const WritePlan& decided) {
     if (Status s = checkWritable(path); !s) return s;
-    auto planned = detail::planEncoding(path, content, options);
-    if (!planned) return planned.error();
-    const detail::EncodePlan& plan = *planned;
+    const detail::EncodePlan plan = detail::encodePlanOf(content, options, decided);
     const TexelFormatInfo& f = plan.format;
     const bool zstd = options.storage.supercompression == Supercompression::Zstd;
 

@@ -42,8 +42,12 @@ struct EncodePlan {
     std::optional<Normalisation> normalisation;  // Unorm16 formats only
 };
 
-// Chooses the format and, for uint16, the normalisation (one pass over the chain's values, on all
-// threads); refuses values the pixel type cannot hold. path names the output in errors. sameValues, when
+// The format and levels content is written in under plan, and plan's normalisation: no pass over the
+// values (the writers take the plan as decided).
+EncodePlan encodePlanOf(const MipChainSource& content, const TextureWriteOptions& options, const WritePlan& plan);
+
+// Chooses the format and, for uint16, the normalisation of options.storage.pixelType (one pass over the
+// chain's values, on all threads); refuses values the pixel type cannot hold. path names the output in errors. sameValues, when
 // given, are chains that hold, level by level, exactly the values content writes (see planTexelStorage):
 // the pass then reads them rather than filling content's rows; the plan is the same.
 Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,

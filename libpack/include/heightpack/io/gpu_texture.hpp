@@ -41,20 +41,24 @@ struct TextureWriteOptions {
     int threads = 0;        // for filling and encoding rows; the bytes do not depend on it
     std::string writer;     // recorded as KTXwriter, e.g. "heightpack 0.14.0"
     std::function<void(double fraction)> progress;  // may be empty
-    // What planTexelStorage found for this very content in this pixel type (the uint16 normalisation),
-    // when the caller planned it: the writers then take it instead of scanning the whole chain again,
-    // which is all a plan costs. Set it only for the content and pixel type it was planned for.
-    struct Planned {
-        PixelType pixelType = PixelType::Float;
-        std::optional<Normalisation> normalisation;
-    };
-    std::optional<Planned> planned;
+};
+
+// How a texture is stored, decided once before anything is written (planTexelStorage) and handed to the
+// writer as it is: the pixel type and, for uint16, the normalisation of the whole chain's range.
+struct WritePlan {
+    PixelType pixelType = PixelType::Float;
+    std::optional<Normalisation> normalisation;
 };
 
 // Writes content into a KTX2 or DDS file at path, whatever its name (writeTexture's caller decided the
-// container: see textureOutput), every level of the chain that content's size implies (down to 1x1).
-// Fails with BadInput, writing nothing, when a value cannot be stored in the pixel type (a half beyond
-// +-65504); with CannotWrite when the file cannot be written.
+// container: see textureOutput), every level of the chain that content's size implies (down to 1x1), as
+// plan says. Fails with CannotWrite when the file cannot be written. The overloads without a plan plan
+// first (planTexelStorage), failing with BadInput, writing nothing, when a value cannot be stored in the
+// pixel type (a half beyond +-65504).
+Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+                 const WritePlan& plan);
+Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+                const WritePlan& plan);
 Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
 Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
 
