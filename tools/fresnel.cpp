@@ -57,6 +57,9 @@ public:
         Supercompression none;
         if (const std::string problem = checkContainerChoice({output_}, pixelType, "", false, none); !problem.empty())
             return usage(problem);
+        if (isBlockType(pixelType))
+            return usage("--pixel-type " + std::string(pixelTypeName(pixelType)) +
+                         " holds one or two channels and a Fresnel ramp has four: store float, half or uint16");
         options_.deep = *parseColour(deep_);
         options_.shallow = *parseColour(shallow_);
         const Status written = writeFresnelRamp(output_, options_, format == "png8" ? RampFormat::Png8 : RampFormat::Exr,

@@ -106,6 +106,8 @@ public:
                                                              compressionOption_->count() > 0, o.storage.supercompression);
             !problem.empty())
             return usage(problem);
+        if (const std::string problem = blockLayoutProblem(o.storage.pixelType, options_.layout); !problem.empty())
+            return usage(problem);
         o.resizeToPowerOfTwo = resize_ == "pow2";
         applyChannel(channel_, o.load);
         o.load.silenceDecoderMessages = true;

@@ -89,6 +89,8 @@ public:
             checkContainerChoice({output_, options_.plainOutput}, options_.storage.pixelType, compression_,
                                  compressionOption_->count() > 0, options_.storage.supercompression);
         if (!containerProblem.empty()) return usage(containerProblem);
+        if (const std::string problem = blockLayoutProblem(options_.storage.pixelType, options_.layout); !problem.empty())
+            return usage(problem);
         options_.resizeToPowerOfTwo = resize_ == "pow2";
         setLibraryThreads(common_.threads);
 

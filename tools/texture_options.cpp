@@ -136,9 +136,29 @@ std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelT
             if (pixelType == PixelType::Uint16)
                 return path + ": --pixel-type uint16 needs a .ktx2 or .dds output (an EXR has no 16-bit normalised "
                               "channels)";
+            if (isBlockType(pixelType))
+                return path + ": --pixel-type " + pixelTypeName(pixelType) +
+                       " needs a .ktx2 or .dds output (an EXR has no block-compressed texels; store float or half in "
+                       "an EXR)";
             if (compression == "zstd") return path + ": --compression zstd is for .ktx2 outputs";
         }
     }
+    return {};
+}
+
+std::string blockLayoutProblem(PixelType type, Layout layout) {
+    if (!isBlockType(type)) return {};
+    const std::string name = pixelTypeName(type);
+    if (layout == Layout::Neighbour4)
+        return "--pixel-type " + name + " cannot hold the neighbour4 layout: each copy of a shared height would "
+               "decode differently and the lookup would show seams (write --layout plain and filter in hardware, or "
+               "view it with --lookup gather)";
+    if (type == PixelType::Bc4 && layout != Layout::Plain)
+        return "--pixel-type bc4 holds one channel: it stores plain heights (for normals write --layout xy "
+               "--pixel-type bc5)";
+    if (type == PixelType::Bc5 && layout != Layout::Xy)
+        return "--pixel-type bc5 holds two channels: it stores xy normals (write --layout xy, or for heights "
+               "--layout plain --pixel-type bc4)";
     return {};
 }
 

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "heightpack/core/layout.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 
 namespace heightpack::cli {
@@ -51,5 +52,9 @@ std::vector<std::string> compressionNames();
 std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelType pixelType,
                                  const std::string& compression, bool compressionGiven,
                                  Supercompression& supercompression);
+
+// What is wrong with storing `layout` in a block pixel type (bc4: plain heights only; bc5: xy normals
+// only; never the neighbour4 layout), for usage(), or empty (also for any other pixel type).
+std::string blockLayoutProblem(PixelType type, Layout layout);
 
 }  // namespace heightpack::cli

@@ -195,12 +195,13 @@ EncodePlan encodePlanOf(const MipChainSource& content, const TextureWriteOptions
     plan.levels = mipLevelCount(content.width, content.height);
     if (options.levels > 0) plan.levels = std::min(plan.levels, options.levels);
     plan.normalisation = decided.normalisation;
+    plan.blocks = decided.blocks;
     return plan;
 }
 
 Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,
                                 const TextureWriteOptions& options, const ChainValues& sameValues) {
-    EncodePlan plan = encodePlanOf(content, options, WritePlan{options.storage.pixelType, std::nullopt});
+    EncodePlan plan = encodePlanOf(content, options, WritePlan{options.storage.pixelType, std::nullopt, nullptr});
     if (options.storage.pixelType == PixelType::Float) return plan;
 
     // One pass over the chain, every layer of an array: the range (uint16: one normalisation for the
@@ -212,6 +213,11 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
         if (Status s = scanContent(path, content, plan, options, lo, hi); !s) return s.error();
     }
     if (plan.format.kind == ComponentKind::Unorm16) plan.normalisation = normalisationOf(lo, hi, plan.sourceChannels, options);
+    if (plan.format.isBlock()) {
+        // Block endpoints have 8 bits: the 16-bit grid buys nothing, the range alone spans the codes.
+        TextureWriteOptions rangeOnly;
+        plan.normalisation = normalisationOf(lo, hi, plan.sourceChannels, rangeOnly);
+    }
     return plan;
 }
 

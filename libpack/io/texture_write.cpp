@@ -11,6 +11,9 @@ Status containerTakes(const TextureOutput& output, const TextureStorage& storage
     if (output.container != Container::Exr) return Done{};
     if (storage.pixelType == PixelType::Uint16)
         return cannotWrite(path, "an EXR has no 16-bit normalised channels", "store float or half, or write .ktx2 or .dds");
+    if (isBlockType(storage.pixelType))
+        return cannotWrite(path, std::string("an EXR has no block-compressed (") + pixelTypeName(storage.pixelType) + ") texels",
+                           "write .ktx2 or .dds, or store float or half");
     if (storage.supercompression != Supercompression::None)
         return cannotWrite(path, "an EXR has no Zstandard compression", "use one of EXR's own, or write .ktx2");
     return Done{};
@@ -54,7 +57,12 @@ Result<TexelStorage> planTexelStorage(const TextureOutput& output, const MipChai
     auto plan = detail::planEncoding(output.path, content, options, sameValues);
     if (!plan) return plan.error();
     TexelStorage storage;
-    storage.plan = WritePlan{options.storage.pixelType, plan->normalisation};
+    storage.plan = WritePlan{options.storage.pixelType, plan->normalisation, nullptr};
+    if (plan->format.isBlock()) {
+        auto blocks = detail::encodeBlockLevels(output.path, content, *plan, options.threads);
+        if (!blocks) return blocks.error();
+        storage.plan.blocks = std::make_shared<const BlockLevels>(std::move(*blocks));
+    }
     storage.pixelType = options.storage.pixelType;
     storage.format = plan->format.format;
     storage.normalisation = plan->normalisation;
@@ -66,7 +74,7 @@ Result<TexelStorage> planTexelStorage(const TextureOutput& output, const MipChai
 }
 
 size_t gpuBytes(int width, int height, int channels, PixelType type) {
-    return size_t(width) * height * texelFormatInfo(texelFormatFor(channels, type)).bytesPerTexel();
+    return detail::imageBytes(texelFormatInfo(texelFormatFor(channels, type)), width, height);
 }
 
 }  // namespace heightpack

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,7 +22,8 @@
 
 namespace heightpack {
 
-// How 16-bit normalised texels map back to values: value = offset + scale * u / 65535.
+// How normalised texels map back to values: value = offset + scale * u / 65535 (16-bit), offset + scale
+// * u (u a block format's decoded unorm).
 struct Normalisation {
     float offset = 0.0f;
     float scale = 1.0f;
@@ -43,11 +45,24 @@ struct TextureWriteOptions {
     std::function<void(double fraction)> progress;  // may be empty
 };
 
+// A block-compressed chain as planned: every layer's every level encoded, and the error its decoded values
+// make against the values given (the float chain), per level, over every layer.
+struct BlockLevels {
+    int levels = 0;
+    std::vector<std::vector<std::uint8_t>> images;  // layer * levels + level
+    std::vector<double> worst, rms;                  // in the values' units
+    // Two channels (xy normals, z rebuilt as sqrt(1 - x^2 - y^2)): the angle between the decoded normal
+    // and the given one, in degrees; empty otherwise.
+    std::vector<double> worstDegrees, rmsDegrees;
+};
+
 // How a texture is stored, decided once before anything is written (planTexelStorage) and handed to the
-// writer as it is: the pixel type and, for uint16, the normalisation of the whole chain's range.
+// writer as it is: the pixel type and, for uint16 and block formats, the normalisation of the whole
+// chain's range; for block formats the blocks themselves.
 struct WritePlan {
     PixelType pixelType = PixelType::Float;
     std::optional<Normalisation> normalisation;
+    std::shared_ptr<const BlockLevels> blocks;
 };
 
 // Writes content into a KTX2 or DDS file at path, whatever its name (writeTexture's caller decided the
