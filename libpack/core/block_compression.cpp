@@ -1,6 +1,7 @@
 // A BC4 encoder from float values. Fitting each mode's endpoints to the float values (not to values
 // rounded to 8 bits first) and searching the neighbouring endpoint pairs by the decoded error is what
-// makes it at least as accurate as encoders that quantise the input to 8 bits.
+// makes it at least as accurate as encoders that quantise the input to 8 bits, in RMS and in the worst
+// error (see choose).
 #include "heightpack/core/block_compression.hpp"
 
 #include <algorithm>
@@ -27,12 +28,40 @@ std::array<float, 8> palette(int e0, int e1) {
     return p;
 }
 
-// A block's endpoints, the codes of its 16 texels and the squared error they decode with.
+// A block's endpoints, the codes of its 16 texels, the squared error they decode with and the worst.
 struct Fit {
     int e0 = 0, e1 = 0;
     std::array<std::uint8_t, 16> codes{};
     double error = 0.0;
+    float worst = 0.0f;
 };
+
+// The endpoint pairs tried for a block, in the order tried.
+struct Candidates {
+    std::array<Fit, 128> fits;
+    int count = 0;
+    void add(const Fit& f) {
+        if (count < int(fits.size())) fits[size_t(count++)] = f;
+    }
+};
+
+// How far above the smallest worst error a candidate may go for a smaller squared error: a quarter code.
+// The block's worst texel decides a map's worst error, its squared error the RMS: the smallest squared
+// error alone gives a smaller RMS than encoders that quantise first but at times a larger worst.
+constexpr float kWorstSlack = 0.25f / 255.0f;
+
+// The candidate with the smallest squared error among those whose worst error is within kWorstSlack of
+// the smallest worst; the first of equals.
+const Fit& choose(const Candidates& c) {
+    float leastWorst = c.fits[0].worst;
+    for (int i = 1; i < c.count; ++i) leastWorst = std::min(leastWorst, c.fits[size_t(i)].worst);
+    const Fit* best = nullptr;
+    for (int i = 0; i < c.count; ++i) {
+        const Fit& f = c.fits[size_t(i)];
+        if (f.worst <= leastWorst + kWorstSlack && (!best || f.error < best->error)) best = &f;
+    }
+    return *best;
+}
 
 // The nearest of the palette's interpolated entries to each value (and, in the six-value mode, of 0 and 1),
 // and the squared error. The interpolated entries are evenly spaced from e0 to e1, so the nearest is the
@@ -56,6 +85,7 @@ Fit assign(const float v[16], int e0, int e1) {
         }
         fit.codes[size_t(i)] = code;
         fit.error += double(error) * error;
+        fit.worst = std::max(fit.worst, error);
     }
     return fit;
 }
@@ -88,10 +118,10 @@ bool leastSquares(const float v[16], const Fit& fit, int steps, double& a, doubl
 
 int toEndpoint(double x) { return int(std::clamp(std::lround(x), 0L, 255L)); }
 
-// The best fit in one mode: eight values (e0 > e1) or six with 0 and 1 (e0 <= e1). Starts from the
-// values' range (the six-value mode's without those nearer 0 or 1 than to it), alternates codes and least
-// squares, then tries every pair within 2 of the endpoints.
-Fit fitMode(const float v[16], bool eightValues) {
+// The candidates of one mode: eight values (e0 > e1) or six with 0 and 1 (e0 <= e1). Every pair within 2
+// of the values' range (the six-value mode's without those nearer 0 or 1 than to it), and within 2 of the
+// least-squares endpoints for the best codes of those.
+void fitMode(const float v[16], bool eightValues, Candidates& out) {
     float lo = 1.0f, hi = 0.0f;
     for (int i = 0; i < 16; ++i) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
     if (!eightValues) {
@@ -110,42 +140,46 @@ Fit fitMode(const float v[16], bool eightValues) {
         }
         return a <= b ? std::pair{a, b} : std::pair{b, a};
     };
-    auto tryPair = [&](int a, int b, Fit& best, bool& any) {
-        const auto [e0, e1] = ordered(a, b);
-        if (e0 < 0) return;
-        Fit f = assign(v, e0, e1);
-        if (!any || f.error < best.error) best = f, any = true;
-    };
+    // Every pair within 2 of (c0, c1), each added to out; the one of least squared error kept in best.
     Fit best;
     bool any = false;
+    auto around = [&](int c0, int c1) {
+        for (int d0 = -2; d0 <= 2; ++d0)
+            for (int d1 = -2; d1 <= 2; ++d1) {
+                const int a = c0 + d0, b = c1 + d1;
+                if (a < 0 || a > 255 || b < 0 || b > 255) continue;
+                const auto [e0, e1] = ordered(a, b);
+                if (e0 < 0) continue;
+                const Fit f = assign(v, e0, e1);
+                out.add(f);
+                if (!any || f.error < best.error) best = f, any = true;
+            }
+    };
     int hiCode = toEndpoint(double(hi) * 255.0), loCode = toEndpoint(double(lo) * 255.0);
     if (eightValues && hiCode == loCode) hiCode < 255 ? ++hiCode : --loCode;
-    tryPair(hiCode, loCode, best, any);
-    if (!any) return best;
+    around(hiCode, loCode);  // the range's ends: what bounds the worst error
+    if (!any) return;
+    // Least squares from the best codes so far, until the rounded endpoints stop moving.
+    int e0 = best.e0, e1 = best.e1;
     for (int round = 0; round < 3; ++round) {
         double a, b;
-        // Least squares with e0 the start (code 0) as best's codes say.
         if (!leastSquares(v, best, steps, a, b)) break;
-        const Fit before = best;
-        tryPair(toEndpoint(a), toEndpoint(b), best, any);
-        if (best.e0 == before.e0 && best.e1 == before.e1) break;
+        const auto [n0, n1] = ordered(toEndpoint(a), toEndpoint(b));
+        if (n0 < 0 || (n0 == e0 && n1 == e1)) break;
+        e0 = n0, e1 = n1;
+        const Fit f = assign(v, e0, e1);
+        if (f.error < best.error) best = f;
     }
-    const int c0 = best.e0, c1 = best.e1;
-    for (int d0 = -2; d0 <= 2; ++d0)
-        for (int d1 = -2; d1 <= 2; ++d1) {
-            const int a = c0 + d0, b = c1 + d1;
-            if (a < 0 || a > 255 || b < 0 || b > 255) continue;
-            tryPair(a, b, best, any);
-        }
-    return best;
+    around(e0, e1);
 }
 
 void encodeBc4Block(const float v[16], std::uint8_t* out) {
     float clamped[16];
     for (int i = 0; i < 16; ++i) clamped[i] = std::clamp(v[i], 0.0f, 1.0f);
-    Fit best = fitMode(clamped, true);
-    const Fit six = fitMode(clamped, false);
-    if (best.e0 <= best.e1 || six.error < best.error) best = six;  // eight values need two endpoints
+    Candidates candidates;
+    fitMode(clamped, true, candidates);
+    fitMode(clamped, false, candidates);
+    const Fit& best = choose(candidates);
     out[0] = std::uint8_t(best.e0);
     out[1] = std::uint8_t(best.e1);
     std::uint64_t bits = 0;

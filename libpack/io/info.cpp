@@ -11,6 +11,7 @@
 
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/texture_write.hpp"
 #include "image_input.hpp"
 #include "stderr_silencer.hpp"
 
@@ -43,10 +44,10 @@ size_t componentBytes(const std::string& pixelType) {
     return 4;
 }
 
-// The per-level lookup errors a file records (attr::lookupError), or none.
-std::vector<double> recordedLookupErrors(const Attributes& attributes) {
+// The per-level errors a file records under key (attr::lookupError, attr::rmsError, ...), or none.
+std::vector<double> recordedLookupErrors(const Attributes& attributes, const char* key = attr::lookupError.name) {
     std::vector<double> errors;
-    const std::string text = findAttribute(attributes, attr::lookupError);
+    const std::string text = findAttribute(attributes, key);
     const char* p = text.c_str();
     while (*p) {
         char* end = nullptr;
@@ -115,6 +116,11 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
     static_cast<TextureHeader&>(info) = *file;
     const std::vector<double> errors = recordedLookupErrors(file->attributes);
     const bool floatTexels = file->pixelType == "float";
+    const std::vector<double> rms = recordedLookupErrors(file->attributes, attr::rmsError.name);
+    const std::vector<double> angles = recordedLookupErrors(file->attributes, attr::angleError.name);
+    const std::vector<double> rmsAngles = recordedLookupErrors(file->attributes, attr::rmsAngleError.name);
+    const auto blockFormat = parsePixelType(file->pixelType);
+    const bool blocks = blockFormat && isBlockType(*blockFormat);
     for (const Image& image : file->levels) {
         LevelInfo level;
         level.width = image.width;
@@ -124,7 +130,11 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
         const int perLayer = image.channels / int(layers);
         level.gpuBytes = image.texelCount() * layers * size_t(perLayer == 3 ? 4 : perLayer) *
                          componentBytes(file->pixelType);
+        if (blocks) level.gpuBytes = gpuBytes(image.width, image.height, perLayer, *blockFormat) * layers;
         const size_t index = info.levels.size();
+        if (rms.size() == file->levels.size()) level.rmsError = rms[index];
+        if (angles.size() == file->levels.size()) level.angleError = angles[index];
+        if (rmsAngles.size() == file->levels.size()) level.rmsAngleError = rmsAngles[index];
         if (floatTexels) level.lookupError = 0.0;  // the float chain itself
         else if (errors.size() == file->levels.size()) level.lookupError = errors[index];
         for (int c = 0; c < image.channels; ++c) {

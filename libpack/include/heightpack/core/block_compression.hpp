@@ -19,9 +19,10 @@ inline size_t blockImageBytes(int width, int height, BlockFormat format) {
 }
 
 // Encodes values in [0, 1] (image.channels == blockChannels(format); values outside are clamped) into
-// blocks, row by row of blocks. Endpoints are fitted to the float values by least squares in both of
-// BC4's modes (eight interpolated values; six with 0 and 1), then refined by a search around them; the
-// one with the smaller squared error is kept. A block's texels past the image repeat its edge texels.
+// blocks, row by row of blocks. Endpoint pairs are tried around the values' range and around the
+// least-squares fit to the float values, in both of BC4's modes (eight interpolated values; six with 0
+// and 1); of those whose worst error is within a quarter code of the least, the one of least squared
+// error is kept. A block's texels past the image repeat its edge texels.
 // Block rows on `threads` threads (0: all cores); the bytes do not depend on it.
 std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, int threads = 0);
 
