@@ -387,7 +387,7 @@ TEST(BlockFormats, ImpossiblePairsAreUsageErrorsThatWriteNothing) {
         {{"normal", map, "--tile-size", "8m", "--height", "1m", "--pixel-type", "bc5", "-o", dir.file("n.ktx2")}, "--layout xy"},
         {{"normal", map, "--tile-size", "8m", "--height", "1m", "--layout", "xy", "--pixel-type", "bc4", "-o", dir.file("n.dds")},
          "bc5"},
-        {{"fresnel", "--pixel-type", "bc4", "-o", dir.file("f.ktx2")}, "float, half or uint16"},
+        {{"fresnel", "--pixel-type", "bc4", "-o", dir.file("f.ktx2")}, "{float,half,uint16}"},
     };
     for (const Refusal& r : refusals) {
         const ProcessResult run = heightpackRun(r.args);
