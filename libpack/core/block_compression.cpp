@@ -116,11 +116,14 @@ bool leastSquares(const float v[16], const Fit& fit, int steps, double& a, doubl
     return true;
 }
 
+// How far from the range's ends, and from the least-squares fit, the endpoint pairs tried go, in codes.
+constexpr int kRangeWindow = 1, kFitWindow = 2;
+
 int toEndpoint(double x) { return int(std::clamp(std::lround(x), 0L, 255L)); }
 
-// The candidates of one mode: eight values (e0 > e1) or six with 0 and 1 (e0 <= e1). Every pair within 2
-// of the values' range (the six-value mode's without those nearer 0 or 1 than to it), and within 2 of the
-// least-squares endpoints for the best codes of those.
+// The candidates of one mode: eight values (e0 > e1) or six with 0 and 1 (e0 <= e1). Every pair within
+// kRangeWindow of the values' range (the six-value mode's without those nearer 0 or 1 than to it), and
+// within kFitWindow of the least-squares endpoints for the best codes of those.
 void fitMode(const float v[16], bool eightValues, Candidates& out) {
     float lo = 1.0f, hi = 0.0f;
     for (int i = 0; i < 16; ++i) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
@@ -140,14 +143,16 @@ void fitMode(const float v[16], bool eightValues, Candidates& out) {
         }
         return a <= b ? std::pair{a, b} : std::pair{b, a};
     };
-    // Every pair within 2 of (c0, c1), each added to out; the one of least squared error kept in best.
+    // Each pair tried is added to out; the one of least squared error is kept in best.
     Fit best;
     bool any = false;
-    auto around = [&](int c0, int c1) {
-        for (int d0 = -2; d0 <= 2; ++d0)
-            for (int d1 = -2; d1 <= 2; ++d1) {
+    // Every pair within r of (c0, c1) but those within skipR of (skip0, skip1), a window already tried.
+    auto around = [&](int c0, int c1, int r, int skip0, int skip1, int skipR) {
+        for (int d0 = -r; d0 <= r; ++d0)
+            for (int d1 = -r; d1 <= r; ++d1) {
                 const int a = c0 + d0, b = c1 + d1;
                 if (a < 0 || a > 255 || b < 0 || b > 255) continue;
+                if (std::abs(a - skip0) <= skipR && std::abs(b - skip1) <= skipR) continue;
                 const auto [e0, e1] = ordered(a, b);
                 if (e0 < 0) continue;
                 const Fit f = assign(v, e0, e1);
@@ -157,10 +162,11 @@ void fitMode(const float v[16], bool eightValues, Candidates& out) {
     };
     int hiCode = toEndpoint(double(hi) * 255.0), loCode = toEndpoint(double(lo) * 255.0);
     if (eightValues && hiCode == loCode) hiCode < 255 ? ++hiCode : --loCode;
-    around(hiCode, loCode);  // the range's ends: what bounds the worst error
+    around(hiCode, loCode, kRangeWindow, -99, -99, 0);  // the range's ends: what bounds the worst error
     if (!any) return;
     // Least squares from the best codes so far, until the rounded endpoints stop moving.
     int e0 = best.e0, e1 = best.e1;
+    const auto [first0, first1] = std::pair{hiCode, loCode};
     for (int round = 0; round < 3; ++round) {
         double a, b;
         if (!leastSquares(v, best, steps, a, b)) break;
@@ -170,7 +176,8 @@ void fitMode(const float v[16], bool eightValues, Candidates& out) {
         const Fit f = assign(v, e0, e1);
         if (f.error < best.error) best = f;
     }
-    around(e0, e1);
+    // The window around the fit, less what the first window tried (in either order of the endpoints).
+    if (eightValues ? e0 > e1 : e0 <= e1) around(e0, e1, kFitWindow, eightValues ? first0 : first1, eightValues ? first1 : first0, kRangeWindow);
 }
 
 void encodeBc4Block(const float v[16], std::uint8_t* out) {
@@ -178,7 +185,11 @@ void encodeBc4Block(const float v[16], std::uint8_t* out) {
     for (int i = 0; i < 16; ++i) clamped[i] = std::clamp(v[i], 0.0f, 1.0f);
     Candidates candidates;
     fitMode(clamped, true, candidates);
-    fitMode(clamped, false, candidates);
+    // The six-value mode's fixed 0 and 1 help a block with values near them; elsewhere its five steps
+    // between the endpoints are coarser than the eight-value mode's seven, and it is not tried.
+    float lo = 1.0f, hi = 0.0f;
+    for (int i = 0; i < 16; ++i) lo = std::min(lo, clamped[i]), hi = std::max(hi, clamped[i]);
+    if (lo < 16.0f / 255.0f || hi > 239.0f / 255.0f || candidates.count == 0) fitMode(clamped, false, candidates);
     const Fit& best = choose(candidates);
     out[0] = std::uint8_t(best.e0);
     out[1] = std::uint8_t(best.e1);
