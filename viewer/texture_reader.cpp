@@ -45,9 +45,9 @@ Result<ViewerTexture> readViewerTexture(const std::string& path) {
     if (const auto container = containerForPath(path); container && *container != Container::Exr) {
         auto gpu = readGpuTexture(path);
         if (!gpu) return gpu.error();
+        texture.stored = storeGpuTexture(*gpu);  // first: a block format's chain is made from the decoded levels
         texture.levels = std::move(gpu->levels);
         texture.attributes = std::move(gpu->keyValues);
-        texture.stored = storeGpuTexture(*gpu);
         if (gpu->layerNames.size() > 1) splitLayers(texture, gpu->layerNames);
         return texture;
     }
