@@ -33,7 +33,8 @@ public:
         cmd->add_option("--size", options_.size, "texels in the ramp")->capture_default_str()->check(CLI::Range(2, 65536));
         cmd->add_option("--format", format_, "exr or png8 (default: from the output's extension)")
             ->check(CLI::IsMember({"exr", "png8"}));
-        addPixelTypeOption(*cmd, pixelType_);
+        addPixelTypeOption(*cmd, pixelType_, false, nullptr, "",
+                           {PixelTypeRequest::Float, PixelTypeRequest::Half, PixelTypeRequest::Uint16});
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
@@ -51,7 +52,7 @@ public:
             return code;
         const std::string format = outputFormat(format_, output_);
         if (format.empty()) return usage("the output must end in .exr, .ktx2, .dds or .png, matching --format if given");
-        const PixelType pixelType = *parsePixelType(pixelType_);
+        const PixelType pixelType = requestedPixelType(pixelType_);
         if (format == "png8" && pixelType != PixelType::Float)
             return usage("--pixel-type is for .exr, .ktx2 and .dds outputs; a PNG ramp is 8-bit");
         Supercompression none;
@@ -77,7 +78,8 @@ public:
     }
 
 private:
-    std::string output_, format_, pixelType_ = "float";
+    std::string output_, format_;
+    PixelTypeRequest pixelType_ = PixelTypeRequest::Float;
     FresnelOptions options_;
     std::string deep_ = colourText(options_.deep), shallow_ = colourText(options_.shallow);
 };

@@ -182,6 +182,10 @@ private:
             else if (!worst.is_null()) worst = std::max(worst.get<double>(), error.get<double>());
             levels.push_back({{"level", i}, {"width", l.width}, {"height", l.height}, {"gpuBytes", l.gpuBytes},
                               {"lookupError", error}, {"channels", channels}});
+            // Block formats: the decoded error's RMS (units as lookupError) and, for xy normals, the angles.
+            if (l.rmsError) levels.back()["rmsError"] = *l.rmsError * (metres > 0.0 ? metres : 1.0);
+            if (l.angleError) levels.back()["angleErrorDegrees"] = *l.angleError;
+            if (l.rmsAngleError) levels.back()["rmsAngleErrorDegrees"] = *l.rmsAngleError;
         }
         auto text = [&](const char* name) {
             const std::string v = findAttribute(info, name);
@@ -247,8 +251,13 @@ private:
             const std::string size = std::to_string(l.width) + "x" + std::to_string(l.height);
             char error[32] = "n/a";
             if (l.lookupError) std::snprintf(error, sizeof error, "%.3g", *l.lookupError * (metres > 0.0 ? metres : 1.0));
-            std::printf("  %-5zu %-11s %12.6g %12.6g %12.6g %11zu %13s\n", i, size.c_str(), c.min, c.max, c.mean,
+            std::printf("  %-5zu %-11s %12.6g %12.6g %12.6g %11zu %13s", i, size.c_str(), c.min, c.max, c.mean,
                         l.gpuBytes, error);
+            // Block formats: what the blocks decode to against the float chain, as recorded when written.
+            if (l.rmsError) std::printf("  rms %.3g", *l.rmsError * (metres > 0.0 ? metres : 1.0));
+            if (l.angleError && l.rmsAngleError)
+                std::printf("  angle worst %.3g, rms %.3g deg", *l.angleError, *l.rmsAngleError);
+            std::printf("\n");
         }
     }
 

@@ -92,7 +92,7 @@ public:
         n.threads = common_.threads;
         o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
         o.storage.pixelType = requestedPixelType(pixelType_);
-        if (format == "png8" && pixelType_ != "float")
+        if (format == "png8" && pixelType_ != PixelTypeRequest::Float)
             return usage("--pixel-type is for .exr, .ktx2 and .dds outputs; a PNG normal map is 8-bit");
         // Normal maps' errors are in normal units: a plain number is one, a length the job converts.
         if (const std::string problem = normalTolerance(pixelType_, tolerance_, o.storage.tolerance, o.toleranceMetres);
@@ -105,6 +105,8 @@ public:
         if (const std::string problem = checkContainerChoice({output_}, o.storage.pixelType, compression_,
                                                              compressionOption_->count() > 0, o.storage.supercompression);
             !problem.empty())
+            return usage(problem);
+        if (const std::string problem = blockLayoutProblem(o.storage.pixelType, options_.layout); !problem.empty())
             return usage(problem);
         o.resizeToPowerOfTwo = resize_ == "pow2";
         applyChannel(channel_, o.load);
@@ -175,7 +177,7 @@ private:
                        {"alpha", nameOf(n.alpha)},
                        {"channels", channels},
                        {"pixelType", format == "png8" ? nlohmann::json("uint8") : stored["pixelType"]},
-                       {"pixelTypeRequested", pixelType_},
+                       {"pixelTypeRequested", nameOf(pixelType_)},
                        {"tolerance", r.tolerance > 0.0 ? nlohmann::json(r.tolerance) : nlohmann::json(nullptr)},
                        {"gpuBytes", format == "png8" ? nlohmann::json(nullptr) : stored["gpuBytes"]},
                        {"lookupError", format == "png8" ? nlohmann::json(nullptr) : stored["lookupError"]},
@@ -206,7 +208,8 @@ private:
 
     std::string input_, output_, tileSize_, channel_, format_;
     NormalJobOptions options_;
-    std::string compression_, resize_ = "none", pixelType_ = "float";
+    std::string compression_, resize_ = "none";
+    PixelTypeRequest pixelType_ = PixelTypeRequest::Float;
     std::string tolerance_;
     CLI::Option* compressionOption_ = nullptr;
     bool heightInAlpha_ = false, varianceInAlpha_ = false;

@@ -89,6 +89,8 @@ public:
             checkContainerChoice({output_, options_.plainOutput}, options_.storage.pixelType, compression_,
                                  compressionOption_->count() > 0, options_.storage.supercompression);
         if (!containerProblem.empty()) return usage(containerProblem);
+        if (const std::string problem = blockLayoutProblem(options_.storage.pixelType, options_.layout); !problem.empty())
+            return usage(problem);
         options_.resizeToPowerOfTwo = resize_ == "pow2";
         setLibraryThreads(common_.threads);
 
@@ -221,7 +223,7 @@ private:
                 {"filter", nameOf(options_.mip.filter)},
                 {"compression", compression},
                 {"pixelType", stored["pixelType"]},
-                {"pixelTypeRequested", pixelType_},
+                {"pixelTypeRequested", nameOf(pixelType_)},
                 {"tolerance", options_.storage.tolerance > 0.0 ? nlohmann::json(tolerance_) : nlohmann::json(nullptr)},
                 {"heightScale", options_.scale},
                 {"heightOffset", options_.offset},
@@ -264,7 +266,8 @@ private:
 
     std::string input_, output_, channel_;
     PackOptions options_;
-    std::string compression_ = nameOf(options_.storage.exrCompression), resize_ = "none", pixelType_ = "float";
+    std::string compression_ = nameOf(options_.storage.exrCompression), resize_ = "none";
+    PixelTypeRequest pixelType_ = PixelTypeRequest::Float;
     std::string tolerance_;
     CLI::Option* compressionOption_ = nullptr;
     // A sequence's text: every frame's part, and frame 0's size, source and notes.

@@ -8,19 +8,19 @@
 #include "heightpack/io/texture_write.hpp"
 
 #include "command.hpp"
+#include "enum_option.hpp"
 
 namespace heightpack::cli {
 
-void addPixelTypeOption(CLI::App& cmd, std::string& pixelType, bool withAuto, std::string* tolerance,
-                        const std::string& toleranceHelp) {
-    std::vector<std::string> names = allNames<PixelType>();
-    if (withAuto) names.emplace_back("auto");
-    cmd.add_option("--pixel-type", pixelType,
-                   std::string("float (32-bit), half (16-bit float, rounded to nearest) or uint16 (16-bit normalised to "
-                               "the chain's range, scale and offset recorded; .ktx2 and .dds only)") +
-                       (withAuto ? "; auto: the fewest bytes whose worst lookup error is within --tolerance" : ""))
-        ->capture_default_str()
-        ->check(CLI::IsMember(names));
+void addPixelTypeOption(CLI::App& cmd, PixelTypeRequest& pixelType, bool withAuto, std::string* tolerance,
+                        const std::string& toleranceHelp, std::vector<PixelTypeRequest> offered) {
+    if (offered.empty())
+        offered = {PixelTypeRequest::Float, PixelTypeRequest::Half, PixelTypeRequest::Uint16, PixelTypeRequest::Bc4,
+                   PixelTypeRequest::Bc5};
+    if (withAuto) offered.push_back(PixelTypeRequest::Auto);
+    std::string help;
+    for (const PixelTypeRequest r : offered) help += (help.empty() ? "" : "; ") + std::string(nameOf(r)) + ": " + describe(r);
+    addEnumOption(cmd, "--pixel-type", pixelType, help, offered);
     if (withAuto && tolerance)
         cmd.add_option("--tolerance", *tolerance,
                        !toleranceHelp.empty() ? toleranceHelp
@@ -39,13 +39,13 @@ std::optional<double> plainNumber(const std::string& text) {
 
 }  // namespace
 
-std::string toleranceInStoredUnits(const std::string& pixelType, const std::string& text, double heightMetres,
+std::string toleranceInStoredUnits(PixelTypeRequest pixelType, const std::string& text, double heightMetres,
                                    double& tolerance) {
     tolerance = 0.0;
-    if (pixelType != "auto") {
+    if (pixelType != PixelTypeRequest::Auto) {
         if (text.empty()) return {};
         return "--tolerance '" + text + "' is for --pixel-type auto (which picks the type); leave it out with --pixel-type " +
-               pixelType;
+               nameOf(pixelType);
     }
     if (text.empty())
         return "--pixel-type auto needs --tolerance, the worst lookup error allowed: a length like 1mm with --height, "
@@ -66,9 +66,9 @@ std::string toleranceInStoredUnits(const std::string& pixelType, const std::stri
     return "--tolerance '" + text + "' is not a positive number";
 }
 
-std::string normalTolerance(const std::string& pixelType, const std::string& text, double& normalUnits, double& metres) {
+std::string normalTolerance(PixelTypeRequest pixelType, const std::string& text, double& normalUnits, double& metres) {
     metres = 0.0;
-    if (pixelType != "auto" || text.empty() || plainNumber(text)) return toleranceInStoredUnits(pixelType, text, 0.0, normalUnits);
+    if (pixelType != PixelTypeRequest::Auto || text.empty() || plainNumber(text)) return toleranceInStoredUnits(pixelType, text, 0.0, normalUnits);
     normalUnits = 0.0;
     if (const auto length = parseLength(text)) {
         metres = *length;
@@ -77,8 +77,16 @@ std::string normalTolerance(const std::string& pixelType, const std::string& tex
     return "--tolerance '" + text + "' is neither a number (normal units) nor a length like 1mm or 0.5cm";
 }
 
-PixelType requestedPixelType(const std::string& pixelType) {
-    return parsePixelType(pixelType).value_or(PixelType::Float);
+PixelType requestedPixelType(PixelTypeRequest pixelType) {
+    switch (pixelType) {
+        case PixelTypeRequest::Half: return PixelType::Half;
+        case PixelTypeRequest::Uint16: return PixelType::Uint16;
+        case PixelTypeRequest::Bc4: return PixelType::Bc4;
+        case PixelTypeRequest::Bc5: return PixelType::Bc5;
+        case PixelTypeRequest::Float:
+        case PixelTypeRequest::Auto: break;  // auto: judged as float, which every container holds, until the job chooses
+    }
+    return PixelType::Float;
 }
 
 nlohmann::json storedChainJson(const std::vector<std::pair<int, int>>& levelSizes, int channels, PixelType type,
@@ -136,9 +144,29 @@ std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelT
             if (pixelType == PixelType::Uint16)
                 return path + ": --pixel-type uint16 needs a .ktx2 or .dds output (an EXR has no 16-bit normalised "
                               "channels)";
+            if (isBlockType(pixelType))
+                return path + ": --pixel-type " + pixelTypeName(pixelType) +
+                       " needs a .ktx2 or .dds output (an EXR has no block-compressed texels; store float or half in "
+                       "an EXR)";
             if (compression == "zstd") return path + ": --compression zstd is for .ktx2 outputs";
         }
     }
+    return {};
+}
+
+std::string blockLayoutProblem(PixelType type, Layout layout) {
+    if (!isBlockType(type)) return {};
+    const std::string name = pixelTypeName(type);
+    if (layout == Layout::Neighbour4)
+        return "--pixel-type " + name + " cannot hold the neighbour4 layout: each copy of a shared height would "
+               "decode differently and the lookup would show seams (write --layout plain and filter in hardware, or "
+               "view it with --lookup gather)";
+    if (type == PixelType::Bc4 && layout != Layout::Plain)
+        return "--pixel-type bc4 holds one channel: it stores plain heights (for normals write --layout xy "
+               "--pixel-type bc5)";
+    if (type == PixelType::Bc5 && layout != Layout::Xy)
+        return "--pixel-type bc5 holds two channels: it stores xy normals (write --layout xy, or for heights "
+               "--layout plain --pixel-type bc4)";
     return {};
 }
 

@@ -9,29 +9,52 @@
 #include <utility>
 #include <vector>
 
+#include "heightpack/core/layout.hpp"
+#include "heightpack/core/names.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 
-namespace heightpack::cli {
+namespace heightpack {
 
-// Adds --pixel-type float|half|uint16 to cmd; with withAuto also auto and --tolerance (into tolerance),
-// described as toleranceHelp says (default: pack's, a length with --height or a number in stored units).
-void addPixelTypeOption(CLI::App& cmd, std::string& pixelType, bool withAuto = false, std::string* tolerance = nullptr,
-                        const std::string& toleranceHelp = "");
+namespace cli {
+// What --pixel-type asks for: one of the pixel types, or auto (pack and normal choose within --tolerance).
+enum class PixelTypeRequest { Float, Half, Uint16, Bc4, Bc5, Auto };
+}  // namespace cli
+
+template <>
+struct NameTable<cli::PixelTypeRequest> {
+    using R = cli::PixelTypeRequest;
+    static constexpr EnumName<R> entries[] = {
+        {R::Float, "float", "32-bit float"},
+        {R::Half, "half", "16-bit float, rounded to nearest"},
+        {R::Uint16, "uint16", "16-bit normalised to the chain's range, scale and offset recorded; .ktx2 and .dds only"},
+        {R::Bc4, "bc4", "block-compressed plain heights (--layout plain), 0.5 byte a texel; .ktx2 and .dds only"},
+        {R::Bc5, "bc5", "block-compressed xy normals (--layout xy), 1 byte a texel; .ktx2 and .dds only"},
+        {R::Auto, "auto", "the fewest bytes whose worst lookup error is within --tolerance"},
+    };
+};
+
+namespace cli {
+
+// Adds --pixel-type to cmd, bound to pixelType: the pixel types (those of `offered`, default all); with
+// withAuto also auto and --tolerance (into tolerance), described as toleranceHelp says (default: pack's,
+// a length with --height or a number in stored units).
+void addPixelTypeOption(CLI::App& cmd, PixelTypeRequest& pixelType, bool withAuto = false, std::string* tolerance = nullptr,
+                        const std::string& toleranceHelp = "", std::vector<PixelTypeRequest> offered = {});
 
 // The tolerance --pixel-type auto chooses within, in stored units (0 for a pixel type given), from
 // --tolerance's text: a length (1mm, 0.5cm, 2e-3m) divided by heightMetres when that is known (> 0),
 // else a plain number (stored units; normal units for normal maps). Returns what is wrong, for usage(),
 // or empty.
-std::string toleranceInStoredUnits(const std::string& pixelType, const std::string& text, double heightMetres,
+std::string toleranceInStoredUnits(PixelTypeRequest pixelType, const std::string& text, double heightMetres,
                                    double& tolerance);
 
 // --tolerance for a normal map, whose --height is always given: a plain number is in normal units (into
 // normalUnits); a length with a unit (1mm, 0.5cm) is a height error in metres (into metres: the job turns
 // it into normal units, the tilt it makes across one texel). Returns what is wrong, for usage(), or empty.
-std::string normalTolerance(const std::string& pixelType, const std::string& text, double& normalUnits, double& metres);
+std::string normalTolerance(PixelTypeRequest pixelType, const std::string& text, double& normalUnits, double& metres);
 
 // The pixel type to judge the containers by: auto chooses among those each container holds.
-PixelType requestedPixelType(const std::string& pixelType);
+PixelType requestedPixelType(PixelTypeRequest pixelType);
 
 // --json's account of a chain as stored: per level its GPU bytes and worst lookup error (in metres when
 // metresPerUnit > 0, else in `units`: "stored", or "normal" for normal maps), and the totals. channels
@@ -52,4 +75,10 @@ std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelT
                                  const std::string& compression, bool compressionGiven,
                                  Supercompression& supercompression);
 
-}  // namespace heightpack::cli
+// What is wrong with storing `layout` in a block pixel type (bc4: plain heights only; bc5: xy normals
+// only; never the neighbour4 layout), for usage(), or empty (also for any other pixel type).
+std::string blockLayoutProblem(PixelType type, Layout layout);
+
+}  // namespace cli
+
+}  // namespace heightpack

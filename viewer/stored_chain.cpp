@@ -28,6 +28,7 @@ StoredChain storeFloats(const std::vector<Image>& levels, ComponentKind kind) {
 
 StoredChain storeGpuTexture(GpuTexture& texture) {
     const TexelFormatInfo& f = texelFormatInfo(texture.format);
+    if (f.isBlock()) return storeFloats(texture.levels);  // drawn from its decoded values, uploaded as floats
     StoredChain chain;
     chain.channels = f.channels;
     chain.kind = f.kind;

@@ -46,9 +46,9 @@ Result<ViewerTexture> readViewerTexture(const std::string& path) {
     if (const auto container = containerForPath(path); container && *container != Container::Exr) {
         auto gpu = readGpuTexture(path);
         if (!gpu) return gpu.error();
+        texture.stored = storeGpuTexture(*gpu);  // first: a block format's chain is made from the decoded levels
         texture.levels = std::move(gpu->levels);
         texture.description = std::move(gpu->description);
-        texture.stored = storeGpuTexture(*gpu);
         if (gpu->layerNames.size() > 1) splitLayers(texture, gpu->layerNames);
         return texture;
     }

@@ -23,7 +23,8 @@ GlFormat glFormatOf(int channels, ComponentKind kind) {
         case ComponentKind::Float16: return {float16[c], formats[c], GL_HALF_FLOAT};
         case ComponentKind::Unorm16: return {unorm16[c], formats[c], GL_UNSIGNED_SHORT};
         case ComponentKind::Snorm16: return {snorm16[c], formats[c], GL_SHORT};
-        case ComponentKind::Float32: break;
+        case ComponentKind::Float32:
+        case ComponentKind::Block: break;  // a block chain reaches the viewer decoded into floats
     }
     return {float32[c], formats[c], GL_FLOAT};
 }

@@ -108,7 +108,7 @@ MapSettings ManifestParser::settings(Section& s, const MapSettings& base) {
 // pixel_type (float, half, uint16, or auto with tolerance) into out, over what out holds already
 // (the defaults). A table that names a type of its own drops an inherited tolerance.
 void ManifestParser::pixelType(Section& s, MapSettings& out, bool autoAllowed) {
-    const std::string choices = joinedNames<PixelType>() + (autoAllowed ? ", auto" : "");
+    const std::string choices = std::string("float, half, uint16") + (autoAllowed ? ", auto" : "");
     if (const auto type = s.text("pixel_type")) {
         if (*type == "auto" && autoAllowed) {
             if (!s.find("tolerance"))
@@ -120,6 +120,11 @@ void ManifestParser::pixelType(Section& s, MapSettings& out, bool autoAllowed) {
         }
         const auto parsed = parseName<PixelType>(*type);
         if (!parsed) throw s.error("pixel_type", "is '" + shorten(*type) + "', but must be one of: " + choices);
+        // Block formats need a layout of their own (plain heights, xy normals), which a manifest's maps
+        // do not choose yet: heightpack pack and normal write them.
+        if (isBlockType(*parsed))
+            throw s.error("pixel_type", "is '" + shorten(*type) + "', a block format a manifest does not write yet",
+                          "set one of: " + choices + ", or write it with heightpack pack or normal");
         out.storage.pixelType = *parsed;
         out.storage.tolerance = 0.0;
     }

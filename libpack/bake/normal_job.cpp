@@ -175,12 +175,11 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         auto storage = detail::chooseStorage({*mipMapped}, content, {&stored}, write);
         if (!storage) return storage.error();
         write.storage.pixelType = storage->pixelType;
-        write.planned = TextureWriteOptions::Planned{storage->pixelType, storage->normalisation};
         report.pixelType = storage->pixelType;
         report.lookupError = storage->lookupError;
         const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*storage);
         content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
-        if (Status s = writeTexture(*mipMapped, content, write); !s) return s.error();
+        if (Status s = writeTexture(*mipMapped, content, write, storage->plan); !s) return s.error();
     }
     progress("write", 1.0);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -224,7 +224,6 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     auto stored = detail::chooseStorage(outputs, content, chains, writeOptions);
     if (!stored) return stored.error();
     writeOptions.storage.pixelType = stored->pixelType;
-    writeOptions.planned = TextureWriteOptions::Planned{stored->pixelType, stored->normalisation};
     report.pixelType = stored->pixelType;
     report.lookupError = stored->lookupError;
     const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*stored);
@@ -235,12 +234,12 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         if (foam) c.attributes.push_back(attribute(attr::foam, laidOut));
     };
     record(content, packed);
-    if (Status s = writeTexture(*packedOutput, content, writeOptions); !s) return s.error();
+    if (Status s = writeTexture(*packedOutput, content, writeOptions, stored->plan); !s) return s.error();
     if (twinOutput) {
         content = contentFor(*twinOutput, false);
         record(content, false);
         writeOptions.progress = [&](double f) { progress("write", 0.8 + 0.2 * f); };
-        if (Status s = writeTexture(*twinOutput, content, writeOptions); !s) return s.error();
+        if (Status s = writeTexture(*twinOutput, content, writeOptions, stored->plan); !s) return s.error();
     }
     progress("write", 1.0);
     report.writeSeconds = secondsSince(start);

@@ -19,7 +19,7 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Mip
     options.storage.pixelType = type;
     StoredChain stored;
     stored.pixelType = type;
-    if (type == PixelType::Float) {  // the float chain itself; the writer still judges the container
+    if (type == PixelType::Float) {  // the float chain itself; every container holds it
         stored.lookupError.assign(chains.front()->size(), 0.0);
         return stored;
     }
@@ -27,11 +27,17 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Mip
     // packed content's and nothing to pack.
     auto storage = planTexelStorage(outputs.front(), content, options, chains);
     if (!storage) return storage.error();
-    stored.normalisation = storage->normalisation;
+    stored.plan = storage->plan;
     // The same values, so only the container can object: no second scan.
-    options.planned = TextureWriteOptions::Planned{type, storage->normalisation};
     for (size_t i = 1; i < outputs.size(); ++i)
-        if (auto other = planTexelStorage(outputs[i], content, options); !other) return other.error();
+        if (Status s = containerTakes(outputs[i], options.storage); !s) return s.error();
+    if (const BlockLevels* blocks = stored.plan.blocks.get()) {  // measured on what was encoded
+        stored.lookupError = blocks->worst;
+        stored.rmsError = blocks->rms;
+        stored.angleError = blocks->worstDegrees;
+        stored.rmsAngleError = blocks->rmsDegrees;
+        return stored;
+    }
     for (const std::vector<Image>* chain : chains) {
         const std::vector<double> errors = worstLookupError(*chain, storage->storeAndReadRow, options.threads);
         if (stored.lookupError.empty()) stored.lookupError = errors;
@@ -57,16 +63,29 @@ Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, con
     return measure(outputs, content, chains, options, PixelType::Float);
 }
 
-std::vector<ExrAttribute> lookupErrorAttributes(const StoredChain& stored) {
-    if (stored.pixelType == PixelType::Float) return {};
+namespace {
+
+std::string levelList(const std::vector<double>& values) {
     std::string levels;
-    for (const double e : stored.lookupError) {
+    for (const double e : values) {
         char text[32];
         std::snprintf(text, sizeof text, "%.9g", e);
         if (!levels.empty()) levels += ',';
         levels += text;
     }
-    return {attribute(attr::lookupError, levels), attribute(attr::maxLookupError, static_cast<float>(stored.worst()))};
+    return levels;
+}
+
+}  // namespace
+
+std::vector<ExrAttribute> lookupErrorAttributes(const StoredChain& stored) {
+    if (stored.pixelType == PixelType::Float) return {};
+    std::vector<ExrAttribute> out = {attribute(attr::lookupError, levelList(stored.lookupError)),
+                                     attribute(attr::maxLookupError, static_cast<float>(stored.worst()))};
+    if (!stored.rmsError.empty()) out.push_back(attribute(attr::rmsError, levelList(stored.rmsError)));
+    if (!stored.angleError.empty()) out.push_back(attribute(attr::angleError, levelList(stored.angleError)));
+    if (!stored.rmsAngleError.empty()) out.push_back(attribute(attr::rmsAngleError, levelList(stored.rmsAngleError)));
+    return out;
 }
 
 }  // namespace heightpack::detail

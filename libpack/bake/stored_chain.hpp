@@ -16,8 +16,11 @@ namespace heightpack::detail {
 
 struct StoredChain {
     PixelType pixelType = PixelType::Float;
-    std::optional<Normalisation> normalisation;  // uint16: as planned (hand it on as TextureWriteOptions::planned)
+    WritePlan plan;  // as decided for every output: hand it to writeTexture
     std::vector<double> lookupError;  // per level, level 0 first, in the chain's units
+    // Block formats: per level, the RMS decoded error (chain's units) and for xy normals the worst and RMS
+    // angle in degrees; empty otherwise.
+    std::vector<double> rmsError, angleError, rmsAngleError;
     double worst() const;
 };
 

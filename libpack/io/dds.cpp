@@ -25,6 +25,7 @@
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/gpu_texture.hpp"
+#include "heightpack/io/texture_write.hpp"
 #include "level_write.hpp"
 #include "texel_encode.hpp"
 
@@ -46,6 +47,7 @@ constexpr size_t kDataStart = 4 + 124 + 20;
 // dwFlags, ddspf.dwFlags, dwCaps and the DX10 resource dimension.
 constexpr std::uint32_t kCaps = 0x1, kHeight = 0x2, kWidth = 0x4, kPitch = 0x8, kPixelFormat = 0x1000,
                         kMipMapCount = 0x20000;
+constexpr std::uint32_t kLinearSize = 0x80000;
 constexpr std::uint32_t kFourCCFlag = 0x4;
 constexpr std::uint32_t kCapsComplex = 0x8, kCapsTexture = 0x1000, kCapsMipMap = 0x400000;
 constexpr std::uint32_t kTexture2D = 3;
@@ -95,6 +97,13 @@ std::uint32_t codeOf(const std::array<const char*, N>& names, const std::string&
 }  // namespace
 
 Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
+    auto storage = planTexelStorage({path, Container::Dds}, content, options);
+    if (!storage) return storage.error();
+    return writeDds(path, content, options, storage->plan);
+}
+
+Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+                 const WritePlan& decided) {
     if (Status s = checkWritable(path); !s) return s;
     if (options.storage.supercompression != Supercompression::None)
         return cannotWrite(path, "DDS has no supercompression", "write it uncompressed, or as KTX2");
@@ -107,9 +116,7 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     if (!content.layerNames.empty() && content.layerNames != recordedLayers(layerFlags))
         return Error{ErrorKind::Internal, path, "internal error: a DDS records only the layers heights, Dx, Dy, Foam, in that order",
                      "please report this"};
-    auto planned = detail::planEncoding(path, content, options);
-    if (!planned) return planned.error();
-    const detail::EncodePlan& plan = *planned;
+    const detail::EncodePlan plan = detail::encodePlanOf(content, options, decided);
     const TexelFormatInfo& f = plan.format;
     const int layers = content.layerCount();
 
@@ -120,7 +127,10 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     header[1] = kCaps | kHeight | kWidth | kPitch | kPixelFormat | kMipMapCount;
     header[2] = static_cast<std::uint32_t>(content.height);
     header[3] = static_cast<std::uint32_t>(content.width);
-    header[4] = static_cast<std::uint32_t>(content.width * f.bytesPerTexel());  // pitch of level 0
+    // Level 0's pitch, or for a block format its whole size (DDSD_LINEARSIZE in place of DDSD_PITCH).
+    header[4] = static_cast<std::uint32_t>(f.isBlock() ? detail::imageBytes(f, content.width, content.height)
+                                                      : size_t(content.width) * f.bytesPerTexel());
+    if (f.isBlock()) header[1] = (header[1] & ~kPitch) | kLinearSize;
     header[6] = static_cast<std::uint32_t>(plan.levels);
     std::uint32_t* reserved = header + 7;
     Attributes text = detail::attributesAsText(content.attributes);
@@ -156,6 +166,15 @@ Status writeDds(const std::string& path, const MipChainSource& content, const Te
     // Each layer's levels from level 0, one layer's chain after another, right after the headers.
     std::vector<std::uint8_t> head(h.size() * 4);
     std::memcpy(head.data(), h.data(), head.size());  // little-endian words, as the file holds them
+    if (f.isBlock()) {  // encoded when planned: each layer's levels in turn after the headers
+        const BlockLevels* blocks = plan.blocks.get();
+        if (!blocks || blocks->images.size() != size_t(layers) * size_t(plan.levels))
+            return Error{ErrorKind::Internal, path, "internal error: a block format was not encoded when it was planned",
+                         "please report this"};
+        for (const std::vector<std::uint8_t>& image : blocks->images) head.insert(head.end(), image.begin(), image.end());
+        if (options.progress) options.progress(1.0);
+        return writeTextFile(path, std::string(head.begin(), head.end()));
+    }
     std::vector<detail::PlacedImage> images;
     std::uint64_t offset = head.size();
     for (int pass = 0; pass < layers * plan.levels; ++pass) {
@@ -220,7 +239,7 @@ Result<GpuTexture> readDds(const std::string& path) {
         }
         for (const UnitWord& u : kUnitWords)
             if (flags & u.flag) t.keyValues.emplace_back(u.key.name, floatText(bitsFloat(word(u.word))));
-        if ((flags & kNormalisationFlag) && f.kind == ComponentKind::Unorm16) {
+        if ((flags & kNormalisationFlag) && (f.kind == ComponentKind::Unorm16 || f.isBlock())) {
             t.normalisation = Normalisation{bitsFloat(word(14)), bitsFloat(word(15))};
             t.keyValues.emplace_back(attr::normalisedOffset.name, floatText(t.normalisation->offset));
             t.keyValues.emplace_back(attr::normalisedScale.name, floatText(t.normalisation->scale));
@@ -243,7 +262,7 @@ Result<GpuTexture> readDds(const std::string& path) {
     for (int pass = 0; pass < layers * levels; ++pass) {
         const int level = pass % levels;
         const int w = mipLevelSide(t.width, level), h = mipLevelSide(t.height, level);
-        const size_t n = size_t(w) * h * f.bytesPerTexel();
+        const size_t n = imageBytes(f, w, h);
         if (n > b.size() - at) return corrupt("level " + std::to_string(level) + " is truncated");
         t.levelBytes[size_t(level)].insert(t.levelBytes[size_t(level)].end(), b.begin() + std::ptrdiff_t(at),
                                            b.begin() + std::ptrdiff_t(at + n));

@@ -174,7 +174,7 @@ EngineVerdict engineSupport(Engine engine, const TextureHeader& header, int leve
     const FileKind c = container == "ktx2" ? FileKind::Ktx2 : container == "dds" ? FileKind::Dds
                         : container == "openexr" ? FileKind::Exr : container == "png" ? FileKind::Png : FileKind::Other;
     if ((c == FileKind::Ktx2 || c == FileKind::Dds) && texel == Texel::Other)
-        return verdict(EngineSupport::Unknown, "a texel format heightpack does not write: no entry for it");
+        return verdict(EngineSupport::Unknown, "no entry for this texel format in heightpack's engines table");
     const bool mipmappedExr = c == FileKind::Exr && levels > 1;
     const bool png16 = c == FileKind::Png && header.pixelType == "uint16";
     EngineVerdict single;

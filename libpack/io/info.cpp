@@ -9,6 +9,7 @@
 
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/files.hpp"
+#include "heightpack/io/texture_write.hpp"
 #include "image_input.hpp"
 #include "stderr_silencer.hpp"
 
@@ -87,8 +88,10 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
     if (!file) return file.error();
     FileInfo info;
     static_cast<TextureHeader&>(info) = *file;
-    const std::vector<double>& errors = file->description.lookupErrors;
-    const bool floatTexels = file->description.pixelType == PixelType::Float;
+    const TextureDescription& described = file->description;
+    const std::vector<double>& errors = described.lookupErrors;
+    const bool floatTexels = described.pixelType == PixelType::Float;
+    const bool blocks = described.pixelType && isBlockType(*described.pixelType);
     for (const Image& image : file->levels) {
         LevelInfo level;
         level.width = image.width;
@@ -97,8 +100,13 @@ Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessag
         const size_t layers = std::max<size_t>(1, file->layerNames.size());
         const int perLayer = image.channels / int(layers);
         level.gpuBytes = image.texelCount() * layers * size_t(perLayer == 3 ? 4 : perLayer) *
-                         size_t(file->description.componentBytes);
+                         size_t(described.componentBytes);
+        if (blocks) level.gpuBytes = gpuBytes(image.width, image.height, perLayer, *described.pixelType) * layers;
         const size_t index = info.levels.size();
+        const size_t levels = file->levels.size();
+        if (described.rmsErrors.size() == levels) level.rmsError = described.rmsErrors[index];
+        if (described.angleErrors.size() == levels) level.angleError = described.angleErrors[index];
+        if (described.rmsAngleErrors.size() == levels) level.rmsAngleError = described.rmsAngleErrors[index];
         if (floatTexels) level.lookupError = 0.0;  // the float chain itself
         else if (errors.size() == file->levels.size()) level.lookupError = errors[index];
         for (int c = 0; c < image.channels; ++c) {

@@ -20,6 +20,8 @@
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/gpu_texture.hpp"
+#include "heightpack/io/texture_write.hpp"
+#include "ktx2_layout.hpp"
 #include "level_write.hpp"
 #include "texel_encode.hpp"
 
@@ -28,39 +30,22 @@ namespace heightpack {
 using detail::FileCloser;
 using detail::kBandRows;
 using detail::readLe32;
+namespace ktx2 = detail::ktx2;
 
 namespace {
-
-constexpr std::uint8_t kIdentifier[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
-constexpr std::uint32_t kSupercompressionZstd = 2;
-constexpr std::uint64_t kZstdMostBlockBytes = 128 << 10;  // ZSTD_BLOCKSIZE_MAX
-constexpr size_t kHeaderBytes = 80;  // identifier + header + index
-constexpr const char* kOffsetKey = attr::normalisedOffset.name;
-constexpr const char* kScaleKey = attr::normalisedScale.name;
-
-void put32(std::vector<std::uint8_t>& out, std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-}
-void put64(std::vector<std::uint8_t>& out, std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-}
-std::uint64_t get64(const std::uint8_t* p) {
-    return std::uint64_t(readLe32(p)) | std::uint64_t(readLe32(p + 4)) << 32;
-}
-size_t alignUp(size_t v, size_t a) { return (v + a - 1) / a * a; }
 
 // The Data Format Descriptor: dfdTotalSize, then one Khronos basic descriptor block (model RGBSDA, BT.709
 // primaries, linear transfer, straight alpha, 1x1 texel blocks) with one sample per channel.
 std::vector<std::uint8_t> dataFormatDescriptor(const TexelFormatInfo& f) {
     const std::uint32_t blockSize = 24 + 16 * f.channels;
     std::vector<std::uint8_t> out;
-    put32(out, 4 + blockSize);
-    put32(out, 0);                                // vendorId 0 (Khronos), descriptorType 0 (basic)
-    put32(out, 2 | blockSize << 16);              // versionNumber 2 (KDF 1.3), descriptorBlockSize
-    put32(out, 1 | 1 << 8 | 1 << 16 | 0 << 24);   // colorModel RGBSDA, primaries BT709, transfer LINEAR, flags
-    put32(out, 0);                                // texelBlockDimension0..3: 1x1x1x1, stored minus one
-    put32(out, static_cast<std::uint32_t>(f.bytesPerTexel()));  // bytesPlane0
-    put32(out, 0);                                // bytesPlane4..7
+    ktx2::put32(out, 4 + blockSize);
+    ktx2::put32(out, 0);                                // vendorId 0 (Khronos), descriptorType 0 (basic)
+    ktx2::put32(out, 2 | blockSize << 16);              // versionNumber 2 (KDF 1.3), descriptorBlockSize
+    ktx2::put32(out, 1 | 1 << 8 | 1 << 16 | 0 << 24);   // colorModel RGBSDA, primaries BT709, transfer LINEAR, flags
+    ktx2::put32(out, 0);                                // texelBlockDimension0..3: 1x1x1x1, stored minus one
+    ktx2::put32(out, static_cast<std::uint32_t>(f.bytesPerTexel()));  // bytesPlane0
+    ktx2::put32(out, 0);                                // bytesPlane4..7
     const int bits = 8 * f.bytesPerComponent();
     for (int c = 0; c < f.channels; ++c) {
         const std::uint32_t channelId = c == 3 ? 15 : static_cast<std::uint32_t>(c);  // R G B ... A
@@ -73,32 +58,18 @@ std::vector<std::uint8_t> dataFormatDescriptor(const TexelFormatInfo& f) {
                 upper = 0x3F800000u;       // 1.0f
                 break;
             case ComponentKind::Unorm16: upper = 65535; break;
+            case ComponentKind::Block: break;  // described in ktx2_blocks.cpp
             case ComponentKind::Snorm16:
                 qualifiers = 0x40;
                 lower = static_cast<std::uint32_t>(-32767);
                 upper = 32767;
                 break;
         }
-        put32(out, static_cast<std::uint32_t>(c * bits) | static_cast<std::uint32_t>(bits - 1) << 16 |
+        ktx2::put32(out, static_cast<std::uint32_t>(c * bits) | static_cast<std::uint32_t>(bits - 1) << 16 |
                        (channelId | qualifiers) << 24);
-        put32(out, 0);  // samplePosition0..3
-        put32(out, lower);
-        put32(out, upper);
-    }
-    return out;
-}
-
-// Key/value data: entries sorted by key, each keyAndValueByteLength, key NUL, value NUL, padded to 4.
-std::vector<std::uint8_t> keyValueData(Attributes keyValues) {
-    std::stable_sort(keyValues.begin(), keyValues.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::vector<std::uint8_t> out;
-    for (const auto& [key, value] : keyValues) {
-        put32(out, static_cast<std::uint32_t>(key.size() + 1 + value.size() + 1));
-        out.insert(out.end(), key.begin(), key.end());
-        out.push_back(0);
-        out.insert(out.end(), value.begin(), value.end());
-        out.push_back(0);
-        while (out.size() % 4) out.push_back(0);
+        ktx2::put32(out, 0);  // samplePosition0..3
+        ktx2::put32(out, lower);
+        ktx2::put32(out, upper);
     }
     return out;
 }
@@ -110,28 +81,34 @@ struct ZstdFree {
 }  // namespace
 
 Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
+    auto storage = planTexelStorage({path, Container::Ktx2}, content, options);
+    if (!storage) return storage.error();
+    return writeKtx2(path, content, options, storage->plan);
+}
+
+Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+                 const WritePlan& decided) {
     if (Status s = checkWritable(path); !s) return s;
-    auto planned = detail::planEncoding(path, content, options);
-    if (!planned) return planned.error();
-    const detail::EncodePlan& plan = *planned;
+    const detail::EncodePlan plan = detail::encodePlanOf(content, options, decided);
     const TexelFormatInfo& f = plan.format;
     const bool zstd = options.storage.supercompression == Supercompression::Zstd;
 
     Attributes keyValues = detail::attributesAsText(content.attributes);
     if (plan.normalisation) {
-        keyValues.emplace_back(kOffsetKey, detail::floatText(plan.normalisation->offset));
-        keyValues.emplace_back(kScaleKey, detail::floatText(plan.normalisation->scale));
+        keyValues.emplace_back(ktx2::kOffsetKey, detail::floatText(plan.normalisation->offset));
+        keyValues.emplace_back(ktx2::kScaleKey, detail::floatText(plan.normalisation->scale));
     }
     if (!content.layerNames.empty()) keyValues.emplace_back(attr::layers.name, detail::layerList(content.layerNames));
     keyValues.emplace_back("KTXwriter", options.writer.empty() ? std::string("heightpack") : options.writer);
     // By convention the option of Khronos' `ktx` tool that gives the same supercompression: data in the
     // file, not a hint naming a flag of heightpack's (the marker tells floor_rules.sh so).
     if (zstd) keyValues.emplace_back("KTXwriterScParams", "--zstd " + std::to_string(options.storage.zstdLevel));  // floor_rules: data
+    if (f.isBlock()) return detail::writeKtx2Blocks(path, content, options, plan, keyValues);
 
     const int levels = plan.levels, layers = content.layerCount();
     const std::vector<std::uint8_t> dfd = dataFormatDescriptor(f);
-    const std::vector<std::uint8_t> kvd = keyValueData(keyValues);
-    const size_t dfdOffset = kHeaderBytes + 24 * size_t(levels);
+    const std::vector<std::uint8_t> kvd = ktx2::keyValueData(keyValues);
+    const size_t dfdOffset = ktx2::kHeaderBytes + 24 * size_t(levels);
     const size_t kvdOffset = dfdOffset + dfd.size();
     const size_t dataStart = kvdOffset + kvd.size();
     const size_t alignment = zstd ? 1 : std::lcm(size_t(f.bytesPerTexel()), size_t(4));
@@ -142,33 +119,33 @@ Status writeKtx2(const std::string& path, const MipChainSource& content, const T
     for (int level = levels - 1; level >= 0; --level) {
         rawLength[level] = std::uint64_t(mipLevelSide(content.width, level)) *
                            mipLevelSide(content.height, level) * f.bytesPerTexel() * layers;
-        at = alignUp(at, alignment);
+        at = ktx2::alignUp(at, alignment);
         offset[level] = at;
         length[level] = rawLength[level];
         at += rawLength[level];
     }
 
     auto header = [&] {
-        std::vector<std::uint8_t> h(kIdentifier, kIdentifier + 12);
-        put32(h, f.vkFormat);
-        put32(h, static_cast<std::uint32_t>(f.bytesPerComponent()));  // typeSize
-        put32(h, static_cast<std::uint32_t>(content.width));
-        put32(h, static_cast<std::uint32_t>(content.height));
-        put32(h, 0);  // pixelDepth: a 2D texture
-        put32(h, content.layerNames.empty() ? 0 : static_cast<std::uint32_t>(layers));  // 0: not an array
-        put32(h, 1);  // faceCount
-        put32(h, static_cast<std::uint32_t>(levels));
-        put32(h, zstd ? kSupercompressionZstd : 0);
-        put32(h, static_cast<std::uint32_t>(dfdOffset));
-        put32(h, static_cast<std::uint32_t>(dfd.size()));
-        put32(h, kvd.empty() ? 0 : static_cast<std::uint32_t>(kvdOffset));
-        put32(h, static_cast<std::uint32_t>(kvd.size()));
-        put64(h, 0);  // no supercompression global data
-        put64(h, 0);
+        std::vector<std::uint8_t> h(ktx2::kIdentifier, ktx2::kIdentifier + 12);
+        ktx2::put32(h, f.vkFormat);
+        ktx2::put32(h, static_cast<std::uint32_t>(f.bytesPerComponent()));  // typeSize
+        ktx2::put32(h, static_cast<std::uint32_t>(content.width));
+        ktx2::put32(h, static_cast<std::uint32_t>(content.height));
+        ktx2::put32(h, 0);  // pixelDepth: a 2D texture
+        ktx2::put32(h, content.layerNames.empty() ? 0 : static_cast<std::uint32_t>(layers));  // 0: not an array
+        ktx2::put32(h, 1);  // faceCount
+        ktx2::put32(h, static_cast<std::uint32_t>(levels));
+        ktx2::put32(h, zstd ? ktx2::kSupercompressionZstd : 0);
+        ktx2::put32(h, static_cast<std::uint32_t>(dfdOffset));
+        ktx2::put32(h, static_cast<std::uint32_t>(dfd.size()));
+        ktx2::put32(h, kvd.empty() ? 0 : static_cast<std::uint32_t>(kvdOffset));
+        ktx2::put32(h, static_cast<std::uint32_t>(kvd.size()));
+        ktx2::put64(h, 0);  // no supercompression global data
+        ktx2::put64(h, 0);
         for (int level = 0; level < levels; ++level) {
-            put64(h, offset[level]);
-            put64(h, length[level]);
-            put64(h, rawLength[level]);
+            ktx2::put64(h, offset[level]);
+            ktx2::put64(h, length[level]);
+            ktx2::put64(h, rawLength[level]);
         }
         h.insert(h.end(), dfd.begin(), dfd.end());
         h.insert(h.end(), kvd.begin(), kvd.end());
@@ -257,7 +234,7 @@ Result<GpuTexture> readKtx2(const std::string& path) {
         return badInput(path, "is not a KTX2 file heightpack can read: " + what,
                         "write it again with heightpack, or check that it was copied whole");
     };
-    if (b.size() < kHeaderBytes || std::memcmp(b.data(), kIdentifier, 12) != 0)
+    if (b.size() < ktx2::kHeaderBytes || std::memcmp(b.data(), ktx2::kIdentifier, 12) != 0)
         return corrupt("no KTX 2.0 identifier");
     const std::uint8_t* p = b.data() + 12;
     const std::uint32_t vkFormat = readLe32(p), width = readLe32(p + 8), height = readLe32(p + 12), depth = readLe32(p + 16),
@@ -274,15 +251,15 @@ Result<GpuTexture> readKtx2(const std::string& path) {
     if (depth != 0 || faces != 1) return corrupt("it is not a 2D texture or array");
     if (layers > 64) return corrupt("it lists " + std::to_string(layers) + " layers, more than heightpack writes");
     const int layerCount = layers > 1 ? int(layers) : 1;
-    if (scheme != 0 && scheme != kSupercompressionZstd)
+    if (scheme != 0 && scheme != ktx2::kSupercompressionZstd)
         return corrupt("supercompression scheme " + std::to_string(scheme) + " is not supported");
-    t.supercompression = scheme == kSupercompressionZstd ? Supercompression::Zstd : Supercompression::None;
+    t.supercompression = scheme == ktx2::kSupercompressionZstd ? Supercompression::Zstd : Supercompression::None;
     t.width = int(width);
     t.height = int(height);
     const int full = mipLevelCount(t.width, t.height);
     const int levels = levelCount == 0 ? 1 : int(std::min<std::uint32_t>(levelCount, 64));
     if (levels > full) return corrupt("it lists more levels than its size allows");
-    if (kHeaderBytes + 24 * size_t(levels) > b.size()) return corrupt("its level index is truncated");
+    if (ktx2::kHeaderBytes + 24 * size_t(levels) > b.size()) return corrupt("its level index is truncated");
     if (size_t(dfdOffset) + dfdLength > b.size() || size_t(kvdOffset) + kvdLength > b.size())
         return corrupt("its descriptor or key/value data lies past its end");
 
@@ -297,11 +274,11 @@ Result<GpuTexture> readKtx2(const std::string& path) {
         std::string value(kv.substr(nul + 1));
         if (!value.empty() && value.back() == '\0') value.pop_back();
         t.keyValues.emplace_back(std::string(kv.substr(0, nul)), std::move(value));
-        at = alignUp(at + 4 + n, 4);
+        at = ktx2::alignUp(at + 4 + n, 4);
     }
     if (layerCount > 1) t.layerNames = layerNamesOf(findAttribute(t.keyValues, attr::layers), layerCount);
-    const std::string off = findAttribute(t.keyValues, kOffsetKey), scale = findAttribute(t.keyValues, kScaleKey);
-    if (f.kind == ComponentKind::Unorm16 && !off.empty() && !scale.empty()) {
+    const std::string off = findAttribute(t.keyValues, ktx2::kOffsetKey), scale = findAttribute(t.keyValues, ktx2::kScaleKey);
+    if ((f.kind == ComponentKind::Unorm16 || f.isBlock()) && !off.empty() && !scale.empty()) {
         // Read before the levels are decoded through them, so checked here rather than by describeTexture.
         float value[2];
         for (int k = 0; k < 2; ++k) {
@@ -309,7 +286,7 @@ Result<GpuTexture> readKtx2(const std::string& path) {
             char* end = nullptr;
             const double v = std::strtod(text.c_str(), &end);
             if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || std::abs(v) > 1e30)
-                return badInput(path, std::string("its ") + (k == 0 ? kOffsetKey : kScaleKey) + " metadata '" +
+                return badInput(path, std::string("its ") + (k == 0 ? ktx2::kOffsetKey : ktx2::kScaleKey) + " metadata '" +
                                           text.substr(0, 64) + "' is not a finite number",
                                 "remove or correct that metadata in the file");
             value[k] = float(v);
@@ -318,10 +295,10 @@ Result<GpuTexture> readKtx2(const std::string& path) {
     }
 
     for (int level = 0; level < levels; ++level) {
-        const std::uint8_t* e = b.data() + kHeaderBytes + 24 * size_t(level);
-        const std::uint64_t offset = get64(e), length = get64(e + 8), raw = get64(e + 16);
+        const std::uint8_t* e = b.data() + ktx2::kHeaderBytes + 24 * size_t(level);
+        const std::uint64_t offset = ktx2::get64(e), length = ktx2::get64(e + 8), raw = ktx2::get64(e + 16);
         const int w = mipLevelSide(t.width, level), h = mipLevelSide(t.height, level);
-        const std::uint64_t expected = std::uint64_t(w) * h * f.bytesPerTexel() * layerCount;
+        const std::uint64_t expected = std::uint64_t(imageBytes(f, w, h)) * layerCount;
         if (offset > b.size() || length > b.size() - offset)
             return corrupt("level " + std::to_string(level) + " lies past the end of the file");
         if (raw != expected) return corrupt("level " + std::to_string(level) + " has the wrong size");
@@ -333,7 +310,7 @@ Result<GpuTexture> readKtx2(const std::string& path) {
             // Nor more than its frame can hold, checked before the level is allocated (a frame that does not
             // state its size could claim terabytes): a Zstandard block inflates to at most 128 KiB, and the
             // smallest (a run) takes 4 bytes.
-            if (expected / kZstdMostBlockBytes > length / 4 + 1)
+            if (expected / ktx2::kZstdMostBlockBytes > length / 4 + 1)
                 return corrupt("level " + std::to_string(level) + " claims more than its Zstandard frame can hold");
             bytes.resize(expected);
             const size_t got = ZSTD_decompress(bytes.data(), bytes.size(), b.data() + offset, length);

@@ -13,7 +13,7 @@ namespace heightpack {
 namespace {
 
 // Vulkan and DXGI codes from the Vulkan registry and Microsoft's DXGI_FORMAT enumeration.
-constexpr std::array<TexelFormatInfo, 10> kFormats = {{
+constexpr std::array<TexelFormatInfo, 12> kFormats = {{
     {TexelFormat::Rgba32F, 4, ComponentKind::Float32, 109, 2, "VK_FORMAT_R32G32B32A32_SFLOAT",
      "DXGI_FORMAT_R32G32B32A32_FLOAT"},
     {TexelFormat::Rgba16F, 4, ComponentKind::Float16, 97, 10, "VK_FORMAT_R16G16B16A16_SFLOAT",
@@ -27,6 +27,8 @@ constexpr std::array<TexelFormatInfo, 10> kFormats = {{
     {TexelFormat::R32F, 1, ComponentKind::Float32, 100, 41, "VK_FORMAT_R32_SFLOAT", "DXGI_FORMAT_R32_FLOAT"},
     {TexelFormat::R16F, 1, ComponentKind::Float16, 76, 54, "VK_FORMAT_R16_SFLOAT", "DXGI_FORMAT_R16_FLOAT"},
     {TexelFormat::R16Unorm, 1, ComponentKind::Unorm16, 70, 56, "VK_FORMAT_R16_UNORM", "DXGI_FORMAT_R16_UNORM"},
+    {TexelFormat::Bc4Unorm, 1, ComponentKind::Block, 139, 80, "VK_FORMAT_BC4_UNORM_BLOCK", "DXGI_FORMAT_BC4_UNORM"},
+    {TexelFormat::Bc5Unorm, 2, ComponentKind::Block, 141, 83, "VK_FORMAT_BC5_UNORM_BLOCK", "DXGI_FORMAT_BC5_UNORM"},
 }};
 
 }  // namespace
@@ -58,6 +60,8 @@ std::optional<TexelFormat> texelFormatFromDxgi(std::uint32_t dxgiFormat) {
 }
 
 TexelFormat texelFormatFor(int channels, PixelType type) {
+    if (type == PixelType::Bc4) return TexelFormat::Bc4Unorm;
+    if (type == PixelType::Bc5) return TexelFormat::Bc5Unorm;
     switch (channels) {
         case 1:
             return type == PixelType::Float  ? TexelFormat::R32F
@@ -80,6 +84,7 @@ PixelType pixelTypeOf(TexelFormat format) {
         case ComponentKind::Float16: return PixelType::Half;
         case ComponentKind::Unorm16:
         case ComponentKind::Snorm16: return PixelType::Uint16;
+        case ComponentKind::Block: return format == TexelFormat::Bc4Unorm ? PixelType::Bc4 : PixelType::Bc5;
     }
     return PixelType::Float;
 }

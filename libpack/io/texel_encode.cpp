@@ -135,6 +135,7 @@ void encodeRow(const EncodePlan& plan, const float* in, size_t texels, std::uint
             break;
         }
         case ComponentKind::Snorm16: encodeTexels<std::int16_t>(in, from, to, texels, out, snormCode); break;
+        case ComponentKind::Block: break;  // whole levels at a time: encodeBlockLevels
     }
 }
 
@@ -185,6 +186,7 @@ float storeAndRead(const EncodePlan& plan, float value) {
             return unormValue(unormCode(value, n), n);
         }
         case ComponentKind::Snorm16: return snormValue(snormCode(value));
+        case ComponentKind::Block: break;  // a block's values depend on its neighbours: see BlockLevels
     }
     return value;
 }
@@ -207,13 +209,19 @@ void storeAndReadRow(const EncodePlan& plan, const float* values, size_t n, floa
         case ComponentKind::Snorm16:
             for (size_t i = 0; i < n; ++i) readBack[i] = snormValue(snormCode(values[i]));
             return;
+        case ComponentKind::Block: std::copy_n(values, n, readBack); return;  // see BlockLevels
     }
 }
 
 Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int width, int height,
                   const std::optional<Normalisation>& normalisation) {
-    Image image(width, height, format.channels);
     const Normalisation n = normalisation.value_or(Normalisation{});
+    if (format.isBlock()) {
+        Image image = decodeBlocks(bytes, width, height, blockFormatOf(format));
+        for (float& v : image.pixels) v = n.offset + n.scale * v;
+        return image;
+    }
+    Image image(width, height, format.channels);
     for (size_t i = 0; i < image.pixels.size(); ++i) {
         float& v = image.pixels[i];
         switch (format.kind) {
@@ -236,6 +244,7 @@ Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int 
                 v = snormValue(s);
                 break;
             }
+            case ComponentKind::Block: break;
         }
     }
     return image;
@@ -245,7 +254,7 @@ Image decodeLayers(const TexelFormatInfo& format, const std::uint8_t* bytes, int
                    const std::optional<Normalisation>& normalisation) {
     if (layers == 1) return decodeLevel(format, bytes, width, height, normalisation);
     const int c = format.channels;
-    const size_t texels = size_t(width) * height, layerBytes = texels * format.bytesPerTexel();
+    const size_t texels = size_t(width) * height, layerBytes = imageBytes(format, width, height);
     Image all(width, height, c * layers);
     for (int layer = 0; layer < layers; ++layer) {
         const Image one = decodeLevel(format, bytes + layer * layerBytes, width, height, normalisation);

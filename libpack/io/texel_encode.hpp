@@ -4,10 +4,12 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "heightpack/core/block_compression.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/texture_write.hpp"
@@ -35,19 +37,40 @@ Error nonFiniteLevel(const std::string& path, int level);
 // Fills rows of a level of content's layer: fillLayerRows for an array, fillRows (layer 0) otherwise.
 void fillLayerRows(const MipChainSource& content, int layer, int level, int y0, int rows, float* dst);
 
+// The block format of a block TexelFormat (Bc4Unorm, Bc5Unorm).
+inline BlockFormat blockFormatOf(const TexelFormatInfo& format) {
+    return format.format == TexelFormat::Bc4Unorm ? BlockFormat::Bc4 : BlockFormat::Bc5;
+}
+// The bytes a width x height image takes in format.
+inline size_t imageBytes(const TexelFormatInfo& format, int width, int height) {
+    return format.isBlock() ? blockImageBytes(width, height, blockFormatOf(format))
+                            : size_t(width) * height * format.bytesPerTexel();
+}
+
 struct EncodePlan {
     TexelFormatInfo format{};
     int sourceChannels = 0;
     int levels = 0;
-    std::optional<Normalisation> normalisation;  // Unorm16 formats only
+    std::optional<Normalisation> normalisation;  // Unorm16 and block formats only
+    std::shared_ptr<const BlockLevels> blocks;   // block formats: what the plan encoded
 };
 
-// Chooses the format and, for uint16, the normalisation (one pass over the chain's values, on all
-// threads); refuses values the pixel type cannot hold. path names the output in errors. sameValues, when
+// The format and levels content is written in under plan, and plan's normalisation: no pass over the
+// values (the writers take the plan as decided).
+EncodePlan encodePlanOf(const MipChainSource& content, const TextureWriteOptions& options, const WritePlan& plan);
+
+// Chooses the format and, for uint16, the normalisation of options.storage.pixelType (one pass over the
+// chain's values, on all threads); refuses values the pixel type cannot hold. path names the output in errors. sameValues, when
 // given, are chains that hold, level by level, exactly the values content writes (see planTexelStorage):
 // the pass then reads them rather than filling content's rows; the plan is the same.
 Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,
                                 const TextureWriteOptions& options, const ChainValues& sameValues = {});
+
+// Encodes every layer's every level of content into plan's block format (plan.normalisation maps values
+// to unorms) and measures what they decode to against content's values. CannotWrite naming path when
+// content's channels are not the format's (bc4 holds one, bc5 two).
+Result<BlockLevels> encodeBlockLevels(const std::string& path, const MipChainSource& content, const EncodePlan& plan,
+                                      int threads);
 
 // Encodes a chain a band of rows at a time, filling and encoding on all threads. Its buffers live as long
 // as it does: one allocation for the chain instead of two a band (a library caller's malloc may hand a

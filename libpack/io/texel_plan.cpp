@@ -188,18 +188,21 @@ Normalisation normalisationOf(double lo, double hi, int sourceChannels, const Te
 
 }  // namespace
 
-Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,
-                                const TextureWriteOptions& options, const ChainValues& sameValues) {
+EncodePlan encodePlanOf(const MipChainSource& content, const TextureWriteOptions& options, const WritePlan& decided) {
     EncodePlan plan;
     plan.sourceChannels = static_cast<int>(content.channelNames.size());
-    plan.format = texelFormatInfo(texelFormatFor(plan.sourceChannels, options.storage.pixelType));
+    plan.format = texelFormatInfo(texelFormatFor(plan.sourceChannels, decided.pixelType));
     plan.levels = mipLevelCount(content.width, content.height);
     if (options.levels > 0) plan.levels = std::min(plan.levels, options.levels);
+    plan.normalisation = decided.normalisation;
+    plan.blocks = decided.blocks;
+    return plan;
+}
+
+Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,
+                                const TextureWriteOptions& options, const ChainValues& sameValues) {
+    EncodePlan plan = encodePlanOf(content, options, WritePlan{options.storage.pixelType, std::nullopt, nullptr});
     if (options.storage.pixelType == PixelType::Float) return plan;
-    if (options.planned && options.planned->pixelType == options.storage.pixelType) {
-        plan.normalisation = options.planned->normalisation;
-        return plan;
-    }
 
     // One pass over the chain, every layer of an array: the range (uint16: one normalisation for the
     // whole texture, as a DDS header has room for one) and what a half cannot hold.
@@ -210,6 +213,11 @@ Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& c
         if (Status s = scanContent(path, content, plan, options, lo, hi); !s) return s.error();
     }
     if (plan.format.kind == ComponentKind::Unorm16) plan.normalisation = normalisationOf(lo, hi, plan.sourceChannels, options);
+    if (plan.format.isBlock()) {
+        // Block endpoints have 8 bits: the 16-bit grid buys nothing, the range alone spans the codes.
+        TextureWriteOptions rangeOnly;
+        plan.normalisation = normalisationOf(lo, hi, plan.sourceChannels, rangeOnly);
+    }
     return plan;
 }
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 
 namespace heightpack {
 
@@ -201,12 +202,15 @@ Result<TextureDescription> describeTexture(const std::string& path, const Attrib
             at = comma + 1;
         }
     }
-    if (const std::string errors = findAttribute(attributes, attr::lookupError); !errors.empty()) {
-        for (size_t at = 0; at <= errors.size();) {
+    for (const auto& [key, list] : {std::pair{attr::lookupError.name, &d.lookupErrors}, std::pair{attr::rmsError.name, &d.rmsErrors},
+                                    std::pair{attr::angleError.name, &d.angleErrors},
+                                    std::pair{attr::rmsAngleError.name, &d.rmsAngleErrors}}) {
+        const std::string errors = findAttribute(attributes, key);
+        for (size_t at = 0; !errors.empty() && at <= errors.size();) {
             const size_t comma = std::min(errors.find(',', at), errors.size());
             const auto v = finiteNumber(errors.substr(at, comma - at));
-            if (!v || *v < 0) return damaged(path, attr::lookupError.name, errors, "a list of numbers, one a level");
-            d.lookupErrors.push_back(*v);
+            if (!v || *v < 0) return damaged(path, key, errors, "a list of numbers, one a level");
+            list->push_back(*v);
             at = comma + 1;
         }
     }

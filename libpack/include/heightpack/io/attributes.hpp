@@ -76,6 +76,13 @@ inline constexpr AttributeKey<float> normalisedScale{"heightpack:normalisedScale
 // it per level, level 0 first, comma-separated; maxLookupError is the worst of them.
 inline constexpr AttributeKey<std::string> lookupError{"heightpack:lookupError"};
 inline constexpr AttributeKey<float> maxLookupError{"heightpack:maxLookupError"};
+// Block-compressed textures (bc4, bc5): their levels decoded by the format's rules against the float
+// chain, per level as lookupError lists it. lookupError is then the worst texel's error (a bilinear lookup
+// errs no more than its worst texel); rmsError the root mean square in the same units; for xy normals
+// angleError and rmsAngleError the angle between decoded and float normals, in degrees.
+inline constexpr AttributeKey<std::string> rmsError{"heightpack:rmsError"};
+inline constexpr AttributeKey<std::string> angleError{"heightpack:angleError"};
+inline constexpr AttributeKey<std::string> rmsAngleError{"heightpack:rmsAngleError"};
 // Sequences: a float in an EXR, text in a PNG.
 inline constexpr AttributeKey<float> loopPeriod{"heightpack:loopPeriod"};
 inline constexpr AttributeKey<float> time{"heightpack:time"};

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,7 +22,8 @@
 
 namespace heightpack {
 
-// How 16-bit normalised texels map back to values: value = offset + scale * u / 65535.
+// How normalised texels map back to values: value = offset + scale * u / 65535 (16-bit), offset + scale
+// * u (u a block format's decoded unorm).
 struct Normalisation {
     float offset = 0.0f;
     float scale = 1.0f;
@@ -41,20 +43,37 @@ struct TextureWriteOptions {
     int threads = 0;        // for filling and encoding rows; the bytes do not depend on it
     std::string writer;     // recorded as KTXwriter, e.g. "heightpack 0.14.0"
     std::function<void(double fraction)> progress;  // may be empty
-    // What planTexelStorage found for this very content in this pixel type (the uint16 normalisation),
-    // when the caller planned it: the writers then take it instead of scanning the whole chain again,
-    // which is all a plan costs. Set it only for the content and pixel type it was planned for.
-    struct Planned {
-        PixelType pixelType = PixelType::Float;
-        std::optional<Normalisation> normalisation;
-    };
-    std::optional<Planned> planned;
+};
+
+// A block-compressed chain as planned: every layer's every level encoded, and the error its decoded values
+// make against the values given (the float chain), per level, over every layer.
+struct BlockLevels {
+    int levels = 0;
+    std::vector<std::vector<std::uint8_t>> images;  // layer * levels + level
+    std::vector<double> worst, rms;                  // in the values' units
+    // Two channels (xy normals, z rebuilt as sqrt(1 - x^2 - y^2)): the angle between the decoded normal
+    // and the given one, in degrees; empty otherwise.
+    std::vector<double> worstDegrees, rmsDegrees;
+};
+
+// How a texture is stored, decided once before anything is written (planTexelStorage) and handed to the
+// writer as it is: the pixel type and, for uint16 and block formats, the normalisation of the whole
+// chain's range; for block formats the blocks themselves.
+struct WritePlan {
+    PixelType pixelType = PixelType::Float;
+    std::optional<Normalisation> normalisation;
+    std::shared_ptr<const BlockLevels> blocks;
 };
 
 // Writes content into a KTX2 or DDS file at path, whatever its name (writeTexture's caller decided the
-// container: see textureOutput), every level of the chain that content's size implies (down to 1x1).
-// Fails with BadInput, writing nothing, when a value cannot be stored in the pixel type (a half beyond
-// +-65504); with CannotWrite when the file cannot be written.
+// container: see textureOutput), every level of the chain that content's size implies (down to 1x1), as
+// plan says. Fails with CannotWrite when the file cannot be written. The overloads without a plan plan
+// first (planTexelStorage), failing with BadInput, writing nothing, when a value cannot be stored in the
+// pixel type (a half beyond +-65504).
+Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+                 const WritePlan& plan);
+Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+                const WritePlan& plan);
 Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
 Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
 

@@ -32,6 +32,9 @@ struct LevelInfo {
     // was made from, in the file's units: 0 for float texels, the recorded figure for half and uint16
     // (heightpack:lookupError), nullopt where the file records none (a DDS, a file from elsewhere).
     std::optional<double> lookupError;
+    // Block formats (bc4, bc5), as recorded: the RMS decoded error in the same units, and for xy normals
+    // the worst and RMS angle in degrees (heightpack:rmsError, angleError, rmsAngleError).
+    std::optional<double> rmsError, angleError, rmsAngleError;
 };
 
 // What a texture file's header says.

@@ -29,13 +29,17 @@ std::optional<Container> containerForPath(const std::string& path);
 //   Float:  32-bit float, exact.
 //   Half:   16-bit float, each value rounded to nearest; values a half cannot hold are refused.
 //   Uint16: 16-bit normalised; value = offset + scale * u / 65535, with offset and scale recorded.
-enum class PixelType { Float, Half, Uint16 };
+//   Bc4, Bc5: block-compressed (RGTC) one or two channels, normalised as uint16 is (value = offset + scale
+//   * u, u the decoded unorm), each level's decoded error recorded.
+enum class PixelType { Float, Half, Uint16, Bc4, Bc5 };
 template <>
 struct NameTable<PixelType> {
     static constexpr EnumName<PixelType> entries[] = {
         {PixelType::Float, "float", "32-bit float"},
         {PixelType::Half, "half", "16-bit float, rounded to nearest"},
         {PixelType::Uint16, "uint16", "16-bit normalised to the chain's range, scale and offset recorded"},
+        {PixelType::Bc4, "bc4", "block-compressed one channel (plain heights), 0.5 byte a texel"},
+        {PixelType::Bc5, "bc5", "block-compressed two channels (xy normals), 1 byte a texel"},
     };
 };
 inline const char* pixelTypeName(PixelType type) { return nameOf(type); }
@@ -43,9 +47,11 @@ inline std::optional<PixelType> parsePixelType(std::string_view name) { return p
 
 // The texel formats heightpack writes into KTX2 and DDS, with their Vulkan and DXGI codes. Rg16Snorm is
 // read only: the format xy normals in uint16 had before they were normalised like every other uint16.
-enum class TexelFormat { Rgba32F, Rgba16F, Rgba16Unorm, Rg32F, Rg16F, Rg16Unorm, Rg16Snorm, R32F, R16F, R16Unorm };
+enum class TexelFormat { Rgba32F, Rgba16F, Rgba16Unorm, Rg32F, Rg16F, Rg16Unorm, Rg16Snorm, R32F, R16F, R16Unorm, Bc4Unorm, Bc5Unorm };
 
-enum class ComponentKind { Float32, Float16, Unorm16, Snorm16 };
+// Block: 4x4 texels in 8 bytes a channel (BC4, BC5), written and read a whole level at a time.
+enum class ComponentKind { Float32, Float16, Unorm16, Snorm16, Block };
+inline bool isBlockType(PixelType type) { return type == PixelType::Bc4 || type == PixelType::Bc5; }
 
 struct TexelFormatInfo {
     TexelFormat format;
@@ -55,8 +61,10 @@ struct TexelFormatInfo {
     std::uint32_t dxgiFormat;
     const char* vkName;    // "VK_FORMAT_R16G16B16A16_SFLOAT"
     const char* dxgiName;  // "DXGI_FORMAT_R16G16B16A16_FLOAT"
+    // Texel formats only (kind != Block); a block format's level takes blockImageBytes.
     int bytesPerComponent() const { return kind == ComponentKind::Float32 ? 4 : 2; }
     int bytesPerTexel() const { return channels * bytesPerComponent(); }
+    bool isBlock() const { return kind == ComponentKind::Block; }
 };
 
 const TexelFormatInfo& texelFormatInfo(TexelFormat format);
@@ -66,6 +74,7 @@ std::optional<TexelFormat> texelFormatFromDxgi(std::uint32_t dxgiFormat);
 // The format that stores `channels` channels (1, 2, 3 or 4) as `type`. Three channels (RGB normals) go
 // into a four-channel format with alpha 1, since no GPU format listed here has three 16-bit channels.
 // uint16 is unsigned normalised for any channel count (xy normals too), to the range the writer records.
+// bc4 and bc5 give their one format whatever the count (the planner refuses a count that differs).
 TexelFormat texelFormatFor(int channels, PixelType type);
 PixelType pixelTypeOf(TexelFormat format);
 

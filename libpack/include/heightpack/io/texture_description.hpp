@@ -62,8 +62,10 @@ struct TextureDescription {
     // How the companions beside the heights are laid out (heightpack:displacement, heightpack:foam).
     std::optional<Layout> displacement, foam;
     TextureChannels channels;
-    // Half and uint16 textures: the worst lookup error of each level, level 0 first (heightpack:lookupError).
-    std::vector<double> lookupErrors;
+    // Half, uint16 and block textures: the worst lookup error of each level, level 0 first
+    // (heightpack:lookupError); block textures also the RMS error (rmsError) and, for xy normals, the worst
+    // and RMS angle in degrees (angleError, rmsAngleError). Empty where the file records none.
+    std::vector<double> lookupErrors, rmsErrors, angleErrors, rmsAngleErrors;
     std::optional<NormalConvention> convention;  // normal maps
     std::optional<FresnelIndex> fresnelIndex;    // Fresnel ramps
     bool isHeights() const { return kind == TextureKind::Heights; }

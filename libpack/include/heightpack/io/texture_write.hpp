@@ -23,11 +23,19 @@ struct TextureOutput {
 // for any other name.
 Result<TextureOutput> textureOutput(const std::string& path);
 
-// Writes content to output.path as output.container. A float EXR is written exactly as writeTiledExr
-// writes it. Fails, writing nothing, with BadInput when a value cannot be stored in the pixel type, and
+// Writes content to output.path as output.container, stored as plan (from planTexelStorage for this
+// content) decided. A float EXR is written exactly as writeTiledExr writes it. Fails, writing nothing,
 // with CannotWrite for a pixel type or compression the container lacks (an EXR has no 16-bit normalised
 // channels; a DDS no supercompression).
+Status writeTexture(const TextureOutput& output, const MipChainSource& content, const TextureWriteOptions& options,
+                    const WritePlan& plan);
+// The same, planning first in options.storage.pixelType: fails also, writing nothing, with BadInput when a
+// value cannot be stored in the pixel type.
 Status writeTexture(const TextureOutput& output, const MipChainSource& content, const TextureWriteOptions& options);
+
+// Whether output's container holds storage's pixel type and compression: CannotWrite naming output.path
+// and what to write instead when it does not.
+Status containerTakes(const TextureOutput& output, const TextureStorage& storage);
 
 // Chains (each a mip chain, level 0 first) that hold, level by level, exactly the values a
 // MipChainSource writes: every value it writes is in one of them, and every value of theirs is written.
@@ -41,6 +49,7 @@ using ChainValues = std::vector<const std::vector<Image>*>;
 // (see ChainValues), when given, are read for the range instead of content's rows, which are then never
 // filled (a packed content's are four times as many, and packed on the way): the result is the same.
 struct TexelStorage {
+    WritePlan plan;  // what the writer takes
     PixelType pixelType = PixelType::Float;
     TexelFormat format = TexelFormat::Rgba32F;
     std::optional<Normalisation> normalisation;

@@ -1,0 +1,36 @@
+// BC4 and BC5 (RGTC) blocks: 4x4 texels of one or two unsigned normalised channels in 8 or 16 bytes, as
+// the Khronos Data Format Specification's "RGTC Compressed Texture Image Formats" defines them.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "heightpack/core/image.hpp"
+
+namespace heightpack {
+
+// BC4: one channel, 8 bytes a block; BC5: two channels, each a BC4 block, 16 bytes a block.
+enum class BlockFormat { Bc4, Bc5 };
+inline int blockChannels(BlockFormat format) { return format == BlockFormat::Bc4 ? 1 : 2; }
+inline int blockBytes(BlockFormat format) { return format == BlockFormat::Bc4 ? 8 : 16; }
+// The bytes of a width x height image: whole blocks, a block's texels past the image padding it.
+inline size_t blockImageBytes(int width, int height, BlockFormat format) {
+    return size_t((width + 3) / 4) * size_t((height + 3) / 4) * size_t(blockBytes(format));
+}
+
+// Encodes values in [0, 1] (image.channels == blockChannels(format); values outside are clamped) into
+// blocks, row by row of blocks. Endpoint pairs are tried around the values' range and around the
+// least-squares fit to the float values, in both of BC4's modes (eight interpolated values; six with 0
+// and 1); of those whose worst error is within a quarter code of the least, the one of least squared
+// error is kept. A block's texels past the image repeat its edge texels.
+// Block rows on `threads` threads (0: all cores); the bytes do not depend on it.
+std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, int threads = 0);
+
+// Decodes blocks into a width x height image of blockChannels(format) channels, by the specification's
+// rules: RED_0 = red_0 / 255, the interpolated values (6 RED_0 + RED_1) / 7 ... in float.
+Image decodeBlocks(const std::uint8_t* bytes, int width, int height, BlockFormat format);
+
+// One BC4 block's 16 values (texel (x, y) at 4y + x) from its 8 bytes.
+void decodeBc4Block(const std::uint8_t* block, float values[16]);
+
+}  // namespace heightpack

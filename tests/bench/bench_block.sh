@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Issue 39's figures for the block formats (BC4, BC5), run by hand (not by ctest):
+#  1. bytes a texel of a whole chain per pixel type (pack --json's gpuBytes over the chain's texels), plain
+#     heights and xy normals of examples/maps/swell.png;
+#  2. the error against nvcompress -bc4/-bc5 on the same values, per map of the test family (the corpus's
+#     grey maps, the example seas, crops of them; tests/io/block_format_test.cpp prints the table);
+#  3. the encode time of a SIZE x SIZE chain: whole `pack --layout plain` runs (load, mips, encode, write) in
+#     bc4 and uint16, and `nvcompress -bc4` (load, its own mips, encode, write) of the same 8-bit PNG, and
+#     `normal --layout xy` in bc5 against `nvcompress -bc5` of an RG PNG; medians of RUNS, wall and CPU.
+#   tests/bench/bench_block.sh [BUILD_DIR] [RUNS] [SIZE]
+# Needs jq, GNU time, oiiotool (OpenImageIO's tools), nvcompress (libnvtt-bin), and the container tests built.
+set -euo pipefail
+build=${1:-build}
+runs=${2:-3}
+size=${3:-4096}
+hp="$build/heightpack"
+here="$(dirname "$0")"
+examples="$here/../../examples/maps"
+[ -x "$hp" ] || { echo "bench_block: no $hp; build first (cmake --build $build)" >&2; exit 2; }
+for tool in jq oiiotool nvcompress; do
+  command -v "$tool" >/dev/null || { echo "bench_block: needs $tool" >&2; exit 2; }
+done
+work=$(mktemp -d "${TMPDIR:-/tmp}/bench_block.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+. "$here/measure.sh"
+
+echo "1. bytes a texel of the whole chain (examples/maps/swell.png, 512x512, every level)"
+printf '%-8s %-8s %12s %10s\n' output type "gpu bytes" "B/texel"
+texels=$(( (512 * 512 * 4 - 1) / 3 ))  # 512^2 + 256^2 + ... + 1
+for type in float half uint16 bc4; do
+  bytes=$("$hp" pack "$examples/swell.png" --layout plain --pixel-type "$type" --json -o "$work/s.ktx2" | jq '.gpuBytes')
+  printf '%-8s %-8s %12s %10s\n' heights "$type" "$bytes" "$(ratio "$bytes" "$texels")"
+done
+for type in float half uint16 bc5; do
+  bytes=$("$hp" normal "$examples/swell.png" --tile-size 8m --height 0.5m --layout xy --pixel-type "$type" --json \
+          -o "$work/n.ktx2" | jq '.gpuBytes')
+  printf '%-8s %-8s %12s %10s\n' normals "$type" "$bytes" "$(ratio "$bytes" "$texels")"
+done
+
+echo
+echo "2. error against nvcompress on the same values (units of each map's range; degrees for normals)"
+"$build/tests/heightpack_container_tests" --gtest_filter='BlockFormats.Bc*' | grep -E ' ours '
+
+echo
+echo "3. encode time of a ${size}x${size} chain, $(nproc) cores, median of $runs runs (wall s, CPU s)"
+oiiotool --pattern noise:type=gaussian:mean=0.5:stddev=0.15 "${size}x${size}" 1 --blur 9x9 --ch 0 -d uint8 -o "$work/map.png"
+oiiotool "$work/map.png" "$work/map.png" --chappend --ch 0,1,0 -d uint8 -o "$work/rg.png"
+printf '%-34s %10s %10s\n' run wall cpu
+row() {
+  local name=$1
+  shift
+  : >"$work/log"
+  for ((i = 0; i < runs; i++)); do measure "$work/log" "$@"; done
+  read -r wall cpu _ < <(medians "$work/log")
+  printf '%-34s %10s %10s\n' "$name" "$wall" "$cpu"
+}
+row "heightpack pack uint16" "$hp" pack "$work/map.png" --layout plain --pixel-type uint16 --quiet -o "$work/u.ktx2"
+row "heightpack pack bc4" "$hp" pack "$work/map.png" --layout plain --pixel-type bc4 --quiet -o "$work/b.ktx2"
+row "nvcompress -bc4" nvcompress -bc4 "$work/map.png" "$work/nv4.dds"
+row "heightpack normal xy bc5" "$hp" normal "$work/map.png" --tile-size 8m --height 0.5m --layout xy --pixel-type bc5 \
+  --quiet -o "$work/n.ktx2"
+row "nvcompress -bc5" nvcompress -bc5 "$work/rg.png" "$work/nv5.dds"

@@ -1,0 +1,108 @@
+// BC4/BC5 blocks: the decoder against blocks built by hand from the Khronos Data Format Specification's
+// RGTC table, and the encoder's properties (values a block can hold come back exactly; the bytes do not
+// depend on the thread count). Its accuracy against nvcompress is judged by nvdecompress in
+// tests/io/block_format_test.cpp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "heightpack/core/block_compression.hpp"
+#include "support/test_support.hpp"
+
+using namespace heightpack;
+using namespace heightpack::test;
+
+namespace {
+
+// A BC4 block with endpoints red0, red1 and texel i's 3-bit code codes[i], bits laid out as the
+// specification says: bits = bits_0 + 256 * (bits_1 + ...), code(x, y) = bits[3 (4y + x) + 2 .. 3 (4y + x)].
+std::vector<std::uint8_t> block(int red0, int red1, const int codes[16]) {
+    std::uint64_t bits = 0;
+    for (int i = 0; i < 16; ++i) bits += std::uint64_t(codes[i]) << (3 * i);
+    std::vector<std::uint8_t> b = {std::uint8_t(red0), std::uint8_t(red1)};
+    for (int i = 0; i < 6; ++i) b.push_back(std::uint8_t((bits >> (8 * i)) & 0xff));
+    return b;
+}
+
+// The squared error of the plainest BC4 encoder: per block and channel, endpoints the extremes rounded to
+// 8 bits, the eight-value palette (6 e0 + e1) / 7 ..., each texel its nearest entry. Edge blocks repeat
+// the edge texels, which add no error of their own.
+double minMaxSquaredError(const Image& image) {
+    double total = 0.0;
+    for (int by = 0; by < (image.height + 3) / 4; ++by)
+        for (int bx = 0; bx < (image.width + 3) / 4; ++bx)
+            for (int c = 0; c < image.channels; ++c) {
+                std::vector<float> v;
+                for (int y = by * 4; y < std::min(by * 4 + 4, image.height); ++y)
+                    for (int x = bx * 4; x < std::min(bx * 4 + 4, image.width); ++x) v.push_back(image.at(x, y, c));
+                const double hi = std::round(*std::max_element(v.begin(), v.end()) * 255.0) / 255.0;
+                const double lo = std::round(*std::min_element(v.begin(), v.end()) * 255.0) / 255.0;
+                for (const float value : v) {
+                    double best = 1e9;
+                    for (int k = 0; k < 8; ++k) best = std::min(best, std::fabs(value - (hi + (lo - hi) * k / 7.0)));
+                    total += best * best;
+                }
+            }
+    return total;
+}
+
+}  // namespace
+
+TEST(BlockCompression, DecodesBothModesAsTheSpecificationTabulates) {
+    const int codes[16] = {0, 1, 2, 3, 4, 5, 6, 7, 7, 6, 5, 4, 3, 2, 1, 0};
+    float v[16];
+    // red0 > red1: eight values, (8 - k) RED_0 + (k - 1) RED_1 over 7 for codes 2..7.
+    decodeBc4Block(block(210, 70, codes).data(), v);
+    const double r0 = 210 / 255.0, r1 = 70 / 255.0;
+    const double eight[8] = {r0, r1, (6 * r0 + r1) / 7, (5 * r0 + 2 * r1) / 7, (4 * r0 + 3 * r1) / 7,
+                             (3 * r0 + 4 * r1) / 7, (2 * r0 + 5 * r1) / 7, (r0 + 6 * r1) / 7};
+    for (int i = 0; i < 16; ++i) EXPECT_NEAR(v[i], eight[codes[i]], 1e-6) << i;
+    // red0 <= red1: six values, then 0.0 and 1.0.
+    decodeBc4Block(block(70, 210, codes).data(), v);
+    const double s0 = 70 / 255.0, s1 = 210 / 255.0;
+    const double six[8] = {s0, s1, (4 * s0 + s1) / 5, (3 * s0 + 2 * s1) / 5, (2 * s0 + 3 * s1) / 5, (s0 + 4 * s1) / 5,
+                           0.0, 1.0};
+    for (int i = 0; i < 16; ++i) EXPECT_NEAR(v[i], six[codes[i]], 1e-6) << i;
+}
+
+TEST(BlockCompression, ValuesABlockHoldsComeBackExactlyInEitherMode) {
+    // Over a family of endpoint pairs: a 4x4 image of palette values (eight-value mode; the six-value mode
+    // with 0 and 1) is encoded to a block that decodes to the same values, within float rounding.
+    int failures = 0, cases = 0;
+    for (int a = 3; a < 256; a += 23)
+        for (int b = 0; b < 256; b += 37) {
+            if (a == b) continue;
+            const int codes[16] = {0, 1, 2, 3, 4, 5, 6, 7, 2, 3, 4, 5, 6, 7, 0, 1};
+            float palette[16];
+            decodeBc4Block(block(a, b, codes).data(), palette);
+            Image image(4, 4, 1);
+            for (int i = 0; i < 16; ++i) image.pixels[size_t(i)] = palette[i];
+            const std::vector<std::uint8_t> bytes = encodeBlocks(image, BlockFormat::Bc4, 1);
+            const Image back = decodeBlocks(bytes.data(), 4, 4, BlockFormat::Bc4);
+            double worst = 0.0;
+            for (int i = 0; i < 16; ++i) worst = std::max(worst, double(std::fabs(back.pixels[size_t(i)] - palette[i])));
+            failures += worst > 1e-6;
+            ++cases;
+        }
+    EXPECT_EQ(failures, 0) << "of " << cases;
+}
+
+TEST(BlockCompression, SameBytesOnAnyThreadCountAndPaddedEdges) {
+    const Image image = randomImage(70, 37, 7);  // neither side a multiple of 4
+    Image two(70, 37, 2);
+    for (size_t t = 0; t < image.texelCount(); ++t) two.pixels[2 * t] = image.pixels[t], two.pixels[2 * t + 1] = 1 - image.pixels[t];
+    for (const BlockFormat f : {BlockFormat::Bc4, BlockFormat::Bc5}) {
+        const Image& in = f == BlockFormat::Bc4 ? image : two;
+        const std::vector<std::uint8_t> one = encodeBlocks(in, f, 1);
+        EXPECT_EQ(one.size(), size_t(18 * 10 * blockBytes(f)));
+        EXPECT_EQ(one, encodeBlocks(in, f, 2));
+        EXPECT_EQ(one, encodeBlocks(in, f, 3));
+        // No worse, in squared error, than the plain encoder written here: each block's extremes rounded
+        // to 8 bits as endpoints, eight values between, each texel the nearest.
+        const Image back = decodeBlocks(one.data(), in.width, in.height, f);
+        double ours = 0.0;
+        for (size_t i = 0; i < in.pixels.size(); ++i) ours += std::pow(back.pixels[i] - in.pixels[i], 2);
+        EXPECT_LE(ours, minMaxSquaredError(in)) << int(f);
+    }
+}
