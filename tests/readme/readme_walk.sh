@@ -22,6 +22,9 @@ ln -s "$HP" "$ROOT/bin/heightpack"
 export PATH="$ROOT/bin:$PATH"
 # ~/.cache/heightpack in the README is this folder's; Mesa's compiled shaders stay where they were.
 export MESA_SHADER_CACHE_DIR="${MESA_SHADER_CACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/mesa_shader_cache}"
+# As the viewer tests run llvmpipe (tests/viewer/viewer_support.cpp): the cache's keys include this, so the
+# walk finds the shaders the test loop compiled.
+export GALLIVM_PERF="${GALLIVM_PERF:-nopt}"
 export HOME="$ROOT/home"
 unset XDG_CACHE_HOME HEIGHTPACK_CACHE HEIGHTPACK_CACHE_MODE HEIGHTPACK_CACHE_TOKEN
 mkdir -p "$HOME"
