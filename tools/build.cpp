@@ -9,9 +9,9 @@
 #include <iostream>
 #include <map>
 
-#include "heightpack/bake/action_plan.hpp"
-#include "heightpack/bake/build_materials.hpp"
-#include "heightpack/bake/cache_session.hpp"
+#include "heightpack/bake/build/action_plan.hpp"
+#include "heightpack/bake/build/build_materials.hpp"
+#include "heightpack/bake/build/cache_session.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/threads.hpp"

@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "heightpack/bake/build_report.hpp"
+#include "heightpack/bake/build/build_report.hpp"
 
 namespace heightpack::cli {
 

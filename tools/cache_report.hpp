@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "heightpack/bake/build_report.hpp"
-#include "heightpack/bake/cache_session.hpp"
+#include "heightpack/bake/build/build_report.hpp"
+#include "heightpack/bake/build/cache_session.hpp"
 
 namespace heightpack::cli {
 

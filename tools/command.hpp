@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "heightpack/core/result.hpp"
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/read.hpp"
 

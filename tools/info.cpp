@@ -199,9 +199,9 @@ private:
             {"channels", info.channelNames},
             // An array texture's layers in order (KTX2, DDS); empty for a single texture.
             {"layers", info.layerNames},
-            {"tiled", info.tiled},
-            {"tileWidth", info.tileWidth},
-            {"tileHeight", info.tileHeight},
+            {"tiled", info.storedInTiles},
+            {"tileWidth", info.storageTileWidth},
+            {"tileHeight", info.storageTileHeight},
             {"width", info.levels.empty() ? 0 : info.levels[0].width},
             {"height", info.levels.empty() ? 0 : info.levels[0].height},
             {"levelCount", info.levels.size()},
@@ -232,7 +232,7 @@ private:
             for (const auto& n : info.layerNames) layers.append(layers.empty() ? "" : ", ").append(n);
             std::printf(", an array of %zu layers: %s", info.layerNames.size(), layers.c_str());
         }
-        if (info.tiled) std::printf(", tiled %dx%d", info.tileWidth, info.tileHeight);
+        if (info.storedInTiles) std::printf(", tiled %dx%d", info.storageTileWidth, info.storageTileHeight);
         std::printf("\n");
         // Every heightpack attribute, in the order the file lists them.
         const std::string prefix = attr::kPrefix;

@@ -1,11 +1,11 @@
-// How check, tile and build word the frame, blob and echo statistics (heightpack/core/tile_look.hpp).
+// How check, tile and build word the frame, blob and echo statistics (heightpack/core/tile/look.hpp).
 #pragma once
 
 #include <nlohmann/json.hpp>
 
 #include <string>
 
-#include "heightpack/core/tile_look.hpp"
+#include "heightpack/core/tile/look.hpp"
 
 namespace heightpack::cli {
 

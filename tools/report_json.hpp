@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 #include "heightpack/io/read.hpp"
 
 namespace heightpack::cli {

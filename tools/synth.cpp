@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "heightpack/bake/synth_job.hpp"
-#include "heightpack/core/cascades.hpp"
+#include "heightpack/core/sea/cascades.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/threads.hpp"

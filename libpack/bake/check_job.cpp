@@ -101,7 +101,7 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     const bool gpuContainer = container && *container != Container::Exr;
     size_t levels = 0;
     if (!gpuContainer) {
-        auto layout = readTextureLayout(path, options.load.silenceDecoderMessages);
+        auto layout = readTextureLevels(path, options.load.silenceDecoderMessages);
         if (!layout) return layout.error();
         levels = layout->levelSizes.size();
     }

@@ -5,11 +5,11 @@
 #include <optional>
 #include <sstream>
 
-#include "heightpack/bake/build_state.hpp"
-#include "heightpack/bake/cache_key.hpp"
-#include "heightpack/core/foam.hpp"
+#include "heightpack/bake/build/build_state.hpp"
+#include "heightpack/bake/build/cache_key.hpp"
+#include "heightpack/core/sea/foam.hpp"
 #include "heightpack/core/parallel.hpp"
-#include "heightpack/core/spectrum.hpp"
+#include "heightpack/core/sea/spectrum.hpp"
 #include "heightpack/io/files.hpp"
 
 namespace heightpack::detail {

@@ -13,7 +13,7 @@
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
 
-#include "build_common.hpp"
+#include "build/build_common.hpp"
 
 namespace heightpack::detail {
 

@@ -35,7 +35,7 @@ Status writeFresnelRamp(const std::string& output, const FresnelOptions& options
     const Image ramp = makeFresnelRamp(options);
     // The container, decided once from the name: a KTX2 or DDS goes to writeTexture as such.
     if (const auto container = containerForPath(output); container == Container::Ktx2 || container == Container::Dds) {
-        MipChainSource content;
+        ChainToWrite content;
         content.width = ramp.width;
         content.height = ramp.height;
         content.channelNames = {"R", "G", "B", "A"};

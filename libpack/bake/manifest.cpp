@@ -9,8 +9,8 @@
 #include <set>
 
 #include "heightpack/bake/synth_job.hpp"
-#include "heightpack/core/cascades.hpp"
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/sea/cascades.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/read.hpp"

@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "heightpack/core/cascades.hpp"
+#include "heightpack/core/sea/cascades.hpp"
 
 namespace heightpack::detail {
 

@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include "heightpack/bake/synth_job.hpp"
-#include "heightpack/core/cascades.hpp"
+#include "heightpack/core/sea/cascades.hpp"
 #include "heightpack/io/files.hpp"
 
 #include "manifest_parser.hpp"

@@ -15,7 +15,7 @@ namespace {
 Result<MaterialTexture> describeTexture(const std::string& folder, const std::string& output, int frames, double* loopPeriod,
                                         bool* horizontalDisplacement = nullptr, bool* foam = nullptr) {
     const std::string first = (fs::path(folder) / frameFileName(output, 0, frames)).string();
-    auto layout = readTextureLayout(first, true);
+    auto layout = readTextureLevels(first, true);
     if (!layout) return layout.error();
     MaterialTexture t;
     t.file = output;

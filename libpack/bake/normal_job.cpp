@@ -150,7 +150,7 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
     } else {
         // xy: the first two channels alone, what the shader reads before rebuilding z.
         const std::vector<Image> stored = options.layout == Layout::Xy ? firstChannels(chain, 2) : chain;
-        MipChainSource content;
+        ChainToWrite content;
         content.width = stored[0].width;
         content.height = stored[0].height;
         content.channelNames = {"R", "G", "B", "A"};

@@ -43,7 +43,7 @@ std::vector<std::string> packedCompanionChannels(const std::vector<CompanionChai
 
 namespace detail {
 
-void fillPackedWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
+void fillPackedWithCompanions(ChainToWrite& content, const std::vector<Image>& heights,
                               std::vector<CompanionChain> companions, Wrap wrap) {
     content.channelNames = packedCompanionChannels(companions);
     content.fillRows = [&heights, companions = std::move(companions), wrap](int level, int y0, int rows, float* dst) {
@@ -57,7 +57,7 @@ void fillPackedWithCompanions(MipChainSource& content, const std::vector<Image>&
     };
 }
 
-void fillPlainWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
+void fillPlainWithCompanions(ChainToWrite& content, const std::vector<Image>& heights,
                              std::vector<CompanionChain> companions) {
     content.channelNames = {"Y"};
     for (const CompanionChain& c : companions) content.channelNames.push_back(c.name);
@@ -72,7 +72,7 @@ void fillPlainWithCompanions(MipChainSource& content, const std::vector<Image>& 
     };
 }
 
-void fillArrayWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
+void fillArrayWithCompanions(ChainToWrite& content, const std::vector<Image>& heights,
                              std::vector<CompanionChain> companions, Wrap wrap, bool packed) {
     content.channelNames = packed ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"Y"};
     content.layerNames = {layerName::heights};
@@ -87,7 +87,7 @@ void fillArrayWithCompanions(MipChainSource& content, const std::vector<Image>& 
     };
 }
 
-void fillWithCompanions(MipChainSource& content, Container container, const std::vector<Image>& heights,
+void fillWithCompanions(ChainToWrite& content, Container container, const std::vector<Image>& heights,
                         std::vector<CompanionChain> companions, Wrap wrap, bool packed) {
     if (container != Container::Exr) fillArrayWithCompanions(content, heights, std::move(companions), wrap, packed);
     else if (packed) fillPackedWithCompanions(content, heights, std::move(companions), wrap);

@@ -200,7 +200,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     // What an output holds: the heights packed (or plain), and Dx, Dy and foam as its container holds
     // them (an EXR's further channels, a KTX2's or DDS's further layers).
     const auto contentFor = [&](const TextureOutput& out, bool packedChain) {
-        MipChainSource c;
+        ChainToWrite c;
         c.width = chain[0].width;
         c.height = chain[0].height;
         c.attributes = heightAttributes(packedChain ? options.layout : Layout::Plain, options, report.source, report.sourceHash);
@@ -213,7 +213,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         }
         return c;
     };
-    MipChainSource content = contentFor(*packedOutput, packed);
+    ChainToWrite content = contentFor(*packedOutput, packed);
 
     // The pixel type, given or chosen, and its lookup error: judged over every chain written (the heights,
     // Dx, Dy, foam), the same for both outputs, since a packed texel holds copies of the plain chains' values.
@@ -227,7 +227,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     report.pixelType = stored->pixelType;
     report.lookupError = stored->lookupError;
     const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*stored);
-    const auto record = [&](MipChainSource& c, bool packedChain) {
+    const auto record = [&](ChainToWrite& c, bool packedChain) {
         c.attributes.insert(c.attributes.end(), errors.begin(), errors.end());
         const std::string laidOut = attributeText(packedChain ? Layout::Neighbour4 : Layout::Plain);
         if (displacement) c.attributes.push_back(attribute(attr::displacement, laidOut));

@@ -14,7 +14,7 @@ double StoredChain::worst() const {
 
 namespace {
 
-Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
+Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const ChainToWrite& content,
                             const ChainValues& chains, TextureWriteOptions options, PixelType type) {
     options.storage.pixelType = type;
     StoredChain stored;
@@ -49,7 +49,7 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Mip
 
 }  // namespace
 
-Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
+Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, const ChainToWrite& content,
                                   const ChainValues& chains, const TextureWriteOptions& options) {
     const double tolerance = options.storage.tolerance;
     if (!(tolerance > 0.0)) return measure(outputs, content, chains, options, options.storage.pixelType);

@@ -36,7 +36,7 @@ struct StoredChain {
 // container lacks (uint16 in an EXR) or the values do not fit (a half beyond 65504) is passed over.
 // outputs are every file the chain goes to (a packed output and its plain twin): a type must suit each
 // one's container; content is what the first one holds.
-Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, const MipChainSource& content,
+Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, const ChainToWrite& content,
                                   const ChainValues& chains, const TextureWriteOptions& options);
 
 // The attributes that record stored's lookup errors (lookupError, maxLookupError); none for float,

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <tuple>
 
-#include "heightpack/core/cascades.hpp"
+#include "heightpack/core/sea/cascades.hpp"
 #include "heightpack/core/parallel.hpp"
-#include "heightpack/core/sea_report.hpp"
+#include "heightpack/core/sea/sea_report.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
 

@@ -13,8 +13,8 @@
 #include "heightpack/bake/check_job.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/parallel.hpp"
-#include "heightpack/core/tile_quilt.hpp"
-#include "heightpack/core/tile_resynthesis.hpp"
+#include "heightpack/core/tile/quilt.hpp"
+#include "heightpack/core/tile/resynthesis.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
 

@@ -1,5 +1,5 @@
 // Internal: a row-major field of doubles, the working precision of the tile fixes and statistics
-// (tile_resynthesis.cpp, tile_look.cpp), viewable as an OpenCV matrix for its DFT.
+// (tile/resynthesis.cpp, tile/look.cpp), viewable as an OpenCV matrix for its DFT.
 #pragma once
 
 #include <opencv2/core.hpp>

@@ -67,7 +67,7 @@ LevelError measure(const Image& given, const Image& decoded, const Normalisation
 
 }  // namespace
 
-Result<BlockLevels> encodeBlockLevels(const std::string& path, const MipChainSource& content, const EncodePlan& plan,
+Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrite& content, const EncodePlan& plan,
                                       int threads) {
     const BlockFormat format = blockFormatOf(plan.format);
     const int channels = blockChannels(format);

@@ -96,13 +96,13 @@ std::uint32_t codeOf(const std::array<const char*, N>& names, const std::string&
 
 }  // namespace
 
-Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
+Status writeDds(const std::string& path, const ChainToWrite& content, const TextureWriteOptions& options) {
     auto storage = planTexelStorage({path, Container::Dds}, content, options);
     if (!storage) return storage.error();
     return writeDds(path, content, options, storage->plan);
 }
 
-Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+Status writeDds(const std::string& path, const ChainToWrite& content, const TextureWriteOptions& options,
                  const WritePlan& decided) {
     if (Status s = checkWritable(path); !s) return s;
     if (options.storage.supercompression != Supercompression::None)

@@ -180,7 +180,7 @@ EngineVerdict engineSupport(Engine engine, const TextureHeader& header, int leve
     EngineVerdict single;
     switch (engine) {
         case Engine::ThreeJs: single = threeJs(c, texel, mipmappedExr, png16); break;
-        case Engine::Babylon: single = babylon(c, texel, c == FileKind::Exr && header.tiled, png16); break;
+        case Engine::Babylon: single = babylon(c, texel, c == FileKind::Exr && header.storedInTiles, png16); break;
         case Engine::Unreal: single = unreal(c, texel, mipmappedExr, png16); break;
         case Engine::Unity: single = unity(c, texel, mipmappedExr, png16); break;
         case Engine::Godot: single = godot(c, texel, mipmappedExr, png16); break;

@@ -88,7 +88,7 @@ Status writeScanlineWithCore(const std::string& finalPath, const std::string& pa
         Worker& w = own[size_t(worker)];
         packed[slot].clear();
         w.raw.clear();
-        packTile(band, content.width, channels, nameOrder, 0, content.width, rows, half, zip ? w.raw : packed[slot]);
+        packStorageTile(band, content.width, channels, nameOrder, 0, content.width, rows, half, zip ? w.raw : packed[slot]);
         if (zip) zipTile(w.raw, w.scratch, packed[slot], w.compressor.get());
         return Done{};
     };

@@ -60,7 +60,7 @@ exr_result_t startWrite(exr_context_t* ctxt, const std::string& path, CoreErrors
     return rv;
 }
 
-void packTile(const float* band, int levelWidth, int channels, const std::vector<int>& nameOrder, int x0,
+void packStorageTile(const float* band, int levelWidth, int channels, const std::vector<int>& nameOrder, int x0,
               int tileWidth, int rows, bool half, std::vector<unsigned char>& out) {
     const size_t start = out.size(), count = size_t(rows) * channels * tileWidth;
     if (half) {
@@ -140,9 +140,9 @@ struct TileRow {
     int level = 0, y0 = 0, rows = 0, width = 0, tilesX = 0;
 };
 
-// The same layout as packTile's, appended to out, each line's channel runs taken straight from
+// The same layout as packStorageTile's, appended to out, each line's channel runs taken straight from
 // content.fillRun; fails, naming the level, on a value that is not finite. half: halves (via values).
-Status runTile(const MipChainSource& content, const TileRow& job, int x0, int tileWidth, const std::vector<int>& nameOrder,
+Status runTile(const ChainToWrite& content, const TileRow& job, int x0, int tileWidth, const std::vector<int>& nameOrder,
                bool half, const std::string& finalPath, std::vector<float>& values, std::vector<unsigned char>& out) {
     const size_t count = size_t(job.rows) * nameOrder.size() * tileWidth, start = out.size();
     if (half)
@@ -165,7 +165,7 @@ Status runTile(const MipChainSource& content, const TileRow& job, int x0, int ti
     return Done{};
 }
 
-Status writeWithCore(const std::string& finalPath, const std::string& path, const MipChainSource& content,
+Status writeWithCore(const std::string& finalPath, const std::string& path, const ChainToWrite& content,
                      const ExrWriteOptions& options) {
     detail::CoreErrors errors;
     exr_context_t ctxt = nullptr;
@@ -248,7 +248,7 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
                 if (Status s = runTile(content, job, x0, tileWidth, nameOrder, options.half, finalPath, w.values, laidOut); !s)
                     return s;
             } else {
-                detail::packTile(w.band.data(), job.width, channels, nameOrder, x0, tileWidth, job.rows, options.half, laidOut);
+                detail::packStorageTile(w.band.data(), job.width, channels, nameOrder, x0, tileWidth, job.rows, options.half, laidOut);
             }
             if (zip) detail::zipTile(w.raw, w.scratch, row.bytes, w.compressor.get());
             row.ends.push_back(row.bytes.size());
@@ -279,7 +279,7 @@ Status writeWithCore(const std::string& finalPath, const std::string& path, cons
 
 }  // namespace
 
-Status writeTiledExr(const std::string& path, const MipChainSource& content, const ExrWriteOptions& options) {
+Status writeTiledExr(const std::string& path, const ChainToWrite& content, const ExrWriteOptions& options) {
     assert(content.width > 0 && content.height > 0 && !content.channelNames.empty() && content.fillRows);
     if (Status writable = checkWritable(path); !writable) return writable;
     const std::string ext = lowerExtension(path);

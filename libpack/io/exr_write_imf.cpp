@@ -48,7 +48,7 @@ Imf::Compression toImf(Compression compression) {
 
 }  // namespace
 
-Status writeTiledWithImf(const std::string& finalPath, const std::string& path, const MipChainSource& content,
+Status writeTiledWithImf(const std::string& finalPath, const std::string& path, const ChainToWrite& content,
                          const ExrWriteOptions& options) {
     Imf::Header header(content.width, content.height);
     header.compression() = toImf(options.compression);

@@ -20,7 +20,7 @@ Status requireFinite(const std::string& path, const float* values, size_t count,
 
 // Writes content as writeTiledExr describes, through Imf::TiledOutputFile, to path (the temporary file
 // whose errors are reported under finalPath).
-Status writeTiledWithImf(const std::string& finalPath, const std::string& path, const MipChainSource& content,
+Status writeTiledWithImf(const std::string& finalPath, const std::string& path, const ChainToWrite& content,
                          const ExrWriteOptions& options);
 
 // ---- On OpenEXRCore ----
@@ -46,7 +46,7 @@ std::vector<int> fileOrder(const std::vector<std::string>& names);
 // Appends one tile's texels to out in EXR's uncompressed tile layout: line by line, and within a line each
 // channel's run of floats (or halves), channels in name order. band holds the tile's rows, levelWidth
 // texels of `channels` interleaved floats each; the tile starts at texel x0.
-void packTile(const float* band, int levelWidth, int channels, const std::vector<int>& nameOrder, int x0,
+void packStorageTile(const float* band, int levelWidth, int channels, const std::vector<int>& nameOrder, int x0,
               int tileWidth, int rows, bool half, std::vector<unsigned char>& out);
 
 // EXR's ZIP tile compression (as ImfZip.cpp) of raw, appended to out: even and odd bytes split and

@@ -27,9 +27,9 @@ Result<detail::OpenedImage> openTexture(const std::string& path, TextureHeader& 
     const detail::SourceSpec& top = in->spec();
     header.pixelType = top.format.c_str();
     header.channelNames = top.channelnames;
-    header.tiled = top.tile_width > 0;
-    header.tileWidth = top.tile_width;
-    header.tileHeight = top.tile_height;
+    header.storedInTiles = top.tile_width > 0;
+    header.storageTileWidth = top.tile_width;
+    header.storageTileHeight = top.tile_height;
     for (const detail::SourceAttribute& p : top.extra_attribs) header.attributes.emplace_back(p.name, p.text);
     auto description = describeTexture(path, header.attributes, header.channelNames, header.pixelType);
     if (!description) return description.error();
@@ -66,9 +66,9 @@ Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoder
     return file;
 }
 
-Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDecoderMessages) {
+Result<TextureLevels> readTextureLevels(const std::string& path, bool silenceDecoderMessages) {
     detail::StderrSilencer quiet(silenceDecoderMessages);
-    TextureLayout layout;
+    TextureLevels layout;
     if (const auto c = containerForPath(path); c && *c != Container::Exr) {
         auto file = readGpuTextureFile(path);
         if (!file) return file.error();

@@ -80,13 +80,13 @@ struct ZstdFree {
 
 }  // namespace
 
-Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options) {
+Status writeKtx2(const std::string& path, const ChainToWrite& content, const TextureWriteOptions& options) {
     auto storage = planTexelStorage({path, Container::Ktx2}, content, options);
     if (!storage) return storage.error();
     return writeKtx2(path, content, options, storage->plan);
 }
 
-Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+Status writeKtx2(const std::string& path, const ChainToWrite& content, const TextureWriteOptions& options,
                  const WritePlan& decided) {
     if (Status s = checkWritable(path); !s) return s;
     const detail::EncodePlan plan = detail::encodePlanOf(content, options, decided);

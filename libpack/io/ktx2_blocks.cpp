@@ -39,7 +39,7 @@ std::vector<std::uint8_t> blockDataFormatDescriptor(BlockFormat format) {
 
 }  // namespace
 
-Status writeKtx2Blocks(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+Status writeKtx2Blocks(const std::string& path, const ChainToWrite& content, const TextureWriteOptions& options,
                        const EncodePlan& plan, const Attributes& keyValues) {
     const int levels = plan.levels, layers = content.layerCount();
     const BlockLevels* blocks = plan.blocks.get();

@@ -52,7 +52,7 @@ namespace heightpack::detail {
 // Writes content in plan's block format (plan.blocks, encoded when it was planned) as a KTX2 at path with
 // keyValues, every level of every layer, Zstandard-supercompressed when options ask. Levels whose side is
 // under 4 texels are whole 4x4 blocks, as the format stores them.
-Status writeKtx2Blocks(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+Status writeKtx2Blocks(const std::string& path, const ChainToWrite& content, const TextureWriteOptions& options,
                        const EncodePlan& plan, const Attributes& keyValues);
 
 }  // namespace heightpack::detail

@@ -42,7 +42,7 @@ Error cannotWriteBecause(const std::string& path, const char* step) {
 // The file's bands in file order; the zeros before any image that does not start where the one before
 // ended (alignment) are written here, as they are few.
 Status planBands(const std::string& path, int fd, const std::vector<std::uint8_t>& header,
-                 const std::vector<PlacedImage>& images, const MipChainSource& content, const EncodePlan& plan,
+                 const std::vector<PlacedImage>& images, const ChainToWrite& content, const EncodePlan& plan,
                  std::vector<Band>& bands, long long& rowsTotal) {
     if (!writeAllAt(fd, header.data(), header.size(), 0)) return cannotWriteBecause(path, "writing the header");
     const size_t texelBytes = size_t(plan.format.bytesPerTexel());
@@ -71,7 +71,7 @@ Status planBands(const std::string& path, int fd, const std::vector<std::uint8_t
 }
 
 Status writeBands(const std::string& path, int fd, EarlyWriteback& writeback, const std::vector<Band>& bands,
-                  long long rowsTotal, const MipChainSource& content, const EncodePlan& plan, int threads,
+                  long long rowsTotal, const ChainToWrite& content, const EncodePlan& plan, int threads,
                   const std::function<void(double)>& progress) {
     // Worker k takes bands k, k + workers, ...: the threads move through the file side by side. A band
     // that fails is recorded and the others still encoded (not written), so the error reported is the
@@ -110,7 +110,7 @@ Status writeBands(const std::string& path, int fd, EarlyWriteback& writeback, co
 }  // namespace
 
 Status writePlacedImages(const std::string& path, const std::string& temporaryPath, const std::vector<std::uint8_t>& header,
-                         const std::vector<PlacedImage>& images, const MipChainSource& content, const EncodePlan& plan,
+                         const std::vector<PlacedImage>& images, const ChainToWrite& content, const EncodePlan& plan,
                          int threads, const std::function<void(double)>& progress) {
     const int fd = ::open(temporaryPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
     if (fd < 0) return cannotWriteBecause(path, "creating the file");

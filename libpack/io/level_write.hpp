@@ -30,7 +30,7 @@ struct PlacedImage {
 // level in file order that holds a non-finite value, or when the file cannot be written; the caller then
 // discards the file.
 Status writePlacedImages(const std::string& path, const std::string& temporaryPath, const std::vector<std::uint8_t>& header,
-                         const std::vector<PlacedImage>& images, const MipChainSource& content, const EncodePlan& plan,
+                         const std::vector<PlacedImage>& images, const ChainToWrite& content, const EncodePlan& plan,
                          int threads, const std::function<void(double)>& progress);
 
 }  // namespace heightpack::detail

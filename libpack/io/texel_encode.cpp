@@ -141,7 +141,7 @@ void encodeRow(const EncodePlan& plan, const float* in, size_t texels, std::uint
 
 }  // namespace
 
-void fillLayerRows(const MipChainSource& content, int layer, int level, int y0, int rows, float* dst) {
+void fillLayerRows(const ChainToWrite& content, int layer, int level, int y0, int rows, float* dst) {
     if (content.layerNames.empty()) content.fillRows(level, y0, rows, dst);
     else content.fillLayerRows(layer, level, y0, rows, dst);
 }

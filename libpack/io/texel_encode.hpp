@@ -35,7 +35,7 @@ struct FileCloser {
 Error nonFiniteLevel(const std::string& path, int level);
 
 // Fills rows of a level of content's layer: fillLayerRows for an array, fillRows (layer 0) otherwise.
-void fillLayerRows(const MipChainSource& content, int layer, int level, int y0, int rows, float* dst);
+void fillLayerRows(const ChainToWrite& content, int layer, int level, int y0, int rows, float* dst);
 
 // The block format of a block TexelFormat (Bc4Unorm, Bc5Unorm).
 inline BlockFormat blockFormatOf(const TexelFormatInfo& format) {
@@ -57,19 +57,19 @@ struct EncodePlan {
 
 // The format and levels content is written in under plan, and plan's normalisation: no pass over the
 // values (the writers take the plan as decided).
-EncodePlan encodePlanOf(const MipChainSource& content, const TextureWriteOptions& options, const WritePlan& plan);
+EncodePlan encodePlanOf(const ChainToWrite& content, const TextureWriteOptions& options, const WritePlan& plan);
 
 // Chooses the format and, for uint16, the normalisation of options.storage.pixelType (one pass over the
 // chain's values, on all threads); refuses values the pixel type cannot hold. path names the output in errors. sameValues, when
 // given, are chains that hold, level by level, exactly the values content writes (see planTexelStorage):
 // the pass then reads them rather than filling content's rows; the plan is the same.
-Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,
+Result<EncodePlan> planEncoding(const std::string& path, const ChainToWrite& content,
                                 const TextureWriteOptions& options, const ChainValues& sameValues = {});
 
 // Encodes every layer's every level of content into plan's block format (plan.normalisation maps values
 // to unorms) and measures what they decode to against content's values. CannotWrite naming path when
 // content's channels are not the format's (bc4 holds one, bc5 two).
-Result<BlockLevels> encodeBlockLevels(const std::string& path, const MipChainSource& content, const EncodePlan& plan,
+Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrite& content, const EncodePlan& plan,
                                       int threads);
 
 // Encodes a chain a band of rows at a time, filling and encoding on all threads. Its buffers live as long
@@ -77,7 +77,7 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const MipChainSou
 // freed 4 MB band back to the system and fault it in again; the CLI keeps it in the heap).
 class BandEncoder {
 public:
-    BandEncoder(const std::string& path, const MipChainSource& content, const EncodePlan& plan, int threads)
+    BandEncoder(const std::string& path, const ChainToWrite& content, const EncodePlan& plan, int threads)
         : path_(path), content_(content), plan_(plan), threads_(threads) {}
     // Fills rows [y0, y0 + rows) of level (of layer, in an array) and encodes them into bytes(), rows *
     // width * texel bytes.
@@ -86,7 +86,7 @@ public:
 
 private:
     const std::string& path_;
-    const MipChainSource& content_;
+    const ChainToWrite& content_;
     const EncodePlan& plan_;
     int threads_;
     std::vector<float> band_;          // the filled rows, unless they are filled straight into bytes_

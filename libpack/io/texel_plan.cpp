@@ -73,7 +73,7 @@ Scan scanValues(const float* v, size_t n, float limit) {
 // doubles that keep the first of two equal zeros met; or the error for the first value the type cannot
 // hold. Each level's rows are filled and scanned on all threads, each thread its own rows a band at a
 // time; the rows' results are then taken in order, so the first bad value is the same on any thread count.
-Status scanContent(const std::string& path, const MipChainSource& content, const EncodePlan& plan,
+Status scanContent(const std::string& path, const ChainToWrite& content, const EncodePlan& plan,
                    const TextureWriteOptions& options, double& lo, double& hi) {
     const float limit = limitOf(options.storage.pixelType);
     for (int pass = 0; pass < content.layerCount() * plan.levels; ++pass) {
@@ -188,7 +188,7 @@ Normalisation normalisationOf(double lo, double hi, int sourceChannels, const Te
 
 }  // namespace
 
-EncodePlan encodePlanOf(const MipChainSource& content, const TextureWriteOptions& options, const WritePlan& decided) {
+EncodePlan encodePlanOf(const ChainToWrite& content, const TextureWriteOptions& options, const WritePlan& decided) {
     EncodePlan plan;
     plan.sourceChannels = static_cast<int>(content.channelNames.size());
     plan.format = texelFormatInfo(texelFormatFor(plan.sourceChannels, decided.pixelType));
@@ -199,7 +199,7 @@ EncodePlan encodePlanOf(const MipChainSource& content, const TextureWriteOptions
     return plan;
 }
 
-Result<EncodePlan> planEncoding(const std::string& path, const MipChainSource& content,
+Result<EncodePlan> planEncoding(const std::string& path, const ChainToWrite& content,
                                 const TextureWriteOptions& options, const ChainValues& sameValues) {
     EncodePlan plan = encodePlanOf(content, options, WritePlan{options.storage.pixelType, std::nullopt, nullptr});
     if (options.storage.pixelType == PixelType::Float) return plan;

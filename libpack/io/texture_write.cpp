@@ -26,7 +26,7 @@ Result<TextureOutput> textureOutput(const std::string& path) {
     return TextureOutput{path, *container};
 }
 
-Status writeTexture(const TextureOutput& output, const MipChainSource& content, const TextureWriteOptions& options,
+Status writeTexture(const TextureOutput& output, const ChainToWrite& content, const TextureWriteOptions& options,
                     const WritePlan& plan) {
     const std::string& path = output.path;
     if (output.container == Container::Ktx2) return writeKtx2(path, content, options, plan);
@@ -45,13 +45,13 @@ Status writeTexture(const TextureOutput& output, const MipChainSource& content, 
     return writeTiledExr(path, content, exr);
 }
 
-Status writeTexture(const TextureOutput& output, const MipChainSource& content, const TextureWriteOptions& options) {
+Status writeTexture(const TextureOutput& output, const ChainToWrite& content, const TextureWriteOptions& options) {
     auto storage = planTexelStorage(output, content, options);
     if (!storage) return storage.error();
     return writeTexture(output, content, options, storage->plan);
 }
 
-Result<TexelStorage> planTexelStorage(const TextureOutput& output, const MipChainSource& content,
+Result<TexelStorage> planTexelStorage(const TextureOutput& output, const ChainToWrite& content,
                                       const TextureWriteOptions& options, const ChainValues& sameValues) {
     if (Status s = containerTakes(output, options.storage); !s) return s.error();
     auto plan = detail::planEncoding(output.path, content, options, sameValues);

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <string>
 
-#include "heightpack/bake/build_state.hpp"
+#include "heightpack/bake/build/build_state.hpp"
 
 #include "support/test_support.hpp"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/bake/cache_key.hpp"
+#include "heightpack/bake/build/cache_key.hpp"
 
 namespace heightpack {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/bake/cache_options.hpp"
+#include "heightpack/bake/build/cache_options.hpp"
 
 using namespace heightpack;
 

@@ -1,5 +1,5 @@
 // Which engine loads what (issue 25): for every container and texel format heightpack writes, made by the
-// pack and normal jobs and read back by readTextureLayout, engineSupport's verdict per engine is the one
+// pack and normal jobs and read back by readTextureLevels, engineSupport's verdict per engine is the one
 // docs/formats.md's "Which engine loads what" table gives from each loader's source or documentation (the
 // expectations below are that table, written out independently of the code's own).
 #include <gtest/gtest.h>
@@ -67,7 +67,7 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
             const auto made = packHeightMap(dir.file("map.png"), path, options);
             ASSERT_TRUE(made) << c.output << ": " << made.error().what;
         }
-        const auto layout = readTextureLayout(path);
+        const auto layout = readTextureLevels(path);
         ASSERT_TRUE(layout) << c.output;
         EXPECT_EQ(layout->format, c.format) << c.output;
         for (size_t e = 0; e < std::size(engines); ++e) {
@@ -99,7 +99,7 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
         options.storage.pixelType = c.type;
         const auto made = packHeightMap(dir.file("sea.exr"), dir.file(c.output), options);
         ASSERT_TRUE(made) << c.output << ": " << made.error().what;
-        const auto header = readTextureLayout(dir.file(c.output));
+        const auto header = readTextureLevels(dir.file(c.output));
         ASSERT_TRUE(header) << c.output;
         EXPECT_EQ(header->format, c.format) << c.output;
         EXPECT_EQ(header->layerNames.size(), 4u) << c.output;
@@ -114,8 +114,8 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
     // A scanline EXR of one level, as tile and synth write: every engine's EXR loader reads it.
     FlatImageOptions flat;
     ASSERT_TRUE(writeFlatImage(dir.file("flat.exr"), makeImage(64, 64, smoothWave), flat));
-    const auto layout = readTextureLayout(dir.file("flat.exr"));
+    const auto layout = readTextureLevels(dir.file("flat.exr"));
     ASSERT_TRUE(layout);
-    EXPECT_FALSE(layout->tiled);
+    EXPECT_FALSE(layout->storedInTiles);
     for (Engine e : engines) EXPECT_EQ(engineSupport(e, *layout, 1).support, Loads) << nameOf(e);
 }

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "heightpack/bake/build_materials.hpp"
+#include "heightpack/bake/build/build_materials.hpp"
 #include "heightpack/bake/fresnel_job.hpp"
 #include "heightpack/bake/normal_job.hpp"
 #include "heightpack/bake/pack_job.hpp"

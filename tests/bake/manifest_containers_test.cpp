@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "heightpack/bake/build_job.hpp"
+#include "heightpack/bake/build/build_job.hpp"
 #include "heightpack/bake/manifest.hpp"
 #include "heightpack/bake/material.hpp"
 #include "heightpack/io/gpu_texture.hpp"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/bake/build_job.hpp"
+#include "heightpack/bake/build/build_job.hpp"
 #include "heightpack/bake/manifest.hpp"
 
 #include "support/test_support.hpp"

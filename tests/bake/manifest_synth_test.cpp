@@ -8,10 +8,10 @@
 #include <iterator>
 #include <string>
 
-#include "heightpack/bake/build_job.hpp"
-#include "heightpack/bake/cache_key.hpp"
+#include "heightpack/bake/build/build_job.hpp"
+#include "heightpack/bake/build/cache_key.hpp"
 #include "heightpack/bake/manifest.hpp"
-#include "heightpack/core/cascades.hpp"
+#include "heightpack/core/sea/cascades.hpp"
 
 #include "support/test_support.hpp"
 

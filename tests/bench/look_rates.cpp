@@ -1,4 +1,4 @@
-// What the eye sees in tiled maps (issue 22): the frame, blob and echo statistics of tile_look.hpp on
+// What the eye sees in tiled maps (issue 22): the frame, blob and echo statistics of tile/look.hpp on
 //   - exactly periodic maps (the calibration: every one must pass; the thresholds sit above their maxima),
 //   - crops of larger periodic fields made to tile by each of tile's methods (every result should pass),
 //   - the same crops enlarged (issue 36: a map painted small and resized before packing), once 2x to 8x or
@@ -18,12 +18,12 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/core/tile_look.hpp"
-#include "heightpack/core/tile_quilt.hpp"
-#include "heightpack/core/tile_resynthesis.hpp"
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/tile/look.hpp"
+#include "heightpack/core/tile/quilt.hpp"
+#include "heightpack/core/tile/resynthesis.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 
-#include "enlargement.hpp"
+#include "tile/enlargement.hpp"
 #include "support/seam_families.hpp"
 
 using namespace heightpack;

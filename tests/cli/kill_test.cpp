@@ -16,8 +16,8 @@
 #include <random>
 #include <thread>
 
-#include "heightpack/bake/build_report.hpp"
-#include "heightpack/bake/build_state.hpp"
+#include "heightpack/bake/build/build_report.hpp"
+#include "heightpack/bake/build/build_state.hpp"
 
 #include <nlohmann/json.hpp>
 

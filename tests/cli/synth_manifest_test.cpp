@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "heightpack/core/cascades.hpp"
+#include "heightpack/core/sea/cascades.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 
 #include "support/exr_levels.hpp"

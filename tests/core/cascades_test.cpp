@@ -3,8 +3,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "heightpack/core/cascades.hpp"
-#include "heightpack/core/sea_report.hpp"
+#include "heightpack/core/sea/cascades.hpp"
+#include "heightpack/core/sea/sea_report.hpp"
 
 using namespace heightpack;
 

@@ -21,11 +21,11 @@
 #include <tuple>
 #include <vector>
 
-#include "heightpack/core/tile_look.hpp"
-#include "heightpack/core/tile_resynthesis.hpp"
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/tile/look.hpp"
+#include "heightpack/core/tile/resynthesis.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 
-#include "enlargement.hpp"
+#include "tile/enlargement.hpp"
 #include "support/seam_families.hpp"
 
 using namespace heightpack;

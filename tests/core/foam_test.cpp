@@ -6,9 +6,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "heightpack/core/foam.hpp"
-#include "heightpack/core/sea_report.hpp"
-#include "heightpack/core/spectrum.hpp"
+#include "heightpack/core/sea/foam.hpp"
+#include "heightpack/core/sea/sea_report.hpp"
+#include "heightpack/core/sea/spectrum.hpp"
 #include "support/spectral_derivative.hpp"
 
 using namespace heightpack;

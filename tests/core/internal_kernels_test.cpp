@@ -1,7 +1,7 @@
 // The core floor's internal kernels against independent computations: the threaded 2-D DFTs
 // (libpack/core/dft.hpp) against OpenCV's own single-threaded cv::dft, the radix sort behind the rank
-// Gaussianisation (libpack/core/gaussianise.hpp) against std::stable_sort, and the sea's counter-based
-// normal deviates (libpack/core/counter_normals.hpp) against the standard normal's moments.
+// Gaussianisation (libpack/core/tile/gaussianise.hpp) against std::stable_sort, and the sea's counter-based
+// normal deviates (libpack/core/sea/counter_normals.hpp) against the standard normal's moments.
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
@@ -15,10 +15,10 @@
 #include <random>
 #include <vector>
 
-#include "counter_normals.hpp"
+#include "sea/counter_normals.hpp"
 #include "dft.hpp"
-#include "gaussianise.hpp"
-#include "strip_field.hpp"
+#include "tile/gaussianise.hpp"
+#include "tile/strip_field.hpp"
 
 using namespace heightpack;
 

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <numbers>
 
-#include "heightpack/core/dispersion.hpp"
-#include "heightpack/core/spectrum.hpp"
-#include "heightpack/core/spreading.hpp"
+#include "heightpack/core/sea/dispersion.hpp"
+#include "heightpack/core/sea/spectrum.hpp"
+#include "heightpack/core/sea/spreading.hpp"
 
 using namespace heightpack;
 

@@ -6,8 +6,8 @@
 #include <numbers>
 
 #include "heightpack/core/mip.hpp"
-#include "heightpack/core/spectrum.hpp"
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/sea/spectrum.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 
 using namespace heightpack;
 

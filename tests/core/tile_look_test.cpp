@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "heightpack/core/tile_look.hpp"
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/tile/look.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 
 #include "support/seam_families.hpp"
 

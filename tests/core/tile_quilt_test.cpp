@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "heightpack/bake/check_job.hpp"
-#include "heightpack/core/tile_look.hpp"
-#include "heightpack/core/tile_quilt.hpp"
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/tile/look.hpp"
+#include "heightpack/core/tile/quilt.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 
-#include "quilt_kernels.hpp"
+#include "tile/quilt_kernels.hpp"
 
 using namespace heightpack;
 
@@ -56,7 +56,7 @@ detail::Field randomField(int w, int h, std::mt19937& random) {
     return f;
 }
 
-// Whether (x, y) lies in the strip of `band` texels centred on a wrap line (as tile_quilt.hpp places it).
+// Whether (x, y) lies in the strip of `band` texels centred on a wrap line (as tile/quilt.hpp places it).
 bool inStrip(int i, int size, int band) {
     const int first = size - band / 2;
     return i >= first || i < band - band / 2;

@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "heightpack/core/tile_look.hpp"
-#include "heightpack/core/tile_resynthesis.hpp"
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/tile/look.hpp"
+#include "heightpack/core/tile/resynthesis.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 
 #include "support/seam_families.hpp"
 

@@ -7,7 +7,7 @@
 #include "heightpack/bake/check_job.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/pack.hpp"
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 
 #include "support/test_support.hpp"
 

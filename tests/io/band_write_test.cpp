@@ -30,8 +30,8 @@ float valueAt(int layer, int level, int x, int y, int c) {
                            std::cos(0.005 * x * (c + 1) - 0.011 * y));
 }
 
-MipChainSource content(int width, int height, int channels, int layers) {
-    MipChainSource c;
+ChainToWrite content(int width, int height, int channels, int layers) {
+    ChainToWrite c;
     c.width = width;
     c.height = height;
     c.channelNames.assign(size_t(channels), "");
@@ -69,7 +69,7 @@ std::uint16_t halfBits(float v) {
 
 // One layer's image of one level as the file should hold it: texels of four components (alpha 1 added to
 // three channels), each float, half or the nearest code of value = offset + scale * u / 65535.
-std::vector<std::uint8_t> encoded(const MipChainSource& c, int layer, int level, PixelType type,
+std::vector<std::uint8_t> encoded(const ChainToWrite& c, int layer, int level, PixelType type,
                                   const Normalisation& n) {
     const int w = side(c.width, level), h = side(c.height, level), from = int(c.channelNames.size());
     std::vector<float> values(size_t(w) * h * from);
@@ -102,7 +102,7 @@ std::uint64_t le64(const std::vector<unsigned char>& b, size_t at) {
 
 // The whole file a serial writer gives: the file's own header (checked elsewhere against independent
 // readers), then the levels in the container's order.
-std::vector<unsigned char> serialFile(const std::vector<unsigned char>& file, bool ktx2, const MipChainSource& c,
+std::vector<unsigned char> serialFile(const std::vector<unsigned char>& file, bool ktx2, const ChainToWrite& c,
                                       PixelType type, const Normalisation& n, int levels) {
     const int layers = c.layerCount();
     std::vector<unsigned char> expected;
@@ -143,7 +143,7 @@ TEST(BandWrite, FilesHoldTheLevelsAsASerialWriterLaysThemOut) {
     // bands end mid-level; one channel, two levels only; an array of two layers one texel wide.
     const Case cases[] = {{1000, 301, 4, 4, 0}, {777, 523, 3, 1, 0}, {1531, 999, 1, 1, 2}, {1, 37, 4, 2, 0}};
     for (const Case& k : cases) {
-        const MipChainSource c = content(k.width, k.height, k.channels, k.layers);
+        const ChainToWrite c = content(k.width, k.height, k.channels, k.layers);
         int levels = 1;
         while ((k.width >> levels) > 0 || (k.height >> levels) > 0) ++levels;
         if (k.levels > 0) levels = k.levels;

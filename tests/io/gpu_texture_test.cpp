@@ -31,8 +31,8 @@ double nearestHalf(double v) {  // binary16 nearest to v, ties to even, subnorma
 }
 
 // A two-channel chain: level L's texel (x, y) holds a unit vector's x and y.
-MipChainSource xyContent(int width, int height) {
-    MipChainSource c;
+ChainToWrite xyContent(int width, int height) {
+    ChainToWrite c;
     c.width = width;
     c.height = height;
     c.channelNames = {"X", "Y"};
@@ -68,7 +68,7 @@ TEST(GpuTexture, TwoChannelFormatsRoundTripThroughBothReaders) {
     const bool independent =
         std::filesystem::exists(std::string(HEIGHTPACK_NPM_DIR) + "/node_modules/ktx-parse/package.json");
     ScratchDir dir;
-    const MipChainSource content = xyContent(32, 16);
+    const ChainToWrite content = xyContent(32, 16);
     for (const char* ext : {".ktx2", ".dds"}) {
         for (PixelType type : {PixelType::Float, PixelType::Half, PixelType::Uint16}) {
             const std::string path = dir.file(std::string("xy_") + pixelTypeName(type) + ext);
@@ -139,7 +139,7 @@ TEST(GpuTexture, TwoChannelFormatsRoundTripThroughBothReaders) {
 
 TEST(GpuTexture, DamagedFilesAreRefusedAsBadInput) {
     ScratchDir dir;
-    const MipChainSource content = xyContent(32, 16);
+    const ChainToWrite content = xyContent(32, 16);
     for (const char* name : {"d.ktx2", "d.dds", "z.ktx2"}) {
         TextureWriteOptions options;
         options.storage.pixelType = PixelType::Half;

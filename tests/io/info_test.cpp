@@ -23,7 +23,7 @@ TEST(Info, ReportsLevelsAttributesAndStatisticsOfAPackedFile) {
     auto info = readFileInfo(dir.file("out.exr"));
     ASSERT_TRUE(info.ok()) << info.error().what;
     EXPECT_EQ(info->format, "openexr");
-    EXPECT_TRUE(info->tiled);
+    EXPECT_TRUE(info->storedInTiles);
     EXPECT_EQ(info->channelNames, (std::vector<std::string>{"R", "G", "B", "A"}));
     EXPECT_EQ(findAttribute(*info, "heightpack:layout"), "neighbour4");
     EXPECT_EQ(findAttribute(*info, "heightpack:wrap"), "clamp");

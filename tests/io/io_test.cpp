@@ -549,7 +549,7 @@ TEST(Io, WritersNeverWriteNonFiniteTexelsOrOneFormatUnderAnothersName) {
     ASSERT_FALSE(flatNan.ok());
     EXPECT_EQ(flatNan.error().kind, ErrorKind::Internal);
 
-    MipChainSource content;
+    ChainToWrite content;
     content.width = content.height = 8;
     content.channelNames = {"Y"};
     content.fillRows = [](int, int, int rows, float* dst) {

@@ -21,8 +21,8 @@ using namespace heightpack::test;
 
 namespace {
 
-MipChainSource reversedRows(const std::vector<Image>& chain) {
-    MipChainSource c;
+ChainToWrite reversedRows(const std::vector<Image>& chain) {
+    ChainToWrite c;
     c.width = chain[0].width;
     c.height = chain[0].height;
     c.channelNames = {"Y"};
@@ -40,7 +40,7 @@ Result<TexelStorage> plan(const std::vector<Image>& chain, PixelType type, bool 
     options.gridOrigin = gridSpan > 0.0f ? -0.5f : 0.0f;
     options.gridSpan = gridSpan;
     options.levels = int(chain.size());
-    const MipChainSource content = reversedRows(chain);
+    const ChainToWrite content = reversedRows(chain);
     return planTexelStorage({"t.ktx2", Container::Ktx2}, content, options, fromChains ? ChainValues{&chain} : ChainValues{});
 }
 

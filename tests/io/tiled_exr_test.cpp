@@ -23,8 +23,8 @@ namespace {
 // A source of two channels whose every texel of every level differs: a value that names its place.
 float valueAt(int level, int x, int y, int c) { return float(level * 1000000 + y * 1000 + x) + 0.25f * c; }
 
-MipChainSource numberedChain(int width, int height) {
-    MipChainSource content;
+ChainToWrite numberedChain(int width, int height) {
+    ChainToWrite content;
     content.width = width, content.height = height;
     content.channelNames = {"Y", "Dx"};
     content.fillRows = [width](int level, int y0, int rows, float* dst) {
@@ -36,8 +36,8 @@ MipChainSource numberedChain(int width, int height) {
     return content;
 }
 
-// The same source with its runs too (MipChainSource::fillRun), which the writer then takes instead of rows.
-MipChainSource withRuns(MipChainSource content) {
+// The same source with its runs too (ChainToWrite::fillRun), which the writer then takes instead of rows.
+ChainToWrite withRuns(ChainToWrite content) {
     const int width = content.width;
     content.fillRun = [width](int level, int y, int x0, int count, int channel, float* dst) {
         for (int x = x0; x < x0 + count; ++x) *dst++ = valueAt(level, x, y, channel);
@@ -50,7 +50,7 @@ MipChainSource withRuns(MipChainSource content) {
 TEST(TiledExrWriter, EveryRowOfEveryLevelIsWrittenInPlaceOnAnyThreadCount) {
     ScratchDir dir;
     const int width = 160, height = 96;  // 10 x 6 tiles of 16 at level 0, 8 levels: many rows in flight
-    const MipChainSource content = numberedChain(width, height);
+    const ChainToWrite content = numberedChain(width, height);
     for (Compression compression : {Compression::Zip, Compression::Zips, Compression::None}) {
         std::vector<std::vector<unsigned char>> files;
         for (int threads : {1, 2, 5}) {
@@ -93,7 +93,7 @@ TEST(TiledExrWriter, TheFirstNonFiniteLevelInFileOrderIsNamedOnAnyThreadCount) {
     // Levels 1 and 3 hold an infinity (level 1 in its last row, which a worker may reach after level 3's):
     // the refusal names level 1 whatever the thread count, from rows or from runs, and no file is left.
     ScratchDir dir;
-    MipChainSource content = numberedChain(128, 128);
+    ChainToWrite content = numberedChain(128, 128);
     const auto numbered = content.fillRows;
     content.fillRows = [numbered](int level, int y0, int rows, float* dst) {
         numbered(level, y0, rows, dst);
@@ -101,14 +101,14 @@ TEST(TiledExrWriter, TheFirstNonFiniteLevelInFileOrderIsNamedOnAnyThreadCount) {
         if ((level == 1 || level == 3) && y0 + rows - 1 == last)
             dst[size_t(rows - 1) * (128 >> level) * 2] = std::numeric_limits<float>::infinity();
     };
-    MipChainSource runs = withRuns(content);
+    ChainToWrite runs = withRuns(content);
     const auto numberedRun = runs.fillRun;
     runs.fillRun = [numberedRun](int level, int y, int x0, int count, int channel, float* dst) {
         numberedRun(level, y, x0, count, channel, dst);
         if ((level == 1 || level == 3) && y == (128 >> level) - 1 && x0 == 0 && channel == 0)
             dst[0] = std::numeric_limits<float>::infinity();
     };
-    for (const MipChainSource* source : {&content, &runs})
+    for (const ChainToWrite* source : {&content, &runs})
         for (int threads : {1, 2, 4}) {
             ExrWriteOptions options;
             options.tileSize = 16;
@@ -125,7 +125,7 @@ TEST(TiledExrWriter, ChannelRunsGiveTheBytesThatRowsGive) {
     // A source that also gives each channel's runs is written from them (no band of interleaved rows):
     // the file must be the one written from its rows, float or half, deflated or not, on any thread count.
     ScratchDir dir;
-    const MipChainSource rows = numberedChain(96, 160), runs = withRuns(rows);
+    const ChainToWrite rows = numberedChain(96, 160), runs = withRuns(rows);
     for (Compression compression : {Compression::Zip, Compression::None})
         for (bool half : {false, true}) {
             ExrWriteOptions options;

@@ -4,8 +4,9 @@
 #      library; io includes no bake header and no TOML or JSON library;
 #   2. the library never names a command-line flag in what it says (its errors carry a reason that each
 #      shell words in its own flags or manifest keys);
-#   3. no source file outside tests/ is over 400 lines.
-# Prints every breach and exits 1 if there is any.
+#   3. a source file outside tests/ over 400 lines is named as a warning: split it by concept (a folder
+#      per subject, core/tile, core/sea, bake/build), not to meet a count.
+# Prints every breach and exits 1 if there is any; warnings do not fail.
 #   tests/layout/floor_rules.sh [SOURCE_DIR]
 set -uo pipefail
 cd "${1:-$(dirname "$0")/../..}"
@@ -39,11 +40,11 @@ done
 
 for f in $(find libpack tools viewer -name '*.cpp' -o -name '*.hpp' | sort); do
   n=$(wc -l <"$f")
-  [ "$n" -gt 400 ] && breach "$f has $n lines (at most 400: split it by concern)"
+  [ "$n" -gt 400 ] && echo "floor_rules: warning: $f has $n lines (over 400: is it one concern?)"
 done
 
 if [ "$breaches" -gt 0 ]; then
   echo "floor_rules: $breaches breach(es)"
   exit 1
 fi
-echo "floor_rules: every floor looks only down, the library names no flag, no file is over 400 lines"
+echo "floor_rules: every floor looks only down and the library names no flag"

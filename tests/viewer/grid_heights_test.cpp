@@ -17,7 +17,7 @@
 
 #include "heightpack/bake/material_sampler.hpp"
 #include "heightpack/bake/pack_job.hpp"
-#include "heightpack/core/cascades.hpp"
+#include "heightpack/core/sea/cascades.hpp"
 #include "support/test_support.hpp"
 #include "viewer_support.hpp"
 

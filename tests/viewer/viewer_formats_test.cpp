@@ -185,7 +185,7 @@ TEST(ViewerFormats, NormalMapsAndRampsOfEveryLayoutAndTypeShadeLikeTheFloatExr) 
     // Two-channel normals (x, y; z rebuilt in the shader), written through the library from n.exr's chain.
     auto full = readTextureFile(dir.file("n.exr"));
     ASSERT_TRUE(full) << full.error().what;
-    MipChainSource xy;
+    ChainToWrite xy;
     xy.width = full->levels[0].width;
     xy.height = full->levels[0].height;
     xy.channelNames = {"R", "G"};

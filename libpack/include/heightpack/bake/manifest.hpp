@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "heightpack/bake/material.hpp"
-#include "heightpack/core/foam.hpp"
+#include "heightpack/core/sea/foam.hpp"
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
-#include "heightpack/core/spectrum.hpp"
+#include "heightpack/core/sea/spectrum.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/pixel_type.hpp"

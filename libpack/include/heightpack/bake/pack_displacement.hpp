@@ -45,17 +45,17 @@ std::vector<std::string> packedCompanionChannels(const std::vector<CompanionChai
 namespace detail {
 
 // Makes content (channels, rows) the packed heights and their companions: the chains must share their sizes.
-void fillPackedWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
+void fillPackedWithCompanions(ChainToWrite& content, const std::vector<Image>& heights,
                               std::vector<CompanionChain> companions, Wrap wrap);
 // Makes content the plain chain with its companions: channels Y, then each companion's NAME.
-void fillPlainWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
+void fillPlainWithCompanions(ChainToWrite& content, const std::vector<Image>& heights,
                              std::vector<CompanionChain> companions);
 // Makes content an array texture (KTX2, DDS): layer "heights", then one layer per companion, each packed
 // (or, when not packed, plain: channel Y) exactly as the EXR's layers are.
-void fillArrayWithCompanions(MipChainSource& content, const std::vector<Image>& heights,
+void fillArrayWithCompanions(ChainToWrite& content, const std::vector<Image>& heights,
                              std::vector<CompanionChain> companions, Wrap wrap, bool packed);
 // The one of the three that container holds: an EXR's channels, a KTX2's or DDS's layers.
-void fillWithCompanions(MipChainSource& content, Container container, const std::vector<Image>& heights,
+void fillWithCompanions(ChainToWrite& content, Container container, const std::vector<Image>& heights,
                         std::vector<CompanionChain> companions, Wrap wrap, bool packed);
 
 }  // namespace detail

@@ -8,9 +8,9 @@
 #include <string_view>
 #include <vector>
 
-#include "heightpack/core/foam.hpp"
+#include "heightpack/core/sea/foam.hpp"
 #include "heightpack/core/result.hpp"
-#include "heightpack/core/spectrum.hpp"
+#include "heightpack/core/sea/spectrum.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/version.hpp"
 

@@ -9,8 +9,8 @@
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/names.hpp"
 #include "heightpack/core/result.hpp"
-#include "heightpack/core/tile_look.hpp"
-#include "heightpack/core/tileable.hpp"
+#include "heightpack/core/tile/look.hpp"
+#include "heightpack/core/tile/tileable.hpp"
 #include "heightpack/io/read.hpp"
 #include "heightpack/version.hpp"
 

@@ -15,7 +15,7 @@
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/names.hpp"
 #include "heightpack/core/normal.hpp"
-#include "heightpack/core/spectrum.hpp"
+#include "heightpack/core/sea/spectrum.hpp"
 
 namespace heightpack {
 

@@ -47,7 +47,7 @@ struct EngineVerdict {
     std::string alternative;  // a container and format the engine does load, where one exists; else empty
 };
 
-// The verdict for a file whose header is `header` (as readTextureLayout or readFileInfo give it: its
+// The verdict for a file whose header is `header` (as readTextureLevels or readFileInfo give it: its
 // format names the container and, for KTX2 and DDS, the texel format; its layerNames an array texture)
 // with `levels` mip levels.
 EngineVerdict engineSupport(Engine engine, const TextureHeader& header, int levels);

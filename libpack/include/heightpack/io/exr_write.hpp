@@ -30,7 +30,7 @@ struct NameTable<Compression> {
 // A mip chain as every mip-mapped writer (tiled EXR, KTX2, DDS) takes it: its level-0 size, channel names,
 // and a function that fills any band of rows of any level on demand, so a writer never holds more than a
 // band of output; and the attributes to record.
-struct MipChainSource {
+struct ChainToWrite {
     int width = 0;
     int height = 0;
     std::vector<std::string> channelNames;  // interleaved in this order in the rows fillRows writes
@@ -63,7 +63,7 @@ struct ExrWriteOptions {
 // Writes content as a tiled (tileSize^2), MIPMAP_LEVELS, ROUND_DOWN EXR of 32-bit float (or half) channels. The
 // file appears at path only once complete: it is written to a temporary file in the same folder and
 // renamed, so a failure or interruption leaves no partial file and any existing file untouched.
-Status writeTiledExr(const std::string& path, const MipChainSource& content, const ExrWriteOptions& options);
+Status writeTiledExr(const std::string& path, const ChainToWrite& content, const ExrWriteOptions& options);
 
 // A flat (one-level) scanline EXR: interleaved float pixels, each channel stored as float or half.
 struct ScanlineExrContent {

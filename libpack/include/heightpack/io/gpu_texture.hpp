@@ -1,7 +1,7 @@
 // GPU containers an engine loads as they are: KTX2 (Khronos KTX 2.0) and DDS (DX10 extended header).
-// Both take the same description as the EXR writer (MipChainSource: level-0 size, channels, rows on
+// Both take the same description as the EXR writer (ChainToWrite: level-0 size, channels, rows on
 // demand, the heightpack:* attributes), write every mip level in the chosen pixel type, and appear
-// atomically; both write texture arrays (MipChainSource::layerNames: heights, Dx, Dy, foam as layers of
+// atomically; both write texture arrays (ChainToWrite::layerNames: heights, Dx, Dy, foam as layers of
 // one texture). KTX2 carries the attributes as key/values; DDS has no key/value store, so it records only
 // a few of them in its header's reserved words (see dds.cpp).
 #pragma once
@@ -70,12 +70,12 @@ struct WritePlan {
 // plan says. Fails with CannotWrite when the file cannot be written. The overloads without a plan plan
 // first (planTexelStorage), failing with BadInput, writing nothing, when a value cannot be stored in the
 // pixel type (a half beyond +-65504).
-Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+Status writeKtx2(const std::string& path, const ChainToWrite& content, const TextureWriteOptions& options,
                  const WritePlan& plan);
-Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options,
+Status writeDds(const std::string& path, const ChainToWrite& content, const TextureWriteOptions& options,
                 const WritePlan& plan);
-Status writeKtx2(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
-Status writeDds(const std::string& path, const MipChainSource& content, const TextureWriteOptions& options);
+Status writeKtx2(const std::string& path, const ChainToWrite& content, const TextureWriteOptions& options);
+Status writeDds(const std::string& path, const ChainToWrite& content, const TextureWriteOptions& options);
 
 // A KTX2 or DDS file as heightpack reads it.
 struct GpuTexture {

@@ -47,9 +47,10 @@ struct TextureHeader {
     // named as the EXR holding the same layers names them: the heights' R, G, B, A (Y when plain), then
     // each further layer's NAME.R ... (NAME when plain).
     std::vector<std::string> layerNames;
-    bool tiled = false;
-    int tileWidth = 0;
-    int tileHeight = 0;
+    // An EXR stored in tiles (storage blocks of texels), and their size; not the map's tile in metres.
+    bool storedInTiles = false;
+    int storageTileWidth = 0;
+    int storageTileHeight = 0;
     Attributes attributes;  // header metadata, as text, for reports
     TextureDescription description;  // what the header says, typed: what every reader asks
 };
@@ -69,10 +70,10 @@ struct TextureFile : TextureHeader {
 Result<TextureFile> readTextureFile(const std::string& path, bool silenceDecoderMessages = false);
 
 // A file's header and the size of each level, without reading any pixels.
-struct TextureLayout : TextureHeader {
+struct TextureLevels : TextureHeader {
     std::vector<std::pair<int, int>> levelSizes;  // level 0 first
 };
-Result<TextureLayout> readTextureLayout(const std::string& path, bool silenceDecoderMessages = false);
+Result<TextureLevels> readTextureLevels(const std::string& path, bool silenceDecoderMessages = false);
 
 // readTextureFile, summarised: per-level, per-channel statistics instead of pixels.
 Result<FileInfo> readFileInfo(const std::string& path, bool silenceDecoderMessages = false);

@@ -27,18 +27,18 @@ Result<TextureOutput> textureOutput(const std::string& path);
 // content) decided. A float EXR is written exactly as writeTiledExr writes it. Fails, writing nothing,
 // with CannotWrite for a pixel type or compression the container lacks (an EXR has no 16-bit normalised
 // channels; a DDS no supercompression).
-Status writeTexture(const TextureOutput& output, const MipChainSource& content, const TextureWriteOptions& options,
+Status writeTexture(const TextureOutput& output, const ChainToWrite& content, const TextureWriteOptions& options,
                     const WritePlan& plan);
 // The same, planning first in options.storage.pixelType: fails also, writing nothing, with BadInput when a
 // value cannot be stored in the pixel type.
-Status writeTexture(const TextureOutput& output, const MipChainSource& content, const TextureWriteOptions& options);
+Status writeTexture(const TextureOutput& output, const ChainToWrite& content, const TextureWriteOptions& options);
 
 // Whether output's container holds storage's pixel type and compression: CannotWrite naming output.path
 // and what to write instead when it does not.
 Status containerTakes(const TextureOutput& output, const TextureStorage& storage);
 
 // Chains (each a mip chain, level 0 first) that hold, level by level, exactly the values a
-// MipChainSource writes: every value it writes is in one of them, and every value of theirs is written.
+// ChainToWrite writes: every value it writes is in one of them, and every value of theirs is written.
 // A packed chain's plain levels are such (a packed texel holds copies of four plain values), as are a
 // texture's layers' plain chains.
 using ChainValues = std::vector<const std::vector<Image>*>;
@@ -58,7 +58,7 @@ struct TexelStorage {
     // has it); bit for bit what storeAndRead gives each value.
     std::function<void(const float* values, size_t n, float* readBack)> storeAndReadRow;
 };
-Result<TexelStorage> planTexelStorage(const TextureOutput& output, const MipChainSource& content,
+Result<TexelStorage> planTexelStorage(const TextureOutput& output, const ChainToWrite& content,
                                       const TextureWriteOptions& options, const ChainValues& sameValues = {});
 
 // The bytes a level of width x height texels with `channels` channels takes on the GPU in the format
