@@ -37,9 +37,7 @@ TEST(DamagedHeader, InfoAndCheckRefuseEachDamagedKeyNamingTheFileAndTheKey) {
     int cases = 0;
     for (const HeaderDamage& damage : headerDamages()) {
         SCOPED_TRACE(damage.name());
-        const std::string path = dir.file("damaged" + std::to_string(cases++) + damage.ext);
-        std::filesystem::copy_file(dir.file("good" + damage.ext), path);
-        damageHeader(path, damage);
+        const std::string path = damagedCopy(dir, damage, cases++);
         for (const char* command : {"info", "check"}) {
             SCOPED_TRACE(command);
             const ProcessResult r = heightpackRun({command, path});

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
@@ -79,6 +80,14 @@ inline void damageHeader(const std::string& path, const HeaderDamage& damage) {
         std::memcpy(b.data() + key + damage.key.size() + 1 + 6 + 4, &damage.number, 4);
     }
     writeBytes(path, b);
+}
+
+// A copy of dir's good<ext> (the undamaged file of damage's container) named damaged<index><ext>, damaged.
+inline std::string damagedCopy(const ScratchDir& dir, const HeaderDamage& damage, int index) {
+    const std::string path = dir.file("damaged" + std::to_string(index) + damage.ext);
+    std::filesystem::copy_file(dir.file("good" + damage.ext), path);
+    damageHeader(path, damage);
+    return path;
 }
 
 }  // namespace heightpack::test

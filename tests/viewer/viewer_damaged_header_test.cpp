@@ -24,9 +24,7 @@ TEST(ViewerDamagedHeader, RefusesEachDamagedKeyNamingTheFileAndTheKeyAndDrawsNot
     int cases = 0;
     for (const HeaderDamage& damage : headerDamages()) {
         SCOPED_TRACE(damage.name());
-        const std::string path = dir.file("damaged" + std::to_string(cases++) + damage.ext);
-        std::filesystem::copy_file(dir.file("good" + damage.ext), path);
-        damageHeader(path, damage);
+        const std::string path = damagedCopy(dir, damage, cases++);
         const std::string shot = dir.file("shot" + std::to_string(cases) + ".png");
         const ViewRun r = viewWithoutDisplay({path, "--screenshot", shot});
         EXPECT_EQ(r.code, 3) << r.err;
