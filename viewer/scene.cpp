@@ -58,6 +58,12 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
             if (stored.channels != 4) return badInput(path, "is marked neighbour4 but has no 4 channels", "pack it again");
             frame.plain = firstChannel(stored);
             frame.packed = std::move(stored);
+        } else if (stored.isBlock()) {
+            // BC4 goes up as its blocks (the reference lookup filters them in hardware); the packing reads
+            // texel by texel, so it takes the decoded values, in the same unit values and decode.
+            const StoredChain units = firstChannel(unitFloats(file->levels, stored.decode));
+            frame.plain = stored.channels == 1 ? std::move(stored) : units;
+            frame.packed = packStoredNeighbour4(units, layer.wrap);
         } else {
             frame.plain = firstChannel(stored);
             frame.packed = packStoredNeighbour4(frame.plain, layer.wrap);
@@ -149,8 +155,10 @@ Result<NormalMap> loadNormalMap(const std::string& path) {
             for (float& v : level.pixels) v = 2.0f * v - 1.0f;
     // Each level of a file from heightpack normal holds the normals of that level's heights, better than
     // averaged normals: keep them all. A single level gets its chain from glGenerateMipmap, which needs a
-    // colour-renderable format (16-bit snorm is not required to be): such a level goes up as floats.
-    const bool keepStored = file->stored && !(file->levels.size() == 1 && file->stored->kind == ComponentKind::Snorm16);
+    // colour-renderable format (16-bit snorm is not required to be, blocks are not): such a level goes up as
+    // floats.
+    const bool keepStored = file->stored && !(file->levels.size() == 1 && (file->stored->kind == ComponentKind::Snorm16 ||
+                                                                          file->stored->isBlock()));
     map.levels = keepStored ? std::move(*file->stored) : storeFloats(file->levels);
     const bool directx = file->description.convention == NormalConvention::DirectX;
     map.greenSign = directx ? 1.0f : -1.0f;

@@ -56,7 +56,9 @@ std::string Renderer::uploadLayers(const Scene& scene) {
         t.shift = uploadShiftArray(layer);
         if (gather_ && gatherProblem_.empty()) {
             std::vector<GatherAtlas> atlases;
-            for (const HeightFrame& frame : layer.frames) atlases.push_back(buildGatherAtlas(frame.plain, layer.wrap));
+            // A block chain's texels are the packing's R (its decoded unit values, the same decode).
+            for (const HeightFrame& frame : layer.frames)
+                atlases.push_back(buildGatherAtlas(frame.plain.isBlock() ? firstChannel(frame.packed) : frame.plain, layer.wrap));
             const StoredChain& texels = atlases[0].texels;
             if (texels.width > maxSize || texels.height > maxSize) {
                 gatherProblem_ = layer.path + " needs a " + std::to_string(texels.width) + "x" + std::to_string(texels.height) +

@@ -28,15 +28,23 @@ StoredChain storeFloats(const std::vector<Image>& levels, ComponentKind kind) {
 
 StoredChain storeGpuTexture(GpuTexture& texture) {
     const TexelFormatInfo& f = texelFormatInfo(texture.format);
-    if (f.isBlock()) return storeFloats(texture.levels);  // drawn from its decoded values, uploaded as floats
     StoredChain chain;
     chain.channels = f.channels;
     chain.kind = f.kind;
     chain.width = texture.width;
     chain.height = texture.height;
     chain.levels = std::move(texture.levelBytes);
-    // decodeLevel maps a normalised texel the same way: offset + scale * u / 65535.
-    if (f.kind == ComponentKind::Unorm16) chain.decode = texture.normalisation.value_or(Normalisation{});
+    // decodeLevel maps a normalised texel the same way: offset + scale * u / 65535 (a block's u / 255).
+    if (f.kind == ComponentKind::Unorm16 || f.isBlock()) chain.decode = texture.normalisation.value_or(Normalisation{});
+    return chain;
+}
+
+StoredChain unitFloats(const std::vector<Image>& decoded, const Normalisation& decode) {
+    std::vector<Image> units = decoded;
+    for (Image& level : units)
+        for (float& v : level.pixels) v = (v - decode.offset) / decode.scale;
+    StoredChain chain = storeFloats(units);
+    chain.decode = decode;
     return chain;
 }
 

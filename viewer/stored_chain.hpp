@@ -1,4 +1,4 @@
-// A mip chain's texels as its file stored them (32-bit float, half, 16-bit normalised), so the viewer
+// A mip chain's texels as its file stored them (32-bit float, half, 16-bit normalised, BC4/BC5 blocks), so the viewer
 // uploads them at that precision and the GPU memory shows what the pixel type costs. Also the two
 // chains the viewer derives from a stored one, in the same type: the 4-neighbour packing of a plain
 // chain, and the atlas that the textureGather lookup reads.
@@ -14,14 +14,16 @@
 namespace heightpack::view {
 
 struct StoredChain {
-    int channels = 1;  // 1 to 4, interleaved
-    ComponentKind kind = ComponentKind::Float32;
+    int channels = 1;  // 1 to 4, interleaved; a block chain: 1 (BC4) or 2 (BC5)
+    ComponentKind kind = ComponentKind::Float32;  // Block: each level holds its 4x4 blocks, not texels
     int width = 0, height = 0;  // level 0
     std::vector<std::vector<std::uint8_t>> levels;  // level 0 first, rows tightly packed, little-endian
-    // What a shader reads back (a normalised format samples u / 65535) mapped to the file's values:
-    // value = offset + scale * sampled. Identity except for 16-bit normalised chains.
+    // What a shader reads back (a normalised format samples u / 65535, an RGTC one its unit value) mapped to
+    // the file's values: value = offset + scale * sampled. Identity except for normalised and block chains.
     Normalisation decode;
 
+    bool isBlock() const { return kind == ComponentKind::Block; }
+    // Texel chains only: a block chain has no bytes of its own per texel.
     int bytesPerTexel() const { return channels * (kind == ComponentKind::Float32 ? 4 : 2); }
     int levelWidth(int level) const { return width >> level > 0 ? width >> level : 1; }
     int levelHeight(int level) const { return height >> level > 0 ? height >> level : 1; }
@@ -31,10 +33,16 @@ struct StoredChain {
 // (an EXR of half channels: every value is a half already, so nothing is rounded).
 StoredChain storeFloats(const std::vector<Image>& levels, ComponentKind kind = ComponentKind::Float32);
 
-// A KTX2 or DDS file's levels as they are; its bytes move into the chain.
+// A KTX2 or DDS file's levels as they are (a block format's blocks too, to go up as RGTC); its bytes move
+// into the chain.
 StoredChain storeGpuTexture(GpuTexture& texture);
 
-// Channel 0 of every texel: the plain height chain inside a 4-neighbour packed one (R = H(i, j)).
+// A block chain's decoded levels as 32-bit floats of the unit values its blocks hold ((value - offset) /
+// scale), so they share its decode: for the lookups that read texel by texel (the 4-neighbour packing, the
+// gather atlas), which a block chain cannot feed.
+StoredChain unitFloats(const std::vector<Image>& decoded, const Normalisation& decode);
+
+// Channel 0 of every texel (a texel chain): the plain height chain inside a 4-neighbour packed one (R = H(i, j)).
 StoredChain firstChannel(const StoredChain& chain);
 
 // The 4-neighbour packing (R = H(i,j), G = H(i+1,j), B = H(i,j+1), A = H(i+1,j+1), indices brought in by

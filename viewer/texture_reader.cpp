@@ -22,8 +22,30 @@ StoredChain layerOf(const StoredChain& array, int layer) {
     return one;
 }
 
+// A block array's levels decoded, as a float array's stored chain: each level every layer's image in turn.
+// (Its layers feed the texel-by-texel packings of displacement and foam, which blocks cannot.)
+StoredChain layerMajorFloats(const std::vector<Image>& levels, int layers) {
+    const int channels = levels[0].channels / layers;
+    StoredChain chain;
+    for (int layer = 0; layer < layers; ++layer) {
+        std::vector<int> mine(static_cast<size_t>(channels));
+        std::iota(mine.begin(), mine.end(), layer * channels);
+        std::vector<Image> one;
+        for (const Image& level : levels) one.push_back(selectChannels(level, mine));
+        StoredChain part = storeFloats(one);
+        if (layer == 0) {
+            chain = std::move(part);
+            continue;
+        }
+        for (size_t l = 0; l < levels.size(); ++l)
+            chain.levels[l].insert(chain.levels[l].end(), part.levels[l].begin(), part.levels[l].end());
+    }
+    return chain;
+}
+
 // Splits an array texture into layer 0 (levels, stored) and its further layers (ViewerTexture::layers).
 void splitLayers(ViewerTexture& texture, const std::vector<std::string>& names) {
+    if (texture.stored->isBlock()) texture.stored = layerMajorFloats(texture.levels, int(names.size()));
     const StoredChain array = std::move(*texture.stored);
     for (size_t n = 1; n < names.size(); ++n) texture.layers.push_back({names[n], layerOf(array, int(n))});
     texture.stored = layerOf(array, 0);

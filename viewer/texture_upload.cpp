@@ -1,6 +1,7 @@
 #include "texture_upload.hpp"
 
 #include <cassert>
+#include <cstdint>
 
 #include "gl_util.hpp"
 
@@ -23,10 +24,28 @@ GlFormat glFormatOf(int channels, ComponentKind kind) {
         case ComponentKind::Float16: return {float16[c], formats[c], GL_HALF_FLOAT};
         case ComponentKind::Unorm16: return {unorm16[c], formats[c], GL_UNSIGNED_SHORT};
         case ComponentKind::Snorm16: return {snorm16[c], formats[c], GL_SHORT};
-        case ComponentKind::Float32:
-        case ComponentKind::Block: break;  // a block chain reaches the viewer decoded into floats
+        case ComponentKind::Block: return {c == 0 ? GLenum(GL_COMPRESSED_RED_RGTC1) : GLenum(GL_COMPRESSED_RG_RGTC2), formats[c], 0};
+        case ComponentKind::Float32: break;
     }
     return {float32[c], formats[c], GL_FLOAT};
+}
+
+// Bytes of a block level: whole 4x4 blocks, a level smaller than a block takes one (as the files store it).
+GLsizei blockLevelBytes(const StoredChain& chain, int level) {
+    const long long blocks = static_cast<long long>((chain.levelWidth(level) + 3) / 4) * ((chain.levelHeight(level) + 3) / 4);
+    return static_cast<GLsizei>(blocks * 8 * chain.channels);
+}
+
+void setLevel(const StoredChain& chain, const GlFormat& f, int level) {
+    const GLint internal = static_cast<GLint>(f.internal);
+    const int w = chain.levelWidth(level), h = chain.levelHeight(level);
+    const std::uint8_t* data = chain.levels[size_t(level)].data();
+    if (chain.isBlock()) {
+        assert(chain.levels[size_t(level)].size() == size_t(blockLevelBytes(chain, level)));
+        glCompressedTexImage2D(GL_TEXTURE_2D, level, f.internal, w, h, 0, blockLevelBytes(chain, level), data);
+    } else {
+        glTexImage2D(GL_TEXTURE_2D, level, internal, w, h, 0, f.format, f.type, data);
+    }
 }
 
 }  // namespace
@@ -37,9 +56,7 @@ GLuint uploadStoredChain(const StoredChain& chain, bool linear, Wrap wrap) {
     glGenTextures(1, &texture);
     glBindTexture(GL_TEXTURE_2D, texture);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);  // rows are tightly packed: a one-channel 16-bit row may be 2 bytes
-    for (size_t level = 0; level < chain.levels.size(); ++level)
-        glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(level), static_cast<GLint>(f.internal), chain.levelWidth(int(level)),
-                     chain.levelHeight(int(level)), 0, f.format, f.type, chain.levels[level].data());
+    for (size_t level = 0; level < chain.levels.size(); ++level) setLevel(chain, f, int(level));
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     const bool mips = chain.levels.size() > 1;
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, static_cast<GLint>(chain.levels.size() - 1));
@@ -68,9 +85,18 @@ GLuint uploadStoredArray(const std::vector<const StoredChain*>& chains, bool lin
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     for (size_t level = 0; level < first.levels.size(); ++level) {
         const int w = first.levelWidth(int(level)), h = first.levelHeight(int(level));
-        glTexImage3D(GL_TEXTURE_2D_ARRAY, static_cast<GLint>(level), static_cast<GLint>(f.internal), w, h, layers, 0, f.format,
-                     f.type, nullptr);
-        for (GLsizei layer = 0; layer < layers; ++layer) {
+        const GLsizei blockBytes = first.isBlock() ? blockLevelBytes(first, int(level)) : 0;
+        if (first.isBlock()) {
+            // One compressed image of every layer, each layer's blocks in turn (GL's layout of a 3D image).
+            std::vector<std::uint8_t> all;
+            for (const StoredChain* c : chains) all.insert(all.end(), c->levels[level].begin(), c->levels[level].end());
+            glCompressedTexImage3D(GL_TEXTURE_2D_ARRAY, static_cast<GLint>(level), f.internal, w, h, layers, 0,
+                                   blockBytes * layers, all.data());
+        } else {
+            glTexImage3D(GL_TEXTURE_2D_ARRAY, static_cast<GLint>(level), static_cast<GLint>(f.internal), w, h, layers, 0,
+                         f.format, f.type, nullptr);
+        }
+        for (GLsizei layer = 0; layer < layers && !first.isBlock(); ++layer) {
             const StoredChain& c = *chains[size_t(layer)];
             assert(c.kind == first.kind && c.channels == first.channels && c.levels.size() == first.levels.size() &&
                    c.width == first.width && c.height == first.height);
@@ -103,6 +129,14 @@ long long textureBytes(GLuint texture, GLenum target) {
         glGetTexLevelParameteriv(target, level, GL_TEXTURE_HEIGHT, &h);
         if (target == GL_TEXTURE_2D_ARRAY) glGetTexLevelParameteriv(target, level, GL_TEXTURE_DEPTH, &layers);
         if (w == 0 || h == 0) break;  // past the levels that exist (a shading texture's GL-made chain ends at 1x1)
+        GLint compressed = GL_FALSE;
+        glGetTexLevelParameteriv(target, level, GL_TEXTURE_COMPRESSED, &compressed);
+        if (compressed) {  // its component sizes say nothing of its blocks: GL counts the image's bytes
+            GLint size = 0;
+            glGetTexLevelParameteriv(target, level, GL_TEXTURE_COMPRESSED_IMAGE_SIZE, &size);
+            bytes += size;
+            continue;
+        }
         for (GLenum component : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE, GL_TEXTURE_ALPHA_SIZE}) {
             GLint b = 0;
             glGetTexLevelParameteriv(target, level, component, &b);

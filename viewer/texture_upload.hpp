@@ -1,6 +1,6 @@
 // Textures from stored chains, uploaded in the precision they were stored in (GL_RGBA16F for half,
 // GL_R16 / GL_RG16 / GL_RGBA16 for 16-bit normalised, GL_RG16_SNORM for the two-channel normals of
-// earlier versions), and the bytes each texture holds on the GPU as GL itself reports them.
+// earlier versions, GL_COMPRESSED_RED_RGTC1 / GL_COMPRESSED_RG_RGTC2 for BC4 / BC5 blocks as they are), and the bytes each texture holds on the GPU as GL itself reports them.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -14,7 +14,7 @@ namespace heightpack::view {
 
 // A mip-mapped texture of the chain's levels (one level: no mip-maps). linear: GL_LINEAR filtering (the
 // reference path, shading textures), else nearest (the packed and gather lookups filter in the shader).
-// A normalised chain samples as u / 65535: the shader applies chain.decode.
+// A normalised chain samples as u / 65535, a block chain as its unit value: the shader applies chain.decode.
 GLuint uploadStoredChain(const StoredChain& chain, bool linear, Wrap wrap);
 
 // The same for float levels, as 32-bit floats.

@@ -2,6 +2,7 @@
 // they decode with is known before anything is written and the writer stores exactly what was measured.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "heightpack/core/parallel.hpp"
@@ -91,7 +92,10 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
                 if (!std::isfinite(v)) return nonFiniteLevel(path, level);
             Image unorm = given;
             for (float& v : unorm.pixels) v = float((double(v) - n.offset) / n.scale);
-            out.images.push_back(encodeBlocks(unorm, format, threads));
+            // BC5 holds xy normals: its channels are chosen together by the angle, in the normal's units.
+            const std::optional<NormalUnits> normals =
+                format == BlockFormat::Bc5 ? std::optional(NormalUnits{n.offset, n.scale}) : std::nullopt;
+            out.images.push_back(encodeBlocks(unorm, format, threads, normals));
             const Image decoded = decodeBlocks(out.images.back().data(), w, h, format);
             const LevelError e = measure(given, decoded, n, threads);
             LevelError& sum = errors[size_t(level)];

@@ -98,6 +98,12 @@ TEST(BlockCompression, SameBytesOnAnyThreadCountAndPaddedEdges) {
         EXPECT_EQ(one.size(), size_t(18 * 10 * blockBytes(f)));
         EXPECT_EQ(one, encodeBlocks(in, f, 2));
         EXPECT_EQ(one, encodeBlocks(in, f, 3));
+        if (f == BlockFormat::Bc5) {  // x and y chosen together, as normals in [-0.9, 0.9]
+            const NormalUnits units{-0.9, 1.8};
+            const std::vector<std::uint8_t> joint = encodeBlocks(in, f, 1, units);
+            EXPECT_EQ(joint, encodeBlocks(in, f, 2, units));
+            EXPECT_EQ(joint, encodeBlocks(in, f, 3, units));
+        }
         // No worse, in squared error, than the plain encoder written here: each block's extremes rounded
         // to 8 bits as endpoints, eight values between, each texel the nearest.
         const Image back = decodeBlocks(one.data(), in.width, in.height, f);

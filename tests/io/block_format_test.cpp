@@ -324,12 +324,13 @@ TEST(BlockFormats, Bc4AtLeastAsAccurateAsNvcompressOverTheFamily) {
 // BC5 xy normals of those maps: the components' RMS error within 1% of nvcompress -bc5's on every map
 // (the encoder gives a little RMS for a smaller worst error, see block_compression.cpp) and smaller over
 // the family, and the angle between decoded and float normals (z rebuilt), median and worst, no larger over the
-// family. Per map the angles can go either way by a little: both encoders fit x and y apart, and a steep
-// normal's rebuilt z turns an error in x or y into a large angle.
+// family; the median no larger on any map (heightpack pairs x and y by the angle). The worst angle per map
+// can still go either way (3 of 31 to nvcompress, by up to 3 degrees): a steep normal's rebuilt z turns an
+// error in x or y into a large angle, and a block's worst texel is one among 16.
 TEST(BlockFormats, Bc5NormalsAtLeastAsAccurateAsNvcompressOverTheFamily) {
     if (!nvttInstalled()) HEIGHTPACK_WITHOUT_ORACLE("libnvtt-bin (nvcompress, nvdecompress) is not installed");
     ScratchDir dir;
-    int rmsWorse = 0, maps = 0;
+    int rmsWorse = 0, medianWorse = 0, maps = 0;
     double oursMedians = 0, nvMedians = 0, oursWorst = 0, nvWorst = 0, oursRmsSum = 0, nvRmsSum = 0;
     for (const auto& [name, heights] : heightFamily()) {
         NormalOptions o;
@@ -354,12 +355,14 @@ TEST(BlockFormats, Bc5NormalsAtLeastAsAccurateAsNvcompressOverTheFamily) {
             std::sort(a.begin(), a.end());
             return std::pair{a[a.size() / 2], a.back()};
         };
-        const Image oursDecoded = referenceDecode(encodeBlocks(unorm, BlockFormat::Bc5, 0), unorm.width, unorm.height, true);
+        const Image oursDecoded =
+            referenceDecode(encodeBlocks(unorm, BlockFormat::Bc5, 0, NormalUnits{offset, scale}), unorm.width, unorm.height, true);
         const Image nvDecoded = referenceDecode(nvcompressBlocks(dir, unorm, true), unorm.width, unorm.height, true);
         const auto ours = angles(oursDecoded);
         const auto nv = angles(nvDecoded);
         const double oursRms = unormErrors(unorm, oursDecoded).rms, nvRms = unormErrors(unorm, nvDecoded).rms;
         rmsWorse += oursRms > 1.01 * nvRms;
+        medianWorse += ours.first > nv.first;
         oursRmsSum += oursRms, nvRmsSum += nvRms;
         oursMedians += ours.first, nvMedians += nv.first, oursWorst += ours.second, nvWorst += nv.second;
         ++maps;
@@ -367,6 +370,7 @@ TEST(BlockFormats, Bc5NormalsAtLeastAsAccurateAsNvcompressOverTheFamily) {
                     name.c_str(), oursRms, ours.first, ours.second, nvRms, nv.first, nv.second);
     }
     EXPECT_EQ(rmsWorse, 0) << "of " << maps << " maps";
+    EXPECT_EQ(medianWorse, 0) << "of " << maps << " maps";
     EXPECT_LT(oursRmsSum, nvRmsSum);
     EXPECT_LT(oursMedians, nvMedians);
     EXPECT_LE(oursWorst, nvWorst);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "heightpack/core/image.hpp"
@@ -23,8 +24,15 @@ inline size_t blockImageBytes(int width, int height, BlockFormat format) {
 // least-squares fit to the float values, in both of BC4's modes (eight interpolated values; six with 0
 // and 1); of those whose worst error is within a quarter code of the least, the one of least squared
 // error is kept. A block's texels past the image repeat its edge texels.
+// BC5 with `normals` (how unit values map to a normal's x and y: offset + scale * u): x and y are chosen
+// together, among each channel's candidates of least squared error, by the angle between the decoded normal
+// and the given one (z rebuilt), summed over the block and its worst; without, each channel as BC4's.
 // Block rows on `threads` threads (0: all cores); the bytes do not depend on it.
-std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, int threads = 0);
+struct NormalUnits {
+    double offset = 0.0, scale = 1.0;
+};
+std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, int threads = 0,
+                                       std::optional<NormalUnits> normals = std::nullopt);
 
 // Decodes blocks into a width x height image of blockChannels(format) channels, by the specification's
 // rules: RED_0 = red_0 / 255, the interpolated values (6 RED_0 + RED_1) / 7 ... in float.
