@@ -8,13 +8,13 @@ namespace heightpack::view {
 
 GLuint uploadShiftArray(const HeightLayer& layer) {
     if (!layer.horizontal) return 0;
-    std::vector<const StoredChain*> chains;
+    std::vector<const UploadChain*> chains;
     for (const HeightFrame& frame : layer.frames) chains.insert(chains.end(), {&frame.shiftX, &frame.shiftY});
     return uploadStoredArray(chains, false, layer.wrap);  // texelFetch wraps its own indices
 }
 
 GLuint uploadZeroShift() {
-    const StoredChain zero = storeFloats({Image(1, 1, 4, 0.0f)});
+    const UploadChain zero = storeFloats({Image(1, 1, 4, 0.0f)});
     return uploadStoredArray({&zero, &zero}, false, Wrap::Periodic);
 }
 

@@ -8,7 +8,7 @@ namespace heightpack::view {
 
 GLuint uploadFoamCoverage(const HeightLayer& layer) {
     if (!layer.foam) return 0;
-    std::vector<const StoredChain*> frames;
+    std::vector<const UploadChain*> frames;
     for (const HeightFrame& frame : layer.frames) frames.push_back(&frame.foam);
     return uploadStoredArray(frames, true, layer.wrap);
 }

@@ -91,7 +91,7 @@ bool Renderer::init(std::string& error, bool gather) {
     glGenQueries(3, queries_);
     // Bound to unused samplers so every sampler has a complete texture.
     dummyTexture_ = uploadFloatChain({Image(1, 1, 4, 0.0f)}, false, Wrap::Periodic);
-    const StoredChain dummy = storeFloats({Image(1, 1, 4, 0.0f)});
+    const UploadChain dummy = storeFloats({Image(1, 1, 4, 0.0f)});
     dummyArray_ = uploadStoredArray({&dummy}, false, Wrap::Periodic);
     zeroShift_ = uploadZeroShift();
     HeightLayer none;  // a 1x1 one-frame array of no foam, bound to the samplers of maps without it
@@ -284,7 +284,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& s, float time,
         set(tiledProgram_, "uSeamLines", int(s.seamLines));
         // The N x M tiles as large as the window holds them with square texels, centred: a tile keeps its
         // map's shape whatever the window's.
-        const StoredChain& map = scene_->layers[0].frames[0].plain;
+        const UploadChain& map = scene_->layers[0].frames[0].plain;
         const glm::vec2 tile(map.width, map.height), block = glm::vec2(s.tiles) * tile;
         const float fit = std::min(float(width) / block.x, float(height) / block.y);
         set(tiledProgram_, "uTilePixels", tile * fit);

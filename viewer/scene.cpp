@@ -53,7 +53,7 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
         }
         if (Status s = takeFoam(path, *file, split, frame); !s) return s;
         if (Status s = takeDisplacement(path, *file, split, layer.wrap, frame); !s) return s;
-        StoredChain stored = file->stored ? std::move(*file->stored) : storeFloats(file->levels);
+        UploadChain stored = file->stored ? std::move(*file->stored) : storeFloats(file->levels);
         if (texture.layout == Layout::Neighbour4) {
             if (stored.channels != 4) return badInput(path, "is marked neighbour4 but has no 4 channels", "pack it again");
             frame.plain = firstChannel(stored);
@@ -61,7 +61,7 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
         } else if (stored.isBlock()) {
             // BC4 goes up as its blocks (the reference lookup filters them in hardware); the packing reads
             // texel by texel, so it takes the decoded values, in the same unit values and decode.
-            const StoredChain units = firstChannel(unitFloats(file->levels, stored.decode));
+            const UploadChain units = firstChannel(unitFloats(file->levels, stored.decode));
             frame.plain = stored.channels == 1 ? std::move(stored) : units;
             frame.packed = packStoredNeighbour4(units, layer.wrap);
         } else {
@@ -116,7 +116,7 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
         shape.height = frame.packed.height;
         shape.levels = frame.packed.levels.size();
         // The frames share one array texture on the GPU: one texel type for each chain.
-        for (const StoredChain* chain : {&frame.packed, &frame.plain, &frame.shiftX, &frame.foam})
+        for (const UploadChain* chain : {&frame.packed, &frame.plain, &frame.shiftX, &frame.foam})
             shape.texelType = shape.texelType * 4 + static_cast<int>(chain->kind);
         shape.displacement = !frame.shiftX.levels.empty();
         shape.foam = !frame.foam.levels.empty();

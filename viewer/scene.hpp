@@ -11,22 +11,22 @@
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/map_units.hpp"
-#include "stored_chain.hpp"
+#include "upload_chain.hpp"
 
 namespace heightpack::view {
 
 // One map's mip chain, packed and plain, in the file's pixel type (both decode the same way).
 struct HeightFrame {
-    StoredChain packed;           // RGBA per level: the 4-neighbour packing
-    StoredChain plain;            // R per level: the reference path, and the gather atlas is built from it
+    UploadChain packed;           // RGBA per level: the 4-neighbour packing
+    UploadChain plain;            // R per level: the reference path, and the gather atlas is built from it
     float minStored = 0.0f, maxStored = 1.0f;  // over level 0, in the file's values
     float meanStored = 0.5f;      // the 1x1 level
     // Horizontal displacement, packed as the heights (RGBA per level); no levels for a map without Dx, Dy.
     // From an array texture in its file's type (and decode); from an EXR or a painted map as floats.
-    StoredChain shiftX, shiftY;
+    UploadChain shiftX, shiftY;
     // Baked foam coverage (0..1), one channel per level, unpacked; no levels for a map without it. Typed
     // as shiftX.
-    StoredChain foam;
+    UploadChain foam;
 };
 
 struct HeightLayer {
@@ -48,13 +48,13 @@ struct NormalMap {
     std::string path;
     // xyz in [-1, 1] (and alpha, if any), or xy alone (the shading uses x and y only); the file's own
     // mip chain, or level 0 only
-    StoredChain levels;
+    UploadChain levels;
     float greenSign = -1.0f;      // world +y runs down the stored image: an OpenGL map's green flips
 };
 
 struct FresnelRamp {
     std::string path;
-    StoredChain ramp;             // one level: linear rgb, reflectance in alpha
+    UploadChain ramp;             // one level: linear rgb, reflectance in alpha
     float indexScale = 1.0f;      // 2 for a ramp indexed by saturate(2 N.V)
 };
 

@@ -14,7 +14,7 @@ Status takeDisplacement(const std::string& path, const ViewerTexture& file, cons
     if (!texture.channels.displacement()) return Done{};
     const bool packed = texture.displacement == Layout::Neighbour4;
     if (!file.layers.empty()) {  // an array texture: its layers Dx, Dy as stored
-        const StoredChain *x = file.layer(layerName::dx), *y = file.layer(layerName::dy);
+        const UploadChain *x = file.layer(layerName::dx), *y = file.layer(layerName::dy);
         if (!x || !y) return badInput(path, "records a displacement but has no layers Dx and Dy", "pack it again");
         frame.shiftX = packed ? *x : packStoredNeighbour4(*x, wrap);
         frame.shiftY = packed ? *y : packStoredNeighbour4(*y, wrap);

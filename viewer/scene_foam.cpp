@@ -9,7 +9,7 @@ namespace heightpack::view {
 Status takeFoam(const std::string& path, const ViewerTexture& file, const HeightChains& split, HeightFrame& frame) {
     if (!file.description.channels.hasFoam()) return Done{};
     if (!file.layers.empty()) {  // an array texture: its layer Foam as stored, F(i, j) of a packed one
-        const StoredChain* foam = file.layer(layerName::foam);
+        const UploadChain* foam = file.layer(layerName::foam);
         if (!foam) return badInput(path, "records foam but has no layer Foam", "pack it again");
         frame.foam = foam->channels == 1 ? *foam : firstChannel(*foam);
         return Done{};

@@ -43,7 +43,7 @@ std::string Renderer::uploadLayers(const Scene& scene) {
             return layer.path + ": " + std::to_string(layer.frames.size()) + " frames need " + std::to_string(layersNeeded) +
                    " array layers, over GL_MAX_ARRAY_TEXTURE_LAYERS " + std::to_string(maxLayers) + " here";
         LayerTextures t;
-        std::vector<const StoredChain*> packed, plain;
+        std::vector<const UploadChain*> packed, plain;
         for (const HeightFrame& frame : layer.frames) {
             packed.push_back(&frame.packed);
             plain.push_back(&frame.plain);
@@ -59,12 +59,12 @@ std::string Renderer::uploadLayers(const Scene& scene) {
             // A block chain's texels are the packing's R (its decoded unit values, the same decode).
             for (const HeightFrame& frame : layer.frames)
                 atlases.push_back(buildGatherAtlas(frame.plain.isBlock() ? firstChannel(frame.packed) : frame.plain, layer.wrap));
-            const StoredChain& texels = atlases[0].texels;
+            const UploadChain& texels = atlases[0].texels;
             if (texels.width > maxSize || texels.height > maxSize) {
                 gatherProblem_ = layer.path + " needs a " + std::to_string(texels.width) + "x" + std::to_string(texels.height) +
                                  " gather atlas, over GL_MAX_TEXTURE_SIZE " + std::to_string(maxSize);
             } else {
-                std::vector<const StoredChain*> chains;
+                std::vector<const UploadChain*> chains;
                 for (const GatherAtlas& a : atlases) chains.push_back(&a.texels);
                 t.gather = uploadStoredArray(chains, false, Wrap::Clamp);
                 t.gatherOrigins = atlases[0].origins;  // the same for every frame: they share a size

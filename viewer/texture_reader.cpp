@@ -12,8 +12,8 @@ namespace {
 
 // Layer `layer` of an array's stored chain: each level holds every layer's image in turn (GpuTexture's
 // levelBytes, a DDS's reordered so), so a layer is one slice of each level.
-StoredChain layerOf(const StoredChain& array, int layer) {
-    StoredChain one = array;
+UploadChain layerOf(const UploadChain& array, int layer) {
+    UploadChain one = array;
     for (size_t l = 0; l < array.levels.size(); ++l) {
         const size_t bytes = size_t(array.levelWidth(int(l))) * size_t(array.levelHeight(int(l))) * size_t(array.bytesPerTexel());
         const auto first = array.levels[l].begin() + static_cast<std::ptrdiff_t>(bytes * size_t(layer));
@@ -24,15 +24,15 @@ StoredChain layerOf(const StoredChain& array, int layer) {
 
 // A block array's levels decoded, as a float array's stored chain: each level every layer's image in turn.
 // (Its layers feed the texel-by-texel packings of displacement and foam, which blocks cannot.)
-StoredChain layerMajorFloats(const std::vector<Image>& levels, int layers) {
+UploadChain layerMajorFloats(const std::vector<Image>& levels, int layers) {
     const int channels = levels[0].channels / layers;
-    StoredChain chain;
+    UploadChain chain;
     for (int layer = 0; layer < layers; ++layer) {
         std::vector<int> mine(static_cast<size_t>(channels));
         std::iota(mine.begin(), mine.end(), layer * channels);
         std::vector<Image> one;
         for (const Image& level : levels) one.push_back(selectChannels(level, mine));
-        StoredChain part = storeFloats(one);
+        UploadChain part = storeFloats(one);
         if (layer == 0) {
             chain = std::move(part);
             continue;
@@ -46,7 +46,7 @@ StoredChain layerMajorFloats(const std::vector<Image>& levels, int layers) {
 // Splits an array texture into layer 0 (levels, stored) and its further layers (ViewerTexture::layers).
 void splitLayers(ViewerTexture& texture, const std::vector<std::string>& names) {
     if (texture.stored->isBlock()) texture.stored = layerMajorFloats(texture.levels, int(names.size()));
-    const StoredChain array = std::move(*texture.stored);
+    const UploadChain array = std::move(*texture.stored);
     for (size_t n = 1; n < names.size(); ++n) texture.layers.push_back({names[n], layerOf(array, int(n))});
     texture.stored = layerOf(array, 0);
     // A decoded texel holds every layer's channels in turn, layer 0's first.
@@ -57,7 +57,7 @@ void splitLayers(ViewerTexture& texture, const std::vector<std::string>& names) 
 
 }  // namespace
 
-const StoredChain* ViewerTexture::layer(const std::string& name) const {
+const UploadChain* ViewerTexture::layer(const std::string& name) const {
     for (const Layer& l : layers)
         if (l.name == name) return &l.texels;
     return nullptr;

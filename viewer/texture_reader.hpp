@@ -10,13 +10,13 @@
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/texture_description.hpp"
-#include "stored_chain.hpp"
+#include "upload_chain.hpp"
 
 namespace heightpack::view {
 
 struct ViewerTexture {
     std::vector<Image> levels;          // level 0 first, every channel, mapped back to the file's values
-    std::optional<StoredChain> stored;  // KTX2, DDS and half EXR: the texels as stored
+    std::optional<UploadChain> stored;  // KTX2, DDS and half EXR: the texels as stored
     // What its header says (EXR attributes, KTX2 key/values, a DDS record), typed; its channels are
     // levels' channels (an EXR's, every channel) or, for an array, every layer's in turn.
     TextureDescription description;
@@ -26,10 +26,10 @@ struct ViewerTexture {
     // file's type as the heights do. Empty for any other file.
     struct Layer {
         std::string name;
-        StoredChain texels;
+        UploadChain texels;
     };
     std::vector<Layer> layers;
-    const StoredChain* layer(const std::string& name) const;
+    const UploadChain* layer(const std::string& name) const;
     // An 8- or 16-bit integer image read through OpenImageIO (a painted PNG): values in [0, 1] that stand
     // for something else (a normal's 0.5 + 0.5 n, an sRGB colour). KTX2 and DDS normalised texels are
     // already mapped back through their recorded scale and offset, so this is false for them.

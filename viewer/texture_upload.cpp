@@ -31,12 +31,12 @@ GlFormat glFormatOf(int channels, ComponentKind kind) {
 }
 
 // Bytes of a block level: whole 4x4 blocks, a level smaller than a block takes one (as the files store it).
-GLsizei blockLevelBytes(const StoredChain& chain, int level) {
+GLsizei blockLevelBytes(const UploadChain& chain, int level) {
     const long long blocks = static_cast<long long>((chain.levelWidth(level) + 3) / 4) * ((chain.levelHeight(level) + 3) / 4);
     return static_cast<GLsizei>(blocks * 8 * chain.channels);
 }
 
-void setLevel(const StoredChain& chain, const GlFormat& f, int level) {
+void setLevel(const UploadChain& chain, const GlFormat& f, int level) {
     const GLint internal = static_cast<GLint>(f.internal);
     const int w = chain.levelWidth(level), h = chain.levelHeight(level);
     const std::uint8_t* data = chain.levels[size_t(level)].data();
@@ -50,7 +50,7 @@ void setLevel(const StoredChain& chain, const GlFormat& f, int level) {
 
 }  // namespace
 
-GLuint uploadStoredChain(const StoredChain& chain, bool linear, Wrap wrap) {
+GLuint uploadStoredChain(const UploadChain& chain, bool linear, Wrap wrap) {
     const GlFormat f = glFormatOf(chain.channels, chain.kind);
     GLuint texture = 0;
     glGenTextures(1, &texture);
@@ -74,9 +74,9 @@ GLuint uploadFloatChain(const std::vector<Image>& levels, bool linear, Wrap wrap
     return uploadStoredChain(storeFloats(levels), linear, wrap);
 }
 
-GLuint uploadStoredArray(const std::vector<const StoredChain*>& chains, bool linear, Wrap wrap) {
+GLuint uploadStoredArray(const std::vector<const UploadChain*>& chains, bool linear, Wrap wrap) {
     assert(!chains.empty());
-    const StoredChain& first = *chains[0];
+    const UploadChain& first = *chains[0];
     const GlFormat f = glFormatOf(first.channels, first.kind);
     const GLsizei layers = static_cast<GLsizei>(chains.size());
     GLuint texture = 0;
@@ -89,7 +89,7 @@ GLuint uploadStoredArray(const std::vector<const StoredChain*>& chains, bool lin
         if (first.isBlock()) {
             // One compressed image of every layer, each layer's blocks in turn (GL's layout of a 3D image).
             std::vector<std::uint8_t> all;
-            for (const StoredChain* c : chains) all.insert(all.end(), c->levels[level].begin(), c->levels[level].end());
+            for (const UploadChain* c : chains) all.insert(all.end(), c->levels[level].begin(), c->levels[level].end());
             glCompressedTexImage3D(GL_TEXTURE_2D_ARRAY, static_cast<GLint>(level), f.internal, w, h, layers, 0,
                                    blockBytes * layers, all.data());
         } else {
@@ -97,7 +97,7 @@ GLuint uploadStoredArray(const std::vector<const StoredChain*>& chains, bool lin
                          f.format, f.type, nullptr);
         }
         for (GLsizei layer = 0; layer < layers && !first.isBlock(); ++layer) {
-            const StoredChain& c = *chains[size_t(layer)];
+            const UploadChain& c = *chains[size_t(layer)];
             assert(c.kind == first.kind && c.channels == first.channels && c.levels.size() == first.levels.size() &&
                    c.width == first.width && c.height == first.height);
             glTexSubImage3D(GL_TEXTURE_2D_ARRAY, static_cast<GLint>(level), 0, 0, layer, w, h, 1, f.format, f.type,

@@ -8,14 +8,14 @@
 #include <vector>
 
 #include "heightpack/core/image.hpp"
-#include "stored_chain.hpp"
+#include "upload_chain.hpp"
 
 namespace heightpack::view {
 
 // A mip-mapped texture of the chain's levels (one level: no mip-maps). linear: GL_LINEAR filtering (the
 // reference path, shading textures), else nearest (the packed and gather lookups filter in the shader).
 // A normalised chain samples as u / 65535, a block chain as its unit value: the shader applies chain.decode.
-GLuint uploadStoredChain(const StoredChain& chain, bool linear, Wrap wrap);
+GLuint uploadStoredChain(const UploadChain& chain, bool linear, Wrap wrap);
 
 // The same for float levels, as 32-bit floats.
 GLuint uploadFloatChain(const std::vector<Image>& levels, bool linear, Wrap wrap);
@@ -23,7 +23,7 @@ GLuint uploadFloatChain(const std::vector<Image>& levels, bool linear, Wrap wrap
 // Chains of one size, channel count and type (a sequence's frames) as one GL_TEXTURE_2D_ARRAY, chain i in
 // layer i of every level, filtered and wrapped as uploadStoredChain's: a shader reads any frame through
 // one sampler, so the vertex stage's samplers do not grow with the frames it blends.
-GLuint uploadStoredArray(const std::vector<const StoredChain*>& chains, bool linear, Wrap wrap);
+GLuint uploadStoredArray(const std::vector<const UploadChain*>& chains, bool linear, Wrap wrap);
 
 // Bytes of every level (and layer) of the texture, from the sizes and component bits GL reports for it
 // (so a format a driver widened on upload would show here). target: GL_TEXTURE_2D or GL_TEXTURE_2D_ARRAY.

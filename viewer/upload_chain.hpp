@@ -13,7 +13,7 @@
 
 namespace heightpack::view {
 
-struct StoredChain {
+struct UploadChain {
     int channels = 1;  // 1 to 4, interleaved; a block chain: 1 (BC4) or 2 (BC5)
     ComponentKind kind = ComponentKind::Float32;  // Block: each level holds its 4x4 blocks, not texels
     int width = 0, height = 0;  // level 0
@@ -31,36 +31,36 @@ struct StoredChain {
 
 // Float levels (all of one channel count) as 32-bit floats, or as halves when the file held halves
 // (an EXR of half channels: every value is a half already, so nothing is rounded).
-StoredChain storeFloats(const std::vector<Image>& levels, ComponentKind kind = ComponentKind::Float32);
+UploadChain storeFloats(const std::vector<Image>& levels, ComponentKind kind = ComponentKind::Float32);
 
 // A KTX2 or DDS file's levels as they are (a block format's blocks too, to go up as RGTC); its bytes move
 // into the chain.
-StoredChain storeGpuTexture(GpuTexture& texture);
+UploadChain storeGpuTexture(GpuTexture& texture);
 
 // A block chain's decoded levels as 32-bit floats of the unit values its blocks hold ((value - offset) /
 // scale), so they share its decode: for the lookups that read texel by texel (the 4-neighbour packing, the
 // gather atlas), which a block chain cannot feed.
-StoredChain unitFloats(const std::vector<Image>& decoded, const Normalisation& decode);
+UploadChain unitFloats(const std::vector<Image>& decoded, const Normalisation& decode);
 
 // Channel 0 of every texel (a texel chain): the plain height chain inside a 4-neighbour packed one (R = H(i, j)).
-StoredChain firstChannel(const StoredChain& chain);
+UploadChain firstChannel(const UploadChain& chain);
 
 // The 4-neighbour packing (R = H(i,j), G = H(i+1,j), B = H(i,j+1), A = H(i+1,j+1), indices brought in by
 // wrap) of a one-channel chain, texel by texel in its own type: the same as heightpack::packNeighbour4 on
 // the decoded values, with nothing rounded twice.
-StoredChain packStoredNeighbour4(const StoredChain& plain, Wrap wrap);
+UploadChain packStoredNeighbour4(const UploadChain& plain, Wrap wrap);
 
 // textureGather reads only a texture's base level, so a chain it reads at every level is laid out as
 // one level-less texture: level 0 at (0, 0), the others stacked in a column to its right. Each level
 // carries one more column and row holding its wrapped neighbours H(w, j), H(i, h), H(w, h), so the 2x2
 // footprint of a lookup never leaves its level (hardware wrap cannot work inside an atlas).
 struct GatherAtlas {
-    StoredChain texels;  // one channel, one level
+    UploadChain texels;  // one channel, one level
     struct Origin {
         int x = 0, y = 0;
     };
     std::vector<Origin> origins;  // where each level's texel (0, 0) sits
 };
-GatherAtlas buildGatherAtlas(const StoredChain& plain, Wrap wrap);
+GatherAtlas buildGatherAtlas(const UploadChain& plain, Wrap wrap);
 
 }  // namespace heightpack::view

@@ -1,12 +1,12 @@
-#include "stored_chain.hpp"
+#include "upload_chain.hpp"
 
 #include <algorithm>
 #include <cstring>
 
 namespace heightpack::view {
 
-StoredChain storeFloats(const std::vector<Image>& levels, ComponentKind kind) {
-    StoredChain chain;
+UploadChain storeFloats(const std::vector<Image>& levels, ComponentKind kind) {
+    UploadChain chain;
     chain.channels = levels.empty() ? 1 : levels[0].channels;
     chain.kind = kind;
     chain.width = levels.empty() ? 0 : levels[0].width;
@@ -26,9 +26,9 @@ StoredChain storeFloats(const std::vector<Image>& levels, ComponentKind kind) {
     return chain;
 }
 
-StoredChain storeGpuTexture(GpuTexture& texture) {
+UploadChain storeGpuTexture(GpuTexture& texture) {
     const TexelFormatInfo& f = texelFormatInfo(texture.format);
-    StoredChain chain;
+    UploadChain chain;
     chain.channels = f.channels;
     chain.kind = f.kind;
     chain.width = texture.width;
@@ -39,17 +39,17 @@ StoredChain storeGpuTexture(GpuTexture& texture) {
     return chain;
 }
 
-StoredChain unitFloats(const std::vector<Image>& decoded, const Normalisation& decode) {
+UploadChain unitFloats(const std::vector<Image>& decoded, const Normalisation& decode) {
     std::vector<Image> units = decoded;
     for (Image& level : units)
         for (float& v : level.pixels) v = (v - decode.offset) / decode.scale;
-    StoredChain chain = storeFloats(units);
+    UploadChain chain = storeFloats(units);
     chain.decode = decode;
     return chain;
 }
 
-StoredChain firstChannel(const StoredChain& chain) {
-    StoredChain out = chain;
+UploadChain firstChannel(const UploadChain& chain) {
+    UploadChain out = chain;
     out.channels = 1;
     const size_t in = chain.bytesPerTexel(), keep = out.bytesPerTexel();
     for (std::vector<std::uint8_t>& level : out.levels) {
@@ -60,8 +60,8 @@ StoredChain firstChannel(const StoredChain& chain) {
     return out;
 }
 
-StoredChain packStoredNeighbour4(const StoredChain& plain, Wrap wrap) {
-    StoredChain packed = plain;
+UploadChain packStoredNeighbour4(const UploadChain& plain, Wrap wrap) {
+    UploadChain packed = plain;
     packed.channels = 4;
     const size_t b = plain.bytesPerTexel();
     for (size_t l = 0; l < plain.levels.size(); ++l) {
@@ -85,9 +85,9 @@ StoredChain packStoredNeighbour4(const StoredChain& plain, Wrap wrap) {
     return packed;
 }
 
-GatherAtlas buildGatherAtlas(const StoredChain& plain, Wrap wrap) {
+GatherAtlas buildGatherAtlas(const UploadChain& plain, Wrap wrap) {
     GatherAtlas atlas;
-    StoredChain& t = atlas.texels;
+    UploadChain& t = atlas.texels;
     t.channels = 1;
     t.kind = plain.kind;
     t.decode = plain.decode;
