@@ -21,6 +21,13 @@ inline ProcessResult heightpackRun(const std::vector<std::string>& args) {
     return runProcess(argv);
 }
 
+// heightpack COMMAND -q ARGS..., which must succeed (a fixture's step: fails the test with its stderr).
+inline void heightpackMustRun(const std::string& command, std::vector<std::string> args) {
+    args.insert(args.begin(), {command, "-q"});
+    const ProcessResult r = heightpackRun(args);
+    ASSERT_EQ(r.code, 0) << command << ": " << r.err;
+}
+
 // The error contract: exactly one line on stderr, prefixed, naming path (unless empty), nothing on stdout.
 inline void expectOneLineError(const ProcessResult& run, const std::string& path) {
     EXPECT_EQ(run.err.rfind("heightpack: error: ", 0), 0u) << run.err;

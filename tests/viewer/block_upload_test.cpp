@@ -22,18 +22,13 @@
 #include "heightpack/core/block_compression.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/info.hpp"
+#include "support/heightpack_process.hpp"
 #include "viewer_support.hpp"
 
 using namespace heightpack;
 using namespace heightpack::test;
 
 namespace {
-
-void runTool(const std::string& command, std::vector<std::string> args) {
-    args.insert(args.begin(), {HEIGHTPACK_EXE, command, "-q"});
-    const ProcessResult r = runProcess(args);
-    ASSERT_EQ(r.code, 0) << command << ": " << r.err;
-}
 
 // Level `level` of the file's blocks as the GPU decodes them: uploaded as they are, read back as floats
 // of the unit values (one or two channels).
@@ -107,13 +102,13 @@ TEST(BlockUpload, TheGpusRgtcDecodeOfEveryLevelIsWithinTheRecordedError) {
     ASSERT_TRUE(context.create(why)) << why;
     ScratchDir dir;
     // Heights (swell, 512^2, plain) in BC4 and xy normals (ripple, 256^2) in BC5, each with its float chain.
-    runTool("pack", {kExamples + "swell.png", "--layout", "plain", "--pixel-type", "bc4", "-o", dir.file("h.ktx2")});
-    runTool("pack", {kExamples + "swell.png", "--layout", "plain", "-o", dir.file("h.exr")});
+    heightpackMustRun("pack", {kExamples + "swell.png", "--layout", "plain", "--pixel-type", "bc4", "-o", dir.file("h.ktx2")});
+    heightpackMustRun("pack", {kExamples + "swell.png", "--layout", "plain", "-o", dir.file("h.exr")});
     const std::vector<std::string> normal = {kExamples + "ripple.png", "--tile-size", "8m", "--height", "0.15m", "--layout", "xy"};
     auto normalTo = [&](const std::string& file, const std::string& type) {
         auto args = normal;
         args.insert(args.end(), {"--pixel-type", type, "-o", dir.file(file)});
-        runTool("normal", args);
+        heightpackMustRun("normal", args);
     };
     normalTo("n.dds", "bc5");
     normalTo("n.ktx2", "bc5");  // the DDS records no errors: the KTX2's (the same blocks) bound both
@@ -155,8 +150,8 @@ TEST(BlockUpload, TheGpusRgtcDecodeOfEveryLevelIsWithinTheRecordedError) {
 TEST(BlockUpload, ABc4MapDrawsAsTheFloatMapWithinItsDecodedErrorAndCostsHalfAByteATexel) {
     ScratchDir dir;
     const std::string map = kExamples + "swell.png";
-    runTool("pack", {map, "--layout", "plain", "-o", dir.file("f.exr")});
-    runTool("pack", {map, "--layout", "plain", "--pixel-type", "bc4", "-o", dir.file("b.ktx2")});
+    heightpackMustRun("pack", {map, "--layout", "plain", "-o", dir.file("f.exr")});
+    heightpackMustRun("pack", {map, "--layout", "plain", "--pixel-type", "bc4", "-o", dir.file("b.ktx2")});
     auto record = readGpuTexture(dir.file("b.ktx2"));
     ASSERT_TRUE(record);
     const TextureDescription& d = record->description;
@@ -194,7 +189,7 @@ TEST(BlockUpload, ABc4MapDrawsAsTheFloatMapWithinItsDecodedErrorAndCostsHalfAByt
 
 TEST(BlockUpload, ABc5NormalMapGoesUpAsItsBlocks) {
     ScratchDir dir;
-    runTool("normal", {kExamples + "ripple.png", "--tile-size", "8m", "--height", "0.15m", "--layout", "xy", "--pixel-type",
+    heightpackMustRun("normal", {kExamples + "ripple.png", "--tile-size", "8m", "--height", "0.15m", "--layout", "xy", "--pixel-type",
                    "bc5", "-o", dir.file("n.ktx2")});
     const ViewRun r = test::view({kExamples + "swell.png", "--normals", dir.file("n.ktx2"), "--size", "64x48", "--screenshot",
                             dir.file("n.png"), "--json"});
@@ -209,10 +204,10 @@ TEST(BlockUpload, ABc4ArrayDrawsItsHeightsAndDisplacementAsTheFloatArray) {
     // layers are told apart in the decoded values, and Dx, Dy go up as their floats (the packing reads them
     // texel by texel).
     ScratchDir dir;
-    runTool("synth", {"--wind", "14m/s", "--tile-size", "32m", "--size", "64", "--displacement", "--foam", "--choppiness",
+    heightpackMustRun("synth", {"--wind", "14m/s", "--tile-size", "32m", "--size", "64", "--displacement", "--foam", "--choppiness",
                       "1.5", "--foam-threshold", "0.8", "-o", dir.file("sea.exr")});
     for (const std::string type : {"float", "bc4"})
-        runTool("pack", {dir.file("sea.exr"), "--displacement", "--foam", "--layout", "plain", "--pixel-type", type, "-o",
+        heightpackMustRun("pack", {dir.file("sea.exr"), "--displacement", "--foam", "--layout", "plain", "--pixel-type", type, "-o",
                          dir.file(type + ".ktx2")});
     auto record = readGpuTexture(dir.file("bc4.ktx2"));
     ASSERT_TRUE(record);

@@ -11,18 +11,13 @@
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/texture_write.hpp"
+#include "support/heightpack_process.hpp"
 #include "viewer_support.hpp"
 
 using namespace heightpack;
 using namespace heightpack::test;
 
 namespace {
-
-void run(const std::string& command, std::vector<std::string> args) {
-    args.insert(args.begin(), {HEIGHTPACK_EXE, command, "-q"});
-    const ProcessResult r = runProcess(args);
-    ASSERT_EQ(r.code, 0) << command << ": " << r.err;
-}
 
 // Texels of a full mip chain of a w x h map, down to 1x1.
 long long chainTexels(int w, int h) {
@@ -64,12 +59,12 @@ TEST(ViewerFormats, EveryContainerAndPixelTypeDrawsTheHeightsOfTheFloatExr) {
     // lookups on levels 2 to 3, so every level's storage counts, not level 0's alone.
     ScratchDir dir;
     const std::string map = kExamples + "swell.png";
-    run("pack", {map, "-o", dir.file("f.exr")});
-    run("pack", {map, "-o", dir.file("f.ktx2"), "--emit-plain", dir.file("f_plain.dds")});
-    run("pack", {map, "--pixel-type", "half", "-o", dir.file("h.ktx2"), "--emit-plain", dir.file("h_plain.dds")});
-    run("pack", {map, "--pixel-type", "uint16", "--compression", "zstd", "-o", dir.file("u.ktx2"), "--emit-plain",
+    heightpackMustRun("pack", {map, "-o", dir.file("f.exr")});
+    heightpackMustRun("pack", {map, "-o", dir.file("f.ktx2"), "--emit-plain", dir.file("f_plain.dds")});
+    heightpackMustRun("pack", {map, "--pixel-type", "half", "-o", dir.file("h.ktx2"), "--emit-plain", dir.file("h_plain.dds")});
+    heightpackMustRun("pack", {map, "--pixel-type", "uint16", "--compression", "zstd", "-o", dir.file("u.ktx2"), "--emit-plain",
                  dir.file("u_plain.ktx2")});
-    run("pack", {map, "--pixel-type", "uint16", "-o", dir.file("u.dds")});
+    heightpackMustRun("pack", {map, "--pixel-type", "uint16", "-o", dir.file("u.dds")});
     const std::vector<std::string> common = {"--view", "height", "--size", "160x120", "--time", "2", "--camera",
                                              "0,0,60,0,-60", "--amplitude", "4", "--tile-size", "64", "--grid", "128",
                                              "--segments", "128"};
@@ -139,7 +134,7 @@ TEST(ViewerFormats, GatherEqualsThePackedLookupAndHardwareBilinear) {
     EXPECT_LT(hardware.fractionOver, 0.01);
     // A clamp-wrapped 16-bit map seen past its edges: the atlas's extra column and row hold the clamped
     // neighbours, as the packed texels do.
-    run("pack", {kExamples + "painted_not_tileable.png", "--wrap", "clamp", "--pixel-type", "uint16", "-o",
+    heightpackMustRun("pack", {kExamples + "painted_not_tileable.png", "--wrap", "clamp", "--pixel-type", "uint16", "-o",
                  dir.file("clamp.ktx2")});
     const std::vector<std::string> edges = {dir.file("clamp.ktx2"), "--view", "height", "--size", "160x120", "--camera",
                                             "0,0,30,0,-89.9", "--amplitude", "4", "--tile-size", "24", "--grid", "128",
@@ -176,12 +171,12 @@ TEST(ViewerFormats, NormalMapsAndRampsOfEveryLayoutAndTypeShadeLikeTheFloatExr) 
     auto normalTo = [&](const std::string& file, const std::string& type) {
         auto args = normal;
         args.insert(args.end(), {"--pixel-type", type, "-o", dir.file(file)});
-        run("normal", args);
+        heightpackMustRun("normal", args);
     };
     normalTo("n.exr", "float");
     normalTo("n_u.ktx2", "uint16");  // RGBA16 normalised to the map's range: decoded in the shader
-    run("fresnel", {"-o", dir.file("fr.exr")});
-    run("fresnel", {"--pixel-type", "uint16", "-o", dir.file("fr_u.ktx2")});
+    heightpackMustRun("fresnel", {"-o", dir.file("fr.exr")});
+    heightpackMustRun("fresnel", {"--pixel-type", "uint16", "-o", dir.file("fr_u.ktx2")});
     // Two-channel normals (x, y; z rebuilt in the shader), written through the library from n.exr's chain.
     auto full = readTextureFile(dir.file("n.exr"));
     ASSERT_TRUE(full) << full.error().what;
@@ -234,11 +229,11 @@ TEST(ViewerFormats, OpensAMaterialWhoseTexturesAreKtx2AndDds) {
                                       << kExamples << "swell.png\"\ntile_size = 40.0\namplitude = 2.0\n"
                                       << "[normals]\nsource = \"" << kExamples << "ripple.png\"\ntile_size = 8.0\nheight = 0.05\n"
                                       << "[fresnel]\nior = 1.333\n";
-    run("build", {dir.file("m.toml"), "-o", dir.file("m")});
-    run("pack", {kExamples + "swell.png", "--pixel-type", "uint16", "-o", dir.file("m/swell.ktx2")});
-    run("normal", {kExamples + "ripple.png", "--tile-size", "8m", "--height", "0.05m", "--pixel-type", "uint16", "-o",
+    heightpackMustRun("build", {dir.file("m.toml"), "-o", dir.file("m")});
+    heightpackMustRun("pack", {kExamples + "swell.png", "--pixel-type", "uint16", "-o", dir.file("m/swell.ktx2")});
+    heightpackMustRun("normal", {kExamples + "ripple.png", "--tile-size", "8m", "--height", "0.05m", "--pixel-type", "uint16", "-o",
                    dir.file("m/normals.dds")});
-    run("fresnel", {"--pixel-type", "half", "-o", dir.file("m/fresnel.ktx2")});
+    heightpackMustRun("fresnel", {"--pixel-type", "half", "-o", dir.file("m/fresnel.ktx2")});
     std::stringstream text;
     text << std::ifstream(dir.file("m/material.json")).rdbuf();
     std::string json = text.str();
