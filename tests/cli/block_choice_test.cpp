@@ -26,6 +26,11 @@ std::string lengthText(double metres) {
     return text;
 }
 
+std::vector<std::string> joined(std::vector<std::string> args, const std::vector<std::string>& more) {
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+}
+
 json runJson(std::vector<std::string> args) {
     args.push_back("--json");
     const ProcessResult r = heightpackRun(args);
@@ -45,11 +50,7 @@ TEST(BlockChoice, Bc4IsChosenExactlyWhenItsWorstErrorIsWithinTheTolerance) {
     for (const std::string& map : maps) {
         SCOPED_TRACE(map);
         const std::vector<std::string> common = {"pack", map, "--layout", "plain", "--height", "6m", "--resize", "pow2", "--channel", "luma"};
-        auto with = [&](std::vector<std::string> extra) {
-            std::vector<std::string> args = common;
-            args.insert(args.end(), extra.begin(), extra.end());
-            return args;
-        };
+        auto with = [&](const std::vector<std::string>& extra) { return joined(common, extra); };
         const json bc4 = runJson(with({"--pixel-type", "bc4", "-o", dir.file("bc4.ktx2")}));
         const double worst = bc4["lookupError"]["worst"].get<double>();
         ASSERT_GT(worst, 0.0);
@@ -81,11 +82,7 @@ TEST(BlockChoice, Bc5IsChosenForXyNormalsWithinTheTolerance) {
         SCOPED_TRACE(name);
         const std::vector<std::string> common = {"normal", src + "/examples/maps/" + name, "--tile-size", "8m",
                                                  "--height", "0.15m", "--layout", "xy"};
-        auto with = [&](std::vector<std::string> extra) {
-            std::vector<std::string> args = common;
-            args.insert(args.end(), extra.begin(), extra.end());
-            return args;
-        };
+        auto with = [&](const std::vector<std::string>& extra) { return joined(common, extra); };
         const json bc5 = runJson(with({"--pixel-type", "bc5", "-o", dir.file("bc5.dds")}));
         const double worst = bc5["lookupError"]["worst"].get<double>();
         ASSERT_GT(worst, 0.0);
