@@ -82,10 +82,10 @@ struct Storage {
 };
 
 // The method's result. For Periodic, candidates judged as they will be stored, at every level pack would
-// make (seams) and as the eye sees it (look), the first that passes both: the re-synthesis, the quilt's
-// best match, the re-synthesis three times more, each with the next seed, the last two with a band half as
-// wide again and then twice the first, and the quilt's other attempts; then, for maps neither describes (a
-// few pure waves whose periods do not divide the tile), Moisan's periodic component with the edge slopes bent together, then Moisan's component and the map crossfaded over
+// make (seams) and as the eye sees it (look), the first that passes both: the re-synthesis four times, each
+// with the next seed, the last two with a band half as wide again and then twice the first (the quilt's best
+// match before the second where the first breaks at the finest level), then the quilt; then, for maps
+// neither describes (a few pure waves whose periods do not divide the tile), Moisan's periodic component with the edge slopes bent together, then Moisan's component and the map crossfaded over
 // the crossfade width and over a fifth of the tile, judged by their seams alone (the shell warns when their
 // look does not pass). No candidate may stretch the height span past 1.5x the input's. The last is returned
 // when none passes, and the caller writes nothing. `judged` (and `looked`, when the look was judged) is the
@@ -202,13 +202,16 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
             if (acceptable(q.map)) found = std::move(q.map);
         }
     };
-    // A map whose first re-synthesis fails is taken for one a Gaussian field does not describe (pebbles,
-    // cells, strokes, a painted line), where further seeds and bands fail as a rule: the quilt's best match
-    // comes next, and only then the other re-synthesis attempts and the quilt's other matches.
+    // A map whose first re-synthesis breaks at the finest level (the new content itself does not join the
+    // map: pebbles, cells, strokes, a painted line) is one a Gaussian field does not describe, where further
+    // seeds and bands break as well: the quilt's best match comes next, before them. One that breaks at a
+    // coarser level (a large-scale swell of the sample) or fails the look is taken to pass with another seed
+    // or band (sea crops, enlarged or not, pass so with the third).
     resynthesis(0, 1);
-    if (!found) quilting(true, 0, 1);
+    const bool quiltSooner = !found && judged && judged->failure && judged->failure->level == 0;
+    if (!found && quiltSooner) quilting(true, 0, 1);
     if (!found) resynthesis(1, 4);
-    if (!found) quilting(true, 1, 3);
+    if (!found) quilting(true, quiltSooner ? 1 : 0, 3);
     if (!found && enlargement > 1) quilting(false, 0, 3);
     if (found) return std::move(*found);
     // The fallbacks are judged by their seams alone (as before the look existed); their look is reported.

@@ -223,9 +223,9 @@ TEST(TileJob, AMapThatTilesKeepsItsSixteenBitSamplesInAnotherFormat) {
 
 TEST(TileJob, AMapWhoseFirstSeedFailsIsQuiltedBeforeTheOtherSeeds) {
     // A game's snowy ice texture (bright crusts on blue, a painted line along two edges: not a Gaussian
-    // field). The re-synthesis' first seed fails there; the quilt's best match comes next, before the other
-    // seeds and bands (which fail as a rule on such maps, and cost as much again each). The stages the
-    // progress names say which candidates were made, in order.
+    // field). The re-synthesis' first seed breaks there at the finest level; the quilt's best match comes
+    // next, before the other seeds and bands (which break as well on such maps, and cost as much again
+    // each). The stages the progress names say which candidates were made, in order.
     test::ScratchDir dir;
     TileOptions options;
     options.load.channel = ChannelSelect::Luma;

@@ -3,9 +3,9 @@
 //   - crops of larger periodic fields made to tile by each of tile's methods (every result should pass),
 //   - the same crops enlarged (issue 36: a map painted small and resized before packing), once 2x to 8x or
 //     twice, by nearest, bilinear, bicubic, Lanczos3 and Blackman-Harris, to at least 1024 a side, made to
-//     tile by tile's chain (the re-synthesis' first seed, the quilt's best match, the other seeds and bands,
-//     the quilt's other matches; the crossfade would come after, and is counted as a failure): the rate
-//     beside the crops'.
+//     tile by tile's chain (re-synthesis at four seeds and bands, then the quilt, whose best match comes
+//     second where the first seed breaks at the finest level; the crossfade would come after, and is
+//     counted as a failure): the rate beside the crops'.
 // Per family and method: maps, how many pass, and the distribution of each statistic.
 //   build-test/tests/bench/heightpack_look_rates --count 200
 // The maps are those of tests/support/seam_families (map i of a family is the same everywhere), rounded
@@ -83,19 +83,21 @@ Image enlargedCrop(int i, double& quantum, std::string& what) {
     return map;
 }
 
-// tile's chain on one map: the re-synthesis' first attempt, the quilt's best match (at the source's size),
-// the re-synthesis' three other attempts, the quilt's two other attempts, then, for an enlarged map, the
-// quilt's three at the map's own size; each judged by its seams (the finest level) and its look; the first
-// that passes, else the last.
+// tile's chain on one map: the re-synthesis' four attempts (the quilt's best match, at the source's size,
+// before the second where the first breaks at the finest level), the quilt's other attempts, then, for an
+// enlarged map, the quilt's three at the map's own size; each judged by its seams (the finest level) and its
+// look; the first that passes, else the last.
 TileLook tiledLook(const Image& map, double quantum, int threads) {
     TileLook look;
+    bool finestBreaks = false;  // the last candidate's seams at the finest level
     auto passes = [&](const Image& candidate) {
         const Image stored = rounded(candidate, quantum);
         SeamOptions seams;
         seams.quantum = quantum;
         seams.threads = threads;
         look = measureTileLook(stored, {&map, threads, std::nullopt});
-        return levelTiles(measureSeams(stored, seams)) && look.passes();
+        finestBreaks = !levelTiles(measureSeams(stored, seams));
+        return !finestBreaks && look.passes();
     };
     double firstBand = 0;
     auto resynthesis = [&](int from, int to) {
@@ -123,7 +125,9 @@ TileLook tiledLook(const Image& map, double quantum, int threads) {
         }
         return false;
     };
-    if (resynthesis(0, 1) || quilting(true, 0, 1) || resynthesis(1, 4) || quilting(true, 1, 3) ||
+    if (resynthesis(0, 1)) return look;
+    const bool quiltSooner = finestBreaks;
+    if ((quiltSooner && quilting(true, 0, 1)) || resynthesis(1, 4) || quilting(true, quiltSooner ? 1 : 0, 3) ||
         (enlargement > 1 && quilting(false, 0, 3)))
         return look;
     look.frame = std::max(look.frame, LookThresholds{}.frame + 1);  // what reaches the crossfade fails here
