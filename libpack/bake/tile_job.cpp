@@ -83,9 +83,9 @@ struct Storage {
 
 // The method's result. For Periodic, candidates judged as they will be stored, at every level pack would
 // make (seams) and as the eye sees it (look), the first that passes both: the re-synthesis four times, each
-// with the next seed, the last two with a band half as wide again and then twice the first; then, for maps
-// a Gaussian field does not describe (a few pure waves whose periods do not divide the tile), Moisan's
-// periodic component with the edge slopes bent together, then Moisan's component and the map crossfaded over
+// with the next seed, the last two with a band half as wide again and then twice the first (the quilt's best
+// match before the second where the first breaks at the finest level), then the quilt; then, for maps
+// neither describes (a few pure waves whose periods do not divide the tile), Moisan's periodic component with the edge slopes bent together, then Moisan's component and the map crossfaded over
 // the crossfade width and over a fifth of the tile, judged by their seams alone (the shell warns when their
 // look does not pass). No candidate may stretch the height span past 1.5x the input's. The last is returned
 // when none passes, and the caller writes nothing. `judged` (and `looked`, when the look was judged) is the
@@ -157,49 +157,63 @@ Image applyMethod(const Image& map, const TileOptions& options, const SeamOption
             std::snprintf(text, sizeof text, "tile: %s", what);
         options.progress(text, done / 12.0);
     };
-    step("re-synthesis", 0, 4, 0);
-    {
-        // Scoped: what the re-synthesis holds (the model, the Gaussianised map, its sorted values) is released
-        // before the quilt makes its own.
+    // The re-synthesis' attempts from..to-1 (seeds from --seed on; the last two with a band half as wide
+    // again and twice the first's), each with a model of its own: what it holds (the model, the Gaussianised
+    // map, its sorted values) is released before the quilt makes its own.
+    double firstBand = 0;
+    std::optional<Image> found;
+    auto resynthesis = [&](int from, int to) {
+        step("re-synthesis", from, 4, from);
         Resynthesiser resynthesiser(map, seamOptions.quantum, options.mip.threads);
-        double firstBand = 0;
-        for (int attempt = 0; attempt < 4; ++attempt) {
+        for (int attempt = from; attempt < to && !found; ++attempt) {
             const uint64_t seed = options.seed + uint64_t(attempt);
             step("re-synthesis", attempt, 4, attempt);
             const double band = attempt < 2 ? 0.0 : std::min(0.25, firstBand * (attempt == 2 ? 1.5 : 2.0));
             ResynthesisResult r = resynthesiser.attempt(seed, band);
             if (attempt == 0) firstBand = double(std::max(r.bandX, 1)) / map.width;
+            report.methodUsed = nameOf(TileMethod::Periodic);
             report.bandX = r.bandX;
             report.bandY = r.bandY;
             report.seed = seed;
-            if (acceptable(r.map)) return std::move(r.map);
+            report.match = 0;
+            if (acceptable(r.map)) found = std::move(r.map);
         }
-    }
-    // Quilting, for maps a Gaussian field does not describe (pebbles, cells, strokes): the best match, the
-    // next best, then the best with strips half as wide again; judged like the re-synthesis.
-    report.seed = 0;
-    report.methodUsed = nameOf(TileMethod::Quilt);
+    };
+    // The quilt's attempts from..to-1 at the source's size (an enlarged map's; a map's own otherwise): the
+    // best match, the next best, then the best with strips half as wide again; then, for an enlarged map, the
+    // same at its own size (a source can be too small to hold a good match). Judged like the re-synthesis.
     QuiltOptions quilt;
     quilt.threads = options.mip.threads;
     quilt.quantum = seamOptions.quantum;
-    // An enlarged map is quilted at its source's size first, then at its own (a source can be too small to
-    // hold a good match).
-    for (bool atSourceSize : {true, false}) {
+    int enlargement = 1;
+    auto quilting = [&](bool atSourceSize, int from, int to) {
         quilt.atSourceSize = atSourceSize;
-        int enlargement = 1;
-        for (int attempt = 0; attempt < 3; ++attempt) {
+        for (int attempt = from; attempt < to && !found; ++attempt) {
             step("quilt", attempt, 3, 4 + attempt);
             quilt.match = attempt == 1 ? 1 : 0;
             quilt.band = attempt == 2 ? 1.5 / 8 : 0.0;
             QuiltResult q = quiltTile(map, quilt);
             enlargement = q.enlargement;
+            report.methodUsed = nameOf(TileMethod::Quilt);
+            report.seed = 0;
             report.bandX = q.bandX;
             report.bandY = q.bandY;
             report.match = quilt.match + 1;
-            if (acceptable(q.map)) return std::move(q.map);
+            if (acceptable(q.map)) found = std::move(q.map);
         }
-        if (enlargement == 1) break;
-    }
+    };
+    // A map whose first re-synthesis breaks at the finest level (the new content itself does not join the
+    // map: pebbles, cells, strokes, a painted line) is one a Gaussian field does not describe, where further
+    // seeds and bands break as well: the quilt's best match comes next, before them. One that breaks at a
+    // coarser level (a large-scale swell of the sample) or fails the look is taken to pass with another seed
+    // or band (sea crops, enlarged or not, pass so with the third).
+    resynthesis(0, 1);
+    const bool quiltSooner = !found && judged && judged->failure && judged->failure->level == 0;
+    if (!found && quiltSooner) quilting(true, 0, 1);
+    if (!found) resynthesis(1, 4);
+    if (!found) quilting(true, quiltSooner ? 1 : 0, 3);
+    if (!found && enlargement > 1) quilting(false, 0, 3);
+    if (found) return std::move(*found);
     // The fallbacks are judged by their seams alone (as before the look existed); their look is reported.
     lookRequired = false;
     report.bandX = report.bandY = 0;

@@ -5,6 +5,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <functional>
 #include <numbers>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -217,6 +219,30 @@ TEST(TileJob, AMapThatTilesKeepsItsSixteenBitSamplesInAnotherFormat) {
         for (size_t i = 0; i < samples.size(); ++i)
             ASSERT_EQ(samples[i], static_cast<uint16_t>(std::lround(map.pixels[i] * 65535.0))) << to << " at " << i;
     }
+}
+
+TEST(TileJob, AMapWhoseFirstSeedFailsIsQuiltedBeforeTheOtherSeeds) {
+    // A game's snowy ice texture (bright crusts on blue, a painted line along two edges: not a Gaussian
+    // field). The re-synthesis' first seed breaks there at the finest level; the quilt's best match comes
+    // next, before the other seeds and bands (which break as well on such maps, and cost as much again
+    // each). The stages the progress names say which candidates were made, in order.
+    test::ScratchDir dir;
+    TileOptions options;
+    options.load.channel = ChannelSelect::Luma;
+    std::vector<std::string> stages;
+    options.progress = [&](std::string_view stage, double) {
+        if (stages.empty() || stages.back() != stage) stages.emplace_back(stage);
+    };
+    const std::string ice = std::string(HEIGHTPACK_SOURCE_DIR) + "/tests/corpus/etr_snowy_ice03.png";
+    auto report = tileFile(ice, dir.file("ice.exr"), options);
+    ASSERT_TRUE(report) << report.error().what;
+    ASSERT_TRUE(report->written);
+    EXPECT_EQ(report->methodUsed, "quilt");
+    EXPECT_EQ(report->match, 1);
+    const std::vector<std::string> tried(std::find(stages.begin(), stages.end(), "tile: re-synthesis 1 of 4"), stages.end());
+    ASSERT_GE(tried.size(), 2u);
+    EXPECT_EQ(tried[1], "tile: quilt 1 of 3");
+    EXPECT_EQ(std::count(stages.begin(), stages.end(), "tile: re-synthesis 2 of 4"), 0);
 }
 
 TEST(NormalJob, APlaneGivesTheNormalOfItsSlope) {

@@ -3,8 +3,9 @@
 //   - crops of larger periodic fields made to tile by each of tile's methods (every result should pass),
 //   - the same crops enlarged (issue 36: a map painted small and resized before packing), once 2x to 8x or
 //     twice, by nearest, bilinear, bicubic, Lanczos3 and Blackman-Harris, to at least 1024 a side, made to
-//     tile by tile's chain (re-synthesis at four seeds and bands, then the quilt; the crossfade would come
-//     after, and is counted as a failure): the rate beside the crops'.
+//     tile by tile's chain (re-synthesis at four seeds and bands, then the quilt, whose best match comes
+//     second where the first seed breaks at the finest level; the crossfade would come after, and is
+//     counted as a failure): the rate beside the crops'.
 // Per family and method: maps, how many pass, and the distribution of each statistic.
 //   build-test/tests/bench/heightpack_look_rates --count 200
 // The maps are those of tests/support/seam_families (map i of a family is the same everywhere), rounded
@@ -82,32 +83,36 @@ Image enlargedCrop(int i, double& quantum, std::string& what) {
     return map;
 }
 
-// tile's chain on one map: the re-synthesis' four attempts, then the quilt's three (at the source's size,
-// then at the map's own), each judged by its seams (the finest level) and its look; the first that passes,
-// else the last.
+// tile's chain on one map: the re-synthesis' four attempts (the quilt's best match, at the source's size,
+// before the second where the first breaks at the finest level), the quilt's other attempts, then, for an
+// enlarged map, the quilt's three at the map's own size; each judged by its seams (the finest level) and its
+// look; the first that passes, else the last.
 TileLook tiledLook(const Image& map, double quantum, int threads) {
     TileLook look;
+    bool finestBreaks = false;  // the last candidate's seams at the finest level
     auto passes = [&](const Image& candidate) {
         const Image stored = rounded(candidate, quantum);
         SeamOptions seams;
         seams.quantum = quantum;
         seams.threads = threads;
         look = measureTileLook(stored, {&map, threads, std::nullopt});
-        return levelTiles(measureSeams(stored, seams)) && look.passes();
+        finestBreaks = !levelTiles(measureSeams(stored, seams));
+        return !finestBreaks && look.passes();
     };
-    {
+    double firstBand = 0;
+    auto resynthesis = [&](int from, int to) {
         Resynthesiser resynthesiser(map, quantum, threads);
-        double firstBand = 0;
-        for (int attempt = 0; attempt < 4; ++attempt) {
+        for (int attempt = from; attempt < to; ++attempt) {
             const double band = attempt < 2 ? 0.0 : std::min(0.25, firstBand * (attempt == 2 ? 1.5 : 2.0));
             const ResynthesisResult r = resynthesiser.attempt(uint64_t(1 + attempt), band);
             if (attempt == 0) firstBand = double(std::max(r.bandX, 1)) / map.width;
-            if (passes(r.map)) return look;
+            if (passes(r.map)) return true;
         }
-    }
-    for (bool atSourceSize : {true, false}) {
-        int enlargement = 1;
-        for (int attempt = 0; attempt < 3; ++attempt) {
+        return false;
+    };
+    int enlargement = 1;
+    auto quilting = [&](bool atSourceSize, int from, int to) {
+        for (int attempt = from; attempt < to; ++attempt) {
             QuiltOptions quilt;
             quilt.threads = threads;
             quilt.quantum = quantum;
@@ -116,10 +121,15 @@ TileLook tiledLook(const Image& map, double quantum, int threads) {
             quilt.band = attempt == 2 ? 1.5 / 8 : 0.0;
             const QuiltResult q = quiltTile(map, quilt);
             enlargement = q.enlargement;
-            if (passes(q.map)) return look;
+            if (passes(q.map)) return true;
         }
-        if (enlargement == 1) break;
-    }
+        return false;
+    };
+    if (resynthesis(0, 1)) return look;
+    const bool quiltSooner = finestBreaks;
+    if ((quiltSooner && quilting(true, 0, 1)) || resynthesis(1, 4) || quilting(true, quiltSooner ? 1 : 0, 3) ||
+        (enlargement > 1 && quilting(false, 0, 3)))
+        return look;
     look.frame = std::max(look.frame, LookThresholds{}.frame + 1);  // what reaches the crossfade fails here
     return look;
 }

@@ -60,9 +60,13 @@ Image moisanPeriodic(const Image& map, bool relativeToSlope) {
         }
     });
     const double scale = 1.0 / (double(w) * h);  // the inverse is unscaled
+    // The symbol's two terms, once per column and per row (the same values as computed in place).
+    std::vector<double> cosX(static_cast<size_t>(columns)), cosY(static_cast<size_t>(h));
+    for (int q = 0; q < columns; ++q) cosX[size_t(q)] = 2 * std::cos(2 * std::numbers::pi * q / w);
+    for (int r = 0; r < h; ++r) cosY[size_t(r)] = 2 * std::cos(2 * std::numbers::pi * r / h);
     for (int r = 0; r < h; ++r)
         for (int q = 0; q < columns; ++q) {
-            const double symbol = 2 * std::cos(2 * std::numbers::pi * q / w) + 2 * std::cos(2 * std::numbers::pi * r / h) - 4;
+            const double symbol = cosX[size_t(q)] + cosY[size_t(r)] - 4;
             std::complex<float>& z = half[size_t(r) * columns + q];
             z = (q == 0 && r == 0) ? 0.0f : z * float(scale / symbol);
         }

@@ -1,8 +1,6 @@
 // Quilting a strip across each wrap line: see tile/quilt.hpp for the steps.
 #include "heightpack/core/tile/quilt.hpp"
 
-#include <opencv2/core.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -21,52 +19,6 @@
 #include "smoothing.hpp"
 
 namespace heightpack {
-
-namespace detail {
-
-Field maskedSquaredErrors(Field target, Field mask, Field source, int threads) {
-    double constant = 0;
-    for (size_t i = 0; i < target.v.size(); ++i) {
-        constant += mask.v[i] * target.v[i] * target.v[i];
-        target.v[i] *= mask.v[i];
-    }
-    const cv::Mat sourceSpectrum = forwardDft(source.mat(), threads);
-    for (double& x : source.v) x *= x;
-    const cv::Mat squaredSpectrum = forwardDft(source.mat(), threads);
-    // Correlation: sum_p a(p) b(p + d) is the inverse DFT of B conj(A).
-    cv::Mat spectrum, cross;
-    cv::mulSpectrums(squaredSpectrum, forwardDft(mask.mat(), threads), spectrum, 0, true);
-    cv::mulSpectrums(sourceSpectrum, forwardDft(target.mat(), threads), cross, 0, true);
-    cv::scaleAdd(cross, -2.0, spectrum, spectrum);
-    Field errors(source.w, source.h);
-    cv::Mat out = errors.mat();
-    inverseDft(spectrum, out, threads);
-    for (double& e : errors.v) e += constant;
-    return errors;
-}
-
-std::vector<int> minimalCut(const std::vector<double>& cost, int width, int length) {
-    std::vector<double> total(cost.begin(), cost.begin() + width);
-    total.resize(cost.size());
-    std::vector<int> from(cost.size(), 0);
-    for (int line = 1; line < length; ++line) {
-        const size_t row = size_t(line) * width, previous = row - width;
-        for (int place = 0; place < width; ++place) {
-            int best = place;
-            for (int other : {place - 1, place + 1})
-                if (other >= 0 && other < width && total[previous + other] < total[previous + best]) best = other;
-            total[row + place] = total[previous + best] + cost[row + place];
-            from[row + place] = best;
-        }
-    }
-    std::vector<int> path(length);
-    const size_t last = size_t(length - 1) * width;
-    path[length - 1] = int(std::min_element(total.begin() + last, total.begin() + last + width) - (total.begin() + last));
-    for (int line = length - 1; line > 0; --line) path[line - 1] = from[size_t(line) * width + path[line]];
-    return path;
-}
-
-}  // namespace detail
 
 namespace {
 
@@ -142,10 +94,14 @@ void addPoissonSolution(Field& f, const Strip& s, const std::vector<double>& rhs
         }
     });
     const double scale = 1.0 / (double(w) * h);  // the inverse is unscaled
+    // The symbol's two terms, once per column and per row (the same values as computed in place).
+    std::vector<double> cosX(static_cast<size_t>(columns)), cosY(static_cast<size_t>(h));
+    for (int q = 0; q < columns; ++q) cosX[size_t(q)] = 2 * std::cos(2 * std::numbers::pi * q / w);
+    for (int r = 0; r < h; ++r) cosY[size_t(r)] = 2 * std::cos(2 * std::numbers::pi * r / h);
     parallelFor(h, threads, [&](int begin, int end) {
         for (int r = begin; r < end; ++r)
             for (int q = 0; q < columns; ++q) {
-                const double symbol = 2 * std::cos(2 * std::numbers::pi * q / w) + 2 * std::cos(2 * std::numbers::pi * r / h) - 4;
+                const double symbol = cosX[size_t(q)] + cosY[size_t(r)] - 4;
                 std::complex<float>& z = half[size_t(r) * columns + q];
                 z = (q == 0 && r == 0) ? 0.0f : z * float(scale / symbol);
             }
@@ -196,23 +152,60 @@ void quiltStrip(Field& f, const Strip& s, int du, int dv, int threads) {
     //    two texels). For each texel p, the sum over its neighbours q of c(p) - c(q) is the sum of
     //    (guidance - f's step), nonzero only on the strip and beside it: a periodic Poisson equation, whose
     //    solution beyond the strip is harmonic (no line where the strip ends).
+    // The map and the copy on the strip's lines and the one beside each (u = -1 .. width) and one more
+    // along each end (v = -1 .. along), as [u + 1][v + 1], gathered once: the sums below read each value
+    // up to eight times, and through the field's wrap and orientation each read cost a division and, for
+    // the left/right strip, a cache miss.
+    const size_t stride = size_t(along) + 2;
+    std::vector<double> mapLines(size_t(width + 2) * stride), copyLines(mapLines.size());
+    auto gather = [&](int v) {
+        for (int u = -1; u <= width; ++u) {
+            const size_t i = size_t(u + 1) * stride + size_t(v + 1);
+            mapLines[i] = mapValue(u, v);
+            copyLines[i] = copyValue(u, v);
+        }
+    };
+    parallelFor(along, threads, [&](int begin, int end) {
+        for (int v = begin; v < end; ++v) gather(v);
+    });
+    gather(-1);
+    gather(along);
+    // The shares of the lines u = -1 .. width along one line v (0 beyond the strip).
+    auto sharesOf = [&](int v, double* out) {
+        for (int u = -1; u <= width; ++u) out[u + 1] = share(u, v);
+    };
+    // The right-hand side on the strip's lines and the one beside each (u = -1 .. width), as [u + 1][v]:
+    // nothing elsewhere, so no whole field of it is kept. Each texel's excess over its four neighbours, in
+    // the order (u - 1, v), (u + 1, v), (u, v - 1), (u, v + 1); per line v, so any split gives the same.
+    std::vector<double> rhs(size_t(width + 2) * along, 0.0);
+    auto rhsAt = [&](int u, int v) -> double& { return rhs[size_t(u + 1) * along + v]; };
+    parallelFor(along, threads, [&](int begin, int end) {
+        std::vector<double> before(size_t(width) + 2), here(before.size()), after(before.size());
+        for (int v = begin; v < end; ++v) {
+            sharesOf(v - 1, before.data());
+            sharesOf(v, here.data());
+            sharesOf(v + 1, after.data());
+            auto excess = [&](int u, double shareQ, int qu, int qv) {
+                const double a = 0.5 * (here[size_t(u + 1)] + shareQ);
+                if (a == 0) return 0.0;
+                const size_t p = size_t(u + 1) * stride + size_t(v + 1), q = size_t(qu + 1) * stride + size_t(qv + 1);
+                return a * (copyLines[p] - copyLines[q] - (mapLines[p] - mapLines[q]));
+            };
+            for (int u = 0; u < width; ++u) {
+                double sum = 0;
+                sum += excess(u, here[size_t(u)], u - 1, v);
+                sum += excess(u, here[size_t(u + 2)], u + 1, v);
+                sum += excess(u, before[size_t(u + 1)], u, v - 1);
+                sum += excess(u, after[size_t(u + 1)], u, v + 1);
+                rhsAt(u, v) = -sum;  // the Laplacian of c is minus that sum
+            }
+        }
+    });
     auto excess = [&](int u, int v, int qu, int qv) {
         const double a = 0.5 * (share(u, v) + share(qu, qv));
         if (a == 0) return 0.0;
         return a * (copyValue(u, v) - copyValue(qu, qv) - (mapValue(u, v) - mapValue(qu, qv)));
     };
-    // The right-hand side on the strip's lines and the one beside each (u = -1 .. width), as [u + 1][v]:
-    // nothing elsewhere, so no whole field of it is kept.
-    std::vector<double> rhs(size_t(width + 2) * along, 0.0);
-    auto rhsAt = [&](int u, int v) -> double& { return rhs[size_t(u + 1) * along + v]; };
-    parallelFor(width, threads, [&](int begin, int end) {
-        for (int u = begin; u < end; ++u)
-            for (int v = 0; v < along; ++v) {
-                double sum = 0;
-                for (const auto& [qu, qv] : {std::pair{u - 1, v}, {u + 1, v}, {u, v - 1}, {u, v + 1}}) sum += excess(u, v, qu, qv);
-                rhsAt(u, v) = -sum;  // the Laplacian of c is minus that sum
-            }
-    });
     for (int v = 0; v < along; ++v) {  // the texels beside the strip take the other end of its edges
         rhsAt(-1, v) += excess(0, v, -1, v);
         rhsAt(width, v) += excess(width - 1, v, width, v);
@@ -261,6 +254,25 @@ double overlapError(const Field& f, const Strip& s, int du, int dv, int threads)
     for (int u = 0; u < s.width; ++u)
         if (u < s.overlap || u >= s.width - s.overlap) lines.push_back(u);
     std::vector<double> perLine(lines.size(), 0.0);  // summed in order after: the same on any thread count
+    if (s.acrossX) {
+        // The lines are columns: each thread takes a run of them and walks down the rows, so each row's
+        // texels of its lines are read together (a column at a time was a cache miss a texel). Each line's
+        // sum still adds its texels in order of v.
+        parallelFor(int(lines.size()), threads, [&](int begin, int end) {
+            for (int v = 0; v < s.along; ++v) {
+                const double* row = &f.v[size_t(v) * f.w];
+                const double* copyRow = &f.v[size_t(wrapped(v + dv, s.along)) * f.w];
+                for (int k = begin; k < end; ++k) {
+                    const int line = s.line(lines[size_t(k)]);
+                    const double d = row[line] - copyRow[wrapped(line + du, s.across)];
+                    perLine[size_t(k)] += d * d;
+                }
+            }
+        });
+        double total = 0;
+        for (double e : perLine) total += e;
+        return total;
+    }
     parallelFor(int(lines.size()), threads, [&](int begin, int end) {
         std::vector<double> copy(size_t(s.along));
         for (int k = begin; k < end; ++k) {
