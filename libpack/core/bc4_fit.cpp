@@ -18,62 +18,109 @@ namespace {
 
 using namespace lanes;
 
+// A block's values as rows of lanes, each value's distance to the nearer of 0 and 1, and their range.
+struct Block {
+    Lanes row[4], toFixed[4];
+    float lo = 1.0f, hi = 0.0f;
+    explicit Block(const float v[16]) {
+        const Rows rows(v);
+        for (int r = 0; r < 4; ++r) row[r] = rows.row[r], toFixed[r] = min(row[r], 1.0f - row[r]);
+        for (int i = 0; i < 16; ++i) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+    }
+};
+
+// How far above the smallest worst error a candidate may go for a smaller squared error: a quarter code.
+// The block's worst texel decides a map's worst error, its squared error the RMS: the smallest squared
+// error alone gives a smaller RMS than encoders that quantise first but at times a larger worst.
+constexpr float kWorstSlack = 0.25f / 255.0f;
+
+// Endpoint codes as values, and the reciprocals of their differences: no division per pair scored.
+struct Tables {
+    float unit[256];
+    float perCode[511];  // 255 / (e1 - e0) at e1 - e0 + 255; 0 at equal endpoints
+    Tables() {
+        for (int e = 0; e < 256; ++e) unit[e] = float(e) / 255.0f;
+        for (int d = -255; d <= 255; ++d) perCode[d + 255] = d == 0 ? 0.0f : 255.0f / float(d);
+    }
+};
+const Tables kTables;
+
 // The squared error and worst error of the values decoded with e0, e1: each value's nearest interpolated
 // entry is its rounded position along them (they are evenly spaced), and in the six-value mode the fixed
 // 0 or 1 when nearer. The sums run in a fixed order, so a block scores the same on any thread.
-Tried score(const Rows& v, int e0, int e1) {
-    const float r0 = float(e0) / 255.0f, r1 = float(e1) / 255.0f;
+Tried score(const Block& v, int e0, int e1) {
     const bool eight = e0 > e1;
     const float steps = eight ? 7.0f : 5.0f;
-    const float perStep = e0 == e1 ? 0.0f : steps / (r1 - r0);
-    const Lanes at0 = splat(r0), at1 = splat(r1), n = splat(steps), inv = splat(1.0f / steps);
-    Lanes squares = splat(0.0f), worst = splat(0.0f);
-    for (const Lanes& x : v.row) {
-        const Lanes k = roundUp(min(max((x - at0) * perStep, splat(0.0f)), n));
-        Lanes d = abs(x - (at0 * (n - k) + at1 * k) * inv);
-        if (!eight) d = min(d, min(x, 1.0f - x));
+    const float r0 = kTables.unit[e0], perStep = steps * kTables.perCode[e1 - e0 + 255];
+    const Lanes at0 = splat(r0), step = splat((kTables.unit[e1] - r0) / steps), n = splat(steps), zero = splat(0.0f);
+    Lanes squares = zero, worst = zero;
+    for (int r = 0; r < 4; ++r) {
+        const Lanes x = v.row[r];
+        const Lanes k = roundUp(min(max((x - at0) * perStep, zero), n));
+        Lanes d = abs(x - (at0 + k * step));
+        if (!eight) d = min(d, v.toFixed[r]);
         squares += d * d;
         worst = max(worst, d);
     }
     return {e0, e1, sum(squares), largest(worst)};
 }
 
-// Where code k sits between the endpoints (0 at e0, 1 at e1) in a mode of `steps` intervals; -1 for the
-// six-value mode's fixed 0 and 1.
-double weightOf(int code, int steps) {
-    if (code == 0) return 0.0;
-    if (code == 1) return 1.0;
-    if (code > steps) return -1.0;
-    return double(code - 1) / steps;
+// The least worst error e0, e1 can have: the values beyond their range are at least as far from the
+// nearest endpoint (or, in the six-value mode, from 0 or 1).
+float worstBound(const Block& v, int e0, int e1) {
+    const float top = kTables.unit[std::max(e0, e1)], bottom = kTables.unit[std::min(e0, e1)];
+    float above = std::max(v.hi - top, 0.0f), below = std::max(bottom - v.lo, 0.0f);
+    if (e0 <= e1) above = std::min(above, std::min(1.0f - v.hi, v.hi)), below = std::min(below, std::min(v.lo, 1.0f - v.lo));
+    return std::max(above, below);
 }
 
-// The endpoints (in 0..255 units, unrounded) that fit v best by least squares for the codes of e0, e1.
-bool leastSquares(const float v[16], int e0, int e1, int steps, double& a, double& b) {
-    const std::array<std::uint8_t, 16> codes = codesOf(v, e0, e1);
-    double aa = 0, ab = 0, bb = 0, av = 0, bv = 0;
-    for (int i = 0; i < 16; ++i) {
-        const double w = weightOf(codes[size_t(i)], steps);
-        if (w < 0.0) continue;
-        const double x = double(v[i]) * 255.0;
-        aa += (1 - w) * (1 - w), ab += (1 - w) * w, bb += w * w;
-        av += (1 - w) * x, bv += w * x;
+// Whether choose could take e0, e1 when out keeps only what it could: their least worst error is within
+// kWorstSlack of the least so far (and a float's rounding: the bound and the score sum differently).
+bool worthScoring(const Block& v, int e0, int e1, const Candidates& out) {
+    return !out.onlyChoosable || worstBound(v, e0, e1) <= out.leastWorst + kWorstSlack + 1e-6f;
+}
+
+// The endpoints (in 0..255 units, unrounded) that fit v best by least squares for the codes that e0, e1
+// give them (as score assigns them; the six-value mode's fixed 0 and 1 take no part).
+bool leastSquares(const Block& v, int e0, int e1, double& a, double& b) {
+    const float r0 = float(e0) / 255.0f, r1 = float(e1) / 255.0f;
+    const bool eight = e0 > e1;
+    const float steps = eight ? 7.0f : 5.0f;
+    const float perStep = e0 == e1 ? 0.0f : steps / (r1 - r0);
+    const Lanes at0 = splat(r0), at1 = splat(r1), n = splat(steps), inv = splat(1.0f / steps), zero = splat(0.0f);
+    Lanes aa = zero, ab = zero, bb = zero, av = zero, bv = zero;
+    for (const Lanes& x : v.row) {
+        const Lanes k = roundUp(min(max((x - at0) * perStep, zero), n));
+        Lanes w = k * inv, u = 1.0f - w;
+        if (!eight) {
+            const Lanes d = abs(x - (at0 * (n - k) + at1 * k) * inv);
+            const auto interpolated = d <= min(x, 1.0f - x);
+            w = interpolated ? w : zero, u = interpolated ? u : zero;
+        }
+        const Lanes scaled = x * 255.0f;
+        aa += u * u, ab += u * w, bb += w * w, av += u * scaled, bv += w * scaled;
     }
-    const double det = aa * bb - ab * ab;
-    if (std::fabs(det) < 1e-12) return false;
-    a = (av * bb - bv * ab) / det;
-    b = (bv * aa - av * ab) / det;
+    const double saa = sum(aa), sab = sum(ab), sbb = sum(bb), sav = sum(av), sbv = sum(bv);
+    const double det = saa * sbb - sab * sab;
+    if (std::fabs(det) < 1e-9) return false;
+    a = (sav * sbb - sbv * sab) / det;
+    b = (sbv * saa - sav * sab) / det;
     return true;
 }
 
-// How far from the range's ends, and from the least-squares fit, the endpoint pairs tried go, in codes.
-constexpr int kRangeWindow = 1, kFitWindow = 2;
+// How far from the range's ends, and from the least-squares fit, the endpoint pairs tried go, in codes,
+// searching quickly and thoroughly.
+struct Windows {
+    int range, fit;
+};
+constexpr Windows kQuick{0, 1}, kThorough{1, 2};
 
 int toEndpoint(double x) { return int(std::clamp(std::lround(x), 0L, 255L)); }
 
 // The candidates of one mode: eight values (e0 > e1) or six with 0 and 1 (e0 <= e1). Every pair within
-// kRangeWindow of the values' range (the six-value mode's without those nearer 0 or 1 than to it), and
-// within kFitWindow of the least-squares endpoints for the best codes of those.
-void fitMode(const float v[16], const Rows& rows, bool eightValues, Candidates& out) {
+// window.range of the values' range (the six-value mode's without those nearer 0 or 1 than to it), and
+// within window.fit of the least-squares endpoints for the best codes of those.
+void fitMode(const float v[16], const Block& rows, bool eightValues, Windows window, Candidates& out) {
     float lo = 1.0f, hi = 0.0f;
     for (int i = 0; i < 16; ++i) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
     if (!eightValues) {
@@ -83,7 +130,6 @@ void fitMode(const float v[16], const Rows& rows, bool eightValues, Candidates& 
             if (v[i] > 0.5f / 255.0f && v[i] < 254.5f / 255.0f) innerLo = std::min(innerLo, v[i]), innerHi = std::max(innerHi, v[i]);
         if (innerLo <= innerHi) lo = innerLo, hi = innerHi;
     }
-    const int steps = eightValues ? 7 : 5;
     auto ordered = [&](int a, int b) {
         // Eight values need e0 > e1: the larger endpoint first; six need e0 <= e1.
         if (eightValues) {
@@ -103,7 +149,7 @@ void fitMode(const float v[16], const Rows& rows, bool eightValues, Candidates& 
                 if (a < 0 || a > 255 || b < 0 || b > 255) continue;
                 if (std::abs(a - skip0) <= skipR && std::abs(b - skip1) <= skipR) continue;
                 const auto [e0, e1] = ordered(a, b);
-                if (e0 < 0) continue;
+                if (e0 < 0 || !worthScoring(rows, e0, e1, out)) continue;
                 const Tried t = score(rows, e0, e1);
                 out.add(t);
                 if (!any || t.error < best.error) best = t, any = true;
@@ -111,22 +157,23 @@ void fitMode(const float v[16], const Rows& rows, bool eightValues, Candidates& 
     };
     int hiCode = toEndpoint(double(hi) * 255.0), loCode = toEndpoint(double(lo) * 255.0);
     if (eightValues && hiCode == loCode) hiCode < 255 ? ++hiCode : --loCode;
-    around(hiCode, loCode, kRangeWindow, -99, -99, 0);  // the range's ends: what bounds the worst error
+    around(hiCode, loCode, window.range, -99, -99, 0);  // the range's ends: what bounds the worst error
     if (!any) return;
     // Least squares from the best codes so far, until the rounded endpoints stop moving.
     int e0 = best.e0, e1 = best.e1;
     for (int round = 0; round < 3; ++round) {
         double a, b;
-        if (!leastSquares(v, best.e0, best.e1, steps, a, b)) break;
+        if (!leastSquares(rows, best.e0, best.e1, a, b)) break;
         const auto [n0, n1] = ordered(toEndpoint(a), toEndpoint(b));
         if (n0 < 0 || (n0 == e0 && n1 == e1)) break;
         e0 = n0, e1 = n1;
+        if (!worthScoring(rows, e0, e1, out)) continue;
         const Tried t = score(rows, e0, e1);
         if (t.error < best.error) best = t;
     }
     // The window around the fit, less what the first window tried (in either order of the endpoints).
     if (eightValues ? e0 > e1 : e0 <= e1)
-        around(e0, e1, kFitWindow, eightValues ? hiCode : loCode, eightValues ? loCode : hiCode, kRangeWindow);
+        around(e0, e1, window.fit, eightValues ? hiCode : loCode, eightValues ? loCode : hiCode, window.range);
 }
 
 }  // namespace
@@ -144,20 +191,14 @@ std::array<float, 8> palette(int e0, int e1) {
     return p;
 }
 
-void search(const float v[16], Candidates& out) {
-    const Rows rows(v);
-    fitMode(v, rows, true, out);
+void search(const float v[16], bool thorough, Candidates& out) {
+    const Block rows(v);
+    const Windows window = thorough ? kThorough : kQuick;
+    fitMode(v, rows, true, window, out);
     // The six-value mode's fixed 0 and 1 help a block with values near them; elsewhere its five steps
     // between the endpoints are coarser than the eight-value mode's seven, and it is not tried.
-    float lo = 1.0f, hi = 0.0f;
-    for (int i = 0; i < 16; ++i) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
-    if (lo < 16.0f / 255.0f || hi > 239.0f / 255.0f || out.count == 0) fitMode(v, rows, false, out);
+    if (rows.lo < 16.0f / 255.0f || rows.hi > 239.0f / 255.0f || out.count == 0) fitMode(v, rows, false, window, out);
 }
-
-// How far above the smallest worst error a candidate may go for a smaller squared error: a quarter code.
-// The block's worst texel decides a map's worst error, its squared error the RMS: the smallest squared
-// error alone gives a smaller RMS than encoders that quantise first but at times a larger worst.
-constexpr float kWorstSlack = 0.25f / 255.0f;
 
 const Tried& choose(const Candidates& c) {
     float leastWorst = c.tried[0].worst;
@@ -167,6 +208,13 @@ const Tried& choose(const Candidates& c) {
         const Tried& t = c.tried[size_t(i)];
         if (t.worst <= leastWorst + kWorstSlack && (!best || t.error < best->error)) best = &t;
     }
+    return *best;
+}
+
+const Tried& leastError(const Candidates& c) {
+    const Tried* best = &c.tried[0];
+    for (int i = 1; i < c.count; ++i)
+        if (c.tried[size_t(i)].error < best->error) best = &c.tried[size_t(i)];
     return *best;
 }
 

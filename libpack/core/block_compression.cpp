@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 
 #include "bc4_fit.hpp"
 #include "heightpack/core/parallel.hpp"
@@ -14,26 +15,31 @@ namespace heightpack {
 
 namespace {
 
-void encodeBc4Block(const float v[16], std::uint8_t* out) {
+// A block encoded quickly keeps its pair of least squared error (the RMS); thoroughly, the pair choose
+// takes (the worst error first). Returns the block's worst error.
+float encodeBc4Block(const float v[16], bool thorough, std::uint8_t* out) {
     float clamped[16];
     for (int i = 0; i < 16; ++i) clamped[i] = std::clamp(v[i], 0.0f, 1.0f);
     bc4::Candidates candidates;
-    bc4::search(clamped, candidates);
-    const bc4::Tried& best = bc4::choose(candidates);
+    candidates.onlyChoosable = thorough;
+    bc4::search(clamped, thorough, candidates);
+    const bc4::Tried& best = thorough ? bc4::choose(candidates) : bc4::leastError(candidates);
     bc4::writeBlock(best.e0, best.e1, bc4::codesOf(clamped, best.e0, best.e1), out);
+    return best.worst;
 }
 
 // BC5 normals: each channel's candidates of least squared error, paired by the decoded normal's angle.
 // Not only those within a quarter code of the channel's least worst: a steep normal's rebuilt z turns a
 // small error in x or y into a large angle, so the worst angle is not where either channel's worst error is.
-// 8 a channel: 16 brings the family's worst angles down by another 4% in twice the time.
-constexpr int kJointFits = 8;
+// 8 a channel when thorough: 16 brings the family's worst angles down by another 4% in twice the time; 3
+// when quick.
+constexpr int kThoroughJointFits = 8, kQuickJointFits = 3;
 // The pair's cost: the block's summed angle (as the chord between the unit normals) plus 4 times its
 // worst, which on the family of tests/io/block_format_test.cpp lowers the worst angles without raising
 // the medians.
 constexpr float kWorstAngleWeight = 4.0f;
 
-// A channel's kJointFits candidates of least squared error (the first tried of equals first), with
+// A channel's `count` candidates of least squared error (the first tried of equals first), with
 // their codes and their 16 decoded values as normal components: offset + scale * u.
 struct JointFit {
     const bc4::Tried* tried = nullptr;
@@ -41,10 +47,10 @@ struct JointFit {
     lanes::Lanes component[4];
 };
 
-int leastSquaredFits(const float v[16], const bc4::Candidates& c, const NormalUnits& units, JointFit out[kJointFits]) {
+int leastSquaredFits(const float v[16], const bc4::Candidates& c, const NormalUnits& units, int count, JointFit out[kThoroughJointFits]) {
     std::array<int, 96> order{};
     for (int i = 0; i < c.count; ++i) order[size_t(i)] = i;
-    const int n = std::min(c.count, kJointFits);
+    const int n = std::min(c.count, count);
     std::partial_sort(order.begin(), order.begin() + n, order.begin() + c.count, [&](int a, int b) {
         const float ea = c.tried[size_t(a)].error, eb = c.tried[size_t(b)].error;
         return ea < eb || (ea == eb && a < b);
@@ -74,21 +80,23 @@ Normals rebuilt(lanes::Lanes x, lanes::Lanes y) {
     return {x * s, y * s, z};
 }
 
-void encodeBc5Block(const float x[16], const float y[16], const NormalUnits& units, std::uint8_t* out) {
+// Returns the block's worst chord.
+float encodeBc5Block(const float x[16], const float y[16], const NormalUnits& units, bool thorough, std::uint8_t* out) {
     using namespace lanes;
     float cx[16], cy[16];
     for (int i = 0; i < 16; ++i) cx[i] = std::clamp(x[i], 0.0f, 1.0f), cy[i] = std::clamp(y[i], 0.0f, 1.0f);
     bc4::Candidates candX, candY;
-    bc4::search(cx, candX);
-    bc4::search(cy, candY);
-    JointFit fx[kJointFits], fy[kJointFits];
-    const int nx = leastSquaredFits(cx, candX, units, fx), ny = leastSquaredFits(cy, candY, units, fy);
+    bc4::search(cx, thorough, candX);
+    bc4::search(cy, thorough, candY);
+    JointFit fx[kThoroughJointFits], fy[kThoroughJointFits];
+    const int fits = thorough ? kThoroughJointFits : kQuickJointFits;
+    const int nx = leastSquaredFits(cx, candX, units, fits, fx), ny = leastSquaredFits(cy, candY, units, fits, fy);
     const float offset = float(units.offset), scale = float(units.scale);
     Normals given[4];
     const Rows gx(cx), gy(cy);
     for (int r = 0; r < 4; ++r) given[r] = rebuilt(offset + scale * gx.row[r], offset + scale * gy.row[r]);
     // A pair stops being summed once what it has is no less than the best cost: the rest only adds.
-    float best = 1e30f;
+    float best = 1e30f, bestWorst = 0.0f;
     int bi = 0, bj = 0;
     for (int i = 0; i < nx; ++i)
         for (int j = 0; j < ny; ++j) {
@@ -104,11 +112,18 @@ void encodeBc5Block(const float x[16], const float y[16], const NormalUnits& uni
             }
             if (beaten) continue;
             best = sum(sumChord) + kWorstAngleWeight * largest(worst);
+            bestWorst = largest(worst);
             bi = i, bj = j;
         }
     bc4::writeBlock(fx[bi].tried->e0, fx[bi].tried->e1, fx[bi].codes, out);
     bc4::writeBlock(fy[bj].tried->e0, fy[bj].tried->e1, fy[bj].codes, out + 8);
+    return bestWorst;
 }
+
+// Every block is encoded quickly, then again thoroughly those whose worst error (chord for normals) is
+// within this share of the image's worst: the few blocks that decide the worst error reported for the
+// image get the search that lowers it, the rest keep their smaller squared error.
+constexpr float kThoroughShare = 0.75f;
 
 }  // namespace
 
@@ -123,25 +138,33 @@ std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, i
     const int channels = blockChannels(format), bytes = blockBytes(format);
     const int across = (image.width + 3) / 4, down = (image.height + 3) / 4;
     std::vector<std::uint8_t> out(blockImageBytes(image.width, image.height, format));
+    std::vector<float> worst(size_t(across) * size_t(down));
+    // Block (bx, by) encoded into out; its worst error into worst.
+    auto encode = [&](int bx, int by, bool thorough) {
+        float v[16], w[16];
+        for (int i = 0; i < 16; ++i) {
+            const int x = std::min(bx * 4 + i % 4, image.width - 1), y = std::min(by * 4 + i / 4, image.height - 1);
+            v[i] = image.at(x, y, 0);
+            if (channels == 2) w[i] = image.at(x, y, 1);
+        }
+        const size_t at = size_t(by) * size_t(across) + size_t(bx);
+        std::uint8_t* block = out.data() + at * size_t(bytes);
+        if (channels == 2 && normals) {
+            worst[at] = encodeBc5Block(v, w, *normals, thorough, block);
+        } else {
+            worst[at] = encodeBc4Block(v, thorough, block);
+            if (channels == 2) worst[at] = std::max(worst[at], encodeBc4Block(w, thorough, block + 8));
+        }
+    };
     parallelFor(down, threads, [&](int begin, int end) {
-        float v[16];
+        for (int by = begin; by < end; ++by)
+            for (int bx = 0; bx < across; ++bx) encode(bx, by, false);
+    });
+    const float threshold = kThoroughShare * *std::max_element(worst.begin(), worst.end());
+    parallelFor(down, threads, [&](int begin, int end) {
         for (int by = begin; by < end; ++by)
             for (int bx = 0; bx < across; ++bx)
-                {
-                    float w[16];
-                    for (int i = 0; i < 16; ++i) {
-                        const int x = std::min(bx * 4 + i % 4, image.width - 1), y = std::min(by * 4 + i / 4, image.height - 1);
-                        v[i] = image.at(x, y, 0);
-                        if (channels == 2) w[i] = image.at(x, y, 1);
-                    }
-                    std::uint8_t* block = out.data() + (size_t(by) * across + bx) * size_t(bytes);
-                    if (channels == 2 && normals) {
-                        encodeBc5Block(v, w, *normals, block);
-                    } else {
-                        encodeBc4Block(v, block);
-                        if (channels == 2) encodeBc4Block(w, block + 8);
-                    }
-                }
+                if (worst[size_t(by) * size_t(across) + size_t(bx)] >= threshold) encode(bx, by, true);
     });
     return out;
 }
