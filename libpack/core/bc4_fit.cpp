@@ -115,7 +115,7 @@ struct Windows {
 };
 constexpr Windows kQuick{0, 1}, kThorough{1, 2};
 
-int toEndpoint(double x) { return int(std::clamp(std::lround(x), 0L, 255L)); }
+int toEndpoint(double x) { return int(std::clamp(x, 0.0, 255.0) + 0.5); }
 
 // The candidates of one mode: eight values (e0 > e1) or six with 0 and 1 (e0 <= e1). Every pair within
 // window.range of the values' range (the six-value mode's without those nearer 0 or 1 than to it), and
@@ -155,7 +155,7 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
                 if (!any || t.error < best.error) best = t, any = true;
             }
     };
-    int hiCode = toEndpoint(double(hi) * 255.0), loCode = toEndpoint(double(lo) * 255.0);
+    int hiCode = toEndpoint(hi * 255.0f), loCode = toEndpoint(lo * 255.0f);
     if (eightValues && hiCode == loCode) hiCode < 255 ? ++hiCode : --loCode;
     around(hiCode, loCode, window.range, -99, -99, 0);  // the range's ends: what bounds the worst error
     if (!any) return;
@@ -218,24 +218,33 @@ const Tried& leastError(const Candidates& c) {
     return *best;
 }
 
-std::array<std::uint8_t, 16> codesOf(const float v[16], int e0, int e1) {
+std::array<std::uint8_t, 16> codesOf(const float v[16], int e0, int e1, float decoded[16]) {
     static constexpr std::uint8_t kEightOrder[8] = {0, 2, 3, 4, 5, 6, 7, 1};  // code at each step from e0
     static constexpr std::uint8_t kSixOrder[6] = {0, 2, 3, 4, 5, 1};
-    const std::array<float, 8> p = palette(e0, e1);
     const bool eight = e0 > e1;
-    const int steps = eight ? 7 : 5;
     const std::uint8_t* order = eight ? kEightOrder : kSixOrder;
-    const float perStep = e0 == e1 ? 0.0f : float(steps) / (p[1] - p[0]);
+    const float steps = eight ? 7.0f : 5.0f;
+    const float r0 = kTables.unit[e0], perStep = steps * kTables.perCode[e1 - e0 + 255];
+    const Lanes at0 = splat(r0), step = splat((kTables.unit[e1] - r0) / steps), n = splat(steps), zero = splat(0.0f);
+    const Rows rows(v);
     std::array<std::uint8_t, 16> codes{};
-    for (int i = 0; i < 16; ++i) {
-        const float t = std::clamp((v[i] - p[0]) * perStep, 0.0f, float(steps));
-        std::uint8_t code = order[int(t + 0.5f)];
-        float error = std::fabs(v[i] - p[code]);
+    for (int r = 0; r < 4; ++r) {
+        const Lanes x = rows.row[r];
+        const Lanes k = roundUp(min(max((x - at0) * perStep, zero), n));
+        Lanes value = at0 + k * step;
+        // The six-value mode's fixed 0 when nearer, then its 1 when nearer still.
+        Lanes toZero = zero, toOne = zero;
         if (!eight) {
-            if (v[i] < error) error = v[i], code = 6;                 // the fixed 0
-            if (1.0f - v[i] < error) error = 1.0f - v[i], code = 7;  // the fixed 1
+            const Lanes d = abs(x - value);
+            toZero = x < d ? splat(1.0f) : zero;
+            toOne = (1.0f - x) < min(d, x) ? splat(1.0f) : zero;
+            value = toOne > 0.0f ? splat(1.0f) : toZero > 0.0f ? zero : value;
         }
-        codes[size_t(i)] = code;
+        for (int i = 0; i < 4; ++i) {
+            const std::uint8_t code = toOne[i] > 0.0f ? 7 : toZero[i] > 0.0f ? 6 : order[int(k[i])];
+            codes[size_t(4 * r + i)] = code;
+            if (decoded) decoded[4 * r + i] = value[i];
+        }
     }
     return codes;
 }

@@ -44,8 +44,8 @@ const Tried& choose(const Candidates& c);
 // The pair of least squared error; the first of equals.
 const Tried& leastError(const Candidates& c);
 
-// Each value's code: its nearest entry of the palette of e0, e1.
-std::array<std::uint8_t, 16> codesOf(const float v[16], int e0, int e1);
+// Each value's code: its nearest entry of the palette of e0, e1; with decoded, the values they decode to.
+std::array<std::uint8_t, 16> codesOf(const float v[16], int e0, int e1, float decoded[16] = nullptr);
 
 // The 8 bytes of a block: the endpoints, then the 16 codes of 3 bits.
 void writeBlock(int e0, int e1, const std::array<std::uint8_t, 16>& codes, std::uint8_t* out);

@@ -33,7 +33,7 @@ float encodeBc4Block(const float v[16], bool thorough, std::uint8_t* out) {
 // small error in x or y into a large angle, so the worst angle is not where either channel's worst error is.
 // 8 a channel when thorough: 16 brings the family's worst angles down by another 4% in twice the time; 3
 // when quick.
-constexpr int kThoroughJointFits = 8, kQuickJointFits = 3;
+constexpr int kThoroughJointFits = 8, kQuickJointFits = 1;
 // The pair's cost: the block's summed angle (as the chord between the unit normals) plus 4 times its
 // worst, which on the family of tests/io/block_format_test.cpp lowers the worst angles without raising
 // the medians.
@@ -48,6 +48,7 @@ struct JointFit {
 };
 
 int leastSquaredFits(const float v[16], const bc4::Candidates& c, const NormalUnits& units, int count, JointFit out[kThoroughJointFits]) {
+    const float offset = float(units.offset), scale = float(units.scale);
     std::array<int, 96> order{};
     for (int i = 0; i < c.count; ++i) order[size_t(i)] = i;
     const int n = std::min(c.count, count);
@@ -58,10 +59,9 @@ int leastSquaredFits(const float v[16], const bc4::Candidates& c, const NormalUn
     for (int i = 0; i < n; ++i) {
         JointFit& f = out[i];
         f.tried = &c.tried[size_t(order[size_t(i)])];
-        f.codes = bc4::codesOf(v, f.tried->e0, f.tried->e1);
-        const std::array<float, 8> p = bc4::palette(f.tried->e0, f.tried->e1);
         float decoded[16];
-        for (int t = 0; t < 16; ++t) decoded[t] = float(units.offset + units.scale * double(p[f.codes[size_t(t)]]));
+        f.codes = bc4::codesOf(v, f.tried->e0, f.tried->e1, decoded);
+        for (int t = 0; t < 16; ++t) decoded[t] = offset + scale * decoded[t];
         for (int r = 0; r < 4; ++r) f.component[r] = lanes::Rows(decoded).row[r];
     }
     return n;
