@@ -113,7 +113,7 @@ bool leastSquares(const Block& v, int e0, int e1, double& a, double& b) {
 struct Windows {
     int range, fit;
 };
-constexpr Windows kQuick{0, 1}, kThorough{1, 2};
+constexpr Windows kQuick{0, 0}, kThorough{1, 2};
 
 int toEndpoint(double x) { return int(std::clamp(x, 0.0, 255.0) + 0.5); }
 
