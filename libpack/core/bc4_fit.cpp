@@ -100,11 +100,12 @@ bool leastSquares(const Block& v, int e0, int e1, double& a, double& b) {
         const Lanes scaled = x * 255.0f;
         aa += u * u, ab += u * w, bb += w * w, av += u * scaled, bv += w * scaled;
     }
-    const double saa = sum(aa), sab = sum(ab), sbb = sum(bb), sav = sum(av), sbv = sum(bv);
-    const double det = saa * sbb - sab * sab;
-    if (std::fabs(det) < 1e-9) return false;
-    a = (sav * sbb - sbv * sab) / det;
-    b = (sbv * saa - sav * sab) / det;
+    const float saa = sum(aa), sab = sum(ab), sbb = sum(bb), sav = sum(av), sbv = sum(bv);
+    const float det = saa * sbb - sab * sab;
+    if (det <= 1e-4f * saa * sbb) return false;  // all texels at one weight, but for rounding
+    const float inverse = 1.0f / det;
+    a = (sav * sbb - sbv * sab) * inverse;
+    b = (sbv * saa - sav * sab) * inverse;
     return true;
 }
 
@@ -121,8 +122,7 @@ int toEndpoint(double x) { return int(std::clamp(x, 0.0, 255.0) + 0.5); }
 // window.range of the values' range (the six-value mode's without those nearer 0 or 1 than to it), and
 // within window.fit of the least-squares endpoints for the best codes of those.
 void fitMode(const float v[16], const Block& rows, bool eightValues, Windows window, Candidates& out) {
-    float lo = 1.0f, hi = 0.0f;
-    for (int i = 0; i < 16; ++i) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+    float lo = rows.lo, hi = rows.hi;
     if (!eightValues) {
         // Values close to 0 or 1 can take the fixed codes: the endpoints then span the rest.
         float innerLo = 1.0f, innerHi = 0.0f;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstdlib>
 
 #include "bc4_fit.hpp"
@@ -161,6 +163,7 @@ std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, i
             for (int bx = 0; bx < across; ++bx) encode(bx, by, false);
     });
     const float threshold = kThoroughShare * *std::max_element(worst.begin(), worst.end());
+    if (std::getenv("BC_DEBUG")) std::fprintf(stderr, "thorough %zd of %zu\n", std::count_if(worst.begin(), worst.end(), [&](float w) { return w >= threshold; }), worst.size());
     parallelFor(down, threads, [&](int begin, int end) {
         for (int by = begin; by < end; ++by)
             for (int bx = 0; bx < across; ++bx)
