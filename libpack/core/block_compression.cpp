@@ -82,6 +82,38 @@ Normals rebuilt(lanes::Lanes x, lanes::Lanes y) {
     return {x * s, y * s, z};
 }
 
+// Each texel's pair of codes (x's and y's) whose decoded normal is nearest the given one: the pair need
+// not be each channel's nearest value, since a steep normal's rebuilt z weighs x and y together. A texel
+// keeps its codes unless another pair is strictly nearer, so no texel's angle grows. 64 pairs a texel:
+// for thorough blocks only. Returns the block's worst chord.
+float jointCodes(JointFit& fx, JointFit& fy, const Normals given[4], const NormalUnits& units) {
+    const std::array<float, 8> px = bc4::palette(fx.tried->e0, fx.tried->e1), py = bc4::palette(fy.tried->e0, fy.tried->e1);
+    const float offset = float(units.offset), scale = float(units.scale);
+    float xs[8], ys[8];
+    for (int k = 0; k < 8; ++k) xs[k] = offset + scale * px[size_t(k)], ys[k] = offset + scale * py[size_t(k)];
+    float worst = 0.0f;
+    for (int t = 0; t < 16; ++t) {
+        const Normals& g = given[t / 4];
+        const float gx = g.x[t % 4], gy = g.y[t % 4], gz = g.z[t % 4];
+        auto squaredChord = [&](float x, float y) {
+            const float rr = x * x + y * y, z = std::sqrt(std::max(1.0f - rr, 0.0f));
+            const float s = rr > 1.0f ? 1.0f / std::sqrt(rr) : 1.0f;
+            const float dx = x * s - gx, dy = y * s - gy, dz = z - gz;
+            return dx * dx + dy * dy + dz * dz;
+        };
+        std::uint8_t& cx = fx.codes[size_t(t)];
+        std::uint8_t& cy = fy.codes[size_t(t)];
+        float best = squaredChord(xs[cx], ys[cy]);
+        for (int a = 0; a < 8; ++a)
+            for (int b = 0; b < 8; ++b) {
+                const float c = squaredChord(xs[a], ys[b]);
+                if (c < best) best = c, cx = std::uint8_t(a), cy = std::uint8_t(b);
+            }
+        worst = std::max(worst, std::sqrt(best));
+    }
+    return worst;
+}
+
 // Returns the block's worst chord.
 float encodeBc5Block(const float x[16], const float y[16], const NormalUnits& units, bool thorough, std::uint8_t* out) {
     using namespace lanes;
@@ -117,6 +149,7 @@ float encodeBc5Block(const float x[16], const float y[16], const NormalUnits& un
             bestWorst = largest(worst);
             bi = i, bj = j;
         }
+    if (thorough) bestWorst = jointCodes(fx[bi], fy[bj], given, units);
     bc4::writeBlock(fx[bi].tried->e0, fx[bi].tried->e1, fx[bi].codes, out);
     bc4::writeBlock(fy[bj].tried->e0, fy[bj].tried->e1, fy[bj].codes, out + 8);
     return bestWorst;
