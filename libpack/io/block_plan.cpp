@@ -14,11 +14,15 @@ namespace {
 
 constexpr double kDegreesPerRadian = 57.29577951308232;
 
-// The unit normal whose x and y are given, z rebuilt as the shader does.
+// The unit normal whose x and y are given, z rebuilt as the shader does (x, y past the unit circle: on it).
 void normalOf(double x, double y, double n[3]) {
-    const double z = std::sqrt(std::max(0.0, 1.0 - x * x - y * y));
-    const double length = std::sqrt(x * x + y * y + z * z);
-    n[0] = x / length, n[1] = y / length, n[2] = z / length;
+    const double rr = x * x + y * y;
+    if (rr <= 1.0) {
+        n[0] = x, n[1] = y, n[2] = std::sqrt(1.0 - rr);
+        return;
+    }
+    const double r = std::sqrt(rr);
+    n[0] = x / r, n[1] = y / r, n[2] = 0.0;
 }
 
 // The angle between unit vectors a and b, 2 asin(|a - b| / 2): from the chord, which (unlike the dot
