@@ -116,7 +116,7 @@ struct Windows {
 };
 constexpr Windows kQuick{0, 0}, kThorough{1, 2};
 
-int toEndpoint(double x) { return int(std::clamp(x, 0.0, 255.0) + 0.5); }
+int toEndpoint(double x) { return x >= 0.0 ? int(std::min(x, 255.0) + 0.5) : 0; }  // NaN: 0
 
 // The candidates of one mode: eight values (e0 > e1) or six with 0 and 1 (e0 <= e1). Every pair within
 // window.range of the values' range (the six-value mode's without those nearer 0 or 1 than to it), and
