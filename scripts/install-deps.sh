@@ -22,6 +22,8 @@ packages=(
   libegl-dev libegl-mesa0                       # heightpack-view --headless: EGL headers for libepoxy, Mesa's
                                                 # EGL (surfaceless platform) loaded at run time
   libgtest-dev libgmock-dev libbenchmark-dev    # tests and benchmarks
+  libsquish-dev                                 # tests and tests/bench only: a second BC4/BC5 encoder to
+                                                # judge heightpack's against (MIT; never linked into libpack)
   time                                          # peak memory in tests/bench/bench_pack.sh
   bazel-bootstrap nginx                         # the Bazel plan's test (label bazel): Bazel 4.2.3, and nginx's
                                                 # WebDAV module as its HTTP cache

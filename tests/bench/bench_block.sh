@@ -2,13 +2,17 @@
 # Issue 39's figures for the block formats (BC4, BC5), run by hand (not by ctest):
 #  1. bytes a texel of a whole chain per pixel type (pack --json's gpuBytes over the chain's texels), plain
 #     heights and xy normals of examples/maps/swell.png;
-#  2. the error against nvcompress -bc4/-bc5 on the same values, per map of the test family (the corpus's
-#     grey maps, the example seas, crops of them; tests/io/block_format_test.cpp prints the table);
+#  2. the error against nvcompress -bc4/-bc5 and libsquish's kBc4/kBc5 on the same values, per map of the
+#     test family (the corpus's grey maps, the example seas, crops of them; tests/io/block_format_test.cpp
+#     prints the table and the rates of maps where heightpack's is worse);
 #  3. the encode time of a SIZE x SIZE chain: whole `pack --layout plain` runs (load, mips, encode, write) in
 #     bc4 and uint16, and `nvcompress -bc4` (load, its own mips, encode, write) of the same 8-bit PNG, and
-#     `normal --layout xy` in bc5 against `nvcompress -bc5` of an RG PNG; medians of RUNS, wall and CPU.
+#     `normal --layout xy` in bc5 against `nvcompress -bc5` of an RG PNG; libsquish's of the same PNGs
+#     (tests/bench/squish_chain.cpp: load, 2x2 box mips, encode on one thread, write); medians of RUNS, wall
+#     and CPU.
 #   tests/bench/bench_block.sh [BUILD_DIR] [RUNS] [SIZE]
-# Needs jq, GNU time, oiiotool (OpenImageIO's tools), nvcompress (libnvtt-bin), and the container tests built.
+# Needs jq, GNU time, oiiotool (OpenImageIO's tools), nvcompress (libnvtt-bin), and the container tests and
+# heightpack_squish_chain built (libsquish-dev; -DHEIGHTPACK_BUILD_BENCHMARKS=ON).
 set -euo pipefail
 build=${1:-build}
 runs=${2:-3}
@@ -16,7 +20,9 @@ size=${3:-4096}
 hp="$build/heightpack"
 here="$(dirname "$0")"
 examples="$here/../../examples/maps"
+squish="$build/tests/bench/heightpack_squish_chain"
 [ -x "$hp" ] || { echo "bench_block: no $hp; build first (cmake --build $build)" >&2; exit 2; }
+[ -x "$squish" ] || { echo "bench_block: no $squish; install libsquish-dev, build with -DHEIGHTPACK_BUILD_BENCHMARKS=ON" >&2; exit 2; }
 for tool in jq oiiotool nvcompress; do
   command -v "$tool" >/dev/null || { echo "bench_block: needs $tool" >&2; exit 2; }
 done
@@ -38,8 +44,8 @@ for type in float half uint16 bc5; do
 done
 
 echo
-echo "2. error against nvcompress on the same values (units of each map's range; degrees for normals)"
-"$build/tests/heightpack_container_tests" --gtest_filter='BlockFormats.Bc*' | grep -E ' ours '
+echo "2. error against nvcompress and squish on the same values (units of each map's range; degrees for normals)"
+"$build/tests/heightpack_container_tests" --gtest_filter='BlockFormats.Bc*' | grep -E ' ours |^bc[45] maps'
 
 echo
 echo "3. encode time of a ${size}x${size} chain, $(nproc) cores, median of $runs runs (wall s, CPU s)"
@@ -57,6 +63,8 @@ row() {
 row "heightpack pack uint16" "$hp" pack "$work/map.png" --layout plain --pixel-type uint16 --quiet -o "$work/u.ktx2"
 row "heightpack pack bc4" "$hp" pack "$work/map.png" --layout plain --pixel-type bc4 --quiet -o "$work/b.ktx2"
 row "nvcompress -bc4" nvcompress -bc4 "$work/map.png" "$work/nv4.dds"
+row "squish bc4 (one thread)" "$squish" bc4 "$work/map.png" "$work/sq4.bin"
 row "heightpack normal xy bc5" "$hp" normal "$work/map.png" --tile-size 8m --height 0.5m --layout xy --pixel-type bc5 \
   --quiet -o "$work/n.ktx2"
 row "nvcompress -bc5" nvcompress -bc5 "$work/rg.png" "$work/nv5.dds"
+row "squish bc5 (one thread)" "$squish" bc5 "$work/rg.png" "$work/sq5.bin"

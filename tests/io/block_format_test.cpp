@@ -1,7 +1,8 @@
 // BC4 and BC5 outputs end to end, judged by other programs than heightpack: the structure of the KTX2
 // and DDS files by the independent reader (ktx-parse; nvddsinfo), the decoded values by NVIDIA Texture
-// Tools' nvdecompress (Debian's libnvtt-bin), and the encoder's accuracy against nvcompress -bc4/-bc5 on
-// the same values over the real corpus, the example seas and crops of them, both encoders' blocks decoded
+// Tools' nvdecompress (Debian's libnvtt-bin), and the encoder's accuracy against nvcompress -bc4/-bc5 and
+// libsquish's kBc4/kBc5 (Debian's libsquish-dev, linked into this test only) on the same values over the
+// real corpus, the example seas and crops of them, both encoders' blocks decoded
 // by a decoder written here from the specification's table (nvdecompress rounds its palette to whole
 // codes, which would judge encoders by its own arithmetic rather than the format's).
 #include <gtest/gtest.h>
@@ -11,6 +12,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#if HEIGHTPACK_HAVE_SQUISH
+#include <squish.h>
+#endif
 
 #include "heightpack/core/block_compression.hpp"
 #include "heightpack/core/mip.hpp"
@@ -137,6 +141,23 @@ std::vector<std::uint8_t> nvcompressBlocks(const ScratchDir& dir, const Image& u
     EXPECT_EQ(dds.size(), 128 + size_t((unorm.width + 3) / 4) * ((unorm.height + 3) / 4) * (bc5 ? 16 : 8));
     EXPECT_EQ(dds[87], bc5 ? '2' : '1');  // FourCC ATI1 / ATI2, no DX10 header
     return std::vector<std::uint8_t>(dds.begin() + 128, dds.end());
+}
+
+// libsquish's kBc4/kBc5 blocks of unorm values quantised to 8 bits (as it takes them), R (and G) of RGBA.
+std::vector<std::uint8_t> squishBlocks(const Image& unorm, bool bc5) {
+#if HEIGHTPACK_HAVE_SQUISH
+    std::vector<squish::u8> rgba(unorm.texelCount() * 4, 255);
+    for (size_t t = 0; t < unorm.texelCount(); ++t)
+        for (int c = 0; c < (bc5 ? 2 : 1); ++c)
+            rgba[t * 4 + size_t(c)] = squish::u8(std::lround(std::clamp(unorm.pixels[t * unorm.channels + size_t(c)], 0.0f, 1.0f) * 255));
+    const int flags = bc5 ? squish::kBc5 : squish::kBc4;
+    std::vector<std::uint8_t> blocks(size_t(squish::GetStorageRequirements(unorm.width, unorm.height, flags)));
+    squish::CompressImage(rgba.data(), unorm.width, unorm.height, blocks.data(), flags);
+    return blocks;
+#else
+    (void)unorm, (void)bc5;
+    return {};
+#endif
 }
 
 struct BlockErrors {
@@ -296,41 +317,53 @@ TEST(BlockFormats, DecodedValuesAgreeWithNvdecompress) {
     }
 }
 
-// Accuracy: on every map of the family, heightpack's BC4 is at least as accurate as nvcompress -bc4 given
-// the same values (RMS and worst, in units of the map's range: metres once scaled by it).
-TEST(BlockFormats, Bc4AtLeastAsAccurateAsNvcompressOverTheFamily) {
+// Accuracy: on every map of the family, heightpack's BC4 is at least as accurate as nvcompress -bc4 and
+// libsquish's kBc4 given the same values (RMS and worst, in units of the map's range: metres once scaled
+// by it): the rate of maps where it is worse is 0 against each.
+TEST(BlockFormats, Bc4AtLeastAsAccurateAsNvcompressAndSquishOverTheFamily) {
     if (!nvttInstalled()) HEIGHTPACK_WITHOUT_ORACLE("libnvtt-bin (nvcompress, nvdecompress) is not installed");
+    if (!HEIGHTPACK_HAVE_SQUISH) HEIGHTPACK_WITHOUT_ORACLE("libsquish-dev was not found when this test was configured");
     ScratchDir dir;
-    int rmsWorse = 0, worstWorse = 0, maps = 0;
-    double oursRms = 0, nvRms = 0;
+    int rmsWorse = 0, worstWorse = 0, rmsWorseSquish = 0, worstWorseSquish = 0, maps = 0;
+    double oursRms = 0, nvRms = 0, squishRms = 0;
     for (const auto& [name, heights] : heightFamily()) {
         const Image unorm = unormOf(heights);
         const std::vector<std::uint8_t> blocks = encodeBlocks(unorm, BlockFormat::Bc4, 0);
         const BlockErrors ours = unormErrors(unorm, referenceDecode(blocks, unorm.width, unorm.height, false));
         const BlockErrors nv = unormErrors(unorm, referenceDecode(nvcompressBlocks(dir, unorm, false), unorm.width, unorm.height, false));
+        const BlockErrors sq = unormErrors(unorm, referenceDecode(squishBlocks(unorm, false), unorm.width, unorm.height, false));
         rmsWorse += ours.rms > nv.rms;
         worstWorse += ours.worst > nv.worst + 1e-9;
-        oursRms += ours.rms, nvRms += nv.rms;
+        rmsWorseSquish += ours.rms > sq.rms;
+        worstWorseSquish += ours.worst > sq.worst + 1e-9;
+        oursRms += ours.rms, nvRms += nv.rms, squishRms += sq.rms;
         ++maps;
-        std::printf("%-50s ours rms %.5f worst %.5f  nvcompress rms %.5f worst %.5f\n", name.c_str(), ours.rms,
-                    ours.worst, nv.rms, nv.worst);
+        std::printf("%-50s ours rms %.5f worst %.5f  nvcompress rms %.5f worst %.5f  squish rms %.5f worst %.5f\n", name.c_str(),
+                    ours.rms, ours.worst, nv.rms, nv.worst, sq.rms, sq.worst);
     }
+    std::printf("bc4 maps %d: worse than nvcompress rms %d worst %d; worse than squish rms %d worst %d\n", maps, rmsWorse,
+                worstWorse, rmsWorseSquish, worstWorseSquish);
     EXPECT_GE(maps, 20);
     EXPECT_EQ(rmsWorse, 0) << "of " << maps << " maps";
     EXPECT_EQ(worstWorse, 0) << "of " << maps << " maps";
+    EXPECT_EQ(rmsWorseSquish, 0) << "of " << maps << " maps";
+    EXPECT_EQ(worstWorseSquish, 0) << "of " << maps << " maps";
     EXPECT_LT(oursRms, nvRms);
+    EXPECT_LT(oursRms, squishRms);
 }
 
-// BC5 xy normals of those maps: the components' RMS error within 1% of nvcompress -bc5's on every map
-// (the encoder gives a little RMS for a smaller worst error, see block_compression.cpp) and smaller over
-// the family, and the angle between decoded and float normals (z rebuilt), median and worst, no larger over the
-// family; the median no larger on any map (heightpack pairs x and y by the angle). The worst angle per map
-// can still go either way (3 of 31 to nvcompress, by up to 3 degrees): a steep normal's rebuilt z turns an
-// error in x or y into a large angle, and a block's worst texel is one among 16.
-TEST(BlockFormats, Bc5NormalsAtLeastAsAccurateAsNvcompressOverTheFamily) {
+// BC5 xy normals of those maps, against nvcompress -bc5 and libsquish's kBc5: the components' RMS error
+// within 1% of nvcompress's on every map (the encoder gives a little RMS for a smaller worst error, see
+// bc4_fit.cpp) and smaller over the family, and the angle between decoded and float normals (z rebuilt),
+// median and worst: the rate of maps where heightpack's is larger is 0 against each encoder, for the median
+// and for the worst angle (heightpack pairs x and y by the angle; a steep normal's rebuilt z turns an error
+// in x or y into a large angle, which encoders fitting each channel alone do not see).
+TEST(BlockFormats, Bc5NormalsAtLeastAsAccurateAsNvcompressAndSquishOverTheFamily) {
     if (!nvttInstalled()) HEIGHTPACK_WITHOUT_ORACLE("libnvtt-bin (nvcompress, nvdecompress) is not installed");
+    if (!HEIGHTPACK_HAVE_SQUISH) HEIGHTPACK_WITHOUT_ORACLE("libsquish-dev was not found when this test was configured");
     ScratchDir dir;
-    int rmsWorse = 0, medianWorse = 0, maps = 0;
+    int rmsWorse = 0, maps = 0;
+    int medianWorse[2] = {0, 0}, worstWorse[2] = {0, 0};  // against nvcompress, squish
     double oursMedians = 0, nvMedians = 0, oursWorst = 0, nvWorst = 0, oursRmsSum = 0, nvRmsSum = 0;
     for (const auto& [name, heights] : heightFamily()) {
         NormalOptions o;
@@ -358,19 +391,30 @@ TEST(BlockFormats, Bc5NormalsAtLeastAsAccurateAsNvcompressOverTheFamily) {
         const Image oursDecoded =
             referenceDecode(encodeBlocks(unorm, BlockFormat::Bc5, 0, NormalUnits{offset, scale}), unorm.width, unorm.height, true);
         const Image nvDecoded = referenceDecode(nvcompressBlocks(dir, unorm, true), unorm.width, unorm.height, true);
+        const Image squishDecoded = referenceDecode(squishBlocks(unorm, true), unorm.width, unorm.height, true);
         const auto ours = angles(oursDecoded);
-        const auto nv = angles(nvDecoded);
+        const std::pair<double, double> others[2] = {angles(nvDecoded), angles(squishDecoded)};
         const double oursRms = unormErrors(unorm, oursDecoded).rms, nvRms = unormErrors(unorm, nvDecoded).rms;
         rmsWorse += oursRms > 1.01 * nvRms;
-        medianWorse += ours.first > nv.first;
+        for (int k = 0; k < 2; ++k) {
+            medianWorse[k] += ours.first > others[k].first;
+            worstWorse[k] += ours.second > others[k].second;
+        }
         oursRmsSum += oursRms, nvRmsSum += nvRms;
-        oursMedians += ours.first, nvMedians += nv.first, oursWorst += ours.second, nvWorst += nv.second;
+        oursMedians += ours.first, nvMedians += others[0].first, oursWorst += ours.second, nvWorst += others[0].second;
         ++maps;
-        std::printf("%-50s ours rms %.5f median %.4f worst %.4f deg  nvcompress rms %.5f median %.4f worst %.4f deg\n",
-                    name.c_str(), oursRms, ours.first, ours.second, nvRms, nv.first, nv.second);
+        std::printf("%-50s ours rms %.5f median %.4f worst %.4f deg  nvcompress rms %.5f median %.4f worst %.4f deg  "
+                    "squish median %.4f worst %.4f deg\n",
+                    name.c_str(), oursRms, ours.first, ours.second, nvRms, others[0].first, others[0].second,
+                    others[1].first, others[1].second);
     }
+    std::printf("bc5 maps %d: worse than nvcompress median %d worst %d; worse than squish median %d worst %d\n", maps,
+                medianWorse[0], worstWorse[0], medianWorse[1], worstWorse[1]);
     EXPECT_EQ(rmsWorse, 0) << "of " << maps << " maps";
-    EXPECT_EQ(medianWorse, 0) << "of " << maps << " maps";
+    for (int k = 0; k < 2; ++k) {
+        EXPECT_EQ(medianWorse[k], 0) << (k ? "squish" : "nvcompress") << ", of " << maps << " maps";
+        EXPECT_EQ(worstWorse[k], 0) << (k ? "squish" : "nvcompress") << ", of " << maps << " maps";
+    }
     EXPECT_LT(oursRmsSum, nvRmsSum);
     EXPECT_LT(oursMedians, nvMedians);
     EXPECT_LE(oursWorst, nvWorst);

@@ -20,13 +20,17 @@ inline size_t blockImageBytes(int width, int height, BlockFormat format) {
 }
 
 // Encodes values in [0, 1] (image.channels == blockChannels(format); values outside are clamped) into
-// blocks, row by row of blocks. Endpoint pairs are tried around the values' range and around the
-// least-squares fit to the float values, in both of BC4's modes (eight interpolated values; six with 0
-// and 1); of those whose worst error is within a quarter code of the least, the one of least squared
-// error is kept. A block's texels past the image repeat its edge texels.
-// BC5 with `normals` (how unit values map to a normal's x and y: offset + scale * u): x and y are chosen
-// together, among each channel's candidates of least squared error, by the angle between the decoded normal
-// and the given one (z rebuilt), summed over the block and its worst; without, each channel as BC4's.
+// blocks, row by row of blocks, in two passes. Every block quickly: endpoint pairs at the values' range and
+// at the least-squares fit to the float values, the pair of least squared error kept. Then again,
+// thoroughly, the blocks whose worst error is within 75% of the image's worst (the few that decide it):
+// pairs around the range and the fit in both of BC4's modes (eight interpolated values; six with 0 and
+// 1); of those whose worst error is within a quarter code of the least, the one of least squared error.
+// A block's texels past the image repeat its edge texels.
+// BC5 with `normals` (how unit values map to a normal's x and y: offset + scale * u): the worst error is
+// the angle between the decoded normal and the given one (z rebuilt); thorough blocks choose x and y
+// together among each channel's candidates of least squared error, by that angle summed over the block
+// and its worst, then the codes of the texels that decide the worst angle by the angle. Without
+// `normals`, each channel as BC4's.
 // Block rows on `threads` threads (0: all cores); the bytes do not depend on it.
 struct NormalUnits {
     double offset = 0.0, scale = 1.0;
