@@ -3,6 +3,12 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -10,6 +16,55 @@
 extern char** environ;
 
 namespace heightpack::test {
+
+namespace {
+
+// One virtual X server for every windowed viewer run of this test program (ctest runs one suite per
+// process), started at the first and stopped at exit: xvfb-run around each run started a server, a
+// shell and xauth every time, about 0.2 s of CPU and half a second of waiting each. Empty when Xvfb
+// cannot start; view() then falls back to xvfb-run, whose own failure the test reports.
+class SharedXServer {
+public:
+    static const std::string& display() {
+        static SharedXServer server;
+        return server.display_;
+    }
+    SharedXServer(const SharedXServer&) = delete;
+    SharedXServer& operator=(const SharedXServer&) = delete;
+    ~SharedXServer() {
+        if (pid_ <= 0) return;
+        kill(pid_, SIGTERM);
+        waitpid(pid_, nullptr, 0);
+    }
+
+private:
+    SharedXServer() {
+        int fds[2];
+        if (pipe(fds) != 0) return;
+        const std::string fd = std::to_string(fds[1]);
+        pid_ = fork();
+        if (pid_ == 0) {
+            prctl(PR_SET_PDEATHSIG, SIGKILL);  // gone with this process, even when a sanitizer aborts it
+            close(fds[0]);
+            if (const int null = open("/dev/null", O_WRONLY); null >= 0) dup2(null, 1), dup2(null, 2);
+            // -displayfd: the server picks a free display and writes its number when it accepts clients.
+            execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1280x1024x24", "-nolisten", "tcp",
+                   static_cast<char*>(nullptr));
+            _exit(127);
+        }
+        close(fds[1]);
+        std::string number;
+        char c;
+        while (pid_ > 0 && read(fds[0], &c, 1) == 1 && c != '\n') number += c;
+        close(fds[0]);
+        if (!number.empty()) display_ = ":" + number;
+    }
+
+    pid_t pid_ = -1;
+    std::string display_;
+};
+
+}  // namespace
 
 std::vector<std::string> viewerEnvironment(const std::vector<std::string>& without, const std::vector<std::string>& with) {
     // Mesa's GL driver keeps small allocations until it is unloaded at exit, where LeakSanitizer cannot
@@ -39,6 +94,13 @@ std::vector<std::string> viewerEnvironment(const std::vector<std::string>& witho
 }
 
 ViewRun view(const std::vector<std::string>& args, const std::vector<std::string>& extraEnvironment) {
+    if (const std::string& display = SharedXServer::display(); !display.empty()) {
+        std::vector<std::string> argv = {HEIGHTPACK_VIEW_EXE};
+        argv.insert(argv.end(), args.begin(), args.end());
+        std::vector<std::string> with = {"DISPLAY=" + display};
+        with.insert(with.end(), extraEnvironment.begin(), extraEnvironment.end());
+        return runProcess(argv, viewerEnvironment({"DISPLAY", "WAYLAND_DISPLAY", "XAUTHORITY"}, with));
+    }
     std::vector<std::string> argv = {"xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", HEIGHTPACK_VIEW_EXE};
     argv.insert(argv.end(), args.begin(), args.end());
     return runProcess(argv, viewerEnvironment({}, extraEnvironment));

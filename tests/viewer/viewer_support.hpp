@@ -1,5 +1,5 @@
-// What the viewer tests share: running heightpack-view (under its own Xvfb, or with no display at all),
-// reading its screenshots back, and comparing pictures.
+// What the viewer tests share: running heightpack-view (under the test program's Xvfb, or with no display
+// at all), reading its screenshots back, and comparing pictures.
 #pragma once
 
 #include <string>
@@ -15,7 +15,8 @@ using ViewRun = ProcessResult;
 std::vector<std::string> viewerEnvironment(const std::vector<std::string>& without = {},
                                            const std::vector<std::string>& with = {});
 
-// Runs heightpack-view under its own virtual X server, with `extraEnvironment` ("NAME=value") added.
+// Runs heightpack-view in a window of the test program's virtual X server (one Xvfb for all its runs),
+// with `extraEnvironment` ("NAME=value") added.
 ViewRun view(const std::vector<std::string>& args, const std::vector<std::string>& extraEnvironment = {});
 
 // Runs heightpack-view with DISPLAY unset: no X server at all, so it draws through EGL.
