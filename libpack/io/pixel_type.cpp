@@ -109,6 +109,16 @@ PixelType pixelTypeOf(TexelFormat format) {
     }
 }
 
+BlockShape blockShapeOf(TexelFormat format) {
+    switch (pixelTypeOf(format)) {
+        case PixelType::Bc5: return {4, 16};
+        case PixelType::Astc4x4: return {4, 16};
+        case PixelType::Astc6x6: return {6, 16};
+        case PixelType::Astc8x8: return {8, 16};
+        default: return {4, 8};
+    }
+}
+
 TexelFormat astcTwoChannels(TexelFormat format) {
     switch (format) {
         case TexelFormat::Astc4x4R: return TexelFormat::Astc4x4Rg;

@@ -92,6 +92,12 @@ std::optional<TexelFormat> texelFormatFromDxgi(std::uint32_t dxgiFormat);
 // its R format for one channel, Rg for any other (refused by the planner unless two).
 TexelFormat texelFormatFor(int channels, PixelType type);
 PixelType pixelTypeOf(TexelFormat format);
+// A block format's block: its side in texels and its bytes (BC4: 4, 8; BC5: 4, 16; ASTC NxN: N, 16).
+struct BlockShape {
+    int side = 4, bytes = 8;
+};
+BlockShape blockShapeOf(TexelFormat format);
+inline bool isAstcFormat(TexelFormat format) { return isAstcType(pixelTypeOf(format)); }
 // An ASTC format's two-channel twin (Astc4x4R -> Astc4x4Rg); any other format as it is.
 TexelFormat astcTwoChannels(TexelFormat format);
 
