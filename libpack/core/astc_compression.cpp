@@ -35,6 +35,25 @@ Context makeContext(BlockFormat format, unsigned flags, unsigned threads) {
     return Context(context);
 }
 
+// The context last made on this thread, kept for the next image of the same block size, flags and thread
+// count: a chain's levels are encoded and decoded one after another, and making a context (astcenc's
+// tables of block modes and partitions) takes 10-30 ms, as long as encoding a 256x256 level.
+astcenc_context* reusedContext(BlockFormat format, unsigned flags, unsigned threads) {
+    struct Kept {
+        BlockFormat format;
+        unsigned flags, threads;
+        Context context;
+    };
+    thread_local std::vector<Kept> kept;
+    for (const Kept& k : kept)
+        if (k.format == format && k.flags == flags && k.threads == threads) return k.context.get();
+    Context made = makeContext(format, flags, threads);
+    if (!made) return nullptr;
+    if (kept.size() >= 4) kept.erase(kept.begin());  // an encoder and a decoder a chain, and the other kind's
+    kept.push_back({format, flags, threads, std::move(made)});
+    return kept.back().context.get();
+}
+
 float unit(float v) { return v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v; }
 
 }  // namespace
@@ -42,8 +61,8 @@ float unit(float v) { return v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v; }
 std::vector<std::uint8_t> encodeAstc(const Image& image, BlockFormat format, int threads, bool normalMap) {
     const int side = blockSide(format);
     const int across = (image.width + side - 1) / side, down = (image.height + side - 1) / side;
-    const unsigned workers = unsigned(std::clamp(resolveThreadCount(threads), 1, std::max(1, across * down)));
-    const Context context = makeContext(format, normalMap && image.channels == 2 ? ASTCENC_FLG_MAP_NORMAL : 0, workers);
+    const unsigned workers = unsigned(std::max(1, resolveThreadCount(threads)));  // the same for every level
+    astcenc_context* const context = reusedContext(format, normalMap && image.channels == 2 ? ASTCENC_FLG_MAP_NORMAL : 0, workers);
     if (!context) return {};
     std::vector<std::uint8_t> out(blockImageBytes(image.width, image.height, format));
     const astcenc_swizzle identity{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
@@ -68,25 +87,26 @@ std::vector<std::uint8_t> encodeAstc(const Image& image, BlockFormat format, int
         std::vector<astcenc_error> results(workers, ASTCENC_SUCCESS);
         std::vector<std::thread> pool;
         for (unsigned t = 1; t < workers; ++t)
-            pool.emplace_back([&, t] { results[t] = astcenc_compress_image(context.get(), &bandImage, &identity, target, length, t); });
-        results[0] = astcenc_compress_image(context.get(), &bandImage, &identity, target, length, 0);
+            pool.emplace_back([&, t] { results[t] = astcenc_compress_image(context, &bandImage, &identity, target, length, t); });
+        results[0] = astcenc_compress_image(context, &bandImage, &identity, target, length, 0);
         for (std::thread& t : pool) t.join();
+        // Reset whatever happened: the context is kept for the next image.
+        if (astcenc_compress_reset(context) != ASTCENC_SUCCESS) return {};
         for (const astcenc_error e : results)
             if (e != ASTCENC_SUCCESS) return {};
-        if (astcenc_compress_reset(context.get()) != ASTCENC_SUCCESS) return {};
     }
     return out;
 }
 
 Image decodeAstc(const std::uint8_t* bytes, int width, int height, BlockFormat format, int channels) {
     Image decoded(width, height, channels);
-    const Context context = makeContext(format, ASTCENC_FLG_DECOMPRESS_ONLY, 1);
+    astcenc_context* const context = reusedContext(format, ASTCENC_FLG_DECOMPRESS_ONLY, 1);
     if (!context) return decoded;
     std::vector<float> rgba(size_t(width) * size_t(height) * 4);
     void* slice = rgba.data();
     astcenc_image image{unsigned(width), unsigned(height), 1, ASTCENC_TYPE_F32, &slice};
     const astcenc_swizzle identity{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
-    if (astcenc_decompress_image(context.get(), bytes, blockImageBytes(width, height, format), &image, &identity, 0) !=
+    if (astcenc_decompress_image(context, bytes, blockImageBytes(width, height, format), &image, &identity, 0) !=
         ASTCENC_SUCCESS)
         return decoded;
     for (size_t i = 0; i < size_t(width) * size_t(height); ++i) {
