@@ -315,7 +315,8 @@ std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, i
 
 Image decodeBlocks(const std::uint8_t* bytes, int width, int height, BlockFormat format, int channels) {
     if (isAstc(format)) return decodeAstc(bytes, width, height, format, channels);
-    const int blockSize = blockBytes(format);  // channels: blockChannels(format), as the callers pass
+    channels = blockChannels(format);
+    const int blockSize = blockBytes(format);
     const int across = (width + 3) / 4;
     Image image(width, height, channels);
     float v[16];

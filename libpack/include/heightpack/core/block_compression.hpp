@@ -46,10 +46,10 @@ struct NormalUnits {
 std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, int threads = 0,
                                        std::optional<NormalUnits> normals = std::nullopt);
 
-// Decodes blocks into a width x height image of `channels` channels (blockChannels(format) for BC4/BC5), by
-// the specification's rules: RED_0 = red_0 / 255, the interpolated values (6 RED_0 + RED_1) / 7 ... in
-// float; ASTC by astcenc's decoder (R, or R and A for two channels).
-Image decodeBlocks(const std::uint8_t* bytes, int width, int height, BlockFormat format, int channels);
+// Decodes blocks into a width x height image, by the specification's rules: RED_0 = red_0 / 255, the
+// interpolated values (6 RED_0 + RED_1) / 7 ... in float, blockChannels(format) channels; ASTC by astcenc's
+// decoder into `channels` channels (1: R; 2: R and A), which BC4 and BC5 ignore.
+Image decodeBlocks(const std::uint8_t* bytes, int width, int height, BlockFormat format, int channels = 1);
 
 // One BC4 block's 16 values (texel (x, y) at 4y + x) from its 8 bytes.
 void decodeBc4Block(const std::uint8_t* block, float values[16]);
