@@ -102,16 +102,23 @@ Image decodeAstc(const std::uint8_t* bytes, int width, int height, BlockFormat f
     Image decoded(width, height, channels);
     astcenc_context* const context = reusedContext(format, ASTCENC_FLG_DECOMPRESS_ONLY, 1);
     if (!context) return decoded;
-    std::vector<float> rgba(size_t(width) * size_t(height) * 4);
-    void* slice = rgba.data();
-    astcenc_image image{unsigned(width), unsigned(height), 1, ASTCENC_TYPE_F32, &slice};
+    const int side = blockSide(format), across = (width + side - 1) / side, down = (height + side - 1) / side;
     const astcenc_swizzle identity{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
-    if (astcenc_decompress_image(context, bytes, blockImageBytes(width, height, format), &image, &identity, 0) !=
-        ASTCENC_SUCCESS)
-        return decoded;
-    for (size_t i = 0; i < size_t(width) * size_t(height); ++i) {
-        decoded.pixels[i * size_t(channels)] = rgba[i * 4];
-        if (channels == 2) decoded.pixels[i * 2 + 1] = rgba[i * 4 + 3];
+    std::vector<float> rgba;  // a band of block rows at a time, as encoded: not four floats for every texel
+    for (int band = 0; band < down; band += kBandBlockRows) {
+        const int y0 = band * side, rows = std::min(kBandBlockRows * side, height - y0);
+        rgba.resize(size_t(width) * size_t(rows) * 4);
+        void* slice = rgba.data();
+        astcenc_image image{unsigned(width), unsigned(rows), 1, ASTCENC_TYPE_F32, &slice};
+        const size_t length = size_t(across) * size_t(std::min(kBandBlockRows, down - band)) * 16;
+        if (astcenc_decompress_image(context, bytes + size_t(band) * size_t(across) * 16, length, &image, &identity, 0) !=
+            ASTCENC_SUCCESS)
+            return decoded;
+        float* out = decoded.row(y0);
+        for (size_t i = 0; i < size_t(width) * size_t(rows); ++i) {
+            out[i * size_t(channels)] = rgba[i * 4];
+            if (channels == 2) out[i * 2 + 1] = rgba[i * 4 + 3];
+        }
     }
     return decoded;
 }
