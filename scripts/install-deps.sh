@@ -27,6 +27,8 @@ packages=(
   bazel-bootstrap nginx                         # the Bazel plan's test (label bazel): Bazel 4.2.3, and nginx's
                                                 # WebDAV module as its HTTP cache
   groff-base                                    # tests: rendering the man pages (tests/manual)
+  chromium                                      # the browser test (label browser): three.js's KTX2Loader in
+                                                # headless Chromium, WebGL 2 on its SwiftShader
 )
 
 missing=()

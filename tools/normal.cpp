@@ -54,6 +54,7 @@ public:
                            "with --pixel-type auto: the worst lookup error allowed over the chain; a number in normal "
                            "units (0.001), or a length (1mm, 0.5cm): the tilt a height error that large makes across one "
                            "texel, length / texel size");
+        addBlockChoiceOption(*cmd, options_.storage.allowBlockCompression);
         addEnumOption(*cmd, "--layout", options_.layout,
                       "rgb: x, y, z; xy: two channels, z rebuilt in the shader as sqrt(1 - x^2 - y^2) (mip-mapped "
                       "outputs, no alpha)",
@@ -107,6 +108,10 @@ public:
             !problem.empty())
             return usage(problem);
         if (const std::string problem = blockLayoutProblem(o.storage.pixelType, options_.layout); !problem.empty())
+            return usage(problem);
+        if (const std::string problem =
+                blockChoiceProblem(pixelType_, o.storage.allowBlockCompression, options_.layout, {output_});
+            !problem.empty())
             return usage(problem);
         o.resizeToPowerOfTwo = resize_ == "pow2";
         applyChannel(channel_, o.load);

@@ -38,6 +38,7 @@ public:
                                  ->capture_default_str()
                                  ->check(CLI::IsMember(compressionNames()));
         addPixelTypeOption(*cmd, pixelType_, true, &tolerance_);
+        addBlockChoiceOption(*cmd, options_.storage.allowBlockCompression);
         addLengthOption(*cmd, "--height", options_.heightRange, 1e3,
                         "how far a stored 1.0 stands above a stored 0.0, in metres: recorded, and lookup errors and "
                         "--tolerance are then in metres");
@@ -66,6 +67,8 @@ public:
             "  heightpack pack swell.png --pixel-type half -o swell.dds\n"
             "  heightpack pack swell.png --pixel-type auto --tolerance 1mm --height 6m -o swell.ktx2\n"
             "  heightpack pack swell.png --layout plain --pixel-type uint16 -o swell_r16.ktx2\n"
+            "  heightpack pack swell.png --layout plain --pixel-type auto --allow-block-compression --tolerance 5mm "
+            "--height 6m -o swell.ktx2\n"
             "  heightpack pack sea.####.exr --displacement -o sea_packed.exr\n"
             "  heightpack pack sea.####.exr --displacement --foam -o sea_packed.exr\n"
             "  heightpack pack sea.####.exr --displacement --foam --pixel-type half -o sea.ktx2   (one array: heights, Dx, Dy, Foam)\n"
@@ -90,6 +93,10 @@ public:
                                  compressionOption_->count() > 0, options_.storage.supercompression);
         if (!containerProblem.empty()) return usage(containerProblem);
         if (const std::string problem = blockLayoutProblem(options_.storage.pixelType, options_.layout); !problem.empty())
+            return usage(problem);
+        if (const std::string problem = blockChoiceProblem(pixelType_, options_.storage.allowBlockCompression,
+                                                           options_.layout, {output_, options_.plainOutput});
+            !problem.empty())
             return usage(problem);
         options_.resizeToPowerOfTwo = resize_ == "pow2";
         setLibraryThreads(common_.threads);

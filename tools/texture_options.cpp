@@ -29,6 +29,29 @@ void addPixelTypeOption(CLI::App& cmd, PixelTypeRequest& pixelType, bool withAut
                                                 "length (1mm, 0.5cm) when --height is given, else a number in stored units");
 }
 
+void addBlockChoiceOption(CLI::App& cmd, bool& allow) {
+    cmd.add_flag("--allow-block-compression", allow,
+                 "with --pixel-type auto: weigh bc4 (plain heights) and bc5 (xy normals) too, the smallest within "
+                 "--tolerance; .ktx2 and .dds only");
+}
+
+std::string blockChoiceProblem(PixelTypeRequest pixelType, bool allow, Layout layout, const std::vector<std::string>& outputs) {
+    if (!allow) return {};
+    if (pixelType != PixelTypeRequest::Auto)
+        return std::string("--allow-block-compression is for --pixel-type auto, which weighs the block formats with the "
+                           "others; leave it out with --pixel-type ") + nameOf(pixelType);
+    if (layout != Layout::Plain && layout != Layout::Xy)
+        return std::string("--allow-block-compression: the ") + nameOf(layout) +
+               " layout cannot be block-compressed (write --layout plain for heights, --layout xy for normals)";
+    for (const std::string& path : outputs) {
+        const auto c = containerForPath(path);
+        if (!path.empty() && c != Container::Ktx2 && c != Container::Dds)
+            return path + ": --allow-block-compression needs a .ktx2 or .dds output (an EXR has no block-compressed "
+                          "texels)";
+    }
+    return {};
+}
+
 namespace {
 
 std::optional<double> plainNumber(const std::string& text) {

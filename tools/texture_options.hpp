@@ -56,6 +56,13 @@ std::string toleranceInStoredUnits(PixelTypeRequest pixelType, const std::string
 // it into normal units, the tilt it makes across one texel). Returns what is wrong, for usage(), or empty.
 std::string normalTolerance(PixelTypeRequest pixelType, const std::string& text, double& normalUnits, double& metres);
 
+// Adds --allow-block-compression, bound to allow: with --pixel-type auto, the block formats are weighed too.
+void addBlockChoiceOption(CLI::App& cmd, bool& allow);
+
+// What is wrong with --allow-block-compression as given (allow), for usage(), or empty: it needs
+// --pixel-type auto, a layout a block format holds (plain heights, xy normals), and .ktx2 or .dds outputs.
+std::string blockChoiceProblem(PixelTypeRequest pixelType, bool allow, Layout layout, const std::vector<std::string>& outputs);
+
 // The pixel type to judge the containers by: auto chooses among those each container holds.
 PixelType requestedPixelType(PixelTypeRequest pixelType);
 

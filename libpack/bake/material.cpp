@@ -15,6 +15,7 @@ using Json = nlohmann::ordered_json;  // keys stay in the order written: the sch
 Json textureJson(const MaterialTexture& t) {
     Json j = {{"file", t.file}, {"width", t.width}, {"height", t.height}, {"levels", t.levels}};
     if (t.frames > 1) j["frames"] = t.frames;
+    if (t.pixelType) j["pixelType"] = nameOf(*t.pixelType);  // only where not float: older files keep their bytes
     return j;
 }
 
@@ -83,6 +84,10 @@ public:
         out.height = integer(t, "height", w, 1, kMaxSide);
         out.levels = integer(t, "levels", w, 1, 64);
         out.frames = t.contains("frames") ? integer(t, "frames", w, 1, kMaxFrames) : 1;
+        if (t.contains("pixelType")) {
+            out.pixelType = parseName<PixelType>(text(t, "pixelType", w));
+            if (!out.pixelType) throw missing(w + "pixelType (one of: " + joinedNames<PixelType>() + ")");
+        }
         return out;
     }
     Error missing(const std::string& key) const {

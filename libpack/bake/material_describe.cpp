@@ -24,6 +24,7 @@ Result<MaterialTexture> describeTexture(const std::string& folder, const std::st
     t.levels = static_cast<int>(layout->levelSizes.size());
     t.frames = frames;
     const TextureDescription& described = layout->description;
+    if (described.pixelType != PixelType::Float) t.pixelType = described.pixelType;
     if (loopPeriod) *loopPeriod = described.units.loopPeriod.value_or(0.0);
     if (horizontalDisplacement) *horizontalDisplacement = described.displacement == Layout::Neighbour4;
     if (foam) *foam = described.foam == Layout::Neighbour4;

@@ -53,6 +53,11 @@ Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, con
                                   const ChainValues& chains, const TextureWriteOptions& options) {
     const double tolerance = options.storage.tolerance;
     if (!(tolerance > 0.0)) return measure(outputs, content, chains, options, options.storage.pixelType);
+    if (options.storage.allowBlockCompression)
+        for (const PixelType type : {PixelType::Bc4, PixelType::Bc5}) {  // fewest bytes a texel first
+            auto candidate = measure(outputs, content, chains, options, type);
+            if (candidate && candidate->worst() <= tolerance) return candidate;
+        }
     std::optional<StoredChain> best;
     for (const PixelType type : {PixelType::Half, PixelType::Uint16}) {  // two bytes a component
         auto candidate = measure(outputs, content, chains, options, type);

@@ -2,147 +2,143 @@
 #include "heightpack/io/engine_support.hpp"
 
 #include <string>
-#include <string_view>
 #include <utility>
 
 namespace heightpack {
 
 namespace {
 
-// The texel formats heightpack writes to KTX2 and DDS, by what a loader tells apart.
-// R16G16_SNORM: xy normals in uint16 as earlier versions wrote them (read, no longer written).
-enum class Texel { Rgba32F, Rgba16F, Rgba16Unorm, R32F, R16F, R16Unorm, Rg32F, Rg16F, Rg16Unorm, Rg16Snorm, Other };
-
-Texel texelOf(std::string_view name) {
-    struct Entry {
-        std::string_view vk, dxgi;
-        Texel texel;
-    };
-    static constexpr Entry kTable[] = {
-        {"R32G32B32A32_SFLOAT", "R32G32B32A32_FLOAT", Texel::Rgba32F}, {"R16G16B16A16_SFLOAT", "R16G16B16A16_FLOAT", Texel::Rgba16F},
-        {"R16G16B16A16_UNORM", "R16G16B16A16_UNORM", Texel::Rgba16Unorm}, {"R32_SFLOAT", "R32_FLOAT", Texel::R32F},
-        {"R16_SFLOAT", "R16_FLOAT", Texel::R16F}, {"R16_UNORM", "R16_UNORM", Texel::R16Unorm},
-        {"R32G32_SFLOAT", "R32G32_FLOAT", Texel::Rg32F}, {"R16G16_SFLOAT", "R16G16_FLOAT", Texel::Rg16F},
-        {"R16G16_UNORM", "R16G16_UNORM", Texel::Rg16Unorm}, {"R16G16_SNORM", "R16G16_SNORM", Texel::Rg16Snorm},
-    };
-    for (const Entry& e : kTable)
-        if (name == std::string("VK_FORMAT_").append(e.vk) || name == std::string("DXGI_FORMAT_").append(e.dxgi)) return e.texel;
-    return Texel::Other;
+bool isFloat(TexelFormat t) {
+    const ComponentKind k = texelFormatInfo(t).kind;
+    return k == ComponentKind::Float32 || k == ComponentKind::Float16;
 }
-
-bool isFloat(Texel t) {
-    return t == Texel::Rgba32F || t == Texel::Rgba16F || t == Texel::R32F || t == Texel::R16F || t == Texel::Rg32F || t == Texel::Rg16F;
-}
+bool isUnorm16(TexelFormat t) { return texelFormatInfo(t).kind == ComponentKind::Unorm16; }
+bool isRgtc(TexelFormat t) { return t == TexelFormat::Bc4Unorm || t == TexelFormat::Bc5Unorm; }
 
 // The same channels in half floats, which every engine that reads KTX2 or DDS floats loads.
-std::string halfOf(Texel t, const char* container) {
-    const char* channels = t == Texel::Rgba16Unorm ? "RGBA" : t == Texel::R16Unorm ? "R" : "RG";
-    return std::string(container) + " " + channels + " half or float";
+std::string halfOf(TexelFormat t, const char* container) {
+    const int channels = texelFormatInfo(t).channels;
+    const char* names = channels == 1 ? "R" : channels == 2 ? "RG" : "RGBA";
+    return std::string(container) + " " + names + " half or float";
 }
-
-enum class FileKind { Ktx2, Dds, Exr, Png, Other };
 
 EngineVerdict verdict(EngineSupport s, std::string why, std::string alternative = {}) {
     return {s, std::move(why), std::move(alternative)};
 }
 
-EngineVerdict threeJs(FileKind c, Texel t, bool mipmappedExr, bool png16) {
+EngineVerdict threeJs(FileContainer c, TexelFormat t, bool mipmappedExr, bool png16) {
     switch (c) {
-        case FileKind::Ktx2:
+        case FileContainer::Ktx2:
             if (isFloat(t)) return verdict(EngineSupport::Loads, "KTX2Loader uploads it as stored, mip levels and all");
-            if (t == Texel::Rgba16Unorm)
+            if (t == TexelFormat::Rgba16Unorm)
                 return verdict(EngineSupport::Partial, "KTX2Loader loads it only where the GPU has EXT_texture_norm16", halfOf(t, "KTX2"));
+            if (isRgtc(t))
+                return verdict(EngineSupport::Partial,
+                               "KTX2Loader uploads the blocks as stored, mip levels and all, where the WebGL context has "
+                               "EXT_texture_compression_rgtc (desktop GPUs; few phones)",
+                               halfOf(t, "KTX2"));
             return verdict(EngineSupport::Refuses, "KTX2Loader's only 16-bit normalised format is RGBA (R16G16B16A16_UNORM)",
                            halfOf(t, "KTX2"));
-        case FileKind::Dds:
-            return verdict(EngineSupport::Refuses, "DDSLoader reads block-compressed and 8-bit RGBA DDS only, no DX10 float or 16-bit format",
-                           isFloat(t) ? "KTX2 of the same format" : halfOf(t, "KTX2"));
-        case FileKind::Exr:
+        case FileContainer::Dds:
+            return verdict(EngineSupport::Refuses,
+                           "DDSLoader reads DXT1/3/5, ETC1 and 8-bit RGBA DDS, and of the DX10 formats BC6H only",
+                           isFloat(t) || isRgtc(t) ? "KTX2 of the same format" : halfOf(t, "KTX2"));
+        case FileContainer::Exr:
             if (mipmappedExr) return verdict(EngineSupport::Partial, "EXRLoader reads the top level only: the file's mip levels are lost", "KTX2 float or half");
             return verdict(EngineSupport::Loads, "EXRLoader reads scanline and tiled EXR, float or half");
-        case FileKind::Png:
+        case FileContainer::Png:
             if (png16) return verdict(EngineSupport::Partial, "the browser decodes a PNG to 8 bits per channel", "KTX2 R half or float");
             return verdict(EngineSupport::Loads, "an 8-bit image, as the browser decodes it");
-        case FileKind::Other: break;
+        case FileContainer::OtherImage: break;
     }
     return verdict(EngineSupport::Unknown, "not a container heightpack knows three.js's loaders for");
 }
 
-EngineVerdict babylon(FileKind c, Texel t, bool tiledExr, bool png16) {
+EngineVerdict babylon(FileContainer c, TexelFormat t, bool tiledExr, bool png16) {
     switch (c) {
-        case FileKind::Ktx2:
+        case FileContainer::Ktx2:
             return verdict(EngineSupport::Refuses, "its KTX2 decoder transcodes Basis (UASTC, ETC1S) files only", "DDS RGBA float or half");
-        case FileKind::Dds:
-            if (t == Texel::Rgba32F || t == Texel::Rgba16F)
+        case FileContainer::Dds:
+            if (t == TexelFormat::Rgba32F || t == TexelFormat::Rgba16F)
                 return verdict(EngineSupport::Partial,
                                "loads with the file's mip levels, but flips the rows (breaking the neighbour order) unless invertY is false");
-            return verdict(EngineSupport::Refuses, "its DDS loader reads RGBA float and half only (an empty texture otherwise)", "DDS RGBA float or half");
-        case FileKind::Exr:
+            return verdict(EngineSupport::Refuses,
+                           "its DDS loader reads DXT1/3/5 blocks and, of the DX10 formats, RGBA float and half only (an empty texture otherwise)",
+                           "DDS RGBA float or half");
+        case FileContainer::Exr:
             if (tiledExr) return verdict(EngineSupport::Refuses, "its EXR loader rejects tiled files", "DDS RGBA float or half");
             return verdict(EngineSupport::Loads, "its EXR loader reads scanline files (it makes its own mip levels)");
-        case FileKind::Png:
+        case FileContainer::Png:
             if (png16) return verdict(EngineSupport::Partial, "the browser decodes a PNG to 8 bits per channel", "DDS RGBA float or half");
             return verdict(EngineSupport::Loads, "an 8-bit image, as the browser decodes it");
-        case FileKind::Other: break;
+        case FileContainer::OtherImage: break;
     }
     return verdict(EngineSupport::Unknown, "not a container heightpack knows Babylon.js's loaders for");
 }
 
-EngineVerdict unreal(FileKind c, Texel, bool mipmappedExr, bool png16) {
+EngineVerdict unreal(FileContainer c, TexelFormat, bool mipmappedExr, bool png16) {
     switch (c) {
-        case FileKind::Ktx2: return verdict(EngineSupport::Refuses, "Unreal imports no KTX2 file", "a scanline EXR");
-        case FileKind::Dds: return verdict(EngineSupport::Unknown, "Unreal imports .dds, but which DXGI formats it keeps is not documented");
-        case FileKind::Exr:
+        case FileContainer::Ktx2: return verdict(EngineSupport::Refuses, "Unreal imports no KTX2 file", "a scanline EXR");
+        case FileContainer::Dds:
+            return verdict(EngineSupport::Unknown,
+                           "Unreal imports .dds, but which DXGI formats it keeps as stored, and whether it compresses blocks again when cooking, is not documented");
+        case FileContainer::Exr:
             if (mipmappedExr) return verdict(EngineSupport::Unknown, "Unreal imports EXR (HDR); whether it keeps the file's mip levels is not documented");
             return verdict(EngineSupport::Loads, "Unreal imports EXR as an HDR texture");
-        case FileKind::Png:
+        case FileContainer::Png:
             return png16 ? verdict(EngineSupport::Loads, "Unreal imports a 16-bit grey PNG as G16")
                          : verdict(EngineSupport::Loads, "an 8-bit image");
-        case FileKind::Other: break;
+        case FileContainer::OtherImage: break;
     }
     return verdict(EngineSupport::Unknown, "not a container heightpack knows Unreal's importers for");
 }
 
-EngineVerdict unity(FileKind c, Texel, bool mipmappedExr, bool png16) {
+EngineVerdict unity(FileContainer c, TexelFormat t, bool mipmappedExr, bool png16) {
     switch (c) {
-        case FileKind::Ktx2:
+        case FileContainer::Ktx2:
             return verdict(EngineSupport::Refuses, "Unity reads KTX2 through the KtxUnity package, which reads supercompressed (Basis) files only", "a scanline EXR");
-        case FileKind::Dds: return verdict(EngineSupport::Unknown, "Unity imports .dds raw, but which DXGI formats is not documented");
-        case FileKind::Exr:
+        case FileContainer::Dds:
+            if (isRgtc(t))
+                return verdict(EngineSupport::Loads,
+                               "IHVImageFormatImporter imports a .dds's compressed blocks as they are, bypassing Unity's texture importer");
+            return verdict(EngineSupport::Unknown, "Unity imports .dds raw, but which DXGI formats is not documented");
+        case FileContainer::Exr:
             if (mipmappedExr) return verdict(EngineSupport::Unknown, "Unity imports EXR; whether it keeps the file's mip levels is not documented");
             return verdict(EngineSupport::Loads, "Unity imports EXR as an HDR texture");
-        case FileKind::Png:
+        case FileContainer::Png:
             return png16 ? verdict(EngineSupport::Unknown, "whether Unity keeps a PNG's 16 bits is not documented")
                          : verdict(EngineSupport::Loads, "an 8-bit image");
-        case FileKind::Other: break;
+        case FileContainer::OtherImage: break;
     }
     return verdict(EngineSupport::Unknown, "not a container heightpack knows Unity's importers for");
 }
 
-EngineVerdict godot(FileKind c, Texel t, bool mipmappedExr, bool png16) {
+EngineVerdict godot(FileContainer c, TexelFormat t, bool mipmappedExr, bool png16) {
     switch (c) {
-        case FileKind::Ktx2:
-        case FileKind::Dds: {
-            const char* name = c == FileKind::Ktx2 ? "KTX2" : "DDS";
+        case FileContainer::Ktx2:
+        case FileContainer::Dds: {
+            const char* name = c == FileContainer::Ktx2 ? "KTX2" : "DDS";
             if (isFloat(t)) return verdict(EngineSupport::Loads, std::string("its ") + name + " loader keeps the format and the file's mip levels");
-            if (t == Texel::Rgba16Unorm || t == Texel::R16Unorm || t == Texel::Rg16Unorm)
+            if (isRgtc(t))
+                return verdict(EngineSupport::Loads, std::string("its ") + name + " loader keeps the BC4/BC5 (RGTC) blocks and the file's mip levels");
+            if (isUnorm16(t))
                 return verdict(EngineSupport::Partial, std::string("only the newest Godot 4 releases read 16-bit integer ") + name, halfOf(t, name));
             return verdict(EngineSupport::Refuses, std::string("its ") + name + " loader has no two-channel signed 16-bit format", halfOf(t, name));
         }
-        case FileKind::Exr:
+        case FileContainer::Exr:
             if (mipmappedExr)
                 return verdict(EngineSupport::Partial, "its EXR loader reads the top level only; the importer makes its own mip levels", "KTX2 or DDS float or half");
             return verdict(EngineSupport::Loads, "its EXR loader reads scanline EXR, float or half");
-        case FileKind::Png:
+        case FileContainer::Png:
             if (png16) return verdict(EngineSupport::Partial, "Godot imports PNG at 8 bits per channel", "KTX2 R half or float");
             return verdict(EngineSupport::Loads, "an 8-bit image");
-        case FileKind::Other: break;
+        case FileContainer::OtherImage: break;
     }
     return verdict(EngineSupport::Unknown, "not a container heightpack knows Godot's loaders for");
 }
 
 // An array texture (the heights, Dx, Dy, foam as layers of one texture) in a loader that takes its format.
-EngineVerdict arrayOf(Engine engine, FileKind c, EngineVerdict single) {
+EngineVerdict arrayOf(Engine engine, FileContainer c, EngineVerdict single) {
     if (single.support == EngineSupport::Refuses || single.support == EngineSupport::Unknown) return single;
     switch (engine) {
         case Engine::ThreeJs:  // only KTX2 gets here
@@ -153,7 +149,7 @@ EngineVerdict arrayOf(Engine engine, FileKind c, EngineVerdict single) {
             return verdict(EngineSupport::Partial,
                            "its DDS loader reads no array size: layer 0, the heights, loads as a 2D texture (with invertY = false)");
         case Engine::Godot:
-            if (c == FileKind::Ktx2)
+            if (c == FileContainer::Ktx2)
                 return verdict(EngineSupport::Refuses, "its KTX2 loader refuses array textures", "DDS of the same format");
             return verdict(single.support, "its DDS loader makes a Texture2DArray of a DX10 array, the file's mip levels and all" +
                                                (single.support == EngineSupport::Partial ? "; " + single.why : std::string()),
@@ -167,23 +163,21 @@ EngineVerdict arrayOf(Engine engine, FileKind c, EngineVerdict single) {
 }  // namespace
 
 EngineVerdict engineSupport(Engine engine, const TextureHeader& header, int levels) {
-    const std::string_view format = header.format;
-    const size_t space = format.find(' ');
-    const std::string_view container = format.substr(0, space);
-    const Texel texel = space == std::string_view::npos ? Texel::Other : texelOf(format.substr(space + 1));
-    const FileKind c = container == "ktx2" ? FileKind::Ktx2 : container == "dds" ? FileKind::Dds
-                        : container == "openexr" ? FileKind::Exr : container == "png" ? FileKind::Png : FileKind::Other;
-    if ((c == FileKind::Ktx2 || c == FileKind::Dds) && texel == Texel::Other)
+    const FileContainer c = header.container;
+    const bool gpuContainer = c == FileContainer::Ktx2 || c == FileContainer::Dds;
+    if (gpuContainer && !header.texelFormat)
         return verdict(EngineSupport::Unknown, "no entry for this texel format in heightpack's engines table");
-    const bool mipmappedExr = c == FileKind::Exr && levels > 1;
-    const bool png16 = c == FileKind::Png && header.pixelType == "uint16";
+    // EXR and PNG have no texel format; the loaders below ask for one only of KTX2 and DDS.
+    const TexelFormat t = header.texelFormat.value_or(TexelFormat::Rgba32F);
+    const bool mipmappedExr = c == FileContainer::Exr && levels > 1;
+    const bool png16 = c == FileContainer::Png && header.description.componentBytes == 2;
     EngineVerdict single;
     switch (engine) {
-        case Engine::ThreeJs: single = threeJs(c, texel, mipmappedExr, png16); break;
-        case Engine::Babylon: single = babylon(c, texel, c == FileKind::Exr && header.storedInTiles, png16); break;
-        case Engine::Unreal: single = unreal(c, texel, mipmappedExr, png16); break;
-        case Engine::Unity: single = unity(c, texel, mipmappedExr, png16); break;
-        case Engine::Godot: single = godot(c, texel, mipmappedExr, png16); break;
+        case Engine::ThreeJs: single = threeJs(c, t, mipmappedExr, png16); break;
+        case Engine::Babylon: single = babylon(c, t, c == FileContainer::Exr && header.storedInTiles, png16); break;
+        case Engine::Unreal: single = unreal(c, t, mipmappedExr, png16); break;
+        case Engine::Unity: single = unity(c, t, mipmappedExr, png16); break;
+        case Engine::Godot: single = godot(c, t, mipmappedExr, png16); break;
     }
     return header.layerNames.empty() ? single : arrayOf(engine, c, std::move(single));
 }

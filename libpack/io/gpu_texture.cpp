@@ -59,6 +59,8 @@ Result<TextureFile> readGpuTextureFile(const std::string& path) {
     file.path = path;
     const bool ktx2 = texture->container == Container::Ktx2;
     file.format = std::string(containerName(texture->container)) + " " + (ktx2 ? f.vkName : f.dxgiName);
+    file.container = ktx2 ? FileContainer::Ktx2 : FileContainer::Dds;
+    file.texelFormat = texture->format;
     if (texture->supercompression == Supercompression::Zstd) file.format += " zstd";
     file.pixelType = pixelTypeName(pixelTypeOf(texture->format));
     file.layerNames = texture->layerNames;

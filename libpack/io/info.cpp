@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <string_view>
 
 #include "heightpack/io/gpu_texture.hpp"
 #include "heightpack/io/files.hpp"
@@ -17,6 +18,13 @@ namespace heightpack {
 
 namespace {
 
+// The decoder's name for the file's format, read once into a type.
+FileContainer containerOfDecoder(std::string_view formatName) {
+    if (formatName == "openexr") return FileContainer::Exr;
+    if (formatName == "png") return FileContainer::Png;
+    return FileContainer::OtherImage;
+}
+
 // Opens path and fills header from its first level; the caller walks the levels.
 Result<detail::OpenedImage> openTexture(const std::string& path, TextureHeader& header) {
     auto opened = detail::openImage(path, detail::SizeLimits{});
@@ -24,6 +32,7 @@ Result<detail::OpenedImage> openTexture(const std::string& path, TextureHeader& 
     detail::OpenedImage in = std::move(*opened);
     header.path = path;
     header.format = in->format_name();
+    header.container = containerOfDecoder(header.format);
     const detail::SourceSpec& top = in->spec();
     header.pixelType = top.format.c_str();
     header.channelNames = top.channelnames;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "heightpack/bake/manifest.hpp"
@@ -20,7 +21,7 @@ MaterialDescription twoLayers() {
     d.manifest = "sea.toml";
     DisplacementLayer a;
     a.name = "swell";
-    a.texture = {"swell.exr", 64, 64, 7, 1};
+    a.texture = {"swell.exr", 64, 64, 7, 1, std::nullopt};
     d.displacement.push_back(a);
     a.name = "chop";
     a.horizontalDisplacement = true;

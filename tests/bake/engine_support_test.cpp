@@ -48,6 +48,12 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
         {true, Layout::Rgb, PixelType::Uint16, "nrgb16.ktx2", "ktx2 VK_FORMAT_R16G16B16A16_UNORM", {Partial, Refuses, Refuses, Refuses, Partial}},
         {true, Layout::Xy, PixelType::Half, "nxyh.dds", "dds DXGI_FORMAT_R16G16_FLOAT", {Refuses, Refuses, Unknown, Unknown, Loads}},
         {true, Layout::Rgb, PixelType::Float, "nrgb.ktx2", "ktx2 VK_FORMAT_R32G32B32A32_SFLOAT", {Loads, Refuses, Refuses, Refuses, Loads}},
+        // Block formats: three.js's KTX2Loader where the context has RGTC, Godot's KTX2 and DDS loaders, Unity's
+        // IHVImageFormatImporter for a DDS; three.js's DDSLoader and Babylon.js's read no DX10 BC4/BC5.
+        {false, Layout::Plain, PixelType::Bc4, "bc4.ktx2", "ktx2 VK_FORMAT_BC4_UNORM_BLOCK", {Partial, Refuses, Refuses, Refuses, Loads}},
+        {false, Layout::Plain, PixelType::Bc4, "bc4.dds", "dds DXGI_FORMAT_BC4_UNORM", {Refuses, Refuses, Unknown, Loads, Loads}},
+        {true, Layout::Xy, PixelType::Bc5, "bc5.ktx2", "ktx2 VK_FORMAT_BC5_UNORM_BLOCK", {Partial, Refuses, Refuses, Refuses, Loads}},
+        {true, Layout::Xy, PixelType::Bc5, "bc5.dds", "dds DXGI_FORMAT_BC5_UNORM", {Refuses, Refuses, Unknown, Loads, Loads}},
     };
     const Engine engines[] = {Engine::ThreeJs, Engine::Babylon, Engine::Unreal, Engine::Unity, Engine::Godot};
     for (const Case& c : cases) {

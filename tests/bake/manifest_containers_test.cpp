@@ -109,6 +109,7 @@ TEST(ManifestContainers, MaterialJsonNamesTheFilesWrittenAndAPixelTypeChangeRebu
     ASSERT_TRUE(swell) << swell.error().what;
     EXPECT_EQ(swell->format, TexelFormat::Rgba16F);
     EXPECT_EQ(material->displacement[0].texture.levels, int(swell->levels.size()));
+    EXPECT_EQ(material->displacement[0].texture.pixelType, pixelTypeOf(swell->format));
     auto ramp = readGpuTexture(d.dir.file("out/fresnel.dds"));
     ASSERT_TRUE(ramp) << ramp.error().what;
     EXPECT_EQ(ramp->format, TexelFormat::Rgba16F);
@@ -118,6 +119,10 @@ TEST(ManifestContainers, MaterialJsonNamesTheFilesWrittenAndAPixelTypeChangeRebu
     swell = readGpuTexture(d.dir.file("out/swell.ktx2"));
     ASSERT_TRUE(swell);
     EXPECT_EQ(swell->format, TexelFormat::Rgba16Unorm);
+    material = readMaterial(d.dir.file("out/material.json"));
+    ASSERT_TRUE(material) << material.error().what;
+    EXPECT_EQ(material->displacement[0].texture.pixelType, PixelType::Uint16);
+    EXPECT_EQ(material->fresnel->texture.pixelType, PixelType::Half);
 }
 
 }  // namespace

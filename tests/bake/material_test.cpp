@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "heightpack/bake/material.hpp"
@@ -20,7 +21,7 @@ MaterialDescription sampleMaterial() {
     d.manifest = "sea.toml";
     DisplacementLayer a;
     a.name = "swell";
-    a.texture = {"swell.exr", 512, 256, 10, 1};
+    a.texture = {"swell.exr", 512, 256, 10, 1, std::nullopt};
     a.heightScale = 0.1;  // not exactly representable: must read back to the same double
     a.heightOffset = -0.3;
     a.tileSize = 64.0;
@@ -29,24 +30,24 @@ MaterialDescription sampleMaterial() {
     d.displacement.push_back(a);
     DisplacementLayer b = a;
     b.name = "seq";
-    b.texture = {"seq.exr", 64, 64, 7, 12};
+    b.texture = {"seq.exr", 64, 64, 7, 12, PixelType::Uint16};
     b.loopPeriod = 2.5;
     d.displacement.push_back(b);
     NormalLayer n;
     n.name = "ripple_n";
-    n.texture = {"ripple_n.exr", 128, 128, 8, 1};
+    n.texture = {"ripple_n.exr", 128, 128, 8, 1, std::nullopt};
     n.tileSize = 8.0;
     n.heightRange = 0.05;
     n.octaves = {{8.0, {0.02, 0.01}, 1.0}, {2.0, {-0.05, 0.03}, 0.35}};
     d.normals = n;
     FresnelLayer f;
     f.name = "fresnel";
-    f.texture = {"fresnel.exr", 256, 1, 9, 1};
+    f.texture = {"fresnel.exr", 256, 1, 9, 1, std::nullopt};
     f.ior = 1.34;
     d.fresnel = f;
     FoamLayer foam;
     foam.name = "foam";
-    foam.texture = MaterialTexture{"foam.exr", 32, 32, 6, 1};
+    foam.texture = MaterialTexture{"foam.exr", 32, 32, 6, 1, std::nullopt};
     foam.h0 = 1.1;
     foam.hmax = 2.3;
     foam.tileSize = 3.0;
@@ -77,6 +78,8 @@ TEST(Material, WrittenThenReadIsTheSameMaterial) {
     EXPECT_EQ(back->displacement[0].texture.height, 256);
     EXPECT_EQ(back->displacement[0].texture.levels, 10);
     EXPECT_EQ(back->displacement[1].texture.frames, 12);
+    EXPECT_EQ(back->displacement[1].texture.pixelType, PixelType::Uint16);
+    EXPECT_FALSE(back->displacement[0].texture.pixelType);  // float: not written
     EXPECT_EQ(back->displacement[1].loopPeriod, 2.5);
     ASSERT_TRUE(back->normals);
     ASSERT_EQ(back->normals->octaves.size(), 2u);
@@ -129,6 +132,7 @@ TEST(Material, BadFilesAreBadInputNamingTheFile) {
         [&] { std::string t = good; return t.replace(t.find("heightpack-material"), 19, "something-else-here"); }(),
         [&] { std::string t = good; return t.replace(t.find("\"version\": 1"), 12, "\"version\": 99"); }(),
         "{\"schema\": \"heightpack-material\", \"version\": 1}",
+        [&] { std::string t = good; return t.replace(t.find("\"uint16\""), 8, "\"int8\""); }(),
     };
     for (const std::string& text : bad) {
         auto m = readText(dir, text);
@@ -164,20 +168,20 @@ TEST(Material, NamesInTheFileEnumsInTheParsedForm) {
     m.name = "sea";
     DisplacementLayer d;
     d.name = "long";
-    d.texture = {"long.exr", 64, 64, 7, 1};
+    d.texture = {"long.exr", 64, 64, 7, 1, std::nullopt};
     d.wrap = Wrap::Clamp;
     d.filter = Filter::Lanczos3;
     m.displacement.push_back(d);
     NormalLayer n;
     n.name = "n";
-    n.texture = {"n.exr", 64, 64, 7, 1};
+    n.texture = {"n.exr", 64, 64, 7, 1, std::nullopt};
     n.convention = NormalConvention::DirectX;
     n.alpha = NormalAlpha::SlopeVariance;
     n.octaves.push_back({8.0, {0.0, 0.0}, 1.0});
     m.normals = n;
     FresnelLayer f;
     f.name = "f";
-    f.texture = {"f.exr", 256, 1, 1, 1};
+    f.texture = {"f.exr", 256, 1, 1, 1, std::nullopt};
     f.model = FresnelModel::Schlick;
     f.index = FresnelIndex::TwoNdotV;
     m.fresnel = f;

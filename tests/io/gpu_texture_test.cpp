@@ -49,6 +49,21 @@ ChainToWrite xyContent(int width, int height) {
     return c;
 }
 
+// A one-channel chain of plain heights, as BC4 takes.
+ChainToWrite plainContent(int width, int height) {
+    ChainToWrite c;
+    c.width = width;
+    c.height = height;
+    c.channelNames = {"Y"};
+    c.fillRows = [](int level, int y0, int rows, float* dst) {
+        const int w = std::max(1, 32 >> level);
+        for (int y = y0; y < y0 + rows; ++y)
+            for (int x = 0; x < w; ++x) *dst++ = float(0.5 + 0.4 * std::sin(0.37 * x + 0.91 * y + level));
+    };
+    c.attributes = {{"heightpack:layout", std::string(attributeText(Layout::Plain))}, {"heightpack:tileWidth", 8.0f}};
+    return c;
+}
+
 }  // namespace
 
 TEST(GpuTexture, HalfRoundsToNearestEvenAndKnowsItsRange) {
@@ -139,16 +154,27 @@ TEST(GpuTexture, TwoChannelFormatsRoundTripThroughBothReaders) {
 
 TEST(GpuTexture, DamagedFilesAreRefusedAsBadInput) {
     ScratchDir dir;
-    const ChainToWrite content = xyContent(32, 16);
-    for (const char* name : {"d.ktx2", "d.dds", "z.ktx2"}) {
+    const ChainToWrite xy = xyContent(32, 16), plain = plainContent(32, 16);
+    struct Case {
+        const char* name;
+        PixelType type;
+        const ChainToWrite& content;
+    };
+    // Block streams too (issue 39): BC4 heights and BC5 normals in both containers, whose level sizes
+    // count whole blocks.
+    for (const Case& c : {Case{"d.ktx2", PixelType::Half, xy}, Case{"d.dds", PixelType::Half, xy}, Case{"z.ktx2", PixelType::Half, xy},
+                          Case{"bc4.ktx2", PixelType::Bc4, plain}, Case{"bc4.dds", PixelType::Bc4, plain},
+                          Case{"bc5.ktx2", PixelType::Bc5, xy}, Case{"bc5.dds", PixelType::Bc5, xy}}) {
+        const std::string name = c.name;
         TextureWriteOptions options;
-        options.storage.pixelType = PixelType::Half;
-        if (std::string(name) == "z.ktx2") options.storage.supercompression = Supercompression::Zstd;
+        options.storage.pixelType = c.type;
+        if (name == "z.ktx2") options.storage.supercompression = Supercompression::Zstd;
         const auto output = textureOutput(dir.file(name));
         ASSERT_TRUE(output.ok());
-        ASSERT_TRUE(writeTexture(*output, content, options).ok());
+        const auto written = writeTexture(*output, c.content, options);
+        ASSERT_TRUE(written.ok()) << name << ": " << written.error().what;
         const std::vector<unsigned char> whole = readBytes(dir.file(name));
-        const std::string damaged = dir.file(std::string("damaged") + (name[0] == 'd' && name[2] == 'd' ? ".dds" : ".ktx2"));
+        const std::string damaged = dir.file("damaged" + std::filesystem::path(name).extension().string());
         // Every truncation fails; so does any byte of the fixed headers set to 0xFF, or the reader returns
         // a texture of the size the file holds. Never a crash (the sanitizer build runs this too).
         for (size_t n = 0; n < whole.size(); n += (n < 200 ? 1 : 7)) {

@@ -96,7 +96,11 @@ damage packed.ktx2 wrapx.ktx2 's/(heightpack:wrap\0)periodic/${1}mirrored/'
 damage packed.exr layoutx.exr 's/neighbour4/neighbourX/'
 damage packed.exr filterx.exr 's/(heightpack:filter\0string\0....)kaiser/${1}kaiseX/s'
 damage seq.0000.exr loopx.exr 's/(heightpack:loopPeriod\0float\0....)..../${1}\0\0\200\277/s'  # -1 s
-DAMAGED=(layoutx.ktx2 scalex.ktx2 wrapx.ktx2 layoutx.exr filterx.exr loopx.exr)
+# Block streams cut short (issue 39): BC4 heights in KTX2 and DDS, the level data ending mid-block.
+"$HP" pack good.png -o bc4.ktx2 --layout plain --pixel-type bc4 -q || exit 2
+"$HP" pack good.png -o bc4.dds --layout plain --pixel-type bc4 -q || exit 2
+for f in bc4.ktx2 bc4.dds; do head -c $(( $(stat -c %s "$f") - 13 )) "$f" > "cut$f"; done
+DAMAGED=(layoutx.ktx2 scalex.ktx2 wrapx.ktx2 layoutx.exr filterx.exr loopx.exr cutbc4.ktx2 cutbc4.dds)
 # Outputs that must not be replaced.
 printf 'old' > readonly.exr; chmod 444 readonly.exr
 printf 'old' > target.exr; ln -s target.exr link.exr

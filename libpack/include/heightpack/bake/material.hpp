@@ -13,6 +13,7 @@
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
 #include "heightpack/core/result.hpp"
+#include "heightpack/io/pixel_type.hpp"
 
 namespace heightpack {
 
@@ -28,6 +29,9 @@ struct MaterialTexture {
     int height = 0;
     int levels = 0;
     int frames = 1;
+    // What the texels are stored as, where the file says and it is not float (half, uint16, bc4, bc5):
+    // what a loader must upload them as, and what their recorded error budget belongs to.
+    std::optional<PixelType> pixelType;
 };
 
 // One height map of the sum H(x, y, t) = sum_i amplitude_i * h_i(x / tileSize_i + scroll_i * t).

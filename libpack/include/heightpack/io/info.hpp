@@ -10,6 +10,7 @@
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/attributes.hpp"
+#include "heightpack/io/pixel_type.hpp"
 #include "heightpack/io/texture_description.hpp"
 
 namespace heightpack {
@@ -37,10 +38,15 @@ struct LevelInfo {
     std::optional<double> rmsError, angleError, rmsAngleError;
 };
 
+// The kind of file a texture was read from, typed where it is opened: what the engines' tables ask.
+enum class FileContainer { Exr, Ktx2, Dds, Png, OtherImage };
+
 // What a texture file's header says.
 struct TextureHeader {
     std::string path;
-    std::string format;     // OpenImageIO's format name
+    std::string format;     // for reports: the decoder's format name; a KTX2 or DDS's container and texel format
+    FileContainer container = FileContainer::OtherImage;
+    std::optional<TexelFormat> texelFormat;  // KTX2 and DDS: the GPU format their texels are stored in
     std::string pixelType;  // the decoder's word for its samples, for reports: "float", "half", "uint16", "uint8", ...
     std::vector<std::string> channelNames;
     // An array texture's layers (KTX2, DDS), in order; empty for a single texture. Its channels are then
