@@ -1,5 +1,5 @@
 # The libraries Debian ships without a CMake package file (OpenCV's core module: its package file comes
-# only with all of libopencv-dev; xxHash, libdeflate, Zstandard), as imported targets found where this
+# only with all of libopencv-dev; ARM's astcenc, whose file names a versioned library; xxHash, libdeflate, Zstandard), as imported targets found where this
 # machine has them. heightpack's own build and its installed package both include this file, so the
 # exported targets name heightpack_dep::<name>, never a path: an installed heightpack can be moved, and
 # the machine that uses it finds these libraries again.
@@ -24,6 +24,7 @@ endfunction()
 # Which floor needs which (see libpack/CMakeLists.txt).
 macro(heightpack_import_core_libraries)
   heightpack_import_library(opencv_core opencv_core opencv2/core.hpp PATH_SUFFIX opencv4)
+  heightpack_import_library(astcenc astcenc astcenc.h)
 endmacro()
 macro(heightpack_import_io_libraries)
   heightpack_import_library(xxhash xxhash xxhash.h)

@@ -16,6 +16,7 @@ packages=(
   zstd libnvtt-bin                              # tests' independent readers: the zstd tool for supercompressed
                                                 # KTX2 levels, nvddsinfo for DDS (ktx-parse under Node: below)
   libopencv-core-dev                            # the DFT behind `tile` (periodic + smooth)
+  libastcenc-dev astcenc                        # ASTC output (ARM's encoder, Apache-2.0); tests: astcenc -dl decodes
   libglfw3-dev libglm-dev libepoxy-dev          # heightpack-view: window and GL context, maths, GL loader
   libimgui-dev libstb-dev                       # heightpack-view: the panel (imgui.pc requires stb)
   xvfb xauth libgl1-mesa-dri                    # headless screenshots and viewer tests (Mesa llvmpipe)

@@ -15,8 +15,9 @@ namespace heightpack::cli {
 void addPixelTypeOption(CLI::App& cmd, PixelTypeRequest& pixelType, bool withAuto, std::string* tolerance,
                         const std::string& toleranceHelp, std::vector<PixelTypeRequest> offered) {
     if (offered.empty())
-        offered = {PixelTypeRequest::Float, PixelTypeRequest::Half, PixelTypeRequest::Uint16, PixelTypeRequest::Bc4,
-                   PixelTypeRequest::Bc5};
+        offered = {PixelTypeRequest::Float,   PixelTypeRequest::Half,    PixelTypeRequest::Uint16,
+                   PixelTypeRequest::Bc4,     PixelTypeRequest::Bc5,     PixelTypeRequest::Astc4x4,
+                   PixelTypeRequest::Astc6x6, PixelTypeRequest::Astc8x8};
     if (withAuto) offered.push_back(PixelTypeRequest::Auto);
     std::string help;
     for (const PixelTypeRequest r : offered) help += (help.empty() ? "" : "; ") + std::string(nameOf(r)) + ": " + describe(r);
@@ -106,6 +107,9 @@ PixelType requestedPixelType(PixelTypeRequest pixelType) {
         case PixelTypeRequest::Uint16: return PixelType::Uint16;
         case PixelTypeRequest::Bc4: return PixelType::Bc4;
         case PixelTypeRequest::Bc5: return PixelType::Bc5;
+        case PixelTypeRequest::Astc4x4: return PixelType::Astc4x4;
+        case PixelTypeRequest::Astc6x6: return PixelType::Astc6x6;
+        case PixelTypeRequest::Astc8x8: return PixelType::Astc8x8;
         case PixelTypeRequest::Float:
         case PixelTypeRequest::Auto: break;  // auto: judged as float, which every container holds, until the job chooses
     }
@@ -161,12 +165,19 @@ std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelT
                 return path + ": a KTX2 takes --compression none or zstd";
             if (compressionGiven && compression == "zstd") supercompression = Supercompression::Zstd;
         } else if (c == Container::Dds) {
+            if (isAstcType(pixelType))
+                return path + ": --pixel-type " + pixelTypeName(pixelType) +
+                       " needs a .ktx2 output (DDS and Direct3D have no ASTC format; for a .dds write --pixel-type bc4 "
+                       "for heights or bc5 for xy normals)";
             if (compressionGiven && compression != "none")
                 return path + ": a DDS is stored uncompressed: leave out --compression";
         } else {
             if (pixelType == PixelType::Uint16)
                 return path + ": --pixel-type uint16 needs a .ktx2 or .dds output (an EXR has no 16-bit normalised "
                               "channels)";
+            if (isAstcType(pixelType))
+                return path + ": --pixel-type " + pixelTypeName(pixelType) +
+                       " needs a .ktx2 output (an EXR has no block-compressed texels; store float or half in an EXR)";
             if (isBlockType(pixelType))
                 return path + ": --pixel-type " + pixelTypeName(pixelType) +
                        " needs a .ktx2 or .dds output (an EXR has no block-compressed texels; store float or half in "
@@ -184,6 +195,8 @@ std::string blockLayoutProblem(PixelType type, Layout layout) {
         return "--pixel-type " + name + " cannot hold the neighbour4 layout: each copy of a shared height would "
                "decode differently and the lookup would show seams (write --layout plain and filter in hardware, or "
                "view it with --lookup gather)";
+    if (isAstcType(type) && layout != Layout::Plain && layout != Layout::Xy)
+        return "--pixel-type " + name + " stores plain heights (--layout plain) or xy normals (--layout xy)";
     if (type == PixelType::Bc4 && layout != Layout::Plain)
         return "--pixel-type bc4 holds one channel: it stores plain heights (for normals write --layout xy "
                "--pixel-type bc5)";

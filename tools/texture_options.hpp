@@ -17,7 +17,7 @@ namespace heightpack {
 
 namespace cli {
 // What --pixel-type asks for: one of the pixel types, or auto (pack and normal choose within --tolerance).
-enum class PixelTypeRequest { Float, Half, Uint16, Bc4, Bc5, Auto };
+enum class PixelTypeRequest { Float, Half, Uint16, Bc4, Bc5, Astc4x4, Astc6x6, Astc8x8, Auto };
 }  // namespace cli
 
 template <>
@@ -29,6 +29,9 @@ struct NameTable<cli::PixelTypeRequest> {
         {R::Uint16, "uint16", "16-bit normalised to the chain's range, scale and offset recorded; .ktx2 and .dds only"},
         {R::Bc4, "bc4", "block-compressed plain heights (--layout plain), 0.5 byte a texel; .ktx2 and .dds only"},
         {R::Bc5, "bc5", "block-compressed xy normals (--layout xy), 1 byte a texel; .ktx2 and .dds only"},
+        {R::Astc4x4, "astc-4x4", "ASTC 4x4 blocks: plain heights (--layout plain) or xy normals (--layout xy), 1 byte a texel; .ktx2 only"},
+        {R::Astc6x6, "astc-6x6", "ASTC 6x6 blocks, as astc-4x4 at 0.44 byte a texel; .ktx2 only"},
+        {R::Astc8x8, "astc-8x8", "ASTC 8x8 blocks, as astc-4x4 at 0.25 byte a texel; .ktx2 only"},
         {R::Auto, "auto", "the fewest bytes whose worst lookup error is within --tolerance"},
     };
 };
@@ -83,7 +86,7 @@ std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelT
                                  Supercompression& supercompression);
 
 // What is wrong with storing `layout` in a block pixel type (bc4: plain heights only; bc5: xy normals
-// only; never the neighbour4 layout), for usage(), or empty (also for any other pixel type).
+// only; ASTC: either; never the neighbour4 layout), for usage(), or empty (also for any other pixel type).
 std::string blockLayoutProblem(PixelType type, Layout layout);
 
 }  // namespace cli

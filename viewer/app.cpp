@@ -15,6 +15,7 @@
 #include "material_settings.hpp"
 #include "offscreen.hpp"
 #include "panel.hpp"
+#include "texture_upload.hpp"
 
 namespace heightpack::view {
 
@@ -166,6 +167,11 @@ int draw(ViewerOptions& o, Scene& scene, const ContextInfo& context, GLFWwindow*
     std::string error;
     if (!renderer.init(error, context.gather()))
         return fail("shader build failed: " + error, "please report this with the GL_RENDERER string", ExitCode::Internal);
+    if (const std::string astc = astcPath(scene); !astc.empty() && !contextTakesAstc())
+        return fail(astc + ": holds ASTC blocks and this " + context.platform + " context offers no "
+                    "GL_KHR_texture_compression_astc_ldr",
+                    "write it with heightpack as bc4 (heights) or bc5 (normals), or view it where the driver has ASTC",
+                    ExitCode::NoOpenGL);
     if (const std::string problem = renderer.upload(scene); !problem.empty())
         return fail(problem, "use a sequence of fewer frames", ExitCode::BadInput);
     if (isGather(o.settings.lookup) && !renderer.gatherAvailable()) {

@@ -34,7 +34,8 @@ inline constexpr std::array<ExitCodeMeaning, 6> kExitCodeMeanings{{
     {ExitCode::BadInput, "bad input: a map, sequence frame, normal map, Fresnel ramp, foam texture or material.json"},
     {ExitCode::CannotWrite, "cannot write the screenshot or the grid heights"},
     {ExitCode::NoOpenGL, "no usable OpenGL: no display, no OpenGL 3.3 core context (window or EGL), no render target of "
-                         "that --size (run it under xvfb-run, or --headless with Mesa's EGL)"},
+                         "that --size, no ASTC in the context for an ASTC file (run it under xvfb-run, or --headless "
+                         "with Mesa's EGL)"},
     {ExitCode::Internal, "internal: a shader that does not build, or a bug"},
 }};
 

@@ -141,6 +141,14 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
     return layer;
 }
 
+std::string astcPath(const Scene& scene) {
+    for (const HeightLayer& layer : scene.layers)
+        for (const HeightFrame& frame : layer.frames)
+            if (frame.plain.isAstc()) return layer.path;
+    if (scene.normals && scene.normals->levels.isAstc()) return scene.normals->path;
+    return {};
+}
+
 Result<NormalMap> loadNormalMap(const std::string& path) {
     auto file = readViewerTexture(path);
     if (!file) return file.error();

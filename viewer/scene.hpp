@@ -78,6 +78,10 @@ Result<NormalMap> loadNormalMap(const std::string& path);
 Result<FresnelRamp> loadFresnelRamp(const std::string& path);
 Result<Scene> loadScene(const SceneFiles& files);
 
+// The first file of the scene that holds ASTC blocks (heights or normals), or empty: a context without
+// ASTC cannot draw it.
+std::string astcPath(const Scene& scene);
+
 // Modification times of the files, to reload what changed on disk.
 std::vector<std::filesystem::file_time_type> fileTimes(const SceneFiles& files);
 

@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <cstdint>
+#include <string_view>
 
 #include "gl_util.hpp"
 
@@ -13,7 +14,21 @@ struct GlFormat {
     GLenum internal, format, type;
 };
 
-GlFormat glFormatOf(int channels, ComponentKind kind) {
+// ASTC's GL formats (GL_KHR_texture_compression_astc_ldr): RGBA blocks of one size.
+constexpr GLenum kAstc4x4 = 0x93B0, kAstc6x6 = 0x93B4, kAstc8x8 = 0x93B7;
+
+GLenum blockInternalFormat(const UploadChain& chain) {
+    switch (pixelTypeOf(chain.blockFormat)) {
+        case PixelType::Astc4x4: return kAstc4x4;
+        case PixelType::Astc6x6: return kAstc6x6;
+        case PixelType::Astc8x8: return kAstc8x8;
+        default: return chain.channels == 1 ? GLenum(GL_COMPRESSED_RED_RGTC1) : GLenum(GL_COMPRESSED_RG_RGTC2);
+    }
+}
+
+GlFormat glFormatOf(const UploadChain& chain) {
+    const int channels = chain.channels;
+    const ComponentKind kind = chain.kind;
     static const GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
     static const GLenum float32[] = {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F};
     static const GLenum float16[] = {GL_R16F, GL_RG16F, GL_RGB16F, GL_RGBA16F};
@@ -24,16 +39,23 @@ GlFormat glFormatOf(int channels, ComponentKind kind) {
         case ComponentKind::Float16: return {float16[c], formats[c], GL_HALF_FLOAT};
         case ComponentKind::Unorm16: return {unorm16[c], formats[c], GL_UNSIGNED_SHORT};
         case ComponentKind::Snorm16: return {snorm16[c], formats[c], GL_SHORT};
-        case ComponentKind::Block: return {c == 0 ? GLenum(GL_COMPRESSED_RED_RGTC1) : GLenum(GL_COMPRESSED_RG_RGTC2), formats[c], 0};
+        case ComponentKind::Block: return {blockInternalFormat(chain), formats[c], 0};
         case ComponentKind::Float32: break;
     }
     return {float32[c], formats[c], GL_FLOAT};
 }
 
-// Bytes of a block level: whole 4x4 blocks, a level smaller than a block takes one (as the files store it).
+// Bytes of a block level: whole blocks, a level smaller than a block takes one (as the files store it).
 GLsizei blockLevelBytes(const UploadChain& chain, int level) {
-    const long long blocks = static_cast<long long>((chain.levelWidth(level) + 3) / 4) * ((chain.levelHeight(level) + 3) / 4);
-    return static_cast<GLsizei>(blocks * 8 * chain.channels);
+    const BlockShape b = blockShapeOf(chain.blockFormat);
+    const long long blocks = static_cast<long long>((chain.levelWidth(level) + b.side - 1) / b.side) *
+                             ((chain.levelHeight(level) + b.side - 1) / b.side);
+    return static_cast<GLsizei>(blocks * b.bytes);
+}
+
+// ASTC normals hold y in alpha (x in R, G and B): the shaders read .rg, as from BC5.
+void swizzleAstcNormals(const UploadChain& chain, GLenum target) {
+    if (chain.isAstc() && chain.channels == 2) glTexParameteri(target, GL_TEXTURE_SWIZZLE_G, GL_ALPHA);
 }
 
 void setLevel(const UploadChain& chain, const GlFormat& f, int level) {
@@ -51,7 +73,7 @@ void setLevel(const UploadChain& chain, const GlFormat& f, int level) {
 }  // namespace
 
 GLuint uploadStoredChain(const UploadChain& chain, bool linear, Wrap wrap) {
-    const GlFormat f = glFormatOf(chain.channels, chain.kind);
+    const GlFormat f = glFormatOf(chain);
     GLuint texture = 0;
     glGenTextures(1, &texture);
     glBindTexture(GL_TEXTURE_2D, texture);
@@ -66,6 +88,7 @@ GLuint uploadStoredChain(const UploadChain& chain, bool linear, Wrap wrap) {
     const GLint mode = wrap == Wrap::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE;
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, mode);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, mode);
+    swizzleAstcNormals(chain, GL_TEXTURE_2D);
     checkGl("uploadStoredChain");
     return texture;
 }
@@ -77,7 +100,7 @@ GLuint uploadFloatChain(const std::vector<Image>& levels, bool linear, Wrap wrap
 GLuint uploadStoredArray(const std::vector<const UploadChain*>& chains, bool linear, Wrap wrap) {
     assert(!chains.empty());
     const UploadChain& first = *chains[0];
-    const GlFormat f = glFormatOf(first.channels, first.kind);
+    const GlFormat f = glFormatOf(first);
     const GLsizei layers = static_cast<GLsizei>(chains.size());
     GLuint texture = 0;
     glGenTextures(1, &texture);
@@ -113,8 +136,19 @@ GLuint uploadStoredArray(const std::vector<const UploadChain*>& chains, bool lin
     const GLint mode = wrap == Wrap::Periodic ? GL_REPEAT : GL_CLAMP_TO_EDGE;
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, mode);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, mode);
+    swizzleAstcNormals(first, GL_TEXTURE_2D_ARRAY);
     checkGl("uploadStoredArray");
     return texture;
+}
+
+bool contextTakesAstc() {
+    GLint count = 0;
+    glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+    for (GLint i = 0; i < count; ++i) {
+        const auto* name = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
+        if (name && std::string_view(name) == "GL_KHR_texture_compression_astc_ldr") return true;
+    }
+    return false;
 }
 
 long long textureBytes(GLuint texture, GLenum target) {

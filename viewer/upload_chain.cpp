@@ -31,6 +31,7 @@ UploadChain storeGpuTexture(GpuTexture& texture) {
     UploadChain chain;
     chain.channels = f.channels;
     chain.kind = f.kind;
+    if (f.isBlock()) chain.blockFormat = texture.format;
     chain.width = texture.width;
     chain.height = texture.height;
     chain.levels = std::move(texture.levelBytes);

@@ -14,8 +14,9 @@
 namespace heightpack::view {
 
 struct UploadChain {
-    int channels = 1;  // 1 to 4, interleaved; a block chain: 1 (BC4) or 2 (BC5)
-    ComponentKind kind = ComponentKind::Float32;  // Block: each level holds its 4x4 blocks, not texels
+    int channels = 1;  // 1 to 4, interleaved; a block chain: 1 (BC4, ASTC heights) or 2 (BC5, ASTC normals)
+    ComponentKind kind = ComponentKind::Float32;  // Block: each level holds its blocks, not texels
+    TexelFormat blockFormat = TexelFormat::Bc4Unorm;  // Block only: which blocks (RGTC or an ASTC size)
     int width = 0, height = 0;  // level 0
     std::vector<std::vector<std::uint8_t>> levels;  // level 0 first, rows tightly packed, little-endian
     // What a shader reads back (a normalised format samples u / 65535, an RGTC one its unit value) mapped to
@@ -23,6 +24,7 @@ struct UploadChain {
     Normalisation decode;
 
     bool isBlock() const { return kind == ComponentKind::Block; }
+    bool isAstc() const { return isBlock() && isAstcFormat(blockFormat); }
     // Texel chains only: a block chain has no bytes of its own per texel.
     int bytesPerTexel() const { return channels * (kind == ComponentKind::Float32 ? 4 : 2); }
     int levelWidth(int level) const { return width >> level > 0 ? width >> level : 1; }
@@ -33,8 +35,8 @@ struct UploadChain {
 // (an EXR of half channels: every value is a half already, so nothing is rounded).
 UploadChain storeFloats(const std::vector<Image>& levels, ComponentKind kind = ComponentKind::Float32);
 
-// A KTX2 or DDS file's levels as they are (a block format's blocks too, to go up as RGTC); its bytes move
-// into the chain.
+// A KTX2 or DDS file's levels as they are (a block format's blocks too, to go up as RGTC or ASTC); its
+// bytes move into the chain.
 UploadChain storeGpuTexture(GpuTexture& texture);
 
 // A block chain's decoded levels as 32-bit floats of the unit values its blocks hold ((value - offset) /

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "bc4_fit.hpp"
+#include "heightpack/core/astc_compression.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "lanes.hpp"
 
@@ -190,6 +191,7 @@ void decodeBc4Block(const std::uint8_t* block, float values[16]) {
 }
 
 std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, int threads, std::optional<NormalUnits> normals) {
+    if (isAstc(format)) return encodeAstc(image, format, threads, normals.has_value());
     const int channels = blockChannels(format), bytes = blockBytes(format);
     const int across = (image.width + 3) / 4, down = (image.height + 3) / 4;
     std::vector<std::uint8_t> out(blockImageBytes(image.width, image.height, format));
@@ -224,8 +226,10 @@ std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, i
     return out;
 }
 
-Image decodeBlocks(const std::uint8_t* bytes, int width, int height, BlockFormat format) {
-    const int channels = blockChannels(format), blockSize = blockBytes(format);
+Image decodeBlocks(const std::uint8_t* bytes, int width, int height, BlockFormat format, int channels) {
+    if (isAstc(format)) return decodeAstc(bytes, width, height, format, channels);
+    channels = blockChannels(format);
+    const int blockSize = blockBytes(format);
     const int across = (width + 3) / 4;
     Image image(width, height, channels);
     float v[16];

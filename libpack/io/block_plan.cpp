@@ -85,7 +85,11 @@ LevelError measure(const Image& given, const Image& decoded, const Normalisation
 Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrite& content, const EncodePlan& plan,
                                       int threads) {
     const BlockFormat format = blockFormatOf(plan.format);
-    const int channels = blockChannels(format);
+    const int channels = isAstc(format) ? plan.format.channels : blockChannels(format);
+    if (isAstc(format) && plan.sourceChannels != channels)
+        return cannotWrite(path, "ASTC holds one channel (plain heights) or two (xy normals), this texture has " +
+                                     std::to_string(plan.sourceChannels),
+                           "store plain heights or xy normals in ASTC, or choose another pixel type");
     if (plan.sourceChannels != channels)
         return cannotWrite(path,
                            std::string(format == BlockFormat::Bc4 ? "BC4" : "BC5") + " holds " +
@@ -106,11 +110,14 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
                 if (!std::isfinite(v)) return nonFiniteLevel(path, level);
             Image unorm = given;
             for (float& v : unorm.pixels) v = float((double(v) - n.offset) / n.scale);
-            // BC5 holds xy normals: its channels are chosen together by the angle, in the normal's units.
+            // Two channels are xy normals: chosen together by the angle, in the normal's units (ASTC by
+            // astcenc's normal-map mode).
             const std::optional<NormalUnits> normals =
-                format == BlockFormat::Bc5 ? std::optional(NormalUnits{n.offset, n.scale}) : std::nullopt;
+                channels == 2 ? std::optional(NormalUnits{n.offset, n.scale}) : std::nullopt;
             out.images.push_back(encodeBlocks(unorm, format, threads, normals));
-            const Image decoded = decodeBlocks(out.images.back().data(), w, h, format);
+            if (out.images.back().size() != blockImageBytes(w, h, format))
+                return Error{ErrorKind::Internal, path, "internal error: the ASTC encoder failed", "please report this"};
+            const Image decoded = decodeBlocks(out.images.back().data(), w, h, format, channels);
             const LevelError e = measure(given, decoded, n, threads);
             LevelError& sum = errors[size_t(level)];
             sum.worst = std::max(sum.worst, e.worst);

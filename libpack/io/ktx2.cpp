@@ -246,7 +246,7 @@ Result<GpuTexture> readKtx2(const std::string& path) {
     const auto format = texelFormatFromVk(vkFormat);
     if (!format) return corrupt("vkFormat " + std::to_string(vkFormat) + " is not one heightpack writes");
     t.format = *format;
-    const TexelFormatInfo& f = texelFormatInfo(t.format);
+    TexelFormatInfo f = texelFormatInfo(t.format);
     if (width == 0 || height == 0 || width > 65536 || height > 65536) return corrupt("its size is out of range");
     if (depth != 0 || faces != 1) return corrupt("it is not a 2D texture or array");
     if (layers > 64) return corrupt("it lists " + std::to_string(layers) + " layers, more than heightpack writes");
@@ -275,6 +275,11 @@ Result<GpuTexture> readKtx2(const std::string& path) {
         if (!value.empty() && value.back() == '\0') value.pop_back();
         t.keyValues.emplace_back(std::string(kv.substr(0, nul)), std::move(value));
         at = ktx2::alignUp(at + 4 + n, 4);
+    }
+    // An ASTC format holds one channel or two: its swizzle says which (the one-channel format otherwise).
+    if (f.isBlock() && findAttribute(t.keyValues, ktx2::kSwizzleKey) == ktx2::astcSwizzle(2)) {
+        t.format = astcTwoChannels(t.format);
+        f = texelFormatInfo(t.format);
     }
     if (layerCount > 1) t.layerNames = layerNamesOf(findAttribute(t.keyValues, attr::layers), layerCount);
     const std::string off = findAttribute(t.keyValues, ktx2::kOffsetKey), scale = findAttribute(t.keyValues, ktx2::kScaleKey);

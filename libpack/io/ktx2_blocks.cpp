@@ -1,7 +1,9 @@
-// KTX2 files of block-compressed levels (BC4, BC5). Laid out as ktx2.cpp lays out texel formats, but for
-// what the KTX 2.0 specification asks of block formats: typeSize 1, levels aligned to the block size, and
-// a Data Format Descriptor of colour model BC4 or BC5 with 4x4 texel blocks and one 64-bit sample a
-// channel (channel 0 red, 1 green; the full 32-bit range as upper bound, as for other unsigned blocks).
+// KTX2 files of block-compressed levels (BC4, BC5, ASTC). Laid out as ktx2.cpp lays out texel formats, but
+// for what the KTX 2.0 specification asks of block formats: typeSize 1, levels aligned to the block size,
+// and a Data Format Descriptor of colour model BC4 or BC5 with 4x4 texel blocks and one 64-bit sample a
+// channel (channel 0 red, 1 green; the full 32-bit range as upper bound, as for other unsigned blocks), or
+// of model ASTC with the block's size and one 128-bit sample of channel ASTC_DATA. An ASTC file records
+// which channels hold the values in KTXswizzle (ktx2_layout.hpp).
 #include <zstd.h>
 
 #include <cstdio>
@@ -15,9 +17,27 @@ namespace heightpack::detail {
 
 namespace {
 
-constexpr std::uint32_t kModelBc4 = 131, kModelBc5 = 132;  // KHR_DF_MODEL_BC4, KHR_DF_MODEL_BC5
+constexpr std::uint32_t kModelBc4 = 131, kModelBc5 = 132, kModelAstc = 162;  // KHR_DF_MODEL_BC4, _BC5, _ASTC
+
+std::vector<std::uint8_t> astcDataFormatDescriptor(BlockFormat format) {
+    const std::uint32_t blockSize = 24 + 16, side = std::uint32_t(blockSide(format));
+    std::vector<std::uint8_t> out;
+    ktx2::put32(out, 4 + blockSize);
+    ktx2::put32(out, 0);                    // vendorId 0 (Khronos), descriptorType 0 (basic)
+    ktx2::put32(out, 2 | blockSize << 16);  // versionNumber 2 (KDF 1.3), descriptorBlockSize
+    ktx2::put32(out, kModelAstc | 1 << 8 | 1 << 16);  // BT709, LINEAR, flags 0
+    ktx2::put32(out, (side - 1) | (side - 1) << 8);   // texelBlockDimension (stored minus one)
+    ktx2::put32(out, 16);                             // bytesPlane0
+    ktx2::put32(out, 0);
+    ktx2::put32(out, 127u << 16);  // bitOffset 0, bitLength 128 - 1, channel 0 (KHR_DF_CHANNEL_ASTC_DATA)
+    ktx2::put32(out, 0);           // samplePosition0..3
+    ktx2::put32(out, 0);           // sampleLower
+    ktx2::put32(out, 0xFFFFFFFFu); // sampleUpper
+    return out;
+}
 
 std::vector<std::uint8_t> blockDataFormatDescriptor(BlockFormat format) {
+    if (isAstc(format)) return astcDataFormatDescriptor(format);
     const int samples = blockChannels(format);
     const std::uint32_t blockSize = 24 + 16 * std::uint32_t(samples);
     std::vector<std::uint8_t> out;
@@ -71,7 +91,9 @@ Status writeKtx2Blocks(const std::string& path, const ChainToWrite& content, con
     }
 
     const std::vector<std::uint8_t> dfd = blockDataFormatDescriptor(format);
-    const std::vector<std::uint8_t> kvd = ktx2::keyValueData(keyValues);
+    Attributes allKeyValues = keyValues;
+    if (isAstc(format)) allKeyValues.emplace_back(ktx2::kSwizzleKey, ktx2::astcSwizzle(plan.format.channels));
+    const std::vector<std::uint8_t> kvd = ktx2::keyValueData(allKeyValues);
     const size_t dfdOffset = ktx2::kHeaderBytes + 24 * size_t(levels), kvdOffset = dfdOffset + dfd.size();
     const size_t alignment = zstd ? 1 : size_t(blockBytes(format));  // lcm(block size, 4)
     std::vector<std::uint64_t> offset(static_cast<size_t>(levels));

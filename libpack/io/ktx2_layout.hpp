@@ -18,6 +18,10 @@ inline constexpr std::uint64_t kZstdMostBlockBytes = 128 << 10;  // ZSTD_BLOCKSI
 inline constexpr size_t kHeaderBytes = 80;  // identifier + header + index
 inline constexpr const char* kOffsetKey = attr::normalisedOffset.name;
 inline constexpr const char* kScaleKey = attr::normalisedScale.name;
+// The KTX 2.0 key that tells a loader which stored channels give R, G, B and A. An ASTC file of plain
+// heights stores them as luminance (R = G = B, A = 1): "r001"; of xy normals x in RGB and y in A: "ra01".
+inline constexpr const char* kSwizzleKey = "KTXswizzle";
+inline const char* astcSwizzle(int channels) { return channels == 2 ? "ra01" : "r001"; }
 
 inline void put32(std::vector<std::uint8_t>& out, std::uint32_t v) {
     for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));

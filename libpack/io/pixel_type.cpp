@@ -13,7 +13,7 @@ namespace heightpack {
 namespace {
 
 // Vulkan and DXGI codes from the Vulkan registry and Microsoft's DXGI_FORMAT enumeration.
-constexpr std::array<TexelFormatInfo, 12> kFormats = {{
+constexpr std::array<TexelFormatInfo, 18> kFormats = {{
     {TexelFormat::Rgba32F, 4, ComponentKind::Float32, 109, 2, "VK_FORMAT_R32G32B32A32_SFLOAT",
      "DXGI_FORMAT_R32G32B32A32_FLOAT"},
     {TexelFormat::Rgba16F, 4, ComponentKind::Float16, 97, 10, "VK_FORMAT_R16G16B16A16_SFLOAT",
@@ -29,6 +29,13 @@ constexpr std::array<TexelFormatInfo, 12> kFormats = {{
     {TexelFormat::R16Unorm, 1, ComponentKind::Unorm16, 70, 56, "VK_FORMAT_R16_UNORM", "DXGI_FORMAT_R16_UNORM"},
     {TexelFormat::Bc4Unorm, 1, ComponentKind::Block, 139, 80, "VK_FORMAT_BC4_UNORM_BLOCK", "DXGI_FORMAT_BC4_UNORM"},
     {TexelFormat::Bc5Unorm, 2, ComponentKind::Block, 141, 83, "VK_FORMAT_BC5_UNORM_BLOCK", "DXGI_FORMAT_BC5_UNORM"},
+    // The one-channel entry of each pair first: the one texelFormatFromVk gives.
+    {TexelFormat::Astc4x4R, 1, ComponentKind::Block, 157, 0, "VK_FORMAT_ASTC_4x4_UNORM_BLOCK", ""},
+    {TexelFormat::Astc4x4Rg, 2, ComponentKind::Block, 157, 0, "VK_FORMAT_ASTC_4x4_UNORM_BLOCK", ""},
+    {TexelFormat::Astc6x6R, 1, ComponentKind::Block, 165, 0, "VK_FORMAT_ASTC_6x6_UNORM_BLOCK", ""},
+    {TexelFormat::Astc6x6Rg, 2, ComponentKind::Block, 165, 0, "VK_FORMAT_ASTC_6x6_UNORM_BLOCK", ""},
+    {TexelFormat::Astc8x8R, 1, ComponentKind::Block, 171, 0, "VK_FORMAT_ASTC_8x8_UNORM_BLOCK", ""},
+    {TexelFormat::Astc8x8Rg, 2, ComponentKind::Block, 171, 0, "VK_FORMAT_ASTC_8x8_UNORM_BLOCK", ""},
 }};
 
 }  // namespace
@@ -55,13 +62,16 @@ std::optional<TexelFormat> texelFormatFromVk(std::uint32_t vkFormat) {
 
 std::optional<TexelFormat> texelFormatFromDxgi(std::uint32_t dxgiFormat) {
     for (const TexelFormatInfo& info : kFormats)
-        if (info.dxgiFormat == dxgiFormat) return info.format;
+        if (info.dxgiFormat != 0 && info.dxgiFormat == dxgiFormat) return info.format;
     return std::nullopt;
 }
 
 TexelFormat texelFormatFor(int channels, PixelType type) {
     if (type == PixelType::Bc4) return TexelFormat::Bc4Unorm;
     if (type == PixelType::Bc5) return TexelFormat::Bc5Unorm;
+    if (type == PixelType::Astc4x4) return channels == 1 ? TexelFormat::Astc4x4R : TexelFormat::Astc4x4Rg;
+    if (type == PixelType::Astc6x6) return channels == 1 ? TexelFormat::Astc6x6R : TexelFormat::Astc6x6Rg;
+    if (type == PixelType::Astc8x8) return channels == 1 ? TexelFormat::Astc8x8R : TexelFormat::Astc8x8Rg;
     switch (channels) {
         case 1:
             return type == PixelType::Float  ? TexelFormat::R32F
@@ -84,9 +94,38 @@ PixelType pixelTypeOf(TexelFormat format) {
         case ComponentKind::Float16: return PixelType::Half;
         case ComponentKind::Unorm16:
         case ComponentKind::Snorm16: return PixelType::Uint16;
-        case ComponentKind::Block: return format == TexelFormat::Bc4Unorm ? PixelType::Bc4 : PixelType::Bc5;
+        case ComponentKind::Block: break;
     }
-    return PixelType::Float;
+    switch (format) {
+        case TexelFormat::Bc4Unorm: return PixelType::Bc4;
+        case TexelFormat::Bc5Unorm: return PixelType::Bc5;
+        case TexelFormat::Astc4x4R:
+        case TexelFormat::Astc4x4Rg: return PixelType::Astc4x4;
+        case TexelFormat::Astc6x6R:
+        case TexelFormat::Astc6x6Rg: return PixelType::Astc6x6;
+        case TexelFormat::Astc8x8R:
+        case TexelFormat::Astc8x8Rg: return PixelType::Astc8x8;
+        default: return PixelType::Float;
+    }
+}
+
+BlockShape blockShapeOf(TexelFormat format) {
+    switch (pixelTypeOf(format)) {
+        case PixelType::Bc5: return {4, 16};
+        case PixelType::Astc4x4: return {4, 16};
+        case PixelType::Astc6x6: return {6, 16};
+        case PixelType::Astc8x8: return {8, 16};
+        default: return {4, 8};
+    }
+}
+
+TexelFormat astcTwoChannels(TexelFormat format) {
+    switch (format) {
+        case TexelFormat::Astc4x4R: return TexelFormat::Astc4x4Rg;
+        case TexelFormat::Astc6x6R: return TexelFormat::Astc6x6Rg;
+        case TexelFormat::Astc8x8R: return TexelFormat::Astc8x8Rg;
+        default: return format;
+    }
 }
 
 std::uint16_t floatToHalf(float value) { return Imath::half(value).bits(); }

@@ -217,7 +217,7 @@ Image decodeLevel(const TexelFormatInfo& format, const std::uint8_t* bytes, int 
                   const std::optional<Normalisation>& normalisation) {
     const Normalisation n = normalisation.value_or(Normalisation{});
     if (format.isBlock()) {
-        Image image = decodeBlocks(bytes, width, height, blockFormatOf(format));
+        Image image = decodeBlocks(bytes, width, height, blockFormatOf(format), format.channels);
         for (float& v : image.pixels) v = n.offset + n.scale * v;
         return image;
     }

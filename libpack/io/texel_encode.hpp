@@ -37,9 +37,18 @@ Error nonFiniteLevel(const std::string& path, int level);
 // Fills rows of a level of content's layer: fillLayerRows for an array, fillRows (layer 0) otherwise.
 void fillLayerRows(const ChainToWrite& content, int layer, int level, int y0, int rows, float* dst);
 
-// The block format of a block TexelFormat (Bc4Unorm, Bc5Unorm).
+// The block format of a block TexelFormat (Bc4Unorm, Bc5Unorm, the ASTC sizes).
 inline BlockFormat blockFormatOf(const TexelFormatInfo& format) {
-    return format.format == TexelFormat::Bc4Unorm ? BlockFormat::Bc4 : BlockFormat::Bc5;
+    switch (format.format) {
+        case TexelFormat::Bc4Unorm: return BlockFormat::Bc4;
+        case TexelFormat::Astc4x4R:
+        case TexelFormat::Astc4x4Rg: return BlockFormat::Astc4x4;
+        case TexelFormat::Astc6x6R:
+        case TexelFormat::Astc6x6Rg: return BlockFormat::Astc6x6;
+        case TexelFormat::Astc8x8R:
+        case TexelFormat::Astc8x8Rg: return BlockFormat::Astc8x8;
+        default: return BlockFormat::Bc5;
+    }
 }
 // The bytes a width x height image takes in format.
 inline size_t imageBytes(const TexelFormatInfo& format, int width, int height) {

@@ -8,6 +8,8 @@ Status containerTakes(const TextureOutput& output, const TextureStorage& storage
     const std::string& path = output.path;
     if (output.container == Container::Dds && storage.supercompression != Supercompression::None)
         return cannotWrite(path, "DDS has no supercompression", "write it uncompressed, or as KTX2");
+    if (output.container == Container::Dds && isAstcType(storage.pixelType))
+        return cannotWrite(path, "DDS has no ASTC format", "write .ktx2, or store bc4 or bc5 in a DDS");
     if (output.container != Container::Exr) return Done{};
     if (storage.pixelType == PixelType::Uint16)
         return cannotWrite(path, "an EXR has no 16-bit normalised channels", "store float or half, or write .ktx2 or .dds");

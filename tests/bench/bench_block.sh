@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 39's figures for the block formats (BC4, BC5), run by hand (not by ctest):
+# Issue 39's figures for the block formats (BC4, BC5, ASTC), run by hand (not by ctest):
 #  1. bytes a texel of a whole chain per pixel type (pack --json's gpuBytes over the chain's texels), plain
 #     heights and xy normals of examples/maps/swell.png;
 #  2. the error against nvcompress -bc4/-bc5 and libsquish's kBc4/kBc5 on the same values, per map of the
@@ -9,10 +9,13 @@
 #     bc4 and uint16, and `nvcompress -bc4` (load, its own mips, encode, write) of the same 8-bit PNG, and
 #     `normal --layout xy` in bc5 against `nvcompress -bc5` of an RG PNG; libsquish's of the same PNGs
 #     (tests/bench/squish_chain.cpp: load, 2x2 box mips, encode on one thread, write); medians of RUNS, wall
-#     and CPU.
+#     and CPU;
+#  4. ASTC 4x4, 6x6, 8x8 against ARM's astcenc command line at the same preset (-medium) on the same
+#     SIZE x SIZE 8-bit map: level 0's worst and RMS error (units of the map's 0..1 values), both files'
+#     blocks decoded by `astcenc -dl`, and the encode time (heightpack: the whole chain; astcenc: level 0).
 #   tests/bench/bench_block.sh [BUILD_DIR] [RUNS] [SIZE]
-# Needs jq, GNU time, oiiotool (OpenImageIO's tools), nvcompress (libnvtt-bin), and the container tests and
-# heightpack_squish_chain built (libsquish-dev; -DHEIGHTPACK_BUILD_BENCHMARKS=ON).
+# Needs jq, GNU time, oiiotool (OpenImageIO's tools), nvcompress (libnvtt-bin), astcenc, and the container
+# tests and heightpack_squish_chain built (libsquish-dev; -DHEIGHTPACK_BUILD_BENCHMARKS=ON).
 set -euo pipefail
 build=${1:-build}
 runs=${2:-3}
@@ -23,7 +26,7 @@ examples="$here/../../examples/maps"
 squish="$build/tests/bench/heightpack_squish_chain"
 [ -x "$hp" ] || { echo "bench_block: no $hp; build first (cmake --build $build)" >&2; exit 2; }
 [ -x "$squish" ] || { echo "bench_block: no $squish; install libsquish-dev, build with -DHEIGHTPACK_BUILD_BENCHMARKS=ON" >&2; exit 2; }
-for tool in jq oiiotool nvcompress; do
+for tool in jq oiiotool nvcompress astcenc; do
   command -v "$tool" >/dev/null || { echo "bench_block: needs $tool" >&2; exit 2; }
 done
 work=$(mktemp -d "${TMPDIR:-/tmp}/bench_block.XXXXXX")
@@ -33,11 +36,11 @@ trap 'rm -rf "$work"' EXIT
 echo "1. bytes a texel of the whole chain (examples/maps/swell.png, 512x512, every level)"
 printf '%-8s %-8s %12s %10s\n' output type "gpu bytes" "B/texel"
 texels=$(( (512 * 512 * 4 - 1) / 3 ))  # 512^2 + 256^2 + ... + 1
-for type in float half uint16 bc4; do
+for type in float half uint16 bc4 astc-4x4 astc-6x6 astc-8x8; do
   bytes=$("$hp" pack "$examples/swell.png" --layout plain --pixel-type "$type" --json -o "$work/s.ktx2" | jq '.gpuBytes')
   printf '%-8s %-8s %12s %10s\n' heights "$type" "$bytes" "$(ratio "$bytes" "$texels")"
 done
-for type in float half uint16 bc5; do
+for type in float half uint16 bc5 astc-4x4 astc-6x6 astc-8x8; do
   bytes=$("$hp" normal "$examples/swell.png" --tile-size 8m --height 0.5m --layout xy --pixel-type "$type" --json \
           -o "$work/n.ktx2" | jq '.gpuBytes')
   printf '%-8s %-8s %12s %10s\n' normals "$type" "$bytes" "$(ratio "$bytes" "$texels")"
@@ -68,3 +71,50 @@ row "heightpack normal xy bc5" "$hp" normal "$work/map.png" --tile-size 8m --hei
   --quiet -o "$work/n.ktx2"
 row "nvcompress -bc5" nvcompress -bc5 "$work/rg.png" "$work/nv5.dds"
 row "squish bc5 (one thread)" "$squish" bc5 "$work/rg.png" "$work/sq5.bin"
+
+echo
+echo "4. ASTC against astcenc -cl ... -medium on the same ${size}x${size} map (level 0, decoded by astcenc -dl;"
+echo "   error in units of the map's 0..1 values; time: heightpack the whole chain, astcenc level 0), median of $runs runs"
+# le64 FILE OFFSET: the little-endian 64-bit word at OFFSET.
+le64() { od -An -t u8 -j "$2" -N 8 "$1" | tr -d ' '; }
+# astc_file SIDE WIDTH HEIGHT BLOCKS OUT: ARM's .astc header (magic, block size, 24-bit sizes) before BLOCKS.
+astc_file() {
+  local side=$1 w=$2 h=$3
+  printf '\x13\xab\xa1\x5c' >"$5"
+  printf "\\x$(printf %02x "$side")\\x$(printf %02x "$side")\\x01" >>"$5"
+  for v in "$w" "$h" 1; do
+    printf "\\x$(printf %02x $((v & 255)))\\x$(printf %02x $((v >> 8 & 255)))\\x$(printf %02x $((v >> 16 & 255)))" >>"$5"
+  done
+  cat "$4" >>"$5"
+}
+# errors DECODED.exr SCALE OFFSET: "worst rms" of OFFSET + SCALE * R against the map's values.
+errors() {
+  { oiiotool "$1" --ch R --mulc "$2" --addc "$3" "$work/map.png" --ch 0 --diff 2>/dev/null || true; } |
+    awk '/RMS error/ {rms = $NF} /Max error/ {worst = $4} END {printf "%.5f %.5f", worst, rms}'
+}
+printf '%-10s %22s %22s %20s %20s\n' size "heightpack worst, rms" "astcenc worst, rms" "heightpack wall/cpu" "astcenc wall/cpu"
+for side in 4 6 8; do
+  type="astc-${side}x${side}"
+  "$hp" pack "$work/map.png" --layout plain --pixel-type "$type" --quiet -o "$work/a.ktx2"
+  kv=$("$hp" info --json "$work/a.ktx2")
+  scale=$(jq -r '.attributes["heightpack:normalisedScale"]' <<<"$kv")
+  offset=$(jq -r '.attributes["heightpack:normalisedOffset"]' <<<"$kv")
+  dd if="$work/a.ktx2" of="$work/level0.bin" bs=1 skip="$(le64 "$work/a.ktx2" 80)" count="$(le64 "$work/a.ktx2" 88)" 2>/dev/null
+  astc_file "$side" "$size" "$size" "$work/level0.bin" "$work/ours.astc"
+  astcenc -dl "$work/ours.astc" "$work/ours.exr" -silent >/dev/null
+  astcenc -cl "$work/map.png" "$work/cli.astc" "${side}x${side}" -medium -silent >/dev/null
+  astcenc -dl "$work/cli.astc" "$work/cli.exr" -silent >/dev/null
+  ours=$(errors "$work/ours.exr" "$scale" "$offset")
+  theirs=$(errors "$work/cli.exr" 1 0)
+  : >"$work/log"
+  for ((i = 0; i < runs; i++)); do
+    measure "$work/log" "$hp" pack "$work/map.png" --layout plain --pixel-type "$type" --quiet -o "$work/a.ktx2"
+  done
+  read -r hwall hcpu _ < <(medians "$work/log")
+  : >"$work/log"
+  for ((i = 0; i < runs; i++)); do
+    measure "$work/log" astcenc -cl "$work/map.png" "$work/cli.astc" "${side}x${side}" -medium -silent
+  done
+  read -r awall acpu _ < <(medians "$work/log")
+  printf '%-10s %22s %22s %20s %20s\n' "$type" "$ours" "$theirs" "$hwall / $hcpu" "$awall / $acpu"
+done

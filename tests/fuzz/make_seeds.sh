@@ -153,7 +153,8 @@ cat >"$out/fuzz_material/small.json" <<'JSON'
 JSON
 ls -l "$out"/*
 
-# fuzz_gpu_texture: KTX2 (float; uint16 with zstd; BC4, BC5) and DDS (half; uint16 normals; BC4, BC5) of an 8x8 16-bit map, as
+# fuzz_gpu_texture: KTX2 (float; uint16 with zstd; BC4, BC5; ASTC heights 6x6 and normals 4x4) and DDS (half;
+# uint16 normals; BC4, BC5) of an 8x8 16-bit map, as
 # heightpack writes them (HEIGHTPACK: the binary, ../../build/heightpack by default).
 hp=${HEIGHTPACK:-../../build/heightpack}
 mkdir -p "$out/fuzz_gpu_texture"
@@ -162,8 +163,11 @@ oiiotool --pattern noise:type=uniform 8x8 1 -d uint16 -o "$tmp/m.png"
 "$hp" pack "$tmp/m.png" -q --pixel-type uint16 --compression zstd -o "$out/fuzz_gpu_texture/packed_uint16_zstd.ktx2"
 "$hp" pack "$tmp/m.png" -q --pixel-type half -o "$out/fuzz_gpu_texture/packed_half.dds"
 "$hp" normal "$tmp/m.png" -q --tile-size 8m --height 1m --pixel-type uint16 -o "$out/fuzz_gpu_texture/normal_uint16.dds"
-# Block streams: BC4 plain heights and BC5 xy normals, in KTX2 and DDS.
+# Block streams: BC4 plain heights and BC5 xy normals, in KTX2 and DDS; ASTC heights and normals in KTX2.
 "$hp" pack "$tmp/m.png" -q --layout plain --pixel-type bc4 -o "$out/fuzz_gpu_texture/plain_bc4.ktx2"
 "$hp" pack "$tmp/m.png" -q --layout plain --pixel-type bc4 -o "$out/fuzz_gpu_texture/plain_bc4.dds"
 "$hp" normal "$tmp/m.png" -q --tile-size 8m --height 1m --layout xy --pixel-type bc5 -o "$out/fuzz_gpu_texture/normal_bc5.ktx2"
 "$hp" normal "$tmp/m.png" -q --tile-size 8m --height 1m --layout xy --pixel-type bc5 -o "$out/fuzz_gpu_texture/normal_bc5.dds"
+"$hp" pack "$tmp/m.png" -q --layout plain --pixel-type astc-6x6 -o "$out/fuzz_gpu_texture/plain_astc6.ktx2"
+"$hp" normal "$tmp/m.png" -q --tile-size 8m --height 1m --layout xy --pixel-type astc-4x4 \
+  -o "$out/fuzz_gpu_texture/normal_astc4.ktx2"

@@ -52,6 +52,9 @@ const vk = {
   78: ['VK_FORMAT_R16G16_SNORM', 'snorm16', 2],
   100: ['VK_FORMAT_R32_SFLOAT', 'f32', 1], 76: ['VK_FORMAT_R16_SFLOAT', 'f16', 1], 70: ['VK_FORMAT_R16_UNORM', 'unorm16', 1],
   139: ['VK_FORMAT_BC4_UNORM_BLOCK', 'bc4', 1], 141: ['VK_FORMAT_BC5_UNORM_BLOCK', 'bc5', 2],
+  // ASTC: RGBA in every block; which channels hold values the file's KTXswizzle says.
+  157: ['VK_FORMAT_ASTC_4x4_UNORM_BLOCK', 'astc4', 4], 165: ['VK_FORMAT_ASTC_6x6_UNORM_BLOCK', 'astc6', 4],
+  171: ['VK_FORMAT_ASTC_8x8_UNORM_BLOCK', 'astc8', 4],
 };
 const dxgi = {
   R32G32B32A32_FLOAT: ['f32', 4], R16G16B16A16_FLOAT: ['f16', 4], R16G16B16A16_UNORM: ['unorm16', 4],
@@ -60,12 +63,13 @@ const dxgi = {
   BC4_UNORM: ['bc4', 1], BC5_UNORM: ['bc5', 2],
 };
 
-// Block formats (BC4: 8 bytes, BC5: 16 bytes a 4x4 block) are not decoded here: their bytes go out as hex
-// for a decoder of their own (the tests use nvdecompress).
-const isBlock = (kind) => kind === 'bc4' || kind === 'bc5';
+// Block formats (BC4: 8 bytes, BC5: 16 bytes a 4x4 block; ASTC 16 bytes a 4x4, 6x6 or 8x8 block) are not
+// decoded here: their bytes go out as hex for a decoder of their own (the tests use nvdecompress, astcenc).
+const isBlock = (kind) => kind === 'bc4' || kind === 'bc5' || kind.startsWith('astc');
 const blockBytes = (kind) => (kind === 'bc4' ? 8 : 16);
+const blockSide = (kind) => (kind.startsWith('astc') ? Number(kind.slice(4)) : 4);
 const imageBytes = (w, h, kind, texelBytes) =>
-  isBlock(kind) ? Math.ceil(w / 4) * Math.ceil(h / 4) * blockBytes(kind) : w * h * texelBytes;
+  isBlock(kind) ? Math.ceil(w / blockSide(kind)) * Math.ceil(h / blockSide(kind)) * blockBytes(kind) : w * h * texelBytes;
 const valuesOf = (data, kind) => (isBlock(kind) ? [] : decode(data, kind));
 const blocksOf = (data, kind) => (isBlock(kind) ? Buffer.from(data).toString('hex') : undefined);
 
