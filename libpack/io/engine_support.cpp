@@ -5,6 +5,9 @@
 #include <string_view>
 #include <utility>
 
+#include "heightpack/io/info.hpp"
+#include "heightpack/io/pixel_type.hpp"
+
 namespace heightpack {
 
 namespace {
@@ -13,20 +16,21 @@ namespace {
 // R16G16_SNORM: xy normals in uint16 as earlier versions wrote them (read, no longer written).
 enum class Texel { Rgba32F, Rgba16F, Rgba16Unorm, R32F, R16F, R16Unorm, Rg32F, Rg16F, Rg16Unorm, Rg16Snorm, Other };
 
-Texel texelOf(std::string_view name) {
-    struct Entry {
-        std::string_view vk, dxgi;
-        Texel texel;
-    };
-    static constexpr Entry kTable[] = {
-        {"R32G32B32A32_SFLOAT", "R32G32B32A32_FLOAT", Texel::Rgba32F}, {"R16G16B16A16_SFLOAT", "R16G16B16A16_FLOAT", Texel::Rgba16F},
-        {"R16G16B16A16_UNORM", "R16G16B16A16_UNORM", Texel::Rgba16Unorm}, {"R32_SFLOAT", "R32_FLOAT", Texel::R32F},
-        {"R16_SFLOAT", "R16_FLOAT", Texel::R16F}, {"R16_UNORM", "R16_UNORM", Texel::R16Unorm},
-        {"R32G32_SFLOAT", "R32G32_FLOAT", Texel::Rg32F}, {"R16G16_SFLOAT", "R16G16_FLOAT", Texel::Rg16F},
-        {"R16G16_UNORM", "R16G16_UNORM", Texel::Rg16Unorm}, {"R16G16_SNORM", "R16G16_SNORM", Texel::Rg16Snorm},
-    };
-    for (const Entry& e : kTable)
-        if (name == std::string("VK_FORMAT_").append(e.vk) || name == std::string("DXGI_FORMAT_").append(e.dxgi)) return e.texel;
+Texel texelOf(TexelFormat format) {
+    switch (format) {
+        case TexelFormat::Rgba32F: return Texel::Rgba32F;
+        case TexelFormat::Rgba16F: return Texel::Rgba16F;
+        case TexelFormat::Rgba16Unorm: return Texel::Rgba16Unorm;
+        case TexelFormat::R32F: return Texel::R32F;
+        case TexelFormat::R16F: return Texel::R16F;
+        case TexelFormat::R16Unorm: return Texel::R16Unorm;
+        case TexelFormat::Rg32F: return Texel::Rg32F;
+        case TexelFormat::Rg16F: return Texel::Rg16F;
+        case TexelFormat::Rg16Unorm: return Texel::Rg16Unorm;
+        case TexelFormat::Rg16Snorm: return Texel::Rg16Snorm;
+        case TexelFormat::Bc4Unorm:
+        case TexelFormat::Bc5Unorm: return Texel::Other;
+    }
     return Texel::Other;
 }
 
@@ -39,8 +43,6 @@ std::string halfOf(Texel t, const char* container) {
     const char* channels = t == Texel::Rgba16Unorm ? "RGBA" : t == Texel::R16Unorm ? "R" : "RG";
     return std::string(container) + " " + channels + " half or float";
 }
-
-enum class FileKind { Ktx2, Dds, Exr, Png, Other };
 
 EngineVerdict verdict(EngineSupport s, std::string why, std::string alternative = {}) {
     return {s, std::move(why), std::move(alternative)};
@@ -167,16 +169,12 @@ EngineVerdict arrayOf(Engine engine, FileKind c, EngineVerdict single) {
 }  // namespace
 
 EngineVerdict engineSupport(Engine engine, const TextureHeader& header, int levels) {
-    const std::string_view format = header.format;
-    const size_t space = format.find(' ');
-    const std::string_view container = format.substr(0, space);
-    const Texel texel = space == std::string_view::npos ? Texel::Other : texelOf(format.substr(space + 1));
-    const FileKind c = container == "ktx2" ? FileKind::Ktx2 : container == "dds" ? FileKind::Dds
-                        : container == "openexr" ? FileKind::Exr : container == "png" ? FileKind::Png : FileKind::Other;
+    const FileKind c = header.kind;
+    const Texel texel = header.texelFormat ? texelOf(*header.texelFormat) : Texel::Other;
     if ((c == FileKind::Ktx2 || c == FileKind::Dds) && texel == Texel::Other)
         return verdict(EngineSupport::Unknown, "no entry for this texel format in heightpack's engines table");
     const bool mipmappedExr = c == FileKind::Exr && levels > 1;
-    const bool png16 = c == FileKind::Png && header.pixelType == "uint16";
+    const bool png16 = c == FileKind::Png && header.description.componentBytes == 2;
     EngineVerdict single;
     switch (engine) {
         case Engine::ThreeJs: single = threeJs(c, texel, mipmappedExr, png16); break;

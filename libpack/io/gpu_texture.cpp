@@ -58,6 +58,8 @@ Result<TextureFile> readGpuTextureFile(const std::string& path) {
     TextureFile file;
     file.path = path;
     const bool ktx2 = texture->container == Container::Ktx2;
+    file.kind = ktx2 ? FileKind::Ktx2 : FileKind::Dds;
+    file.texelFormat = texture->format;
     file.format = std::string(containerName(texture->container)) + " " + (ktx2 ? f.vkName : f.dxgiName);
     if (texture->supercompression == Supercompression::Zstd) file.format += " zstd";
     file.pixelType = pixelTypeName(pixelTypeOf(texture->format));

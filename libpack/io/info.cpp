@@ -24,6 +24,8 @@ Result<detail::OpenedImage> openTexture(const std::string& path, TextureHeader& 
     detail::OpenedImage in = std::move(*opened);
     header.path = path;
     header.format = in->format_name();
+    // The decoder's word, read once here.
+    header.kind = header.format == "openexr" ? FileKind::Exr : header.format == "png" ? FileKind::Png : FileKind::Other;
     const detail::SourceSpec& top = in->spec();
     header.pixelType = top.format.c_str();
     header.channelNames = top.channelnames;

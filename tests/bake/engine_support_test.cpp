@@ -80,7 +80,7 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
             }
         }
     }
-    // Array textures (pack --displacement --foam into KTX2 and DDS): three.js and Babylon.js load layer 0
+    // Array textures (pack --shift --foam into KTX2 and DDS): three.js and Babylon.js load layer 0
     // alone, Godot refuses a KTX2 array and loads a DDS one as a Texture2DArray (README's table, rows
     // "array").
     const Image y = makeImage(64, 64, smoothWave), d = makeImage(64, 64, [](int x, int) { return x / 64.0f - 0.5f; });
@@ -95,7 +95,7 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
                                ArrayCase{"array.dds", PixelType::Half, "dds DXGI_FORMAT_R16G16B16A16_FLOAT", {Refuses, Partial, Unknown, Unknown, Loads}},
                                ArrayCase{"array16.dds", PixelType::Uint16, "dds DXGI_FORMAT_R16G16B16A16_UNORM", {Refuses, Refuses, Unknown, Unknown, Partial}}}) {
         PackOptions options;
-        options.displacement = options.foam = true;
+        options.shift = options.foam = true;
         options.storage.pixelType = c.type;
         const auto made = packHeightMap(dir.file("sea.exr"), dir.file(c.output), options);
         ASSERT_TRUE(made) << c.output << ": " << made.error().what;

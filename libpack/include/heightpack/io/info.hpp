@@ -10,6 +10,7 @@
 #include "heightpack/core/image.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/attributes.hpp"
+#include "heightpack/io/pixel_type.hpp"
 #include "heightpack/io/texture_description.hpp"
 
 namespace heightpack {
@@ -37,10 +38,15 @@ struct LevelInfo {
     std::optional<double> rmsError, angleError, rmsAngleError;
 };
 
+// What kind of file holds the texels, typed where the header is read.
+enum class FileKind { Ktx2, Dds, Exr, Png, Other };
+
 // What a texture file's header says.
 struct TextureHeader {
     std::string path;
-    std::string format;     // OpenImageIO's format name
+    FileKind kind = FileKind::Other;
+    std::optional<TexelFormat> texelFormat;  // a KTX2's or DDS's texels
+    std::string format;     // for reports: OpenImageIO's format name, or the container and its texel format
     std::string pixelType;  // the decoder's word for its samples, for reports: "float", "half", "uint16", "uint8", ...
     std::vector<std::string> channelNames;
     // An array texture's layers (KTX2, DDS), in order; empty for a single texture. Its channels are then
