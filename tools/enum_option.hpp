@@ -12,9 +12,6 @@
 
 namespace heightpack::cli {
 
-// --flag NAME, one of `allowed` (default: every name in E's table). The help lists the names and shows
-// the field's value when attached as the default; a name outside them is a usage error (exit 2) in
-// CLI11's words: "--wrap: foo not in {periodic,clamp}".
 // Checks a name against `allowed` and turns it into the enum's underlying integer, which is how CLI11
 // reads an enum field; a name outside them is a usage error in CLI11's words.
 template <class E>

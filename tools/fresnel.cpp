@@ -31,8 +31,8 @@ public:
             ->capture_default_str()
             ->check(colourValidator());
         cmd->add_option("--size", options_.size, "texels in the ramp")->capture_default_str()->check(CLI::Range(2, 65536));
-        cmd->add_option("--format", format_, "exr or png8 (default: from the output's extension)")
-            ->check(CLI::IsMember({"exr", "png8"}));
+        formatOption_ = addEnumOption(*cmd, "--format", format_, "exr or png8 (default: from the output's extension)")
+                            ->default_str("");
         addPixelTypeOption(*cmd, pixelType_, false, nullptr, "",
                            {PixelTypeRequest::Float, PixelTypeRequest::Half, PixelTypeRequest::Uint16});
         addCommonOptions(*cmd);
@@ -50,27 +50,28 @@ public:
         if (const ExitCode code = checkOutputs({}, {{output_, "-o", {".exr", ".ktx2", ".dds", ".png"}}});
             code != ExitCode::Ok)
             return code;
-        const std::string format = outputFormat(format_, output_);
-        if (format.empty()) return usage("the output must end in .exr, .ktx2, .dds or .png, matching --format if given");
+        const std::optional<RampFormat> format =
+            outputFormat(formatOption_->count() > 0 ? std::optional(format_) : std::nullopt, output_);
+        if (!format) return usage("the output must end in .exr, .ktx2, .dds or .png, matching --format if given");
         const PixelType pixelType = requestedPixelType(pixelType_);
-        if (format == "png8" && pixelType != PixelType::Float)
+        if (format == RampFormat::Png8 && pixelType != PixelType::Float)
             return usage("--pixel-type is for .exr, .ktx2 and .dds outputs; a PNG ramp is 8-bit");
         Supercompression none;
-        if (const std::string problem = checkContainerChoice({output_}, pixelType, "", false, none); !problem.empty())
+        if (const std::string problem = checkContainerChoice({output_}, pixelType, std::nullopt, none); !problem.empty())
             return usage(problem);
         options_.deep = *parseColour(deep_);
         options_.shallow = *parseColour(shallow_);
-        const Status written = writeFresnelRamp(output_, options_, format == "png8" ? RampFormat::Png8 : RampFormat::Exr,
+        const Status written = writeFresnelRamp(output_, options_, *format,
                                                 kVersion, pixelType);
         if (!written) return fail(written.error());
         const double f0 = fresnelReflectance(1.0, options_.ior, options_.model);
         if (common_.json) {
-            printJson({{"command", "fresnel"}, {"output", output_}, {"format", format}, {"ior", options_.ior},
+            printJson({{"command", "fresnel"}, {"output", output_}, {"format", formatWord(*format, output_)}, {"ior", options_.ior},
                        {"model", nameOf(options_.model)}, {"index", nameOf(options_.index)}, {"size", options_.size}, {"deep", options_.deep},
                        {"shallow", options_.shallow}, {"reflectanceAtNormalIncidence", f0}});
         } else if (chatty()) {
             std::ostringstream line;
-            line << "wrote " << output_ << ": " << options_.size << "x1 " << format << ", ior " << options_.ior << ", "
+            line << "wrote " << output_ << ": " << options_.size << "x1 " << formatWord(*format, output_) << ", ior " << options_.ior << ", "
                  << nameOf(options_.model) << ", index " << nameOf(options_.index) << ", F(0 deg) = " << std::setprecision(4) << f0;
             std::cout << line.str() << "\n";
         }
@@ -78,7 +79,9 @@ public:
     }
 
 private:
-    std::string output_, format_;
+    std::string output_;
+    RampFormat format_ = RampFormat::Exr;
+    CLI::Option* formatOption_ = nullptr;
     PixelTypeRequest pixelType_ = PixelTypeRequest::Float;
     FresnelOptions options_;
     std::string deep_ = colourText(options_.deep), shallow_ = colourText(options_.shallow);

@@ -59,15 +59,14 @@ std::string cliHint(const Error& error) {
         case Fix::FewerJobs: return "use fewer --jobs or --threads";
         case Fix::WriteFloat:
             return "write float samples: an .exr or .tif output without --depth; heightpack never clips or rescales heights";
-        case Fix::AddDisplacement:
-            return "synthesise it with 'heightpack synth --displacement' to an .exr, or leave out --displacement";
+        case Fix::AddShift:
+            return "synthesise it with 'heightpack synth --shift' to an .exr, or leave out --shift";
         case Fix::AddFoam: return "synthesise it with 'heightpack synth --foam' to an .exr, or leave out --foam";
         case Fix::OnePlainChain: return "leave out --emit-plain: with --layout plain the output is the plain chain";
         case Fix::CompanionsNeedExr: return "--" + arg(0) + " writes an .exr only: name the output .exr";
-        case Fix::RgbNormals:
-            return arg(0) == "png" ? "--layout xy is for mip-mapped .exr, .ktx2 and .dds outputs; a PNG normal map is rgb"
-                                   : "--layout xy stores two channels, leaving no alpha for --height-in-alpha or "
-                                     "--variance-in-alpha";
+        case Fix::RgbNormalsInPng: return "--layout xy is for mip-mapped .exr, .ktx2 and .dds outputs; a PNG normal map is rgb";
+        case Fix::RgbNormalsForAlpha:
+            return "--layout xy stores two channels, leaving no alpha for --height-in-alpha or --variance-in-alpha";
         case Fix::VarianceNeedsLevels: return "--variance-in-alpha is for mip-mapped outputs: write .exr";
         case Fix::ManifestReference:
             return arg(0) + (arg(0).empty() ? "" : " ") + "see " + manifestReference() + " for every key";

@@ -131,7 +131,7 @@ private:
                             number(d.scroll[0]) + "," + number(d.scroll[1]) + " tiles/s, " + nameOf(d.wrap) + ", " +
                             nameOf(d.filter);
             if (d.loopPeriod > 0) p += ", loop " + number(d.loopPeriod) + " s";
-            if (d.horizontalDisplacement) p += ", choppiness " + number(d.choppiness);
+            if (d.shift) p += ", choppiness " + number(d.choppiness);
             if (d.foam) p += ", foam layer";
             row("displacement '" + d.name + "'", textureText(d.texture), p);
         }
@@ -187,6 +187,7 @@ private:
             if (l.angleError) levels.back()["angleErrorDegrees"] = *l.angleError;
             if (l.rmsAngleError) levels.back()["rmsAngleErrorDegrees"] = *l.rmsAngleError;
         }
+        const TextureDescription& d = info.description;
         auto text = [&](const char* name) {
             const std::string v = findAttribute(info, name);
             return v.empty() ? nlohmann::json(nullptr) : nlohmann::json(v);
@@ -205,9 +206,11 @@ private:
             {"width", info.levels.empty() ? 0 : info.levels[0].width},
             {"height", info.levels.empty() ? 0 : info.levels[0].height},
             {"levelCount", info.levels.size()},
-            {"layout", text(attr::layout.name)},
-            {"wrap", text(attr::wrap.name)},
-            {"filter", text(attr::filter.name)},
+            // From the typed description, through the name tables: a word the schema does not list never
+            // gets this far (describeTexture refuses it).
+            {"layout", d.kind == TextureKind::Image ? nlohmann::json(nullptr) : nlohmann::json(layoutWord(d))},
+            {"wrap", d.wrapRecorded ? nlohmann::json(attributeText(d.wrap)) : nlohmann::json(nullptr)},
+            {"filter", d.filter ? nlohmann::json(attributeText(*d.filter)) : nlohmann::json(nullptr)},
             {"heightScale", text(attr::heightScale.name)},
             {"heightOffset", text(attr::heightOffset.name)},
             {"gpuBytes", gpuTotal},

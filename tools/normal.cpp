@@ -43,8 +43,8 @@ public:
         cmd->add_flag("--variance-in-alpha", varianceInAlpha_,
                       "store the slope variance each level lost to filtering in alpha (Toksvig-style)")
             ->excludes(heightAlpha);
-        cmd->add_option("--format", format_, "exr or png8 (default: from the output's extension)")
-            ->check(CLI::IsMember({"exr", "png8"}));
+        formatOption_ = addEnumOption(*cmd, "--format", format_, "exr or png8 (default: from the output's extension)")
+                            ->default_str("");
         compressionOption_ =
             cmd->add_option("--compression", compression_,
                             "EXR compression, by default none for float normals (zip saves 1-5% of their bytes at "
@@ -82,8 +82,9 @@ public:
         if (const ExitCode code = checkOutputs({}, {{output_, "-o", {".exr", ".ktx2", ".dds", ".png"}}});
             code != ExitCode::Ok)
             return code;
-        const std::string format = outputFormat(format_, output_);
-        if (format.empty()) return usage("the output must end in .exr, .ktx2, .dds or .png, matching --format if given");
+        const std::optional<NormalFormat> format =
+            outputFormat(formatOption_->count() > 0 ? std::optional(format_) : std::nullopt, output_);
+        if (!format) return usage("the output must end in .exr, .ktx2, .dds or .png, matching --format if given");
         NormalJobOptions& o = options_;
         NormalOptions& n = o.normal;
         const auto comma = tileSize_.find(',');
@@ -91,20 +92,21 @@ public:
         n.tileHeight = comma == std::string::npos ? 0.0 : *parseLength(tileSize_.substr(comma + 1));
         n.alpha = heightInAlpha_ ? NormalAlpha::Height : varianceInAlpha_ ? NormalAlpha::SlopeVariance : NormalAlpha::None;
         n.threads = common_.threads;
-        o.format = format == "png8" ? NormalFormat::Png8 : NormalFormat::Exr;
+        o.format = *format;
         o.storage.pixelType = requestedPixelType(pixelType_);
-        if (format == "png8" && pixelType_ != PixelTypeRequest::Float)
+        if (o.format == NormalFormat::Png8 && pixelType_ != PixelTypeRequest::Float)
             return usage("--pixel-type is for .exr, .ktx2 and .dds outputs; a PNG normal map is 8-bit");
         // Normal maps' errors are in normal units: a plain number is one, a length the job converts.
         if (const std::string problem = normalTolerance(pixelType_, tolerance_, o.storage.tolerance, o.toleranceMetres);
             !problem.empty())
             return usage(problem);
-        o.storage.exrCompression = compressionOption_->count() > 0
-                                       ? parseName<Compression>(compression_).value_or(Compression::Zip)
+        const std::optional<CompressionChoice> compression =
+            compressionOption_->count() > 0 ? std::optional(readCompression(compression_)) : std::nullopt;
+        o.storage.exrCompression = compression ? compression->exr.value_or(Compression::Zip)
                                        : defaultNormalCompression(o.storage.pixelType,
                                                                   std::max(o.storage.tolerance, o.toleranceMetres));
-        if (const std::string problem = checkContainerChoice({output_}, o.storage.pixelType, compression_,
-                                                             compressionOption_->count() > 0, o.storage.supercompression);
+        if (const std::string problem = checkContainerChoice({output_}, o.storage.pixelType, compression,
+                                                             o.storage.supercompression);
             !problem.empty())
             return usage(problem);
         if (const std::string problem = blockLayoutProblem(o.storage.pixelType, options_.layout); !problem.empty())
@@ -132,7 +134,7 @@ public:
         for (size_t f = 0; f < inputs.size(); ++f) {
             const std::string shown = frameFileName(output_, int(f), int(inputs.size()));
             const std::string output = inputs.size() > 1 ? staged.stage(shown) : shown;
-            const ExitCode code = normalOne(inputs[f], output, shown, o, format, inputs.size() > 1 ? &sequence : nullptr);
+            const ExitCode code = normalOne(inputs[f], output, shown, o, inputs.size() > 1 ? &sequence : nullptr);
             if (code != ExitCode::Ok) return code;
         }
         if (Status committed = staged.commit(); !committed) return fail(committed.error());
@@ -145,8 +147,10 @@ private:
     // Makes one normal map; its JSON report goes to stdout, or into sequence when making frames.
     // shown: the output's name as given (output may be a staged name for it).
     ExitCode normalOne(const std::string& input, const std::string& output, const std::string& shown, NormalJobOptions& o,
-                       const std::string& format, nlohmann::json* sequence) {
+                       nlohmann::json* sequence) {
         const NormalOptions& n = o.normal;
+        const bool png8 = o.format == NormalFormat::Png8;
+        const char* format = formatWord(o.format, shown);
         Progress progress(!common_.quiet, "normal " + std::filesystem::path(input).filename().string(),
                           {{"load", 0.15}, {"mip", 0.1}, {"normal", 0.35}, {"write", 0.4}});
         progress.update("load", 0.0);  // from the start: loading a large map takes seconds
@@ -181,11 +185,11 @@ private:
                        {"layout", nameOf(r.layout)},
                        {"alpha", nameOf(n.alpha)},
                        {"channels", channels},
-                       {"pixelType", format == "png8" ? nlohmann::json("uint8") : stored["pixelType"]},
+                       {"pixelType", png8 ? nlohmann::json("uint8") : stored["pixelType"]},
                        {"pixelTypeRequested", nameOf(pixelType_)},
                        {"tolerance", r.tolerance > 0.0 ? nlohmann::json(r.tolerance) : nlohmann::json(nullptr)},
-                       {"gpuBytes", format == "png8" ? nlohmann::json(nullptr) : stored["gpuBytes"]},
-                       {"lookupError", format == "png8" ? nlohmann::json(nullptr) : stored["lookupError"]},
+                       {"gpuBytes", png8 ? nlohmann::json(nullptr) : stored["gpuBytes"]},
+                       {"lookupError", png8 ? nlohmann::json(nullptr) : stored["lookupError"]},
                        {"levels", stored["levels"]},
                        {"seconds", r.seconds}};
             if (sequence)
@@ -202,7 +206,7 @@ private:
             // What was written: rgba with an alpha (its content named), else the layout's channels.
             const std::string stored = channels == 4 ? std::string("rgba (") + nameOf(n.alpha) + " in alpha)"
                                                      : std::string(nameOf(r.layout));
-            line << stored << (format == "png8" ? "" : " " + storedChainText(r.pixelType, r.lookupError, 0.0)) << ", ";
+            line << stored << (png8 ? "" : " " + storedChainText(r.pixelType, r.lookupError, 0.0)) << ", ";
             line << std::setprecision(2) << r.seconds << " s";
             std::cout << line.str() << "\n";
             if (r.resized) std::cout << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";
@@ -211,7 +215,9 @@ private:
         return ExitCode::Ok;
     }
 
-    std::string input_, output_, tileSize_, channel_, format_;
+    std::string input_, output_, tileSize_, channel_;
+    NormalFormat format_ = NormalFormat::Exr;
+    CLI::Option* formatOption_ = nullptr;
     NormalJobOptions options_;
     std::string compression_, resize_ = "none";
     PixelTypeRequest pixelType_ = PixelTypeRequest::Float;

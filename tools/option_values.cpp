@@ -155,16 +155,6 @@ CLI::Validator colourValidator() {
         "R,G,B");
 }
 
-std::string outputFormat(const std::string& requested, const std::string& output) {
-    const std::string ext = lowerExtension(output);
-    // KTX2 and DDS take the mip-mapped path the EXR takes; --format names neither, so it must be absent.
-    const std::optional<Container> container = containerForPath(output);
-    if (container == Container::Ktx2 || container == Container::Dds)
-        return requested.empty() ? containerName(*container) : "";
-    const std::string byName = ext == ".png" ? "png8" : ext == ".exr" ? "exr" : "";
-    return requested.empty() || requested == byName ? byName : "";
-}
-
 std::string colourText(const std::array<double, 3>& colour) {
     char text[64];
     std::snprintf(text, sizeof text, "%.2f,%.2f,%.2f", colour[0], colour[1], colour[2]);

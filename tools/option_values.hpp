@@ -9,6 +9,8 @@
 #include <optional>
 #include <string>
 
+#include "heightpack/io/files.hpp"
+#include "heightpack/io/pixel_type.hpp"
 #include "heightpack/io/read.hpp"
 
 namespace heightpack::cli {
@@ -42,9 +44,24 @@ CLI::Validator colourValidator();
 // "0.02,0.10,0.16": a colour as parseColour reads it, two decimals.
 std::string colourText(const std::array<double, 3>& colour);
 
-// The output format the output's extension says ("exr" for .exr, "png8" for .png, "ktx2", "dds"), checked
-// against an explicit --format value (exr or png8; none with a .ktx2 or .dds). Empty when the extension is
-// none of these or the two disagree.
-std::string outputFormat(const std::string& requested, const std::string& output);
+// The format an output is written in (normal's NormalFormat, fresnel's RampFormat) from its extension,
+// checked against --format when given (requested): .png is Png8; .exr, .ktx2 and .dds are the
+// mip-mapped Exr, and a .ktx2 or .dds takes no --format. nullopt when the extension is none of these or
+// the two disagree.
+template <class Format>
+std::optional<Format> outputFormat(std::optional<Format> requested, const std::string& output) {
+    const std::optional<Container> container = containerForPath(output);
+    if (requested && container && container != Container::Exr) return std::nullopt;
+    const std::optional<Format> byName = container                          ? std::optional(Format::Exr)
+                                         : lowerExtension(output) == ".png" ? std::optional(Format::Png8)
+                                                                            : std::nullopt;
+    return !requested || requested == byName ? byName : std::nullopt;
+}
+
+// The word a report gives for the format: png8, or the output's container (exr, ktx2, dds).
+template <class Format>
+const char* formatWord(Format format, const std::string& output) {
+    return format == Format::Png8 ? nameOf(format) : containerName(containerForPath(output).value_or(Container::Exr));
+}
 
 }  // namespace heightpack::cli

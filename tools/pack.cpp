@@ -51,9 +51,10 @@ public:
             ->capture_default_str()
             ->check(CLI::IsMember({"none", "pow2"}));
         cmd->add_option("--emit-plain", options_.plainOutput, "also write the unpacked one-channel mip chain here");
-        cmd->add_flag("--displacement", options_.displacement,
-                      "keep the input's horizontal displacement (Dx, Dy, as synth --displacement writes): packed "
-                      "beside the heights as layers Dx, Dy of the same .exr, or of the same .ktx2/.dds array texture");
+        cmd->add_flag("--shift,--displacement", options_.shift,
+                      "keep the input's shift, the waves' sideways motion (Dx, Dy, as synth --shift writes): packed "
+                      "beside the heights as layers Dx, Dy of the same .exr, or of the same .ktx2/.dds array texture "
+                      "(--displacement is its old name)");
         cmd->add_flag("--foam", options_.foam,
                       "keep the input's foam coverage (its Foam channel, as synth --foam writes it): packed beside the "
                       "heights as layer Foam of the same .exr, or the last layer of the same .ktx2/.dds array texture");
@@ -69,9 +70,9 @@ public:
             "  heightpack pack swell.png --layout plain --pixel-type uint16 -o swell_r16.ktx2\n"
             "  heightpack pack swell.png --layout plain --pixel-type auto --allow-block-compression --tolerance 5mm "
             "--height 6m -o swell.ktx2\n"
-            "  heightpack pack sea.####.exr --displacement -o sea_packed.exr\n"
-            "  heightpack pack sea.####.exr --displacement --foam -o sea_packed.exr\n"
-            "  heightpack pack sea.####.exr --displacement --foam --pixel-type half -o sea.ktx2   (one array: heights, Dx, Dy, Foam)\n"
+            "  heightpack pack sea.####.exr --shift -o sea_packed.exr\n"
+            "  heightpack pack sea.####.exr --shift --foam -o sea_packed.exr\n"
+            "  heightpack pack sea.####.exr --shift --foam --pixel-type half -o sea.ktx2   (one array: heights, Dx, Dy, Foam)\n"
             "Texel (i,j) of every level holds R=H(i,j) G=H(i+1,j) B=H(i,j+1) A=H(i+1,j+1), wrapped or clamped.\n");
         return cmd;
     }
@@ -82,15 +83,17 @@ public:
         options_.load.silenceDecoderMessages = true;  // errors come back in the result, as one line
         applyChannel(channel_, options_.load);
         options_.mip.threads = common_.threads;
-        options_.storage.exrCompression = parseName<Compression>(compression_).value_or(Compression::Zip);
+        const CompressionChoice compression = readCompression(compression_);
+        options_.storage.exrCompression = compression.exr.value_or(Compression::Zip);
         options_.storage.pixelType = requestedPixelType(pixelType_);
         if (const std::string problem =
                 toleranceInStoredUnits(pixelType_, tolerance_, options_.heightRange, options_.storage.tolerance);
             !problem.empty())
             return usage(problem);
         const std::string containerProblem =
-            checkContainerChoice({output_, options_.plainOutput}, options_.storage.pixelType, compression_,
-                                 compressionOption_->count() > 0, options_.storage.supercompression);
+            checkContainerChoice({output_, options_.plainOutput}, options_.storage.pixelType,
+                                 compressionOption_->count() > 0 ? std::optional(compression) : std::nullopt,
+                                 options_.storage.supercompression);
         if (!containerProblem.empty()) return usage(containerProblem);
         if (const std::string problem = blockLayoutProblem(options_.storage.pixelType, options_.layout); !problem.empty())
             return usage(problem);
@@ -175,7 +178,7 @@ private:
 
     // What the output holds: the EXR codec, or KTX2's supercompression (none for DDS).
     std::string compressionText() const {
-        if (containerForPath(output_) == Container::Exr) return compression_;
+        if (containerForPath(output_) == Container::Exr) return nameOf(options_.storage.exrCompression);
         return options_.storage.supercompression == Supercompression::Zstd ? "zstd" : "none";
     }
 
@@ -206,7 +209,7 @@ private:
         if (common_.json) {
             const nlohmann::json stored =
                 storedChainJson(r.levelSizes, channels, r.pixelType, r.lookupError, options_.heightRange, "stored",
-                                1 + (options_.displacement ? 2 : 0) + (options_.foam ? 1 : 0));
+                                1 + (options_.shift ? 2 : 0) + (options_.foam ? 1 : 0));
             const nlohmann::json doc = {
                 {"command", "pack"},
                 {"input", r.input},
@@ -222,7 +225,7 @@ private:
                 {"resized", r.resized},
                 {"resize", r.resized ? resizeJson(r.source.width, r.source.height, width, height) : nlohmann::json(nullptr)},
                 {"layout", nameOf(r.layout)},
-                {"displacement", !options_.displacement ? nlohmann::json(nullptr)
+                {"displacement", !options_.shift ? nlohmann::json(nullptr)
                                  : r.layout == Layout::Neighbour4 ? nlohmann::json("neighbour4") : nlohmann::json("plain")},
                 {"foam", !options_.foam ? nlohmann::json(nullptr)
                          : r.layout == Layout::Neighbour4 ? nlohmann::json("neighbour4") : nlohmann::json("plain")},

@@ -108,9 +108,10 @@ public:
         cmd->add_option("--frames", options_.frames, "write this many frames of a loop (needs --loop)")->capture_default_str();
         loopOption_ = addUnitOption(*cmd, "--loop", s.loopPeriod, kTimeUnits, 1e6, "8s",
                                     "loop period: 8s; the sea at t + period is the sea at t");
-        cmd->add_flag("--displacement", options_.displacement,
-                      "also write Tessendorf's horizontal displacement (choppiness) as channels Dx, Dy (.exr)");
-        cmd->add_flag("--foam", options_.foam, "also write looping foam coverage as channel Foam (.exr; implies --displacement)");
+        cmd->add_flag("--shift,--displacement", options_.shift,
+                      "also write Tessendorf's shift, the waves' sideways motion (choppiness), as channels Dx, Dy "
+                      "(.exr; --displacement is its old name)");
+        cmd->add_flag("--foam", options_.foam, "also write looping foam coverage as channel Foam (.exr; implies --shift)");
         cmd->add_option("--choppiness", options_.choppiness, "the lambda of x + lambda D that foam and folds assume")
             ->capture_default_str()
             ->check(finiteRange(0.0, 10.0));
@@ -127,9 +128,9 @@ public:
             ->check(CLI::Range(1, kMaxCascades));
         addEnumOption(*cmd, "--compression", options_.compression,
                       "an .exr's compression: none (the default: deflate saves 3-4% of float heights and "
-                      "displacement, which are noise, in most of the write's time), zip (about 27% with foam), zips",
+                      "shift, which are noise, in most of the write's time), zip (about 27% with foam), zips",
                       {Compression::None, Compression::Zip, Compression::Zips});
-        cmd->add_flag("--report", options_.report, "print the sea state: Hs, peak period, steepness, folds, displacement");
+        cmd->add_flag("--report", options_.report, "print the sea state: Hs, peak period, steepness, folds, shift");
         addCommonOptions(*cmd);
         cmd->footer(
             "Examples:\n"
@@ -166,7 +167,7 @@ public:
                     std::fprintf(stderr, "heightpack: warning: %s is ignored with --spectrum %s (it shapes jonswap only)\n",
                                  o->get_name().c_str(), nameOf(s.model));
         if (!swell_.empty()) s.swell = *parseSwell(swell_);
-        options_.displacement = options_.displacement || options_.foam;
+        options_.shift = options_.shift || options_.foam;
         options_.threads = common_.threads;
         // OpenEXR deflates the frames' blocks on its pool: with four float channels of noise-like data
         // that is most of a 4096 frame's time on one thread.
@@ -189,7 +190,7 @@ private:
                 {"expectedSignificantWaveHeight", t.expectedSignificantWaveHeight}, {"minHeight", t.minHeight},
                 {"maxHeight", t.maxHeight}, {"peakPeriod", t.peakPeriod}, {"peakWavelength", t.peakWavelength},
                 {"steepness", t.steepness}, {"foldFraction", optional(t.foldFraction)},
-                {"maxDisplacement", optional(t.maxDisplacement)}, {"displacementBound", optional(t.displacementBound)}};
+                {"maxDisplacement", optional(t.maxShift)}, {"displacementBound", optional(t.shiftBound)}};
     }
 
     static void printTile(const SynthTileReport& t, const char* indent) {
@@ -198,9 +199,9 @@ private:
         std::printf("%speak period %.2f s, peak wavelength %.1f m, steepness Hs/Lp %.4f\n", indent, t.peakPeriod,
                     t.peakWavelength, t.steepness);
         if (t.foldFraction) std::printf("%sfolds (J < 0): %.4f %% of texels\n", indent, 100.0 * *t.foldFraction);
-        if (t.maxDisplacement)
-            std::printf("%shorizontal displacement: largest %.3f m, bound %.3f m\n", indent, *t.maxDisplacement,
-                        *t.displacementBound);
+        if (t.maxShift)
+            std::printf("%sshift (Dx, Dy): largest %.3f m, bound %.3f m\n", indent, *t.maxShift,
+                        *t.shiftBound);
     }
 
     void print(const SynthReport& r) const {

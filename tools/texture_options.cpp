@@ -31,8 +31,8 @@ void addPixelTypeOption(CLI::App& cmd, PixelTypeRequest& pixelType, bool withAut
 
 void addBlockChoiceOption(CLI::App& cmd, bool& allow) {
     cmd.add_flag("--allow-block-compression", allow,
-                 "with --pixel-type auto: weigh bc4 (plain heights) and bc5 (xy normals) too, the smallest within "
-                 "--tolerance; .ktx2 and .dds only");
+                 "with --pixel-type auto: weigh the block formats too (.ktx2: ASTC 8x8, 6x6, bc4, ASTC 4x4, bc5; "
+                 ".dds: bc4, bc5), the fewest bytes within --tolerance");
 }
 
 std::string blockChoiceProblem(PixelTypeRequest pixelType, bool allow, Layout layout, const std::vector<std::string>& outputs) {
@@ -146,31 +146,36 @@ std::string storedChainText(PixelType type, const std::vector<double>& lookupErr
     return text;
 }
 
+// KTX2's supercompression, the one --compression word that names no EXR codec.
+constexpr const char* kZstdWord = "zstd";
+
 std::vector<std::string> compressionNames() {
     std::vector<std::string> names;
     for (const auto& name : allNames<Compression>()) names.emplace_back(name);
-    names.emplace_back("zstd");  // KTX2's supercompression, not an EXR codec
+    names.emplace_back(kZstdWord);
     return names;
 }
 
+CompressionChoice readCompression(const std::string& word) {
+    return word == kZstdWord ? CompressionChoice{} : CompressionChoice{parseName<Compression>(word).value_or(Compression::Zip)};
+}
+
 std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelType pixelType,
-                                 const std::string& compression, bool compressionGiven,
-                                 Supercompression& supercompression) {
+                                 std::optional<CompressionChoice> given, Supercompression& supercompression) {
+    const bool none = given && given->exr == Compression::None, zstd = given && given->zstd();
     supercompression = Supercompression::None;
     for (const std::string& path : outputs) {
         if (path.empty()) continue;
         const auto c = containerForPath(path);
         if (c == Container::Ktx2) {
-            if (compressionGiven && compression != "none" && compression != "zstd")
-                return path + ": a KTX2 takes --compression none or zstd";
-            if (compressionGiven && compression == "zstd") supercompression = Supercompression::Zstd;
+            if (given && !none && !zstd) return path + ": a KTX2 takes --compression none or zstd";
+            if (zstd) supercompression = Supercompression::Zstd;
         } else if (c == Container::Dds) {
             if (isAstcType(pixelType))
                 return path + ": --pixel-type " + pixelTypeName(pixelType) +
                        " needs a .ktx2 output (DDS and Direct3D have no ASTC format; for a .dds write --pixel-type bc4 "
                        "for heights or bc5 for xy normals)";
-            if (compressionGiven && compression != "none")
-                return path + ": a DDS is stored uncompressed: leave out --compression";
+            if (given && !none) return path + ": a DDS is stored uncompressed: leave out --compression";
         } else {
             if (pixelType == PixelType::Uint16)
                 return path + ": --pixel-type uint16 needs a .ktx2 or .dds output (an EXR has no 16-bit normalised "
@@ -182,7 +187,7 @@ std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelT
                 return path + ": --pixel-type " + pixelTypeName(pixelType) +
                        " needs a .ktx2 or .dds output (an EXR has no block-compressed texels; store float or half in "
                        "an EXR)";
-            if (compression == "zstd") return path + ": --compression zstd is for .ktx2 outputs";
+            if (zstd) return path + ": --compression zstd is for .ktx2 outputs";
         }
     }
     return {};

@@ -5,12 +5,14 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "heightpack/core/layout.hpp"
 #include "heightpack/core/names.hpp"
+#include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 
 namespace heightpack {
@@ -79,11 +81,19 @@ std::string storedChainText(PixelType type, const std::vector<double>& lookupErr
 // The EXR compressions and the KTX2 one, for --compression's check.
 std::vector<std::string> compressionNames();
 
-// Checks the pixel type and compression against the container of every output (by extension); sets
-// supercompression. Returns what is wrong, for usage(), or empty.
+// --compression's word, read once: an EXR codec (Compression's table), or nullopt for zstd, KTX2's
+// supercompression.
+struct CompressionChoice {
+    std::optional<Compression> exr;
+    bool zstd() const { return !exr; }
+};
+// One of compressionNames() (CLI11 checked it) into its choice.
+CompressionChoice readCompression(const std::string& word);
+
+// Checks the pixel type and the compression given (nullopt: none given) against the container of every
+// output (by extension); sets supercompression. Returns what is wrong, for usage(), or empty.
 std::string checkContainerChoice(const std::vector<std::string>& outputs, PixelType pixelType,
-                                 const std::string& compression, bool compressionGiven,
-                                 Supercompression& supercompression);
+                                 std::optional<CompressionChoice> given, Supercompression& supercompression);
 
 // What is wrong with storing `layout` in a block pixel type (bc4: plain heights only; bc5: xy normals
 // only; ASTC: either; never the neighbour4 layout), for usage(), or empty (also for any other pixel type).

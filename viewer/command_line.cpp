@@ -141,7 +141,7 @@ void defineCommandLine(CLI::App& app, CommandLineValues& values) {
         "  heightpack-view out/swell.exr --screenshot shot.png --size 1280x720 --time 12.5 --camera 0,0,8,30,-10\n"
         "  heightpack-view out/swell.exr --bench 300 --headless --compare-lookups\n"
         "  heightpack-view out/swell_half.ktx2 --lookup gather --headless --screenshot shot.png\n"
-        "  heightpack-view sea_packed.exr --choppiness 1.2      # a map packed with --displacement\n"
+        "  heightpack-view sea_packed.exr --choppiness 1.2      # a map packed with --shift     \n"
         "  heightpack-view sea_packed.exr                       # packed with --foam: its foam where synth put it\n"
         "Keys: WASD fly, Space/Ctrl up/down, right mouse look, E or left click drops an explosion, F1 panel, Esc quits.\n" +
         exitCodesFooter());

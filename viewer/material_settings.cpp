@@ -23,7 +23,7 @@ Status applyMaterial(const std::string& path, SceneFiles& files, RenderSettings&
         settings.layers[k].tileSize = static_cast<float>(d.tileSize);
         settings.layers[k].scroll = {static_cast<float>(d.scroll[0]), static_cast<float>(d.scroll[1])};
         settings.layers[k].amplitude = static_cast<float>(d.amplitude);
-        if (d.horizontalDisplacement) settings.layers[k].choppiness = static_cast<float>(d.choppiness);
+        if (d.shift) settings.layers[k].choppiness = static_cast<float>(d.choppiness);
     }
     if (m.displacement.size() > used)
         note = "material " + m.name + " has " + std::to_string(m.displacement.size()) + " height maps; the viewer draws the first " +

@@ -7,7 +7,7 @@
 #include <utility>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "displacement_gl.hpp"
+#include "shift_gl.hpp"
 #include "foam_gl.hpp"
 #include "shaders.hpp"
 #include "texture_upload.hpp"

@@ -193,7 +193,7 @@ private:
     // this frame and the next through one sampler (common.glsl's uLayerFrame picks the layers).
     struct LayerTextures {
         GLuint packed = 0, plain = 0, gather = 0;
-        GLuint shift = 0;                   // Dx, Dy, two layers a frame (displacement_gl.hpp), or 0
+        GLuint shift = 0;                   // Dx, Dy, two layers a frame (shift_gl.hpp), or 0
         // Per frame: sampled texels to the file's values. heights: the same for the packed and plain
         // chains and the atlas; shift, foam: for Dx, Dy and the coverage (an array texture's layers share
         // its type and normalisation; an EXR's go up as floats).

@@ -9,7 +9,7 @@
 #include "heightpack/io/height_sequence.hpp"
 #include "heightpack/io/pixel_type.hpp"
 #include "heightpack/io/read.hpp"
-#include "scene_displacement.hpp"
+#include "scene_shift.hpp"
 #include "scene_foam.hpp"
 #include "texture_reader.hpp"
 
@@ -46,13 +46,13 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
         // or Y), which then go up as floats (a half EXR's stored texels hold every channel; floats hold
         // every half).
         HeightChains split;
-        if (file->layers.empty() && (texture.channels.displacement() || texture.channels.hasFoam())) {
+        if (file->layers.empty() && (texture.channels.shift() || texture.channels.hasFoam())) {
             split = splitHeightChains(file->levels, texture.channels);
             file->levels = split.heights;
             file->stored.reset();
         }
         if (Status s = takeFoam(path, *file, split, frame); !s) return s;
-        if (Status s = takeDisplacement(path, *file, split, layer.wrap, frame); !s) return s;
+        if (Status s = takeShift(path, *file, split, layer.wrap, frame); !s) return s;
         UploadChain stored = file->stored ? std::move(*file->stored) : storeFloats(file->levels);
         if (texture.layout == Layout::Neighbour4) {
             if (stored.channels != 4) return badInput(path, "is marked neighbour4 but has no 4 channels", "pack it again");
@@ -94,7 +94,7 @@ Status loadFrame(const std::string& path, const std::string& channelChoice, Heig
     measure(maps->plain, frame);
     frame.plain = storeFloats(maps->plain);
     frame.packed = storeFloats(maps->packed);
-    if (Status s = packDisplacementOf(path, load, loaded->source, pack, frame); !s) return s;
+    if (Status s = packShiftOf(path, load, loaded->source, pack, frame); !s) return s;
     if (Status s = foamChainOf(path, load, loaded->source, pack, frame); !s) return s;
     if (first) {
         layer.source = "painted map, packed in memory";
@@ -118,7 +118,7 @@ Result<HeightLayer> loadHeightLayer(const std::string& path, const std::string& 
         // The frames share one array texture on the GPU: one texel type for each chain.
         for (const UploadChain* chain : {&frame.packed, &frame.plain, &frame.shiftX, &frame.foam})
             shape.texelType = shape.texelType * 4 + static_cast<int>(chain->kind);
-        shape.displacement = !frame.shiftX.levels.empty();
+        shape.shift = !frame.shiftX.levels.empty();
         shape.foam = !frame.foam.levels.empty();
         shape.loopPeriod = index == 0 ? layer.units.loopPeriod : std::nullopt;
         layer.frames.push_back(std::move(frame));

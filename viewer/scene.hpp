@@ -21,7 +21,7 @@ struct HeightFrame {
     UploadChain plain;            // R per level: the reference path, and the gather atlas is built from it
     float minStored = 0.0f, maxStored = 1.0f;  // over level 0, in the file's values
     float meanStored = 0.5f;      // the 1x1 level
-    // Horizontal displacement, packed as the heights (RGBA per level); no levels for a map without Dx, Dy.
+    // Shift, packed as the heights (RGBA per level); no levels for a map without Dx, Dy.
     // From an array texture in its file's type (and decode); from an EXR or a painted map as floats.
     UploadChain shiftX, shiftY;
     // Baked foam coverage (0..1), one channel per level, unpacked; no levels for a map without it. Typed

@@ -3,7 +3,7 @@
 // counting the bytes that takes.
 #include <string>
 
-#include "displacement_gl.hpp"
+#include "shift_gl.hpp"
 #include "foam_gl.hpp"
 #include "renderer.hpp"
 #include "texture_upload.hpp"

@@ -23,7 +23,7 @@ UploadChain layerOf(const UploadChain& array, int layer) {
 }
 
 // A block array's levels decoded, as a float array's stored chain: each level every layer's image in turn.
-// (Its layers feed the texel-by-texel packings of displacement and foam, which blocks cannot.)
+// (Its layers feed the texel-by-texel packings of shift and foam, which blocks cannot.)
 UploadChain layerMajorFloats(const std::vector<Image>& levels, int layers) {
     const int channels = levels[0].channels / layers;
     UploadChain chain;

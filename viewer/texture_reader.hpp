@@ -20,7 +20,7 @@ struct ViewerTexture {
     // What its header says (EXR attributes, KTX2 key/values, a DDS record), typed; its channels are
     // levels' channels (an EXR's, every channel) or, for an array, every layer's in turn.
     TextureDescription description;
-    // A KTX2 or DDS array texture (pack --displacement, --foam) is split into its layers: levels and stored
+    // A KTX2 or DDS array texture (pack --shift, --foam) is split into its layers: levels and stored
     // then hold layer 0, the heights, alone, as a texture without the other layers has them, and each
     // further layer (Dx, Dy, Foam) is here by name, its texels as stored, so it goes to the GPU in the
     // file's type as the heights do. Empty for any other file.

@@ -113,9 +113,7 @@ Result<CheckReport> checkFile(const std::string& path, const CheckOptions& optio
     }
     if (texture && texture->levels.size() > 1) {
         const TextureDescription& described = texture->description;
-        report.kind = described.layout ? attributeText(*described.layout)
-                      : described.kind == TextureKind::Image ? "texture"
-                                                             : layoutWord(described.kind);
+        report.kind = described.kind == TextureKind::Image ? "texture" : layoutWord(described);
         if (described.layout == Layout::Neighbour4 && texture->levels[0].channels == 4)
             report.packing = checkPacking(texture->levels, described.wrap);
         for (const Image& level : texture->levels) {

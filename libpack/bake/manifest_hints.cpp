@@ -23,7 +23,7 @@ Error inManifestTerms(Error error) {
         case Fix::ChooseExistingChannel: error.hint = "pick one it has with channel = \"NAME\""; break;
         case Fix::ResizeToPowerOfTwo:
         case Fix::ResizeOrLevelZeroOnly: error.hint = "set resize = true to resample it to " + size; break;
-        case Fix::AddDisplacement: error.hint = "give a source with Dx, Dy channels, or set choppiness = 0"; break;
+        case Fix::AddShift: error.hint = "give a source with Dx, Dy channels, or set choppiness = 0"; break;
         case Fix::AddFoam: error.hint = "give a source with a Foam channel, or set foam = false"; break;
         default: return error;  // no manifest key for it
     }

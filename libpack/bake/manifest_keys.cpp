@@ -28,8 +28,8 @@ const std::vector<std::string_view>& keysOf(ManifestTable table) {
                       "height_offset", "choppiness", "foam"});
     static const std::vector<std::string_view> synth = {
         "spectrum", "wind",  "direction", "fetch",  "gamma",        "spreading",      "spreading_s",
-        "depth",    "swell", "size",      "seed",   "loop",         "frames",         "displacement",
-        "foam",     "foam_threshold",     "foam_decay", "foam_build_up", "cascades"};
+        "depth",    "swell", "size",      "seed",   "loop",         "frames",         "shift",
+        "displacement", "foam",     "foam_threshold",     "foam_decay", "foam_build_up", "cascades"};
     static const std::vector<std::string_view> normals = withSettings(
         {"name", "source", "output", "tile_size", "height", "kernel", "convention", "alpha", "octave"});
     static const std::vector<std::string_view> octave = {"tile_size", "scroll", "strength"};

@@ -53,8 +53,11 @@ SynthSource parseSynthSource(Section& t, double tileSize) {
     if (out.frames > 1 && o.loopPeriod == 0.0)
         throw t.error("frames", "is " + std::to_string(out.frames) + ", but there is no loop for the frames to cover",
                       "add loop = the period in seconds, such as 8");
-    // What is baked beside the heights, and into how many tiles: `synth`'s --displacement and --cascades.
-    out.displacement = t.boolean("displacement").value_or(false);
+    // What is baked beside the heights, and into how many tiles: `synth`'s shift and cascades. Manifests
+    // written before the sideways motion was called shift say shift = true.
+    if (t.find("shift") && t.find("displacement"))
+        throw t.error("displacement", "is the old name of shift, which is given too", "remove displacement");
+    out.shift = t.boolean(t.find("displacement") ? "displacement" : "shift").value_or(false);
     // Foam, as synth's --foam and its --foam-* flags; the tuning without foam would change the key, not the sea.
     out.foam = t.boolean("foam").value_or(false);
     for (const char* foamOnly : {"foam_threshold", "foam_decay", "foam_build_up"})

@@ -114,8 +114,8 @@ std::string materialJson(const MaterialDescription& m) {
                   {"amplitude", d.amplitude}};
         if (d.loopPeriod > 0) j["loopPeriod"] = d.loopPeriod;
         // Only for a texture that holds Dx, Dy: every material.json written before them keeps its bytes.
-        if (d.horizontalDisplacement) {
-            j["horizontalDisplacement"] = true;
+        if (d.shift) {
+            j["shift"] = true;
             j["choppiness"] = d.choppiness;
         }
         if (d.foam) j["foam"] = true;  // likewise only for a texture with a Foam layer
@@ -189,10 +189,12 @@ Result<MaterialDescription> readMaterial(const std::string& path) {
             d.scroll = r.pair(j, "scroll", w);
             d.amplitude = r.number(j, "amplitude", w);
             d.loopPeriod = j.contains("loopPeriod") ? r.number(j, "loopPeriod", w) : 0.0;
-            if (j.contains("horizontalDisplacement")) {
-                const Json& h = j["horizontalDisplacement"];
-                if (!h.is_boolean()) throw r.missing(w + "horizontalDisplacement (true or false)");
-                d.horizontalDisplacement = h.get<bool>();
+            // Files written before the sideways motion was called shift name it horizontalDisplacement.
+            for (const char* key : {"shift", "horizontalDisplacement"}) {
+                if (!j.contains(key)) continue;
+                const Json& h = j[key];
+                if (!h.is_boolean()) throw r.missing(w + key + " (true or false)");
+                d.shift = d.shift || h.get<bool>();
             }
             if (j.contains("choppiness")) d.choppiness = r.number(j, "choppiness", w);
             if (j.contains("foam")) {

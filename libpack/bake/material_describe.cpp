@@ -13,7 +13,7 @@ namespace {
 
 // A texture's description from its file's header.
 Result<MaterialTexture> describeTexture(const std::string& folder, const std::string& output, int frames, double* loopPeriod,
-                                        bool* horizontalDisplacement = nullptr, bool* foam = nullptr) {
+                                        bool* shift = nullptr, bool* foam = nullptr) {
     const std::string first = (fs::path(folder) / frameFileName(output, 0, frames)).string();
     auto layout = readTextureLevels(first, true);
     if (!layout) return layout.error();
@@ -26,7 +26,7 @@ Result<MaterialTexture> describeTexture(const std::string& folder, const std::st
     const TextureDescription& described = layout->description;
     if (described.pixelType != PixelType::Float) t.pixelType = described.pixelType;
     if (loopPeriod) *loopPeriod = described.units.loopPeriod.value_or(0.0);
-    if (horizontalDisplacement) *horizontalDisplacement = described.displacement == Layout::Neighbour4;
+    if (shift) *shift = described.shift == Layout::Neighbour4;
     if (foam) *foam = described.foam == Layout::Neighbour4;
     return t;
 }
@@ -41,7 +41,7 @@ Result<MaterialDescription> describeMaterial(const Manifest& m, const std::strin
     for (const DisplacementAsset& a : m.displacement) {
         DisplacementLayer layer = a.layer;
         auto t = describeTexture(folder, a.output, static_cast<int>(a.frames.size()), &layer.loopPeriod,
-                                 &layer.horizontalDisplacement, &layer.foam);
+                                 &layer.shift, &layer.foam);
         if (!t) return t.error();
         layer.texture = *t;
         d.displacement.push_back(std::move(layer));

@@ -55,9 +55,9 @@ Result<WaterSampler> loadMaterialSampler(const std::string& materialPath) {
             frame.width = chains->heights[0].width;
             frame.height = chains->heights[0].height;
             frame.levels = chains->heights.size();
-            frame.displacement = !chains->dx.empty();
+            frame.shift = !chains->dx.empty();
             layer.frames.push_back(std::move(chains->heights));
-            if (frame.displacement) {
+            if (frame.shift) {
                 layer.shiftX.push_back(std::move(chains->dx));
                 layer.shiftY.push_back(std::move(chains->dy));
             }
@@ -67,7 +67,7 @@ Result<WaterSampler> loadMaterialSampler(const std::string& materialPath) {
         if (!sequence) return sequence.error();
         layer.loopPeriod = sequence->loopPeriod > 0.0 ? sequence->loopPeriod : d.loopPeriod;
         // A map with Dx, Dy is choppy in the viewer: at the material's choppiness, or its own default of 1.
-        if (!layer.shiftX.empty()) layer.choppiness = d.horizontalDisplacement ? static_cast<float>(d.choppiness) : 1.0f;
+        if (!layer.shiftX.empty()) layer.choppiness = d.shift ? static_cast<float>(d.choppiness) : 1.0f;
         layer.midStored = midStoredOf(layer.frames);
         sampler.layers.push_back(std::move(layer));
     }

@@ -104,7 +104,7 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
     if (options.layout == Layout::Xy && (options.format == NormalFormat::Png8 || options.normal.alpha != NormalAlpha::None))
         return withFix(inconsistentOptions(output, "an xy normal map is two channels of a mip-mapped texture: no alpha, no PNG",
                                            "store rgb normals for an alpha channel or an 8-bit PNG"),
-                       Fix::RgbNormals, {options.format == NormalFormat::Png8 ? "png" : "alpha"});
+                       options.format == NormalFormat::Png8 ? Fix::RgbNormalsInPng : Fix::RgbNormalsForAlpha);
     if (options.format == NormalFormat::Png8 && options.normal.alpha == NormalAlpha::SlopeVariance)
         return withFix(inconsistentOptions(output, "the slope variance describes mip levels, which a PNG does not have",
                                            "write a mip-mapped texture"),

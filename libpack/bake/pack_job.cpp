@@ -10,11 +10,11 @@
 #include <utility>
 #include <vector>
 
-#include "heightpack/bake/pack_displacement.hpp"
+#include "heightpack/bake/pack_shift.hpp"
 #include "heightpack/bake/pack_foam.hpp"
 #include "heightpack/core/pack.hpp"
 #include "heightpack/core/parallel.hpp"
-#include "heightpack/io/displacement_read.hpp"
+#include "heightpack/io/shift_read.hpp"
 #include "heightpack/io/exr_write.hpp"
 #include "heightpack/io/foam_read.hpp"
 #include "heightpack/io/files.hpp"
@@ -46,7 +46,7 @@ Result<PackedMaps> plainChain(Image heights, const SourceInfo& source, const Pac
     return maps;
 }
 
-// The writer packs bands itself: the displacement's chains are made plain, as the heights' are.
+// The writer packs bands itself: the shift's chains are made plain, as the heights' are.
 PackOptions withoutPacking(PackOptions options) {
     options.layout = Layout::Plain;
     return options;
@@ -131,8 +131,8 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     report.loadSeconds = secondsSince(start);
     // Dx, Dy and foam: layers of the same EXR (channels NAME.R ...) or of the same KTX2 or DDS array.
     std::optional<Image> d, f;
-    if (options.displacement) {
-        auto loadedD = loadDisplacement(input, options.load);
+    if (options.shift) {
+        auto loadedD = loadShift(input, options.load);
         if (!loadedD) return loadedD.error();
         d = std::move(*loadedD);
     }
@@ -146,11 +146,11 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     if (d) hashed.push_back(&*d);
     if (f) hashed.push_back(&*f);
     if (hashed.size() > 1) report.sourceHash = hashPixels(hashed);
-    std::optional<DisplacementMaps> displacement;
+    std::optional<ShiftMaps> shift;
     if (d) {
-        auto maps = packDisplacement(std::move(*d), report.source, withoutPacking(options));
+        auto maps = packShift(std::move(*d), report.source, withoutPacking(options));
         if (!maps) return maps.error();
-        displacement = std::move(*maps);
+        shift = std::move(*maps);
     }
     std::optional<std::vector<Image>> foam;
     if (f) {
@@ -158,7 +158,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
         if (!chain) return chain.error();
         foam = std::move(*chain);
     }
-    const std::vector<CompanionChain> companions = companionsOf(displacement ? &*displacement : nullptr, foam ? &*foam : nullptr);
+    const std::vector<CompanionChain> companions = companionsOf(shift ? &*shift : nullptr, foam ? &*foam : nullptr);
 
     start = std::chrono::steady_clock::now();
     // The plain chain only: the writer packs it a band at a time, so the packed chain is never held whole.
@@ -230,7 +230,7 @@ Result<PackReport> packHeightMap(const std::string& input, const std::string& ou
     const auto record = [&](ChainToWrite& c, bool packedChain) {
         c.attributes.insert(c.attributes.end(), errors.begin(), errors.end());
         const std::string laidOut = attributeText(packedChain ? Layout::Neighbour4 : Layout::Plain);
-        if (displacement) c.attributes.push_back(attribute(attr::displacement, laidOut));
+        if (shift) c.attributes.push_back(attribute(attr::shift, laidOut));
         if (foam) c.attributes.push_back(attribute(attr::foam, laidOut));
     };
     record(content, packed);

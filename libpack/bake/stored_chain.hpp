@@ -32,8 +32,9 @@ struct StoredChain {
 // options.storage.pixelType and fails as writeTexture would when it cannot be stored. With a tolerance > 0,
 // chooses the type: the fewest bytes whose worst error over the whole chain is within the tolerance; half
 // and uint16 take the same bytes, so of the two that qualify the smaller error wins (half on a tie); float
-// when neither does. With options.storage.allowBlockCompression, bc4 and then bc5 are measured first, and
-// the first within the tolerance is chosen (it has the fewest bytes). A type the
+// when neither does. With options.storage.allowBlockCompression, the block formats are measured first, fewest
+// bytes a texel first (ASTC 8x8, 6x6, BC4, ASTC 4x4, BC5; those the layout or container cannot hold are passed
+// over), and the first within the tolerance is chosen. A type the
 // container lacks (uint16 in an EXR) or the values do not fit (a half beyond 65504) is passed over.
 // outputs are every file the chain goes to (a packed output and its plain twin): a type must suit each
 // one's container; content is what the first one holds.

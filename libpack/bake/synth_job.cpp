@@ -49,10 +49,10 @@ std::vector<ExrAttribute> seaAttributes(const SynthOptions& options, const Spect
         a.push_back(attribute(attr::bandLow, static_cast<float>(r.bandLow)));
         a.push_back(attribute(attr::bandHigh, static_cast<float>(r.bandHigh)));
     }
-    if (r.foldFraction || r.maxDisplacement) a.push_back(attribute(attr::choppiness, static_cast<float>(options.choppiness)));
+    if (r.foldFraction || r.maxShift) a.push_back(attribute(attr::choppiness, static_cast<float>(options.choppiness)));
     if (r.foldFraction) a.push_back(attribute(attr::foldFraction, static_cast<float>(*r.foldFraction)));
-    if (r.maxDisplacement) a.push_back(attribute(attr::maxDisplacement, static_cast<float>(*r.maxDisplacement)));
-    if (r.displacementBound) a.push_back(attribute(attr::displacementBound, static_cast<float>(*r.displacementBound)));
+    if (r.maxShift) a.push_back(attribute(attr::maxShift, static_cast<float>(*r.maxShift)));
+    if (r.shiftBound) a.push_back(attribute(attr::shiftBound, static_cast<float>(*r.shiftBound)));
     if (options.foam) {
         a.push_back(attribute(attr::foamThreshold, static_cast<float>(options.foamOptions.threshold)));
         a.push_back(attribute(attr::foamDecay, static_cast<float>(options.foamOptions.decay)));
@@ -66,9 +66,9 @@ using ProgressFn = std::function<void(std::string_view, double)>;
 // What a frame's image holds, in this order: the heights, then Dx and Dy, then the Jacobian (where the
 // foam goes once worked out from it); each only when asked for or needed by the report.
 struct FrameLayout {
-    bool displacement = false, jacobian = false;
-    int channels() const { return 1 + (displacement ? 2 : 0) + (jacobian ? 1 : 0); }
-    int jacobianChannel() const { return displacement ? 3 : 1; }
+    bool shift = false, jacobian = false;
+    int channels() const { return 1 + (shift ? 2 : 0) + (jacobian ? 1 : 0); }
+    int jacobianChannel() const { return shift ? 3 : 1; }
 };
 
 // The first `count` channels of image: what is written when the report needed more than the file holds.
@@ -83,19 +83,19 @@ Image firstChannels(const Image& image, int count, int threads) {
 
 // One tile: every frame computed, then foam over the loop, then the numbers, then the files. Each frame's
 // fields are transformed straight into its interleaved image, the one the file is written from, and the
-// amplitudes are let go before writing: with displacement and foam, 20 bytes a texel at the peak (the image
+// amplitudes are let go before writing: with shift and foam, 20 bytes a texel at the peak (the image
 // and the half spectrum; the transforms work in the heights' channel until the heights are written last).
 Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptions& s, const SynthOptions& options,
                                   int cascade, int count, const ProgressFn& progress, StagedOutputs* staged) {
     const bool metres = lowerExtension(output) == ".exr";
-    const FrameLayout layout{options.displacement || options.foam || options.report, options.foam || options.report};
+    const FrameLayout layout{options.shift || options.foam || options.report, options.foam || options.report};
     const int frames = options.frames, channels = layout.channels(), jc = layout.jacobianChannel();
     const double period = s.loopPeriod;
     auto timeOf = [&](int f) { return frames > 1 ? f * period / frames : 0.0; };
     auto share = [&](double f) { return (cascade + f) / count; };
 
     std::vector<Image> images;
-    double resolvedVariance = 0.0, displacementBound = 0.0;
+    double resolvedVariance = 0.0, shiftBound = 0.0;
     {
         // A single frame is t = 0 only: the ocean keeps half the amplitudes.
         const Ocean ocean(s, OceanOptions{options.threads, frames > 1});
@@ -105,12 +105,12 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
             float* first = image.pixels.data();
             SeaFieldTargets to;
             to.heights = {first, channels};
-            if (layout.displacement) to.displacementX = {first + 1, channels}, to.displacementY = {first + 2, channels};
+            if (layout.shift) to.shiftX = {first + 1, channels}, to.shiftY = {first + 2, channels};
             if (layout.jacobian) to.jacobian = {first + jc, channels};
             ocean.fieldsInto(timeOf(f), to, options.choppiness, options.threads);
         }
         resolvedVariance = ocean.resolvedVariance();
-        displacementBound = ocean.displacementBound();
+        shiftBound = ocean.shiftBound();
     }
 
     SynthTileReport report;
@@ -124,19 +124,19 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
     report.steepness = summary.steepness;
     report.minHeight = report.maxHeight = images[0].pixels[0];
     double folds = 0.0, moved = 0.0;
-    const FrameChannels at{0, layout.displacement ? 1 : -1, layout.jacobian ? jc : -1};
+    const FrameChannels at{0, layout.shift ? 1 : -1, layout.jacobian ? jc : -1};
     for (int f = 0; f < frames; ++f) {
         const FrameNumbers numbers = frameNumbers(images[f], at, options.choppiness, options.threads);
         if (f == 0) report.significantWaveHeight = numbers.significantWaveHeight;
         report.minHeight = std::min(report.minHeight, double(numbers.minHeight));
         report.maxHeight = std::max(report.maxHeight, double(numbers.maxHeight));
         folds += numbers.foldFraction / frames;
-        moved = std::max(moved, numbers.largestDisplacement);
+        moved = std::max(moved, numbers.largestShift);
     }
     if (layout.jacobian) report.foldFraction = folds;
-    if (layout.displacement) {
-        report.maxDisplacement = moved;
-        report.displacementBound = std::abs(options.choppiness) * displacementBound;
+    if (layout.shift) {
+        report.maxShift = moved;
+        report.shiftBound = std::abs(options.choppiness) * shiftBound;
     }
 
     // The Jacobian's channel becomes the foam's coverage: texel by texel for a frozen sea, through the
@@ -165,7 +165,7 @@ Result<SynthTileReport> synthTile(const std::string& output, const SpectrumOptio
     const double offset = metres ? 0.0 : report.minHeight;
     const double scale = metres ? 1.0 : std::max(report.maxHeight - report.minHeight, 1e-9);
     const std::vector<ExrAttribute> sea = seaAttributes(options, s, report, cascade, count);
-    const bool withD = options.displacement || options.foam;
+    const bool withD = options.shift || options.foam;
     const int written = 1 + (withD ? 2 : 0) + (options.foam ? 1 : 0);
     for (int f = 0; f < frames; ++f) {
         progress("write", share(double(f) / frames));
@@ -207,10 +207,10 @@ std::string cascadeFileName(const std::string& output, int cascade, int count) {
 }
 
 Result<SynthReport> synthesise(const std::string& output, const SynthOptions& options) {
-    // Displacement and foam are channels beside the heights: only an EXR holds them.
-    // Foam first: it brings the displacement with it, so a foam request names foam.
+    // The shift and foam are channels beside the heights: only an EXR holds them.
+    // Foam first: it brings the shift with it, so a foam request names foam.
     for (const auto& [asked, what, channels] : {std::tuple{options.foam, "foam", "Y, Dx, Dy, Foam"},
-                                                std::tuple{options.displacement, "displacement", "Y, Dx, Dy"}})
+                                                std::tuple{options.shift, "shift", "Y, Dx, Dy"}})
         if (asked && lowerExtension(output) != ".exr")
             return withFix(inconsistentOptions(output, std::string("the ") + what + " is written as channels " + channels +
                                                            " of an EXR, and this is not one",

@@ -213,21 +213,4 @@ void inverseRealDftOfHalf(int w, int h, int threads, const HalfSpectrumSource& g
     inverseThroughScratch<0>(w, h, threads, give, scratch, fields);
 }
 
-void solvePeriodicPoisson(const cv::Mat& rhs, cv::Mat& out, int threads) {
-    const int w = rhs.cols, h = rhs.rows;
-    cv::Mat spectrum = forwardDft(rhs, threads);
-    std::vector<double> cosX(w), cosY(h);
-    for (int q = 0; q < w; ++q) cosX[q] = 2 * std::cos(2 * std::numbers::pi * q / w);
-    for (int r = 0; r < h; ++r) cosY[r] = 2 * std::cos(2 * std::numbers::pi * r / h);
-    parallelFor(h, threads, [&](int begin, int end) {
-        for (int r = begin; r < end; ++r)
-            for (int q = 0; q < w; ++q) {
-                auto& z = spectrum.at<cv::Vec2d>(r, q);
-                const double denominator = cosX[q] + cosY[r] - 4;
-                z = (q == 0 && r == 0) ? cv::Vec2d(0, 0) : cv::Vec2d(z[0] / denominator, z[1] / denominator);
-            }
-    });
-    inverseDft(spectrum, out, threads);
-}
-
 }  // namespace heightpack::detail

@@ -64,9 +64,4 @@ struct HalfSpectrumScratch {
 void inverseRealDftOfHalf(int w, int h, int threads, const HalfSpectrumSource& give, const HalfSpectrumScratch& scratch,
                           const std::vector<HalfSpectrumRows>& fields);
 
-// The zero-mean periodic field (CV_64F, written to out as inverseDft writes) whose five-point Laplacian is
-// rhs, for Moisan's periodic + smooth decomposition: rhs's spectrum divided by the Laplacian's symbol
-// 2 cos(2 pi q / w) + 2 cos(2 pi r / h) - 4, the mean (where the symbol is 0) set to 0.
-void solvePeriodicPoisson(const cv::Mat& rhs, cv::Mat& out, int threads);
-
 }  // namespace heightpack::detail

@@ -19,12 +19,14 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/gpu_texture.hpp"
+#include "heightpack/io/texture_description.hpp"
 #include "heightpack/io/texture_write.hpp"
 #include "level_write.hpp"
 #include "texel_encode.hpp"
@@ -53,13 +55,16 @@ constexpr std::uint32_t kCapsComplex = 0x8, kCapsTexture = 0x1000, kCapsMipMap =
 constexpr std::uint32_t kTexture2D = 3;
 
 // The record's layout codes, 1 and up, in this order (the header's words); new layouts only ever join at the end.
-const std::array<const char*, 5> kLayouts = {attributeText(Layout::Neighbour4), attributeText(Layout::Plain),
-                                             attributeText(Layout::Rgb), attr::fresnelRamp, attributeText(Layout::Xy)};
-// The record's wrap codes, 1 and up, in this order (the names come from Wrap's table).
-constexpr std::array<const char*, 2> kWraps = {nameOf(Wrap::Periodic), nameOf(Wrap::Clamp)};
+const std::array<LayoutWord, 5> kLayouts = {{{TextureKind::Heights, Layout::Neighbour4},
+                                             {TextureKind::Heights, Layout::Plain},
+                                             {TextureKind::Normals, Layout::Rgb},
+                                             {TextureKind::FresnelRamp, std::nullopt},
+                                             {TextureKind::Normals, Layout::Xy}}};
+// The record's wrap codes, 1 and up, in this order.
+constexpr std::array<Wrap, 2> kWraps = {Wrap::Periodic, Wrap::Clamp};
 
 // Record flags.
-constexpr std::uint32_t kScaleOffsetFlag = 1, kNormalisationFlag = 2, kDisplacementFlag = 4, kFoamFlag = 8;
+constexpr std::uint32_t kScaleOffsetFlag = 1, kNormalisationFlag = 2, kShiftFlag = 4, kFoamFlag = 8;
 // The units, each a float in a DDS_HEADER word (from its start, after the magic) that is otherwise unused.
 struct UnitWord {
     AttributeKey<float> key;
@@ -72,7 +77,7 @@ constexpr std::array<UnitWord, 3> kUnitWords = {UnitWord{attr::tileWidth, 16, 28
 // The layers the record's flags name, in their fixed order.
 std::vector<std::string> recordedLayers(std::uint32_t flags) {
     std::vector<std::string> names = {layerName::heights};
-    if (flags & kDisplacementFlag) names.insert(names.end(), {layerName::dx, layerName::dy});
+    if (flags & kShiftFlag) names.insert(names.end(), {layerName::dx, layerName::dy});
     if (flags & kFoamFlag) names.emplace_back(layerName::foam);
     return names;
 }
@@ -87,10 +92,11 @@ float bitsFloat(std::uint32_t u) {
     std::memcpy(&v, &u, 4);
     return v;
 }
-template <size_t N>
-std::uint32_t codeOf(const std::array<const char*, N>& names, const std::string& name) {
+// A value's code in a record table, 0 for none (a value the table does not hold).
+template <class T, size_t N>
+std::uint32_t codeOf(const std::array<T, N>& values, const std::optional<T>& value) {
     for (size_t i = 0; i < N; ++i)
-        if (name == names[i]) return std::uint32_t(i + 1);
+        if (value == values[i]) return std::uint32_t(i + 1);
     return 0;
 }
 
@@ -110,7 +116,7 @@ Status writeDds(const std::string& path, const ChainToWrite& content, const Text
     // An array's layers: only the fixed order the record's flags can name.
     std::uint32_t layerFlags = 0;
     for (const std::string& n : content.layerNames) {
-        if (n == layerName::dx) layerFlags |= kDisplacementFlag;
+        if (n == layerName::dx) layerFlags |= kShiftFlag;
         if (n == layerName::foam) layerFlags |= kFoamFlag;
     }
     if (!content.layerNames.empty() && content.layerNames != recordedLayers(layerFlags))
@@ -136,8 +142,9 @@ Status writeDds(const std::string& path, const ChainToWrite& content, const Text
     Attributes text = detail::attributesAsText(content.attributes);
     reserved[0] = kRecord;
     reserved[1] = 1;
-    reserved[2] = codeOf(kLayouts, findAttribute(text, attr::layout.name));
-    reserved[3] = codeOf(kWraps, findAttribute(text, attr::wrap.name));
+    // The words the chain's attributes hold, read back through their one table each.
+    reserved[2] = codeOf(kLayouts, parseLayoutWord(findAttribute(text, attr::layout)));
+    reserved[3] = codeOf(kWraps, enumFromAttribute<Wrap>(findAttribute(text, attr::wrap)));
     for (const ExrAttribute& a : content.attributes) {
         if (!std::holds_alternative<float>(a.value)) continue;
         if (a.name == attr::heightScale.name) reserved[4] = floatBits(std::get<float>(a.value)), reserved[6] |= kScaleOffsetFlag;
@@ -231,8 +238,8 @@ Result<GpuTexture> readDds(const std::string& path) {
             return badInput(path, std::string("its heightpack record's ") + (layout > kLayouts.size() ? attr::layout.name : attr::wrap.name) +
                                       " code " + std::to_string(layout > kLayouts.size() ? layout : wrap) + " is not one heightpack writes",
                             "write the texture again");
-        if (layout >= 1) t.keyValues.emplace_back(attr::layout.name, kLayouts[layout - 1]);
-        if (wrap >= 1) t.keyValues.emplace_back(attr::wrap.name, kWraps[wrap - 1]);
+        if (layout >= 1) t.keyValues.emplace_back(attr::layout.name, layoutWord(kLayouts[layout - 1]));
+        if (wrap >= 1) t.keyValues.emplace_back(attr::wrap.name, attributeText(kWraps[wrap - 1]));
         if (flags & kScaleOffsetFlag) {
             t.keyValues.emplace_back(attr::heightScale.name, floatText(bitsFloat(word(11))));
             t.keyValues.emplace_back(attr::heightOffset.name, floatText(bitsFloat(word(12))));
@@ -253,7 +260,7 @@ Result<GpuTexture> readDds(const std::string& path) {
         t.layerNames = named ? recorded : layerNamesOf("", layers);
         t.keyValues.emplace_back(attr::layers.name, layerList(t.layerNames));
         const std::string heights = findAttribute(t.keyValues, attr::layout);
-        if (named && (flags & kDisplacementFlag)) t.keyValues.emplace_back(attr::displacement.name, heights);
+        if (named && (flags & kShiftFlag)) t.keyValues.emplace_back(attr::shift.name, heights);
         if (named && (flags & kFoamFlag)) t.keyValues.emplace_back(attr::foam.name, heights);
     }
     // Each layer's chain in turn; gathered level by level, as a KTX2 level holds its layers.

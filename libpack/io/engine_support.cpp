@@ -14,6 +14,7 @@ bool isFloat(TexelFormat t) {
 }
 bool isUnorm16(TexelFormat t) { return texelFormatInfo(t).kind == ComponentKind::Unorm16; }
 bool isRgtc(TexelFormat t) { return t == TexelFormat::Bc4Unorm || t == TexelFormat::Bc5Unorm; }
+bool isAstc(TexelFormat t) { return isAstcType(pixelTypeOf(t)); }
 
 // The same channels in half floats, which every engine that reads KTX2 or DDS floats loads.
 std::string halfOf(TexelFormat t, const char* container) {
@@ -36,6 +37,13 @@ EngineVerdict threeJs(FileContainer c, TexelFormat t, bool mipmappedExr, bool pn
                 return verdict(EngineSupport::Partial,
                                "KTX2Loader uploads the blocks as stored, mip levels and all, where the WebGL context has "
                                "EXT_texture_compression_rgtc (desktop GPUs; few phones)",
+                               halfOf(t, "KTX2"));
+            if (pixelTypeOf(t) == PixelType::Astc8x8)
+                return verdict(EngineSupport::Refuses, "KTX2Loader's format map has ASTC 4x4 and 6x6 only", "KTX2 ASTC 6x6 or 4x4");
+            if (isAstc(t))
+                return verdict(EngineSupport::Partial,
+                               "KTX2Loader uploads the blocks as stored, mip levels and all, where the WebGL context has "
+                               "WEBGL_compressed_texture_astc (phones, Apple GPUs; few desktop GPUs)",
                                halfOf(t, "KTX2"));
             return verdict(EngineSupport::Refuses, "KTX2Loader's only 16-bit normalised format is RGBA (R16G16B16A16_UNORM)",
                            halfOf(t, "KTX2"));
@@ -121,6 +129,10 @@ EngineVerdict godot(FileContainer c, TexelFormat t, bool mipmappedExr, bool png1
             if (isFloat(t)) return verdict(EngineSupport::Loads, std::string("its ") + name + " loader keeps the format and the file's mip levels");
             if (isRgtc(t))
                 return verdict(EngineSupport::Loads, std::string("its ") + name + " loader keeps the BC4/BC5 (RGTC) blocks and the file's mip levels");
+            if (pixelTypeOf(t) == PixelType::Astc6x6)
+                return verdict(EngineSupport::Refuses, "its KTX2 loader reads ASTC 4x4 and 8x8 only", "KTX2 ASTC 4x4 or 8x8");
+            if (isAstc(t))
+                return verdict(EngineSupport::Loads, "its KTX2 loader keeps the ASTC blocks and the file's mip levels");
             if (isUnorm16(t))
                 return verdict(EngineSupport::Partial, std::string("only the newest Godot 4 releases read 16-bit integer ") + name, halfOf(t, name));
             return verdict(EngineSupport::Refuses, std::string("its ") + name + " loader has no two-channel signed 16-bit format", halfOf(t, name));

@@ -22,7 +22,7 @@ namespace detail {
 
 namespace {
 
-// Level 1: on synth's 4096^2 map with displacement and foam, 194.6 MB against 194.2 MB at level 4, in
+// Level 1: on synth's 4096^2 map with shift and foam, 194.6 MB against 194.2 MB at level 4, in
 // about 17% less time (float noise barely compresses).
 constexpr int kScanlineDeflateLevel = 1;
 

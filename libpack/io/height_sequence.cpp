@@ -22,9 +22,9 @@ Result<HeightSequence> readHeightSequence(const std::string& path, const ReadSeq
         if (frame->texelType != first.texelType)
             return badInput(file, "differs in pixel type from the sequence's first frame",
                             "write every frame with the same pixel type");
-        if (frame->displacement != first.displacement)
+        if (frame->shift != first.shift)
             return badInput(file, "differs from the sequence's first frame in holding Dx, Dy",
-                            "make every frame with the displacement, or none");
+                            "make every frame with the shift (Dx, Dy), or none");
         if (frame->foam != first.foam)
             return badInput(file, "differs from the sequence's first frame in holding foam",
                             "make every frame with foam, or none");
@@ -42,7 +42,7 @@ HeightChains splitHeightChains(const std::vector<Image>& levels, const TextureCh
     HeightChains chains;
     for (const Image& level : levels) {
         chains.heights.push_back(selectChannels(level, channels.heights));
-        if (channels.displacement()) {
+        if (channels.shift()) {
             chains.dx.push_back(selectChannels(level, channels.dx));
             chains.dy.push_back(selectChannels(level, channels.dy));
         }

@@ -117,7 +117,7 @@ Result<LoadedHeights> loadHeightMap(const std::string& path, const LoadOptions& 
                 channel = texture.channels.heights.front();  // R = H(i,j) of a packed texel
                 break;
             }
-            // A height with companions (synth's displacement) names its height channel Y.
+            // A height with companions (synth's shift) names its height channel Y.
             if (colour && !texture.channels.heights.empty()) {
                 channel = texture.channels.heights.front();
                 break;

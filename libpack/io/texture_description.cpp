@@ -26,8 +26,8 @@ const std::array<KindWord, 9> kKindWords = {{
     {attr::fresnelRamp, TextureKind::FresnelRamp, std::nullopt},
     {attr::synthesised, TextureKind::SynthesisedSea, std::nullopt},
     {attr::seamPreview, TextureKind::SeamPreview, std::nullopt},
-    {attr::gridHeights, TextureKind::ViewerCapture, std::nullopt},
-    {attr::screenshot, TextureKind::ViewerCapture, std::nullopt},
+    {attr::gridHeights, TextureKind::GridHeights, std::nullopt},
+    {attr::screenshot, TextureKind::Screenshot, std::nullopt},
 }};
 
 Error damaged(const std::string& path, const char* key, const std::string& text, const std::string& expected) {
@@ -49,7 +49,7 @@ constexpr std::array<AttributeKey<float>, 23> kNumberKeys = {
     attr::texelCentre, attr::normalisedOffset, attr::normalisedScale, attr::maxLookupError, attr::ior,
     attr::fetch, attr::depth, attr::choppiness, attr::bandLow, attr::bandHigh, attr::foamThreshold,
     attr::foamDecay, attr::foamBuildUp, attr::significantWaveHeight, attr::spectrumWaveHeight, attr::peakPeriod,
-    attr::peakWavelength, attr::steepness, attr::foldFraction, attr::maxDisplacement, attr::displacementBound,
+    attr::peakWavelength, attr::steepness, attr::foldFraction, attr::maxShift, attr::shiftBound,
     attr::crossfadeWidth, attr::threshold};
 
 template <class E>
@@ -67,7 +67,7 @@ Result<std::optional<Layout>> recordedCompanion(const std::string& path, const A
                                                 AttributeKey<std::string> key) {
     const std::string text = findAttribute(attributes, key);
     if (text.empty()) return std::optional<Layout>{};
-    const auto layout = layoutFromAttribute(text);
+    const auto layout = enumFromAttribute<Layout>(text);
     if (!layout || !isHeightLayout(*layout))
         return damaged(path, key.name, text, std::string("neighbour4 or plain"));
     return layout;
@@ -98,12 +98,12 @@ std::vector<int> companion(const std::vector<std::string>& names, const char* la
 
 Status mapChannels(const std::string& path, const std::vector<std::string>& names, TextureDescription& d) {
     TextureChannels& c = d.channels;
-    c.dx = companion(names, layerName::dx, d.displacement);
-    c.dy = companion(names, layerName::dy, d.displacement);
+    c.dx = companion(names, layerName::dx, d.shift);
+    c.dy = companion(names, layerName::dy, d.shift);
     if (c.dx.empty() || c.dy.empty()) c.dx.clear(), c.dy.clear();
     c.foam = companion(names, layerName::foam, d.foam);
-    if (d.displacement && c.dx.empty())
-        return badInput(path, std::string("its ") + attr::displacement.name + " metadata says it holds Dx, Dy but it has no such channels",
+    if (d.shift && c.dx.empty())
+        return badInput(path, std::string("its ") + attr::shift.name + " metadata says it holds Dx, Dy but it has no such channels",
                         "pack it again");
     if (d.foam && c.foam.empty())
         return badInput(path, std::string("its ") + attr::foam.name + " metadata says it holds foam but it has no such channel",
@@ -114,7 +114,7 @@ Status mapChannels(const std::string& path, const std::vector<std::string>& name
         if (const int y = indexOf(names, "Y"); y >= 0) c.heights = {y};
         return Done{};
     }
-    const bool companions = c.displacement() || c.hasFoam();
+    const bool companions = c.shift() || c.hasFoam();
     if (d.layout == Layout::Neighbour4) {
         // Without companions the heights are the first four channels, whatever their names.
         c.heights = companions ? named(names, "", {"R", "G", "B", "A"}) : std::vector<int>{0, 1, 2, 3};
@@ -137,22 +137,35 @@ const char* layoutWord(TextureKind kind) {
     return "";
 }
 
+const char* layoutWord(const LayoutWord& said) {
+    return said.layout ? attributeText(*said.layout) : layoutWord(said.kind);
+}
+
+const char* layoutWord(const TextureDescription& texture) { return layoutWord(LayoutWord{texture.kind, texture.layout}); }
+
+std::optional<LayoutWord> parseLayoutWord(std::string_view word) {
+    for (const KindWord& k : kKindWords)
+        if (word == k.word) return LayoutWord{k.kind, k.layout};
+    return std::nullopt;
+}
+
 Result<TextureDescription> describeTexture(const std::string& path, const Attributes& attributes,
                                            const std::vector<std::string>& channelNames, std::string_view sampleType) {
     TextureDescription d;
     if (const std::string word = findAttribute(attributes, attr::layout); !word.empty()) {
-        const auto k = std::find_if(kKindWords.begin(), kKindWords.end(), [&](const KindWord& w) { return word == w.word; });
-        if (k == kKindWords.end()) {
+        const std::optional<LayoutWord> said = parseLayoutWord(word);
+        if (!said) {
             std::string words;
             for (const KindWord& w : kKindWords) words += std::string(words.empty() ? "" : ", ") + w.word;
             return damaged(path, attr::layout.name, word, "one of " + words);
         }
-        d.kind = k->kind;
-        d.layout = k->layout;
+        d.kind = said->kind;
+        d.layout = said->layout;
     }
     auto wrap = recordedEnum(path, attributes, attr::wrap);
     if (!wrap) return wrap.error();
     d.wrap = wrap->value_or(Wrap::Periodic);
+    d.wrapRecorded = wrap->has_value();
     auto filter = recordedEnum(path, attributes, attr::filter);
     if (!filter) return filter.error();
     d.filter = *filter;
@@ -187,9 +200,9 @@ Result<TextureDescription> describeTexture(const std::string& path, const Attrib
     // synth writes metres = heightOffset + heightScale * value (heightScale 1 in a float EXR, which a
     // manifest's synthesised frames leave out).
     if (!d.units.heightRange && d.kind == TextureKind::SynthesisedSea) d.units.heightRange = d.heightScale;
-    auto displacement = recordedCompanion(path, attributes, attr::displacement);
-    if (!displacement) return displacement.error();
-    d.displacement = *displacement;
+    auto shift = recordedCompanion(path, attributes, attr::shift);
+    if (!shift) return shift.error();
+    d.shift = *shift;
     auto foam = recordedCompanion(path, attributes, attr::foam);
     if (!foam) return foam.error();
     d.foam = *foam;

@@ -112,7 +112,7 @@ TEST(CacheKey, PackOptions) {
         {"plainOutput", [](PackOptions& o) { o.plainOutput = std::string("plain.exr"); }, true},
         {"layout", [](PackOptions& o) { o.layout = Layout::Plain; }, true},
         {"heightRange", [](PackOptions& o) { o.heightRange = 6.0; }, true},
-        {"displacement", [](PackOptions& o) { o.displacement = true; }, true},
+        {"displacement", [](PackOptions& o) { o.shift = true; }, true},
         {"foam", [](PackOptions& o) { o.foam = true; }, true},
         {"version", [](PackOptions& o) { o.version = std::string("9.9"); }, true},
         {"progress", [](PackOptions& o) { o.progress = [](std::string_view, double) {}; }, false},

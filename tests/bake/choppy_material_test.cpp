@@ -24,7 +24,7 @@ MaterialDescription twoLayers() {
     a.texture = {"swell.exr", 64, 64, 7, 1, std::nullopt};
     d.displacement.push_back(a);
     a.name = "chop";
-    a.horizontalDisplacement = true;
+    a.shift = true;
     a.choppiness = 0.7;  // not exactly representable: must read back to the same double
     d.displacement.push_back(a);
     return d;
@@ -35,25 +35,54 @@ Result<MaterialDescription> readBack(const test::ScratchDir& dir, const std::str
     return readMaterial(dir.file("material.json"));
 }
 
-TEST(ChoppyMaterial, RecordsDisplacementAndChoppinessOnlyWhereTheTextureHoldsThem) {
+TEST(ChoppyMaterial, RecordsShiftAndChoppinessOnlyWhereTheTextureHoldsThem) {
     test::ScratchDir dir;
     const std::string json = materialJson(twoLayers());
     const size_t chop = json.find("\"chop\"");
     ASSERT_NE(chop, std::string::npos);
     // The heights-only layer is written as it always was; the choppy one after its amplitude.
-    EXPECT_EQ(json.find("\"horizontalDisplacement\""), json.find("\"horizontalDisplacement\": true"));
-    EXPECT_GT(json.find("horizontalDisplacement"), chop);
+    EXPECT_EQ(json.find("\"shift\""), json.find("\"shift\": true"));
+    EXPECT_GT(json.find("\"shift\""), chop);
+    EXPECT_EQ(json.find("horizontalDisplacement"), std::string::npos);
     EXPECT_GT(json.find("\"choppiness\": 0.7"), chop);
     auto back = readBack(dir, json);
     ASSERT_TRUE(back) << back.error().what;
-    EXPECT_FALSE(back->displacement[0].horizontalDisplacement);
-    EXPECT_TRUE(back->displacement[1].horizontalDisplacement);
+    EXPECT_FALSE(back->displacement[0].shift);
+    EXPECT_TRUE(back->displacement[1].shift);
     EXPECT_EQ(back->displacement[1].choppiness, 0.7);
     EXPECT_EQ(materialJson(*back), json);
     // A wrong type is a damaged file, named.
     std::string bad = json;
-    bad.replace(bad.find("\"horizontalDisplacement\": true"), 30, "\"horizontalDisplacement\": 1.0 ");
+    bad.replace(bad.find("\"shift\": true"), 13, "\"shift\": 1.0");
     auto refused = readBack(dir, bad);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().what.find("shift"), std::string::npos) << refused.error().what;
+}
+
+// A material.json as heightpack wrote it before the sideways motion was called shift (typed out here, not
+// made by materialJson): its horizontalDisplacement still reads as shift, and a wrong type is still named.
+TEST(ChoppyMaterial, ReadsTheOldWordForShift) {
+    test::ScratchDir dir;
+    const auto written = [](const std::string& chopFlag) {
+        return std::string(R"({"schema":"heightpack-material","version":1,"name":"sea","displacement":[)"
+                           R"({"name":"swell","texture":{"file":"swell.exr","width":64,"height":64,"levels":7},)"
+                           R"("layout":"neighbour4","wrap":"periodic","filter":"kaiser","heightScale":1.0,)"
+                           R"("heightOffset":0.0,"tileSize":64.0,"scroll":[0.0,0.0],"amplitude":1.0},)"
+                           R"({"name":"chop","texture":{"file":"chop.exr","width":64,"height":64,"levels":7},)"
+                           R"("layout":"neighbour4","wrap":"periodic","filter":"kaiser","heightScale":1.0,)"
+                           R"("heightOffset":0.0,"tileSize":16.0,"scroll":[0.0,0.0],"amplitude":1.0,)"
+                           R"("horizontalDisplacement":)") +
+               chopFlag + R"(,"choppiness":0.7}]})";
+    };
+    for (const char* flag : {"true", "false"}) {
+        auto old = readBack(dir, written(flag));
+        ASSERT_TRUE(old) << old.error().what;
+        ASSERT_EQ(old->displacement.size(), 2u);
+        EXPECT_FALSE(old->displacement[0].shift);
+        EXPECT_EQ(old->displacement[1].shift, std::string(flag) == "true") << flag;
+        EXPECT_EQ(old->displacement[1].choppiness, 0.7);
+    }
+    auto refused = readBack(dir, written("1.0"));
     ASSERT_FALSE(refused);
     EXPECT_NE(refused.error().what.find("horizontalDisplacement"), std::string::npos) << refused.error().what;
 }

@@ -54,6 +54,10 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
         {false, Layout::Plain, PixelType::Bc4, "bc4.dds", "dds DXGI_FORMAT_BC4_UNORM", {Refuses, Refuses, Unknown, Loads, Loads}},
         {true, Layout::Xy, PixelType::Bc5, "bc5.ktx2", "ktx2 VK_FORMAT_BC5_UNORM_BLOCK", {Partial, Refuses, Refuses, Refuses, Loads}},
         {true, Layout::Xy, PixelType::Bc5, "bc5.dds", "dds DXGI_FORMAT_BC5_UNORM", {Refuses, Refuses, Unknown, Loads, Loads}},
+        // ASTC (KTX2 only): three.js's KTX2Loader maps 4x4 and 6x6 (where the context has ASTC), Godot's 4x4 and 8x8.
+        {false, Layout::Plain, PixelType::Astc4x4, "a4.ktx2", "ktx2 VK_FORMAT_ASTC_4x4_UNORM_BLOCK", {Partial, Refuses, Refuses, Refuses, Loads}},
+        {false, Layout::Plain, PixelType::Astc6x6, "a6.ktx2", "ktx2 VK_FORMAT_ASTC_6x6_UNORM_BLOCK", {Partial, Refuses, Refuses, Refuses, Refuses}},
+        {true, Layout::Xy, PixelType::Astc8x8, "a8.ktx2", "ktx2 VK_FORMAT_ASTC_8x8_UNORM_BLOCK", {Refuses, Refuses, Refuses, Refuses, Loads}},
     };
     const Engine engines[] = {Engine::ThreeJs, Engine::Babylon, Engine::Unreal, Engine::Unity, Engine::Godot};
     for (const Case& c : cases) {
@@ -86,7 +90,7 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
             }
         }
     }
-    // Array textures (pack --displacement --foam into KTX2 and DDS): three.js and Babylon.js load layer 0
+    // Array textures (pack --shift --foam into KTX2 and DDS): three.js and Babylon.js load layer 0
     // alone, Godot refuses a KTX2 array and loads a DDS one as a Texture2DArray (README's table, rows
     // "array").
     const Image y = makeImage(64, 64, smoothWave), d = makeImage(64, 64, [](int x, int) { return x / 64.0f - 0.5f; });
@@ -101,7 +105,7 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
                                ArrayCase{"array.dds", PixelType::Half, "dds DXGI_FORMAT_R16G16B16A16_FLOAT", {Refuses, Partial, Unknown, Unknown, Loads}},
                                ArrayCase{"array16.dds", PixelType::Uint16, "dds DXGI_FORMAT_R16G16B16A16_UNORM", {Refuses, Refuses, Unknown, Unknown, Partial}}}) {
         PackOptions options;
-        options.displacement = options.foam = true;
+        options.shift = options.foam = true;
         options.storage.pixelType = c.type;
         const auto made = packHeightMap(dir.file("sea.exr"), dir.file(c.output), options);
         ASSERT_TRUE(made) << c.output << ": " << made.error().what;

@@ -126,7 +126,7 @@ TEST(PackJob, OptionsThatCannotGoTogetherAreJudgedByTheLibraryBeforeTheInputIsRe
     for (const auto& [output, twin] : {std::pair{"o.exr", ""}, std::pair{"o.ktx2", ""}, std::pair{"o.exr", "p.dds"},
                                        std::pair{"o.dds", "p.ktx2"}}) {
         PackOptions options;
-        options.displacement = true;
+        options.shift = true;
         options.foam = true;
         if (*twin) options.plainOutput = dir.file(twin);
         const auto report = packHeightMap(missing, dir.file(output), options);
@@ -148,9 +148,9 @@ TEST(NormalJob, OptionsThatCannotGoTogetherAreJudgedBeforeTheInputIsRead) {
         std::string arg;
     };
     const std::vector<Case> cases = {
-        {"xy into a PNG", Layout::Xy, NormalFormat::Png8, NormalAlpha::None, dir.file("n.png"), Fix::RgbNormals, "png"},
-        {"xy with height in alpha", Layout::Xy, NormalFormat::Exr, NormalAlpha::Height, dir.file("n.exr"), Fix::RgbNormals,
-         "alpha"},
+        {"xy into a PNG", Layout::Xy, NormalFormat::Png8, NormalAlpha::None, dir.file("n.png"), Fix::RgbNormalsInPng, ""},
+        {"xy with height in alpha", Layout::Xy, NormalFormat::Exr, NormalAlpha::Height, dir.file("n.exr"), Fix::RgbNormalsForAlpha,
+         ""},
         {"slope variance into a PNG", Layout::Rgb, NormalFormat::Png8, NormalAlpha::SlopeVariance, dir.file("n.png"),
          Fix::VarianceNeedsLevels, ""},
     };
@@ -169,14 +169,14 @@ TEST(NormalJob, OptionsThatCannotGoTogetherAreJudgedBeforeTheInputIsRead) {
     }
 }
 
-TEST(SynthJob, DisplacementOrFoamIntoAFileThatIsNoExrIsAnOptionsError) {
+TEST(SynthJob, ShiftOrFoamIntoAFileThatIsNoExrIsAnOptionsError) {
     test::ScratchDir dir;
-    for (const auto& [foam, named] : {std::pair{false, "displacement"}, std::pair{true, "foam"}}) {
+    for (const auto& [foam, named] : {std::pair{false, "shift"}, std::pair{true, "foam"}}) {
         SynthOptions options;
         options.spectrum.size = 16;
         options.spectrum.windSpeed = 9.0;
         options.spectrum.tileSize = 32.0;
-        options.displacement = true;
+        options.shift = true;
         options.foam = foam;
         const auto report = synthesise(dir.file("sea.png"), options);
         ASSERT_FALSE(report) << named;

@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 std::string foamManifest(const std::string& assetLines, const std::string& synthLines) {
     return "format = 1\nname = \"sea\"\n[[displacement]]\nname = \"swell\"\ntile_size = 64.0\n" + assetLines +
            "[displacement.synth]\nspectrum = \"jonswap\"\nwind = 14.0\nsize = 32\nseed = 7\nloop = 6.0\nframes = 3\n"
-           "displacement = true\n" +
+           "shift = true\n" +
            synthLines;
 }
 const std::string kFoam = "foam = true\n";

@@ -90,7 +90,9 @@ TEST(ManifestSynth, BadTablesAreBadInputNamingTheLineAndTheKey) {
         {"format = 1\nname = \"sea\"\n[[displacement]]\nname = \"s\"\nsource = \"a.png\"\ntile_size = 4.0\n"
          "synth = { wind = 10.0 }\n", 5, "source"},                                 // both
         {"format = 1\nname = \"sea\"\n[[displacement]]\nname = \"s\"\ntile_size = 4.0\n", 3, "synth"},  // neither
-        {seaManifest("wind = 12.0\ndisplacement = 1\n"), 10, "displacement"},   // not true/false
+        {seaManifest("wind = 12.0\nshift = 1\n"), 10, "shift"},                 // not true/false
+        {seaManifest("wind = 12.0\ndisplacement = 1\n"), 10, "displacement"},   // nor under its old name
+        {seaManifest("wind = 12.0\nshift = true\ndisplacement = true\n"), 11, "shift"},  // both names
         {seaManifest("wind = 12.0\ncascades = 5\n"), 10, "cascades"},           // more than synth bakes
         {seaManifest("wind = 12.0\ncascades = 0\n"), 10, "cascades"},
         {seaManifest("wind = 12.0\nsize = 16\ncascades = 2\n"), 11, "cascades"},  // bands too narrow
@@ -120,11 +122,23 @@ TEST(ManifestSynth, BadTablesAreBadInputNamingTheLineAndTheKey) {
     }
 }
 
+// displacement = true, as manifests written before the word shift say it, asks for what shift = true does.
+TEST(ManifestSynth, TheOldNameOfShiftStillReads) {
+    test::ScratchDir dir;
+    for (const auto& [lines, expected] : {std::pair{"", false}, {"shift = true\n", true}, {"displacement = true\n", true},
+                                          {"shift = false\n", false}, {"displacement = false\n", false}}) {
+        auto m = parseText(dir, seaManifest(std::string(kSea) + lines));
+        ASSERT_TRUE(m) << lines << m.error().what;
+        ASSERT_TRUE(m->displacement[0].synth);
+        EXPECT_EQ(m->displacement[0].synth->shift, expected) << lines;
+    }
+}
+
 // cascades = N splits the asset into N, each with the spectrum, tile size and names core's plan and
-// synth --cascades give cascade c; displacement = true rides along on each.
+// synth --cascades give cascade c; shift = true rides along on each.
 TEST(ManifestSynth, CascadesAreOneAssetEachAsCorePlansThem) {
     test::ScratchDir dir;
-    auto m = parseText(dir, seaManifest(std::string(kSea) + "cascades = 3\ndisplacement = true\n"));
+    auto m = parseText(dir, seaManifest(std::string(kSea) + "cascades = 3\nshift = true\n"));
     ASSERT_TRUE(m) << m.error().path << ": " << m.error().what;
     auto whole = parseText(dir, seaManifest(kSea));
     ASSERT_TRUE(whole);
@@ -141,7 +155,7 @@ TEST(ManifestSynth, CascadesAreOneAssetEachAsCorePlansThem) {
         EXPECT_EQ(d.layer.tileSize, bands[c].tileSize);
         EXPECT_EQ(d.synth->cascade, c);
         EXPECT_EQ(d.synth->cascades, 3);
-        EXPECT_TRUE(d.synth->displacement);
+        EXPECT_TRUE(d.synth->shift);
         EXPECT_EQ(keyText(d.synth->spectrum, ""), keyText(cascadeOptions(sea, bands[c]), "")) << "cascade " << c;
     }
 }
@@ -185,12 +199,12 @@ TEST(ManifestSynth, TheSeaIsRemadeOnlyWhenItsSpectrumChanges) {
 
 // The new keys are in each map's key: an unchanged manifest makes nothing; displacement, the cascade
 // count and a spectrum parameter each remake every map; a non-zero choppiness only rewrites material.json.
-TEST(ManifestSynth, DisplacementAndCascadesAreInTheKey) {
+TEST(ManifestSynth, ShiftAndCascadesAreInTheKey) {
     test::ScratchDir dir;
     auto edited = [](std::string text, const std::string& from, const std::string& to) {
         return text.replace(text.find(from), from.size(), to);
     };
-    std::string sea = seaManifest(std::string(kSea) + "cascades = 2\ndisplacement = true\n");
+    std::string sea = seaManifest(std::string(kSea) + "cascades = 2\nshift = true\n");
     sea = edited(sea, "frames = 3", "frames = 1");  // one frame each: fast
     ASSERT_EQ(build(dir, sea, "out", 1), 2) << "two cascades";
     EXPECT_EQ(build(dir, sea, "out", 1), 0) << "an unchanged manifest makes nothing";
@@ -200,7 +214,7 @@ TEST(ManifestSynth, DisplacementAndCascadesAreInTheKey) {
     EXPECT_EQ(build(dir, calmer, "out", 1), 0) << "choppiness is the renderer's, not the texture's";
     EXPECT_NE(bytes(dir.file("out/material.json")).find("\"choppiness\": 0.5"), std::string::npos);
 
-    const std::string flat = edited(sea, "displacement = true", "displacement = false");
+    const std::string flat = edited(sea, "shift = true", "shift = false");
     EXPECT_EQ(build(dir, flat, "out", 1), 2) << "heights alone are other textures";
     EXPECT_LT(bytes(dir.file("out/swell_c1.exr")).size(), choppy.size());
     EXPECT_EQ(build(dir, flat, "out", 1), 0);

@@ -5,8 +5,8 @@
 #     (heightpack_bench_kernels' BM_SeaInverseDft, CPU time on THREADS threads) + writing the file's bytes
 #     (cat of the output into a new file); target within 3x;
 #   - heights only against `pack` of a 4096^2 16-bit map (zip, the default): target faster;
-#   - with --displacement --foam against heights only: target within 2x;
-#   - peak memory with displacement and foam above start-up, in bytes a texel: target at most 24;
+#   - with --shift --foam against heights only: target within 2x;
+#   - peak memory with shift and foam above start-up, in bytes a texel: target at most 24;
 #   - and issue 15's 60-frame 512x512 looping sequence with everything (target under 20 s).
 # With BEFORE (a heightpack binary from an earlier build, e.g. main's), its runs alternate with these and
 # the same figures are printed for it. The default output compression of each binary is used (zip before
@@ -51,7 +51,7 @@ for ((i = 0; i < runs; i++)); do
     run "$work/$b.heights" "$exe" synth "${wind[@]}" --threads "$threads" -q -o "$work/h.exr"
     run "$work/$b.write" sh -c "cat '$work/h.exr' > '$work/copy.exr'"
     rm -f "$work/copy.exr"
-    run "$work/$b.full" "$exe" synth "${wind[@]}" --displacement --foam --threads "$threads" -q -o "$work/f.exr"
+    run "$work/$b.full" "$exe" synth "${wind[@]}" --shift --foam --threads "$threads" -q -o "$work/f.exr"
     run "$work/$b.pack" "$exe" pack "$work/map.png" --threads "$threads" -q -o "$work/p.exr"
     rm -f "$work"/h.exr "$work"/f.exr "$work"/p.exr "$work"/s.exr
   done
@@ -82,17 +82,17 @@ for b in "${binaries[@]}"; do
     printf "floor: start-up %.2f s + one FFT %.3f s + write %.2f s = %.2f s\n", s, f, w, floor
     printf "heights / floor: %.2fx (target within 3x: %s)\n", h / floor, (h <= 3 * floor ? "met" : "missed")
     printf "heights / pack: wall %.2fx, cpu %.2fx (target under 1: %s)\n", h / p, hc / pc, (h < p ? "met" : "missed")
-    printf "displacement and foam / heights: wall %.2fx, cpu %.2fx (target within 2x: %s)\n", full / h, fullc / hc,
+    printf "shift and foam / heights: wall %.2fx, cpu %.2fx (target within 2x: %s)\n", full / h, fullc / hc,
            (full <= 2 * h ? "met" : "missed")
     perTexel = (fm - sm) * 1024 / (4096 * 4096)
-    printf "displacement and foam peak above start-up: %.1f bytes a texel (target at most 24: %s)\n", perTexel,
+    printf "shift and foam peak above start-up: %.1f bytes a texel (target at most 24: %s)\n", perTexel,
            (perTexel <= 24 ? "met" : "missed") }'
 done
 
 : >"$work/seq"
 for ((i = 0; i < runs; i++)); do
   run "$work/seq" "$hp" synth --spectrum jonswap --wind 14m/s --fetch 200km --swell 2.5m,12s,250deg --depth 30m \
-    --spreading donelan-banner --tile-size 256m --size 512 --loop 20s --frames 60 --displacement --foam --report \
+    --spreading donelan-banner --tile-size 256m --size 512 --loop 20s --frames 60 --shift --foam --report \
     --threads "$threads" -q -o "$work/seq.exr"
   rm -f "$work"/seq*.exr
 done

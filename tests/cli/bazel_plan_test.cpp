@@ -44,7 +44,7 @@ tile_size = 64.0
 name = "sea"
 tile_size = 256.0
 choppiness = 1.0
-synth = { wind = 12.0, size = 32, seed = 5, loop = 6.0, frames = 3, displacement = true, foam = true }
+synth = { wind = 12.0, size = 32, seed = 5, loop = 6.0, frames = 3, shift = true, foam = true }
 
 [normals]
 name = "ripple_n"

@@ -175,7 +175,7 @@ TEST(Cli, OptionsThatCannotGoTogetherAreUsageErrorsNamingTheFileAsGiven) {
     EXPECT_EQ(plain.code, 2) << plain.err;
     expectOneLineError(plain, dir.file("twin.exr"));
     EXPECT_NE(plain.err.find("--emit-plain"), std::string::npos) << plain.err;
-    const CliRun foam = heightpackRun({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "16", "--displacement",
+    const CliRun foam = heightpackRun({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "16", "--shift",
                                        "--foam", "-o", dir.file("sea.png")});
     EXPECT_EQ(foam.code, 2) << foam.err;
     expectOneLineError(foam, dir.file("sea.png"));
@@ -532,8 +532,8 @@ TEST(Cli, SynthWritesTileableSeasAndLoopingFrames) {
     EXPECT_NEAR(std::stod(in->spec().get_string_attribute("heightpack:heightScale")),
                 j["maxHeight"].get<double>() - j["minHeight"].get<double>(), 1e-4);
 
-    // Displacement rides along as channels Dx, Dy; pack still finds the height in Y.
-    ASSERT_EQ(heightpackRun({"synth", "--wind", "10m/s", "--tile-size", "64m", "--size", "64", "--displacement", "-q",
+    // The shift rides along as channels Dx, Dy; pack still finds the height in Y.
+    ASSERT_EQ(heightpackRun({"synth", "--wind", "10m/s", "--tile-size", "64m", "--size", "64", "--shift", "-q",
                              "-o", dir.file("chop.exr")}).code, 0);
     auto chop = OIIO::ImageInput::open(dir.file("chop.exr"));
     ASSERT_TRUE(chop);
@@ -576,7 +576,7 @@ TEST(Cli, SynthRefusesBadValues) {
         {"synth", "--wind", "10m/s", "--tile-size", "64m", "--frames", "8", "-o", out},
         {"synth", "--wind", "10m/s", "--tile-size", "64m", "--spectrum", "pierson", "-o", out},
         {"synth", "--wind", "10m/s", "--tile-size", "64m", "--frames", "8", "--loop", "0s", "-o", out},
-        {"synth", "--wind", "10m/s", "--tile-size", "64m", "--displacement", "-o", dir.file("s.png")},
+        {"synth", "--wind", "10m/s", "--tile-size", "64m", "--shift", "-o", dir.file("s.png")},
     };
     for (const auto& args : usage) {
         const CliRun run = heightpackRun(args);

@@ -38,7 +38,7 @@ TEST(PackFoam, KeepsSynthsCoverageBitExactAndItsMipsAreItsBoxMeans) {
         for (int x = 0; x < 32; ++x) lo = std::min<double>(lo, sea.at("Foam", x, y)), hi = std::max<double>(hi, sea.at("Foam", x, y));
     ASSERT_LT(lo, 0.5 * hi) << "the sea must have foam in some places and less in others";
 
-    const ProcessResult packed = heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "--foam", "--filter", "box", "--json",
+    const ProcessResult packed = heightpackRun({"pack", dir.file("sea.exr"), "--shift", "--foam", "--filter", "box", "--json",
                                       "--emit-plain", dir.file("plain.exr"), "-o", dir.file("packed.exr")});
     ASSERT_EQ(packed.code, 0) << packed.err;
     EXPECT_EQ(nlohmann::json::parse(packed.out)["foam"], "neighbour4");
@@ -82,7 +82,7 @@ TEST(PackFoam, KeepsSynthsCoverageBitExactAndItsMipsAreItsBoxMeans) {
 TEST(PackFoam, RefusesWhatCannotHoldIt) {
     ScratchDir dir;
     // A sea with Dx, Dy but no foam: bad input, exit 3, one line, nothing written.
-    ASSERT_EQ(heightpackRun({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "16", "--displacement", "-q", "-o",
+    ASSERT_EQ(heightpackRun({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "16", "--shift", "-q", "-o",
                    dir.file("sea.exr")}).code, 0);
     const ProcessResult none = heightpackRun({"pack", dir.file("sea.exr"), "--foam", "-o", dir.file("p.exr")});
     EXPECT_EQ(none.code, 3) << none.err;

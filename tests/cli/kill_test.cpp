@@ -99,7 +99,7 @@ std::vector<std::string> expand(std::vector<std::string> args, const ScratchDir&
 
 std::vector<Scenario> scenarios() {
     const std::vector<std::string> sea = {"synth", "--spectrum", "jonswap", "--wind", "9m/s", "--tile-size", "64m",
-                                          "--size", "128", "--frames", "6", "--loop", "6s", "--displacement", "--foam",
+                                          "--size", "128", "--frames", "6", "--loop", "6s", "--shift", "--foam",
                                           "--threads", "1", "-o", "OUT/sea.exr"};
     auto withSeed = [](std::vector<std::string> args, const char* seed) {
         args.insert(args.end(), {"--seed", seed});

@@ -71,7 +71,7 @@ TEST(Startup, PngExrKtx2AndDdsMapNoOpenImageIO) {
         {"info", dir.file("written-by-openimageio.exr")},
         {"synth", "-o", dir.file("sea.exr"), "--size", "32", "--wind", "8", "--tile-size", "16m", "--foam"},
         {"info", dir.file("sea.exr")},
-        {"pack", dir.file("sea.exr"), "-o", dir.file("sea.ktx2"), "--displacement", "--foam"},
+        {"pack", dir.file("sea.exr"), "-o", dir.file("sea.ktx2"), "--shift", "--foam"},
     };
     for (const auto& args : commands) {
         const ProcessResult run = traced(args);

@@ -1,6 +1,6 @@
-// A manifest that bakes a whole sea (issue 15, point 7): [displacement.synth] with displacement = true
-// A manifest that bakes a whole sea (issue 15, point 7): [displacement.synth] with displacement = true
-// gives the texture `heightpack synth --displacement` then `pack --displacement` give (an EXR's layers or
+// A manifest that bakes a whole sea (issue 15, point 7): [displacement.synth] with shift = true
+// A manifest that bakes a whole sea (issue 15, point 7): [displacement.synth] with shift = true
+// gives the texture `heightpack synth --shift` then `pack --shift` give (an EXR's layers or
 // a KTX2 array's), with foam = true (issue 25) what `synth --foam` then `pack --foam` give, and with
 // cascades = N the N tiles of `synth --cascades`, each a layer of material.json at core's tile size. Each
 // is checked against the command line run on the same parameters, texel by texel, at every level.
@@ -63,23 +63,23 @@ size = 64
 seed = 5
 loop = 6.0
 frames = 2
-displacement = true
+shift = true
 )";
 
 }  // namespace
 
-// displacement = true: each frame's packed EXR holds the heights and Dx, Dy that synth --displacement and
-// pack --displacement make of the same sea, and material.json tells the viewer to draw them choppy.
-TEST(SynthManifest, DisplacementIsWhatSynthThenPackMake) {
+// shift = true: each frame's packed EXR holds the heights and Dx, Dy that synth --shift and
+// pack --shift make of the same sea, and material.json tells the viewer to draw them choppy.
+TEST(SynthManifest, ShiftIsWhatSynthThenPackMake) {
     ScratchDir dir;
     writeText(dir.file("choppy.toml"), kChoppy);
     std::filesystem::create_directory(dir.file("cli"));
     const ProcessResult built = heightpackRun({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")});
     ASSERT_EQ(built.code, 0) << built.err;
     ASSERT_EQ(heightpackRun({"synth", "--spectrum", "jonswap", "--wind", "11m/s", "--fetch", "80km", "--direction", "25",
-                   "--tile-size", "48m", "--size", "64", "--seed", "5", "--loop", "6s", "--frames", "2", "--displacement",
+                   "--tile-size", "48m", "--size", "64", "--seed", "5", "--loop", "6s", "--frames", "2", "--shift",
                    "-q", "-o", dir.file("cli/sea.exr")}).code, 0);
-    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--displacement", "--filter", "kaiser", "--wrap", "periodic", "-q",
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--shift", "--filter", "kaiser", "--wrap", "periodic", "-q",
                    "-o", dir.file("cli/packed.exr")}).code, 0);
     for (const char* frame : {"0000", "0001"}) {
         const std::string out = dir.file(std::string("out/sea.") + frame + ".exr");
@@ -87,19 +87,19 @@ TEST(SynthManifest, DisplacementIsWhatSynthThenPackMake) {
         expectSameTexels(out, dir.file(std::string("cli/packed.") + frame + ".exr"));
     }
     const nlohmann::json sea = material(dir.file("out"))["displacement"][0];
-    EXPECT_EQ(sea["horizontalDisplacement"], true);
+    EXPECT_EQ(sea["shift"], true);
     EXPECT_EQ(sea["choppiness"], 0.8);
     EXPECT_EQ(sea["loopPeriod"], 6.0);
     EXPECT_EQ(sea["tileSize"], 48.0);
 
     // A .ktx2 holds them as an array texture: layers heights, Dx, Dy, each level the very bytes pack
-    // --displacement writes into a .ktx2 of the same sea.
+    // --shift writes into a .ktx2 of the same sea.
     std::string gpu = kChoppy;
     gpu.replace(gpu.find("choppiness = 0.8"), 16, "output = \"sea.ktx2\"");
     writeText(dir.file("gpu.toml"), gpu);
     const ProcessResult ktx = heightpackRun({"build", dir.file("gpu.toml"), "-q", "-o", dir.file("gpu")});
     ASSERT_EQ(ktx.code, 0) << ktx.err;
-    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--displacement", "-q", "-o", dir.file("cli/packed.ktx2")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--shift", "-q", "-o", dir.file("cli/packed.ktx2")}).code, 0);
     for (const char* frame : {"0000", "0001"}) {
         auto built = readGpuTexture(dir.file(std::string("gpu/sea.") + frame + ".ktx2"));
         auto single = readGpuTexture(dir.file(std::string("cli/packed.") + frame + ".ktx2"));
@@ -111,7 +111,7 @@ TEST(SynthManifest, DisplacementIsWhatSynthThenPackMake) {
     }
     const nlohmann::json choppy = material(dir.file("gpu"))["displacement"][0];
     EXPECT_EQ(choppy["texture"]["file"], "sea.ktx2");
-    EXPECT_EQ(choppy["horizontalDisplacement"], true);
+    EXPECT_EQ(choppy["shift"], true);
 }
 
 // cascades = 3: three layers sea_c0..2, at the tile sizes core's cascadeBands plans, scrolling at the
@@ -175,8 +175,8 @@ cascades = 3
 }
 
 // foam = true (issue 25): every frame of the build is, byte for byte and at every level, what `synth
-// --displacement --foam` at the asset's choppiness and foam options, then `pack --foam` (with
-// --displacement when displacement = true), make of the same sea; and through the Ninja plan, whose
+// --shift --foam` at the asset's choppiness and foam options, then `pack --foam` (with
+// --shift when shift = true), make of the same sea; and through the Ninja plan, whose
 // frames are separate processes sharing the loop, the same bytes again.
 TEST(SynthManifest, FoamIsWhatSynthThenPackMake) {
     ScratchDir dir;
@@ -185,15 +185,15 @@ TEST(SynthManifest, FoamIsWhatSynthThenPackMake) {
     foamy.replace(foamy.find("frames = 2"), 10, "frames = 3");
     foamy += "foam = true\nfoam_threshold = 0.8\nfoam_decay = 1.5\nfoam_build_up = 5.0\n";
     std::string foamOnly = foamy;
-    foamOnly.replace(foamOnly.find("displacement = true"), 19, "displacement = false");
+    foamOnly.replace(foamOnly.find("shift = true"), 12, "shift = false");
     writeText(dir.file("foamy.toml"), foamy);
     writeText(dir.file("foam_only.toml"), foamOnly);
     for (const char* folder : {"cli", "cli_foam_only"}) std::filesystem::create_directory(dir.file(folder));
     ASSERT_EQ(heightpackRun({"synth", "--spectrum", "jonswap", "--wind", "11m/s", "--fetch", "80km", "--direction", "25",
-                   "--tile-size", "48m", "--size", "64", "--seed", "5", "--loop", "6s", "--frames", "3", "--displacement",
+                   "--tile-size", "48m", "--size", "64", "--seed", "5", "--loop", "6s", "--frames", "3", "--shift",
                    "--foam", "--choppiness", "1.3", "--foam-threshold", "0.8", "--foam-decay", "1.5s", "--foam-build-up", "5",
                    "-q", "-o", dir.file("cli/sea.exr")}).code, 0);
-    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--displacement", "--foam", "-q", "-o",
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--shift", "--foam", "-q", "-o",
                    dir.file("cli/packed.exr")}).code, 0);
     ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--foam", "-q", "-o", dir.file("cli_foam_only/packed.exr")}).code, 0);
 
@@ -220,14 +220,14 @@ TEST(SynthManifest, FoamIsWhatSynthThenPackMake) {
         EXPECT_EQ(material(dir.file(folder))["displacement"][0]["foam"], true) << folder;
         EXPECT_FALSE(std::filesystem::exists(dir.file(std::string(folder) + "/.heightpack-synth"))) << folder;
     }
-    EXPECT_EQ(material(dir.file("out"))["displacement"][0]["horizontalDisplacement"], true);
+    EXPECT_EQ(material(dir.file("out"))["displacement"][0]["shift"], true);
     // Into a .ktx2: one array texture (heights, Dx, Dy, Foam), byte for byte pack's .ktx2 of the same frames.
     std::string gpu = foamy;
     gpu.replace(gpu.find("choppiness = 1.3"), 16, "choppiness = 1.3\noutput = \"sea.ktx2\"");
     writeText(dir.file("gpu.toml"), gpu);
     const ProcessResult ktx = heightpackRun({"build", dir.file("gpu.toml"), "-q", "-o", dir.file("gpu")});
     ASSERT_EQ(ktx.code, 0) << ktx.err;
-    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--displacement", "--foam", "-q", "-o",
+    ASSERT_EQ(heightpackRun({"pack", dir.file("cli/sea.exr"), "--shift", "--foam", "-q", "-o",
                    dir.file("cli/packed.ktx2")}).code, 0);
     for (const char* frame : {"0000", "0001", "0002"}) {
         const auto array = readGpuTexture(dir.file(std::string("gpu/sea.") + frame + ".ktx2"));
@@ -257,13 +257,13 @@ TEST(SynthManifest, BadValuesNameTheKeyAndTouchNothing) {
     ASSERT_EQ(heightpackRun({"build", dir.file("choppy.toml"), "-q", "-o", dir.file("out")}).code, 0);
     const std::vector<unsigned char> before = readBytes(dir.file("out/sea.0001.exr"));
     const std::vector<unsigned char> json = readBytes(dir.file("out/material.json"));
-    // Each case replaces a line of kChoppy (line 18 is displacement = true) and appends one (line 19).
+    // Each case replaces a line of kChoppy (line 18 is shift = true) and appends one (line 19).
     const struct {
         std::string from, to, append, key;
         int line;
     } cases[] = {
         {"", "", "cascades = 5", "'displacement[0].synth.cascades'", 19},
-        {"displacement = true", "displacement = \"yes\"", "", "'displacement[0].synth.displacement'", 18},
+        {"shift = true", "displacement = \"yes\"", "", "'displacement[0].synth.displacement'", 18},
     };
     for (const auto& c : cases) {
         std::string text = kChoppy;

@@ -39,8 +39,8 @@ TEST(Jacobian, IsTheDeterminantOfTheDisplacementsDerivatives) {
     const SpectrumOptions o = choppySea();
     const double lambda = 1.3;
     const SeaFields s = Ocean(o).fields(2.0, {true, true, true}, lambda);
-    const cv::Mat xx = spectralDerivative(s.displacement, 0, 0, o.tileSize), yy = spectralDerivative(s.displacement, 1, 1, o.tileSize);
-    const cv::Mat xy = spectralDerivative(s.displacement, 0, 1, o.tileSize), yx = spectralDerivative(s.displacement, 1, 0, o.tileSize);
+    const cv::Mat xx = spectralDerivative(s.shift, 0, 0, o.tileSize), yy = spectralDerivative(s.shift, 1, 1, o.tileSize);
+    const cv::Mat xy = spectralDerivative(s.shift, 0, 1, o.tileSize), yx = spectralDerivative(s.shift, 1, 0, o.tileSize);
     double lowest = 1.0;
     for (int y = 0; y < o.size; ++y)
         for (int x = 0; x < o.size; ++x) {
@@ -121,7 +121,7 @@ TEST(SeaReport, TheBoundHoldsAndTheNumbersAreTheDirectOnes) {
     double largest = 0;
     for (double t : {0.0, 1.1, 2.9, 5.3}) {
         const SeaFields s = ocean.fields(t, {true, true, true}, 1.0);
-        largest = std::max(largest, largestDisplacement(s.displacement, 1.0));
+        largest = std::max(largest, largestShift(s.shift, 1.0));
         int folds = 0;
         for (float j : s.jacobian.pixels) folds += j < 0;
         EXPECT_DOUBLE_EQ(foldFraction(s.jacobian), double(folds) / s.jacobian.pixels.size());
@@ -130,8 +130,8 @@ TEST(SeaReport, TheBoundHoldsAndTheNumbersAreTheDirectOnes) {
         const double n = double(s.heights.pixels.size());
         EXPECT_NEAR(significantWaveHeight(s.heights), 4 * std::sqrt(sq / n - sum * sum / (n * n)), 1e-6);
     }
-    EXPECT_GE(ocean.displacementBound(), largest);
-    EXPECT_LT(ocean.displacementBound(), 100 * largest);  // a bound, but not a vacuous one
+    EXPECT_GE(ocean.shiftBound(), largest);
+    EXPECT_LT(ocean.shiftBound(), 100 * largest);  // a bound, but not a vacuous one
     // Steepness: Hs over the deep-water peak wavelength g Tp^2 / 2 pi.
     const SeaStateSummary summary = summariseSeaState(o, ocean.resolvedVariance());
     EXPECT_NEAR(summary.peakWavelength, kGravity * summary.peakPeriod * summary.peakPeriod / (2 * std::numbers::pi), 1e-3 * summary.peakWavelength);

@@ -156,8 +156,8 @@ TEST(Mip, FilterShapes) {
     EXPECT_NEAR(filterWeight(Filter::Kaiser, 2.0), 0.0, 1e-12);
     EXPECT_DOUBLE_EQ(filterWeight(Filter::Kaiser, 3.0), 0.0);
     EXPECT_DOUBLE_EQ(filterWeight(Filter::Triangle, 0.25), 0.75);
-    for (Filter f : kFilters) EXPECT_EQ(parseFilter(filterName(f)), f);
-    EXPECT_FALSE(parseFilter("gauss"));
+    for (Filter f : kFilters) EXPECT_EQ(parseName<Filter>(filterName(f)), f);
+    EXPECT_FALSE(parseName<Filter>("gauss"));
 }
 
 TEST(Mip, ResamplingBothAxesEqualsOneAxisAfterTheOther) {

@@ -159,14 +159,14 @@ TEST(Spectrum, TheSameBytesOnAnyThreadCountFrozenOrEvolving) {
     for (double t : {0.0, 3.5}) {
         const SeaFields a = one.fields(t, {true, true, true}, 1.3, 1), b = three.fields(t, {true, true, true}, 1.3, 3);
         EXPECT_EQ(a.heights.pixels, b.heights.pixels) << t;
-        EXPECT_EQ(a.displacement.pixels, b.displacement.pixels) << t;
+        EXPECT_EQ(a.shift.pixels, b.shift.pixels) << t;
         EXPECT_EQ(a.jacobian.pixels, b.jacobian.pixels) << t;
         if (t == 0.0) {
             EXPECT_EQ(frozen.fields(t, {true, true, true}, 1.3, 2).jacobian.pixels, a.jacobian.pixels);
         }
     }
     EXPECT_EQ(one.resolvedVariance(), three.resolvedVariance());
-    EXPECT_EQ(one.displacementBound(), frozen.displacementBound());
+    EXPECT_EQ(one.shiftBound(), frozen.shiftBound());
 }
 
 TEST(Spectrum, FieldsIntoOneInterleavedImageEqualEachFieldAlone) {
@@ -181,11 +181,11 @@ TEST(Spectrum, FieldsIntoOneInterleavedImageEqualEachFieldAlone) {
             const int n = o.size;
             std::vector<float> image(size_t(n) * n * 4);
             SeaFieldTargets to;
-            to.heights = {image.data(), 4}, to.displacementX = {image.data() + 1, 4};
-            to.displacementY = {image.data() + 2, 4}, to.jacobian = {image.data() + 3, 4};
+            to.heights = {image.data(), 4}, to.shiftX = {image.data() + 1, 4};
+            to.shiftY = {image.data() + 2, 4}, to.jacobian = {image.data() + 3, 4};
             ocean.fieldsInto(t, to, 0.8, threads);
             const Image h = ocean.fields(t, {true, false, false}, 0.8, threads).heights;
-            const Image d = ocean.fields(t, {false, true, false}, 0.8, threads).displacement;
+            const Image d = ocean.fields(t, {false, true, false}, 0.8, threads).shift;
             const Image j = ocean.fields(t, {false, false, true}, 0.8, threads).jacobian;
             for (size_t i = 0; i < h.texelCount(); ++i) {
                 ASSERT_EQ(image[4 * i], h.pixels[i]) << t << " on " << threads << " at " << i;
@@ -203,7 +203,7 @@ TEST(Spectrum, DisplacementIsTheHeightTurnedAlongEachWave) {
     o.size = 64;
     o.tileSize = 256;
     const Ocean ocean(o);
-    const Image h = ocean.heights(1.25), d = ocean.displacement(1.25);
+    const Image h = ocean.heights(1.25), d = ocean.shift(1.25);
     double vh = 0, vx = 0, vy = 0;
     for (size_t i = 0; i < h.texelCount(); ++i) {
         vh += double(h.pixels[i]) * h.pixels[i];

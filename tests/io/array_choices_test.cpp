@@ -50,7 +50,7 @@ TEST(ArrayChoices, AutoPixelTypeJudgesEveryLayer) {
         const auto packJson = [&](const std::string& name, bool displacement) {
             std::vector<std::string> args = {"pack", dir.file("sea.exr"), "--pixel-type", "auto", "--tolerance", "1e-4",
                                              "--json", "-o", dir.file(name + ext)};
-            if (displacement) args.push_back("--displacement");
+            if (displacement) args.push_back("--shift");
             return runJson(args);
         };
         const json heights = packJson("heights", false), whole = packJson("whole", true);
@@ -61,7 +61,7 @@ TEST(ArrayChoices, AutoPixelTypeJudgesEveryLayer) {
         EXPECT_EQ(info["pixelType"], "float");
     }
     // A tolerance Dx's halves meet (|Dx| < 128: half steps of 1/16, errors below 1/32): two bytes again.
-    const json half = runJson({"pack", dir.file("sea.exr"), "--displacement", "--pixel-type", "auto", "--tolerance", "0.04",
+    const json half = runJson({"pack", dir.file("sea.exr"), "--shift", "--pixel-type", "auto", "--tolerance", "0.04",
                                "--json", "-o", dir.file("half.ktx2")});
     EXPECT_NE(half["pixelType"], "float") << half.dump();
 }
@@ -86,10 +86,10 @@ TEST(ArrayChoices, SourceHashCoversEveryChannel) {
     for (size_t i = 0; i < dx.texelCount(); ++i) all.insert(all.end(), {dx.pixels[i], dy.pixels[i]});
     all.insert(all.end(), foam.pixels.begin(), foam.pixels.end());
     EXPECT_EQ(hashOf("a.exr", "alone.ktx2", {}), xxh3(heights));
-    const std::string whole = hashOf("a.exr", "whole.ktx2", {"--displacement", "--foam"});
+    const std::string whole = hashOf("a.exr", "whole.ktx2", {"--shift", "--foam"});
     EXPECT_EQ(whole, xxh3(all));
-    EXPECT_EQ(hashOf("a.exr", "whole.exr", {"--displacement", "--foam"}), whole) << "every container records the same hash";
-    EXPECT_NE(hashOf("b.exr", "changed.ktx2", {"--displacement", "--foam"}), whole) << "Dx changed alone";
+    EXPECT_EQ(hashOf("a.exr", "whole.exr", {"--shift", "--foam"}), whole) << "every container records the same hash";
+    EXPECT_NE(hashOf("b.exr", "changed.ktx2", {"--shift", "--foam"}), whole) << "Dx changed alone";
 }
 
 // info reads an array back: its layers, its sixteen channels named as the EXR's, per level statistics
@@ -99,11 +99,11 @@ TEST(ArrayChoices, InfoReportsTheLayers) {
     const Image y = randomImage(32, 16, 21), dx = randomImage(32, 16, 22, -1.0f, 1.0f), dy = randomImage(32, 16, 23, -1.0f, 1.0f);
     const Image foam = randomImage(32, 16, 24);
     writeChannels(dir.file("sea.exr"), {"Y", "Dx", "Dy", "Foam"}, {&y, &dx, &dy, &foam});
-    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "--foam", "-q", "-o", dir.file("p.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--shift", "--foam", "-q", "-o", dir.file("p.exr")}).code, 0);
     const std::vector<Level> exr = readLevels(dir.file("p.exr"));
     for (const char* out : {"p.ktx2", "p.dds"}) {
         SCOPED_TRACE(out);
-        const json packed = runJson({"pack", dir.file("sea.exr"), "--displacement", "--foam", "--json", "-o", dir.file(out)});
+        const json packed = runJson({"pack", dir.file("sea.exr"), "--shift", "--foam", "--json", "-o", dir.file(out)});
         const json info = runJson({"info", dir.file(out), "--json"});
         EXPECT_EQ(packed["gpuBytes"], info["gpuBytes"]) << "pack and info count every layer";
         EXPECT_EQ(info["layers"], json({"heights", "Dx", "Dy", "Foam"}));
@@ -142,7 +142,7 @@ TEST(ArrayChoices, SameBytesWhateverTheThreadCount) {
         std::vector<std::vector<unsigned char>> files;
         for (const char* threads : {"1", "3"}) {
             const std::string out = dir.file(std::string("t") + threads + ext);
-            std::vector<std::string> args = {"pack", dir.file("sea.exr"), "--displacement", "--foam", "--pixel-type", "uint16",
+            std::vector<std::string> args = {"pack", dir.file("sea.exr"), "--shift", "--foam", "--pixel-type", "uint16",
                                              "--threads", threads, "-q", "-o", out};
             if (std::string(ext) == ".ktx2") args.insert(args.end(), {"--compression", "zstd"});
             ASSERT_EQ(heightpackRun(args).code, 0) << out;

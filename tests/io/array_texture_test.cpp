@@ -1,4 +1,4 @@
-// KTX2 and DDS array textures (issue 25): pack --displacement --foam into a .ktx2 or .dds writes one array
+// KTX2 and DDS array textures (issue 25): pack --shift --foam into a .ktx2 or .dds writes one array
 // texture, layers heights, Dx, Dy, Foam, each equal to the EXR layer of the same name that pack writes.
 // Read by independent readers only: ktx-parse (npm) for KTX2; for DDS a DX10 decode written here from
 // Microsoft's "DDS file layout" and DDS_HEADER_DXT10, and nvddsinfo (Debian's libnvtt-bin) where installed;
@@ -165,7 +165,7 @@ TEST(ArrayTextures, Ktx2LayersAreTheExrLayersThroughKtxParse) {
     const std::string sea = writeSea(dir);
     // The EXR references: float and half (an EXR has no uint16: those arrays are judged against float).
     for (const char* type : {"float", "half"})
-        pack({sea, "--displacement", "--foam", "--pixel-type", type, "-o", dir.file(std::string("ref_") + type + ".exr"),
+        pack({sea, "--shift", "--foam", "--pixel-type", type, "-o", dir.file(std::string("ref_") + type + ".exr"),
               "--emit-plain", dir.file(std::string("ref_plain_") + type + ".exr")});
     struct Case {
         std::string type, reference;
@@ -174,7 +174,7 @@ TEST(ArrayTextures, Ktx2LayersAreTheExrLayersThroughKtxParse) {
     for (const Case& c : {Case{"float", "float", false}, Case{"half", "half", false}, Case{"uint16", "float", false},
                           Case{"float", "float", true}, Case{"half", "half", true}}) {
         const std::string name = c.type + (c.zstd ? "_zstd" : "");
-        std::vector<std::string> args = {sea, "--displacement", "--foam", "--pixel-type", c.type, "-o",
+        std::vector<std::string> args = {sea, "--shift", "--foam", "--pixel-type", c.type, "-o",
                                          dir.file(name + ".ktx2"), "--emit-plain", dir.file(name + "_plain.ktx2")};
         if (c.zstd) args.insert(args.end(), {"--compression", "zstd"});
         pack(args);
@@ -199,7 +199,7 @@ TEST(ArrayTextures, DdsLayersAreTheExrLayersThroughADx10DecodeAndNvddsinfo) {
     const bool nvdds = nvddsinfoInstalled() && runProcess({"sh", "-c", "command -v node"}).code == 0;
     if (!nvdds) HEIGHTPACK_WITHOUT_ORACLE("nvddsinfo (libnvtt-bin) or node is not installed: run scripts/test.sh");
     for (const char* type : {"float", "half"})
-        pack({sea, "--displacement", "--foam", "--pixel-type", type, "-o", dir.file(std::string("ref_") + type + ".exr")});
+        pack({sea, "--shift", "--foam", "--pixel-type", type, "-o", dir.file(std::string("ref_") + type + ".exr")});
     pack({sea, "--foam", "-o", dir.file("ref_foam.exr")});
     struct Case {
         std::string type, reference, companions;
@@ -209,7 +209,7 @@ TEST(ArrayTextures, DdsLayersAreTheExrLayersThroughADx10DecodeAndNvddsinfo) {
                           Case{"uint16", "ref_float", "both", kAll}, Case{"float", "ref_foam", "foam", {"heights", "Foam"}}}) {
         const std::string file = dir.file(c.type + "_" + c.companions + ".dds");
         std::vector<std::string> args = {sea, "--foam", "--pixel-type", c.type, "-o", file};
-        if (c.companions == "both") args.push_back("--displacement");
+        if (c.companions == "both") args.push_back("--shift");
         pack(args);
         std::string list;
         for (const std::string& n : c.layers) list += (list.empty() ? "" : ",") + n;

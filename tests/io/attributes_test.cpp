@@ -39,7 +39,7 @@ TEST(Attributes, LayoutsHaveOneWordEachInHeaders) {
     EXPECT_STREQ(attributeText(Layout::Rgb), "normal");
     EXPECT_STREQ(attributeText(Layout::Xy), "normalXY");
     for (const Layout l : {Layout::Neighbour4, Layout::Plain, Layout::Rgb, Layout::Xy})
-        EXPECT_EQ(layoutFromAttribute(attributeText(l)), l);
-    EXPECT_EQ(layoutFromAttribute("fresnel"), std::nullopt);
-    EXPECT_EQ(layoutFromAttribute("rgb"), std::nullopt);  // the CLI's word, not the header's
+        EXPECT_EQ(enumFromAttribute<Layout>(attributeText(l)), l);
+    EXPECT_EQ(enumFromAttribute<Layout>("fresnel"), std::nullopt);
+    EXPECT_EQ(enumFromAttribute<Layout>("rgb"), std::nullopt);  // the CLI's word, not the header's
 }

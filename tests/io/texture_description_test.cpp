@@ -40,12 +40,13 @@ TEST(TextureDescription, EveryLayoutWordHeightpackWritesReadsAsItsKindAndOthersA
                                            {"fresnel", TextureKind::FresnelRamp, std::nullopt},
                                            {"synthesised", TextureKind::SynthesisedSea, std::nullopt},
                                            {"seamPreview", TextureKind::SeamPreview, std::nullopt},
-                                           {"grid heights", TextureKind::ViewerCapture, std::nullopt},
-                                           {"screenshot", TextureKind::ViewerCapture, std::nullopt}}) {
+                                           {"grid heights", TextureKind::GridHeights, std::nullopt},
+                                           {"screenshot", TextureKind::Screenshot, std::nullopt}}) {
         const auto d = describe({{"heightpack:layout", w.text}});
         ASSERT_TRUE(d) << w.text << ": " << d.error().what;
         EXPECT_EQ(d->kind, w.kind) << w.text;
         EXPECT_EQ(d->layout, w.layout) << w.text;
+        EXPECT_STREQ(layoutWord(*d), w.text.c_str()) << "the word info reports, typed";
     }
     EXPECT_EQ(describe({})->kind, TextureKind::Image);
     for (const char* bad : {"neighbourX", "Neighbour4", "rgb", "xy", "neighbour4 ", " plain", "normals", "x"})
@@ -108,7 +109,7 @@ TEST(TextureDescription, ChannelsOfEveryLayoutPackAndSynthWrite) {
     EXPECT_TRUE(d->channels.foam.empty());
     d = describe({{"heightpack:layout", "neighbour4"}});
     ASSERT_TRUE(d);
-    EXPECT_FALSE(d->channels.displacement());
+    EXPECT_FALSE(d->channels.shift());
     // Recorded companions without their channels, a packed file without four channels: damaged.
     expectDamaged({{"heightpack:layout", "neighbour4"}, {"heightpack:displacement", "neighbour4"}}, "heightpack:displacement");
     expectDamaged({{"heightpack:layout", "neighbour4"}, {"heightpack:foam", "neighbour4"}}, "heightpack:foam");

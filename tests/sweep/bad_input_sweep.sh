@@ -275,7 +275,7 @@ expect synth 2 "" --wind 10 "${S[@]}" --frames 2 -o s.exr
 expect synth 2 "" --wind 10 "${S[@]}" --frames 0 --loop 4s -o s.exr
 expect synth 2 "" --wind 10 "${S[@]}" --frames 2 --loop nan -o s.exr
 expect synth 2 "" --wind 10 "${S[@]}" --spectrum pierson -o s.exr
-expect synth 2 "" --wind 10 "${S[@]}" --displacement -o s.png
+expect synth 2 "" --wind 10 "${S[@]}" --shift -o s.png
 expect synth 2 "" --wind 10 "${S[@]}" --seed abc -o s.exr
 expect synth 2 "" --wind 10 "${S[@]}" --swell -1m,12s,250deg -o s.exr
 expect synth 2 "" --wind 10 "${S[@]}" --spreading cos4 -o s.exr

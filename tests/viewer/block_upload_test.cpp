@@ -199,15 +199,15 @@ TEST(BlockUpload, ABc5NormalMapGoesUpAsItsBlocks) {
     EXPECT_EQ(nlohmann::json::parse(r.out)["gpuBytes"]["normals"], blockBytes);
 }
 
-TEST(BlockUpload, ABc4ArrayDrawsItsHeightsAndDisplacementAsTheFloatArray) {
+TEST(BlockUpload, ABc4ArrayDrawsItsHeightsAndShiftAsTheFloatArray) {
     // A 64-texel choppy, foamy sea as one array texture (heights, Dx, Dy, Foam) in floats and in bc4: the
     // layers are told apart in the decoded values, and Dx, Dy go up as their floats (the packing reads them
     // texel by texel).
     ScratchDir dir;
-    heightpackMustRun("synth", {"--wind", "14m/s", "--tile-size", "32m", "--size", "64", "--displacement", "--foam", "--choppiness",
+    heightpackMustRun("synth", {"--wind", "14m/s", "--tile-size", "32m", "--size", "64", "--shift", "--foam", "--choppiness",
                       "1.5", "--foam-threshold", "0.8", "-o", dir.file("sea.exr")});
     for (const std::string type : {"float", "bc4"})
-        heightpackMustRun("pack", {dir.file("sea.exr"), "--displacement", "--foam", "--layout", "plain", "--pixel-type", type, "-o",
+        heightpackMustRun("pack", {dir.file("sea.exr"), "--shift", "--foam", "--layout", "plain", "--pixel-type", type, "-o",
                          dir.file(type + ".ktx2")});
     auto record = readGpuTexture(dir.file("bc4.ktx2"));
     ASSERT_TRUE(record);

@@ -1,5 +1,5 @@
 // Tessendorf's choppy waves in heightpack-view (issue 15, point 3): a swell with Dx, Dy, packed with
-// --displacement, seen from straight above as heights in grey. Moving each grid point by choppiness * D
+// --shift, seen from straight above as heights in grey. Moving each grid point by choppiness * D
 // squeezes the crests and stretches the troughs by an amount known in closed form; the rendered grid must
 // show it, in the one-pass and the two-pass paths alike.
 #include <OpenImageIO/imageio.h>
@@ -100,7 +100,7 @@ Bands measure(const Grey& p) {
 TEST(ViewerChoppy, CrestsSharpenAndTroughsWidenByTheClosedFormAmount) {
     ScratchDir dir;
     writeSwell(dir.file("swell.exr"));
-    const ProcessResult pack = runProcess({HEIGHTPACK_EXE, "pack", dir.file("swell.exr"), "--displacement", "-q", "-o",
+    const ProcessResult pack = runProcess({HEIGHTPACK_EXE, "pack", dir.file("swell.exr"), "--shift", "-q", "-o",
                                            dir.file("swell_packed.exr")});
     ASSERT_EQ(pack.code, 0) << pack.err;
     const std::vector<std::string> common = {dir.file("swell_packed.exr"), "--view", "height", "--size", "320x320",

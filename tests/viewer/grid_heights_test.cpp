@@ -120,7 +120,7 @@ TEST(GridHeights, ChoppySeasShiftAndStandWhereTheViewerDrawsThem) {
     // A synthesised choppy sea (two frames, blended) summed with a painted map that is not choppy.
     ScratchDir dir;
     ASSERT_EQ(runProcess({HEIGHTPACK_EXE, "synth", "--wind", "9m/s", "--tile-size", "48m", "--size", "64", "--frames", "2",
-                          "--loop", "8s", "--displacement", "-q", "-o", dir.file("sea.exr")})
+                          "--loop", "8s", "--shift", "-q", "-o", dir.file("sea.exr")})
                   .code,
               0);
     std::ofstream(dir.file("m.toml")) << "format = 1\nname = \"m\"\n"
@@ -178,7 +178,7 @@ TEST(GridHeights, EveryCascadeOfAThreeOrFourTileSeaDisplacesTheGrid) {
         std::ofstream(dir.file("m.toml")) << "format = 1\nname = \"m\"\n[[displacement]]\nname = \"sea\"\n"
                                           << "tile_size = 48.0\nscroll = [0.010, 0.004]\nchoppiness = 0.8\n"
                                           << "[displacement.synth]\nspectrum = \"pierson-moskowitz\"\nwind = 9.0\nsize = 64\n"
-                                          << "seed = 5\ndisplacement = true\ncascades = " << cascades << "\n";
+                                          << "seed = 5\nshift = true\ncascades = " << cascades << "\n";
         const ProcessResult built = runProcess({HEIGHTPACK_EXE, "build", dir.file("m.toml"), "-q", "-o", dir.file("m")});
         ASSERT_EQ(built.code, 0) << built.err;
         auto sampler = loadMaterialSampler(dir.file("m/material.json"));
@@ -228,7 +228,7 @@ TEST(GridHeights, TheFourthTileShadesThePictureWithinTheSamplerLimits) {
     ScratchDir dir;
     std::ofstream(dir.file("m.toml")) << "format = 1\nname = \"m\"\n[[displacement]]\nname = \"sea\"\ntile_size = 48.0\n"
                                       << "[displacement.synth]\nspectrum = \"pierson-moskowitz\"\nwind = 9.0\nsize = 64\n"
-                                      << "seed = 5\ndisplacement = true\ncascades = 4\n";
+                                      << "seed = 5\nshift = true\ncascades = 4\n";
     const ProcessResult built = runProcess({HEIGHTPACK_EXE, "build", dir.file("m.toml"), "-q", "-o", dir.file("m")});
     ASSERT_EQ(built.code, 0) << built.err;
     // Close to the water: from farther, the fourth tile's metre-long ripples fall into coarse levels.

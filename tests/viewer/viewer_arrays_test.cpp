@@ -1,4 +1,4 @@
-// heightpack-view draws the KTX2 and DDS array textures of `pack --displacement --foam` (issue 25): layer 0
+// heightpack-view draws the KTX2 and DDS array textures of `pack --shift --foam` (issue 25): layer 0
 // the heights, then Dx, Dy and Foam, each in the file's texel type. A choppy, foamy synthesised sea packed
 // into an EXR and into both arrays, in float, half and uint16, is drawn with one camera and time: an
 // array draws what the EXR of its type draws, pixel for pixel, and its grid (--grid-heights, the GPU's
@@ -34,20 +34,20 @@ const std::vector<std::string> kSeaTypes = {"float", "half", "uint16"};
 // into every container in every pixel type it takes: sea_TYPE.EXT (EXR holds float and half only).
 void packSea(const ScratchDir& dir) {
     const ProcessResult synth = runProcess({HEIGHTPACK_EXE, "synth", "--wind", "14m/s", "--tile-size", "32m", "--size", "64",
-                                            "--displacement", "--foam", "--choppiness", "1.5", "--foam-threshold", "0.8", "-q", "-o",
+                                            "--shift", "--foam", "--choppiness", "1.5", "--foam-threshold", "0.8", "-q", "-o",
                                             dir.file("sea.exr")});
     ASSERT_EQ(synth.code, 0) << synth.err;
     for (const std::string& type : kSeaTypes)
         for (const std::string ext : {"exr", "ktx2", "dds"}) {
             if (type == "uint16" && ext == "exr") continue;
             const std::string out = dir.file("sea_" + type + "." + ext);
-            const ProcessResult pack = runProcess({HEIGHTPACK_EXE, "pack", dir.file("sea.exr"), "--displacement", "--foam",
+            const ProcessResult pack = runProcess({HEIGHTPACK_EXE, "pack", dir.file("sea.exr"), "--shift", "--foam",
                                                    "--pixel-type", type, "-q", "-o", out});
             ASSERT_EQ(pack.code, 0) << out << ": " << pack.err;
         }
     // And plain (one channel a layer, packed in the viewer as it packs a plain file's heights), in float.
     for (const std::string ext : {"ktx2", "dds"}) {
-        const ProcessResult pack = runProcess({HEIGHTPACK_EXE, "pack", dir.file("sea.exr"), "--displacement", "--foam",
+        const ProcessResult pack = runProcess({HEIGHTPACK_EXE, "pack", dir.file("sea.exr"), "--shift", "--foam",
                                                "--layout", "plain", "-q", "-o", dir.file("sea_plain." + ext)});
         ASSERT_EQ(pack.code, 0) << pack.err;
     }
@@ -197,7 +197,7 @@ TEST(ViewerArrays, AManifestsArraysOpenFromMaterialJsonAndDrawAsItsExr) {
         std::ofstream(dir.file(name + ".toml"))
             << "format = 1\nname = \"m\"\n[defaults]\ncontainer = \"" << container << "\"\n"
             << "[[displacement]]\nname = \"sea\"\ntile_size = 32.0\nscroll = [0.010, 0.004]\nchoppiness = 1.5\n"
-            << "[displacement.synth]\nwind = 14.0\nsize = 64\nseed = 3\ndisplacement = true\nfoam = true\n";
+            << "[displacement.synth]\nwind = 14.0\nsize = 64\nseed = 3\nshift = true\nfoam = true\n";
         const ProcessResult built = runProcess({HEIGHTPACK_EXE, "build", dir.file(name + ".toml"), "-q", "-o", dir.file(name)});
         ASSERT_EQ(built.code, 0) << built.err;
         const std::string material = name + "/material.json";
@@ -240,12 +240,12 @@ TEST(ViewerArrays, AManifestsArraysOpenFromMaterialJsonAndDrawAsItsExr) {
 TEST(ViewerArrays, ASequenceOfArraysBlendsItsFramesAsTheExrSequence) {
     ScratchDir dir;
     const ProcessResult synth = runProcess({HEIGHTPACK_EXE, "synth", "--wind", "14m/s", "--tile-size", "32m", "--size", "64",
-                                            "--frames", "2", "--loop", "8s", "--displacement", "--foam", "-q", "-o",
+                                            "--frames", "2", "--loop", "8s", "--shift", "--foam", "-q", "-o",
                                             dir.file("seq.exr")});
     ASSERT_EQ(synth.code, 0) << synth.err;
     for (const std::string out : {"seq_float.exr", "seq_float.ktx2", "seq_uint16.ktx2"}) {
         const std::string type = out.substr(4, out.find('.') - 4);
-        const ProcessResult pack = runProcess({HEIGHTPACK_EXE, "pack", dir.file("seq.exr"), "--displacement", "--foam",
+        const ProcessResult pack = runProcess({HEIGHTPACK_EXE, "pack", dir.file("seq.exr"), "--shift", "--foam",
                                                "--pixel-type", type, "-q", "-o", dir.file(out)});
         ASSERT_EQ(pack.code, 0) << out << ": " << pack.err;
     }

@@ -9,7 +9,7 @@
 #include "heightpack/bake/pack_job.hpp"
 #include "heightpack/core/sea/spectrum.hpp"
 #include "heightpack/io/attributes.hpp"
-#include "heightpack/io/displacement_read.hpp"
+#include "heightpack/io/shift_read.hpp"
 #include "heightpack/io/foam_read.hpp"
 #include "heightpack/io/files.hpp"
 #include "heightpack/io/image_write.hpp"
@@ -103,9 +103,9 @@ NormalJobOptions normalOptions(const NormalAsset& n, const std::string& version)
     return job;
 }
 
-// Frame f of a synthesised sea: the heights in metres at f * loop / frames, with pack.displacement Dx, Dy
+// Frame f of a synthesised sea: the heights in metres at f * loop / frames, with pack.shift Dx, Dy
 // (metres per unit of choppiness), and with a foam loop Dx, Dy and the frame's foam coverage, the channels
-// `heightpack synth --displacement` (--foam) writes, into the intermediate file (with the loop's timing,
+// `heightpack synth --shift` (--foam) writes, into the intermediate file (with the loop's timing,
 // which the packed frame then carries), packed from there like any source, and the intermediate removed.
 // Its name is fixed, not a temporary one, because the packed header records the source's name and the
 // bytes must be the same on every run.
@@ -125,14 +125,14 @@ Status makeSynthesised(const SynthSource& sea, int frame, const std::string& int
     }
     progress("synth", 0.0);
     const double t = synthFrameTime(sea, frame);
-    const bool withD = pack.displacement || foam;  // synth's foam brings Dx, Dy with it
+    const bool withD = pack.shift || foam;  // synth's foam brings Dx, Dy with it
     const int channels = 1 + (withD ? 2 : 0) + (foam ? 1 : 0), size = sea.spectrum.size;
-    // Y, Dx, Dy (, Foam) interleaved, the channels synth writes and pack --displacement (--foam) reads.
+    // Y, Dx, Dy (, Foam) interleaved, the channels synth writes and pack --shift (--foam) reads.
     Image image(size, size, channels);
     float* first = image.pixels.data();
     SeaFieldTargets to;
     to.heights = {first, channels};
-    if (withD) to.displacementX = {first + 1, channels}, to.displacementY = {first + 2, channels};
+    if (withD) to.shiftX = {first + 1, channels}, to.shiftY = {first + 2, channels};
     Ocean(sea.spectrum, threads).fieldsInto(t, to, 1.0, threads);
     FlatImageOptions flat;
     if (withD) flat.channelNames = {"Y", layerName::dx, layerName::dy};
@@ -205,15 +205,15 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
         // Dx, Dy (and foam) go wherever the output's container puts them: an EXR's further channels, a
         // KTX2's or DDS's further array layers.
         if (d.synth) {
-            // displacement = true synthesises Dx, Dy and keeps them as a file's would be kept (below).
-            pack.displacement = d.synth->displacement && d.layer.choppiness > 0;
+            // shift = true synthesises Dx, Dy and keeps them as a file's would be kept (below).
+            pack.shift = d.synth->shift && d.layer.choppiness > 0;
             // foam = true synthesises the loop's foam and keeps it as a file's would be (below).
             pack.foam = d.synth->foam;
             addSynthSteps(steps, d, pack);
         } else {
-            // Dx, Dy ride along when the source has them (synth's displacement), unless choppiness turns them
+            // Dx, Dy ride along when the source has them (synth's shift), unless choppiness turns them
             // off. Judged from the header, so a painted map's key stays what it was.
-            pack.displacement = d.layer.choppiness > 0 && hasDisplacement(d.frames.front());
+            pack.shift = d.layer.choppiness > 0 && hasShift(d.frames.front());
             // Foam likewise, unless foam = false.
             pack.foam = d.keepFoam && hasFoam(d.frames.front());
             addSourcedSteps(steps, d, d.layer.name, "displacement", m.threshold, pack, makePacked);

@@ -118,7 +118,7 @@ void appendKeyText(std::string& text, std::string_view prefix, const PackOptions
     if (o.heightRange > 0.0) k.put("heightRange", o.heightRange);  // recorded in the file when known
     k.put("version", o.version);
     // Issue 15: a line only when on, so every key made before it existed still matches.
-    if (o.displacement) k.put("displacement", o.displacement);
+    if (o.shift) k.put("shift", o.shift);
     if (o.foam) k.put("foam", o.foam);
     // progress: reports, makes nothing
 }

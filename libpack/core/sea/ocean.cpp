@@ -1,5 +1,5 @@
 // The Ocean class of spectrum.hpp: random amplitudes over half the DFT grid (the other half follows by
-// Hermitian symmetry, the sea being real), evolved in time and turned into heights, displacement and its
+// Hermitian symmetry, the sea being real), evolved in time and turned into heights, shift (horizontal displacement) and its
 // Jacobian by real inverse DFTs in float (dft.hpp), one column pass at a time through the heights' storage.
 #include <cassert>
 #include <cmath>
@@ -70,7 +70,7 @@ Ocean::Ocean(const SpectrumOptions& options, const OceanOptions& how) : options_
     });
     for (int r = 0; r < n; ++r) {
         resolvedVariance_ += rowVariance[r];
-        displacementBound_ += 2.0 * rowBound[r];  // |h0(k)| and, through its partner, |h0(-k)|
+        shiftBound_ += 2.0 * rowBound[r];  // |h0(k)| and, through its partner, |h0(-k)|
     }
 }
 
@@ -164,18 +164,18 @@ void Ocean::fieldsInto(double t, const SeaFieldTargets& to, double choppiness, i
     };
     using std::integral_constant;
     using Rows = std::vector<detail::HalfSpectrumRows>;
-    if (to.displacementX.first || to.jacobian.first) {
+    if (to.shiftX.first || to.jacobian.first) {
         Rows rows;
-        if (to.displacementX.first) rows.push_back({ikx, into(to.displacementX, n, store)});
+        if (to.shiftX.first) rows.push_back({ikx, into(to.shiftX, n, store)});
         if (to.jacobian.first) rows.push_back({minusKx2, into(to.jacobian, n, [c](float& j, double xx) { j = float(1 + c * xx); })});
         transform(integral_constant<ColumnPass, OverK>{}, rows);
     }
     if (to.jacobian.first)
         transform(integral_constant<ColumnPass, MinusKy2OverK>{},
                   Rows{{{}, into(to.jacobian, n, [c](float& j, double yy) { j = float(double(j) * (1 + c * yy)); })}});
-    if (to.displacementY.first || to.jacobian.first) {
+    if (to.shiftY.first || to.jacobian.first) {
         Rows rows;
-        if (to.displacementY.first) rows.push_back({i, into(to.displacementY, n, store)});
+        if (to.shiftY.first) rows.push_back({i, into(to.shiftY, n, store)});
         if (to.jacobian.first)
             rows.push_back({minusKx, into(to.jacobian, n, [c](float& j, double xy) { j = float(double(j) - c * c * xy * xy); })});
         transform(integral_constant<ColumnPass, KyOverK>{}, rows);
@@ -191,10 +191,10 @@ SeaFields Ocean::fields(double t, const SeaFieldSet& which, double choppiness, i
         result.heights = Image(n, n, 1);
         to.heights = {result.heights.pixels.data(), 1};
     }
-    if (which.displacement) {
-        result.displacement = Image(n, n, 2);
-        to.displacementX = {result.displacement.pixels.data(), 2};
-        to.displacementY = {result.displacement.pixels.data() + 1, 2};
+    if (which.shift) {
+        result.shift = Image(n, n, 2);
+        to.shiftX = {result.shift.pixels.data(), 2};
+        to.shiftY = {result.shift.pixels.data() + 1, 2};
     }
     if (which.jacobian) {
         result.jacobian = Image(n, n, 1);
@@ -206,6 +206,6 @@ SeaFields Ocean::fields(double t, const SeaFieldSet& which, double choppiness, i
 
 Image Ocean::heights(double t) const { return fields(t, {}).heights; }
 
-Image Ocean::displacement(double t) const { return fields(t, {false, true, false}).displacement; }
+Image Ocean::shift(double t) const { return fields(t, {false, true, false}).shift; }
 
 }  // namespace heightpack

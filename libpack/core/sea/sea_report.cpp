@@ -67,8 +67,8 @@ FrameNumbers frameNumbers(const Image& frame, const FrameChannels& at, double ch
             const float* j = rowOf(frame, y, at.jacobian);
             for (int x = 0; x < frame.width; ++x) r.folds += j[x * step] < 0.0f;
         }
-        if (at.displacement >= 0) {
-            const float* d = rowOf(frame, y, at.displacement);
+        if (at.shift >= 0) {
+            const float* d = rowOf(frame, y, at.shift);
             for (int x = 0; x < frame.width; ++x) {
                 const double dx = d[x * step], dy = d[x * step + 1];
                 r.move2 = std::max(r.move2, dx * dx + dy * dy);
@@ -84,7 +84,7 @@ FrameNumbers frameNumbers(const Image& frame, const FrameChannels& at, double ch
         numbers.minHeight = std::min(numbers.minHeight, r.lo), numbers.maxHeight = std::max(numbers.maxHeight, r.hi);
     }
     numbers.foldFraction = double(folds) / n;
-    numbers.largestDisplacement = std::abs(choppiness) * std::sqrt(move2);
+    numbers.largestShift = std::abs(choppiness) * std::sqrt(move2);
     if (at.heights < 0) return numbers;
     // Pass 2: squares about the mean (one pass loses digits for maps far from zero mean).
     const double mean = sum / n;
@@ -108,8 +108,8 @@ double foldFraction(const Image& jacobian, int channel, int threads) {
     return frameNumbers(jacobian, {-1, -1, channel}, 1.0, threads).foldFraction;
 }
 
-double largestDisplacement(const Image& displacement, double choppiness, int channel, int threads) {
-    return frameNumbers(displacement, {-1, channel, -1}, choppiness, threads).largestDisplacement;
+double largestShift(const Image& shift, double choppiness, int channel, int threads) {
+    return frameNumbers(shift, {-1, channel, -1}, choppiness, threads).largestShift;
 }
 
 }  // namespace heightpack

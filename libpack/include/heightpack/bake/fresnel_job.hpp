@@ -4,6 +4,7 @@
 #include <string>
 
 #include "heightpack/core/fresnel.hpp"
+#include "heightpack/core/names.hpp"
 #include "heightpack/core/result.hpp"
 #include "heightpack/io/pixel_type.hpp"
 
@@ -12,6 +13,13 @@ namespace heightpack {
 enum class RampFormat {
     Exr,   // RGBA 32-bit float, linear
     Png8,  // 8-bit, rgb sRGB-encoded, alpha (the reflectance) linear
+};
+template <>
+struct NameTable<RampFormat> {
+    static constexpr EnumName<RampFormat> entries[] = {
+        {RampFormat::Exr, "exr", "float or half (or uint16) in an .exr, .ktx2 or .dds"},
+        {RampFormat::Png8, "png8", "8-bit PNG, rgb sRGB-encoded"},
+    };
 };
 
 // Writes the ramp of options to output, atomically, with its parameters in the metadata. An output named

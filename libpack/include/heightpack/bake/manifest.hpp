@@ -53,7 +53,7 @@ struct SourcedAsset {
 struct SynthSource {
     SpectrumOptions spectrum;         // with cascades, cascadeOptions(sea, band): its tile size, band and seed
     int frames = 1;                   // more than one needs spectrum.loopPeriod
-    bool displacement = false;        // Dx, Dy too, as `synth --displacement` (kept for an .exr output only)
+    bool shift = false;               // Dx, Dy too, as `synth --shift` (kept for an .exr output only)
     // Foam coverage too, as `synth --foam` (kept for an .exr output only): worked out over the whole loop,
     // where the surface moved by the asset's choppiness times D folds (synth's --choppiness).
     bool foam = false;

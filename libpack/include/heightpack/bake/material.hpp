@@ -48,7 +48,7 @@ struct DisplacementLayer {
     double loopPeriod = 0.0;           // seconds a sequence's frames span (0: one frame)
     // Tessendorf's choppy waves: the texture also holds Dx, Dy (layers Dx, Dy, packed as the heights), and a
     // renderer moves the point at x to x + choppiness * amplitude * D(x / tileSize + scroll * t).
-    bool horizontalDisplacement = false;
+    bool shift = false;
     double choppiness = 1.0;
     // Synth's looping foam coverage (0..1): the texture also holds layer Foam, packed as the heights, which a
     // renderer reads at x / tileSize + scroll * t, frames blended as the heights are.

@@ -23,6 +23,13 @@ enum class NormalFormat {
     Exr,   // mip-mapped RGB(A), xyz in [-1,1], like the packed heights: EXR, KTX2 or DDS by the extension
     Png8,  // level 0 only, 8-bit, rgb = 0.5 + 0.5 n
 };
+template <>
+struct NameTable<NormalFormat> {
+    static constexpr EnumName<NormalFormat> entries[] = {
+        {NormalFormat::Exr, "exr", "mip-mapped, in an .exr, .ktx2 or .dds"},
+        {NormalFormat::Png8, "png8", "level 0 alone, 8-bit PNG"},
+    };
+};
 
 struct NormalJobOptions {
     LoadOptions load;

@@ -1,5 +1,5 @@
 // Synth's looping foam coverage carried through `pack`: the same resize, mip filter and wrap as the heights
-// (packed beside them by pack_displacement.hpp's companions), so a shader finds a texel's foam at the
+// (packed beside them by pack_shift.hpp's companions), so a shader finds a texel's foam at the
 // texel and level where it finds its height.
 #pragma once
 

@@ -32,9 +32,9 @@ struct PackOptions {
     // (textureGather or hardware filtering; foam, masks); plainOutput must then be empty.
     Layout layout = Layout::Neighbour4;
     double heightRange = 0.0;          // metres between a stored 0.0 and 1.0, when known: recorded, errors in metres
-    // Also keep the input's horizontal displacement (its Dx, Dy; see pack_displacement.hpp), packed beside
-    // the heights in the same EXR. An input without it is refused (BadInput, Fix::AddDisplacement).
-    bool displacement = false;
+    // Also keep the input's shift (its Dx, Dy; see pack_shift.hpp), packed beside
+    // the heights in the same EXR. An input without it is refused (BadInput, Fix::AddShift).
+    bool shift = false;
     // Also keep the input's foam coverage (its Foam channel, as synth --foam writes it; see pack_foam.hpp),
     // packed beside the heights (and Dx, Dy) in the same EXR as layer Foam. An input without it is refused
     // (BadInput).

@@ -1,5 +1,5 @@
 // The whole `synth` operation: a sea from a spectrum, written as one map or a looping sequence of frames,
-// optionally with displacement, looping foam, several cascades and a sea-state report.
+// optionally with shift, looping foam, several cascades and a sea-state report.
 #pragma once
 
 #include <functional>
@@ -19,16 +19,16 @@ namespace heightpack {
 struct SynthOptions {
     SpectrumOptions spectrum;
     int frames = 1;  // more than one needs spectrum.loopPeriod: frame f is the sea at f * loopPeriod / frames
-    bool displacement = false;  // EXR only: add Tessendorf's horizontal displacement as channels Dx, Dy
-    bool foam = false;          // EXR only, implies displacement: a Foam channel (coverage 0..1) after Y, Dx, Dy
+    bool shift = false;  // EXR only: add Tessendorf's shift (horizontal displacement) as channels Dx, Dy
+    bool foam = false;          // EXR only, implies shift: a Foam channel (coverage 0..1) after Y, Dx, Dy
     FoamOptions foamOptions;
-    // The lambda of x + lambda D that the Jacobian (foam, folds) and the displacement bound assume. Dx and
+    // The lambda of x + lambda D that the Jacobian (foam, folds) and the shift bound assume. Dx and
     // Dy are written per unit of it, so an engine may choose another; foam is baked for this one.
     double choppiness = 1.0;
-    bool report = false;  // measure displacement and folds even when they are not written
+    bool report = false;  // measure shift and folds even when they are not written
     int cascades = 1;     // tiles of sizes tileSize * (17/61)^c with disjoint wavenumber bands: NAME_cC.EXT
     int threads = 0;      // 0 = all cores; the bytes are the same for any count
-    // An .exr's: none, zip or zips. Deflate saves 3-4% of float wave heights and displacement (noise) for
+    // An .exr's: none, zip or zips. Deflate saves 3-4% of float wave heights and shift (noise) for
     // most of the write's time; with foam, whose zeros do compress, zip saves about a quarter.
     Compression compression = Compression::None;
     std::string version = kVersion;  // this library's (heightpack/version.hpp); recorded in outputs, part of cache keys
@@ -45,9 +45,9 @@ struct SynthTileReport {
     double expectedSignificantWaveHeight = 0.0;  // 4 sqrt(m0), m0 the variance the grid resolves
     double minHeight = 0.0, maxHeight = 0.0;     // over all frames (m)
     double peakPeriod = 0.0, peakWavelength = 0.0, steepness = 0.0;  // SeaStateSummary
-    // With displacement, foam or a report: the fraction of texels with J < 0 over all frames, the longest
+    // With shift, foam or a report: the fraction of texels with J < 0 over all frames, the longest
     // horizontal move of any texel (choppiness * |D|) and a bound that no frame can exceed.
-    std::optional<double> foldFraction, maxDisplacement, displacementBound;
+    std::optional<double> foldFraction, maxShift, shiftBound;
 };
 
 struct SynthReport {
@@ -60,7 +60,7 @@ struct SynthReport {
 
 // Writes the sea at output: an .exr holds heights in metres (float); a .png or .tif holds them mapped
 // onto [0,1] at 16 bits, with heightpack:heightScale and heightpack:heightOffset giving metres back
-// (the same mapping for every frame of a sequence). With displacement, an .exr holds channels Y (height),
+// (the same mapping for every frame of a sequence). With shift, an .exr holds channels Y (height),
 // Dx and Dy (metres per unit of choppiness), and with foam a fourth, Foam. The sea-state numbers go into
 // every file's header. With cascades, tile c goes to NAME_cC.EXT (and its frames). Every file is written
 // atomically, and the files of a sequence or of cascades land together once all of them are written.

@@ -27,7 +27,6 @@ struct NameTable<Filter> {
     };
 };
 inline const char* filterName(Filter filter) { return nameOf(filter); }
-inline std::optional<Filter> parseFilter(std::string_view name) { return parseName<Filter>(name); }
 
 // The filter's value at distance x (in destination texels). Exposed for tests and documentation.
 double filterWeight(Filter filter, double x);

@@ -37,15 +37,15 @@ enum class Fix {
                             // channel ("" for none: the manifest's channel, r, g, b, a, luma or a name),
                             // the manifest's source for the tiled map (relative to the manifest),
                             // "sequence" when the input is one frame of a sequence (else "")}
-    AddDisplacement,        // horizontal displacement asked of a map without it: make the map with its Dx, Dy
-                            // channels (a synthesised EXR), or leave the displacement out
+    AddShift,               // shift asked of a map without it: make the map with its Dx, Dy
+                            // channels (a synthesised EXR), or leave the shift out
     AddFoam,                // foam coverage asked of a map without it: make the map with its Foam channel
                             // (a synthesised EXR with foam), or leave the foam out
     OnePlainChain,          // a second plain chain asked beside a plain layout's output: ask for it once
-    CompanionsNeedExr,      // displacement or foam asked of synth's flat output that is no EXR (a PNG or
-                            // TIFF has no further channels): write an EXR; fixArgs: {"displacement" or "foam"}
-    RgbNormals,             // xy normals asked where only rgb fit; fixArgs: {"png"} (an 8-bit PNG has no mip
-                            // levels) or {"alpha"} (two channels leave no alpha)
+    CompanionsNeedExr,      // shift or foam asked of synth's flat output that is no EXR (a PNG or
+                            // TIFF has no further channels): write an EXR; fixArgs: {"shift" or "foam"}
+    RgbNormalsInPng,        // xy normals asked of an 8-bit PNG, which has no mip levels: store rgb
+    RgbNormalsForAlpha,     // xy normals asked with something in alpha, which two channels leave no room for
     VarianceNeedsLevels,    // slope variance in alpha asked of a one-level PNG: write a mip-mapped texture
     ManifestReference,      // a manifest key or value is wrong: the manifest reference (docs/manifest.md, installed
                             // with heightpack's documentation) lists every key; fixArgs: {what to do first, or ""}

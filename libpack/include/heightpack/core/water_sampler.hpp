@@ -5,7 +5,7 @@
 // the same waves the player sees. Coordinates and levels are computed in single precision in the
 // shader's order, so the two agree to float rounding (micrometres near the camera), not merely in method.
 //
-// Choppy maps (Tessendorf's horizontal displacement, Dx and Dy beside the heights) move each point
+// Choppy maps (Tessendorf's shift, Dx and Dy beside the heights) move each point
 // sideways too: the point that starts at p ends at p + shift(p), at height H(p). sampleWaterHeight and
 // sampleWaterShift answer for the point that starts at (x, y), as the viewer's grid vertex at (x, y) moves;
 // sampleSurfaceHeight answers what a buoy at (x, y) needs, the height of the surface over (x, y), by

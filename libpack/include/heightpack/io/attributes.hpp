@@ -54,17 +54,17 @@ inline constexpr AttributeKey<Wrap> wrap{"heightpack:wrap"};
 inline constexpr AttributeKey<Filter> filter{"heightpack:filter"};
 inline constexpr AttributeKey<float> heightScale{"heightpack:heightScale"};
 inline constexpr AttributeKey<float> heightOffset{"heightpack:heightOffset"};
-// Horizontal displacement stored beside the heights (pack's displacement): "neighbour4" when layers Dx and
+// Shift stored beside the heights (pack --shift; the key is named as design.md names it): "neighbour4" when layers Dx and
 // Dy hold Dx, Dy packed as the heights are (Dx.R = Dx(i,j), Dx.G = Dx(i+1,j), ...), "plain" when channels
 // Dx, Dy hold them unpacked. Absent: the file holds heights alone.
-inline constexpr AttributeKey<std::string> displacement{"heightpack:displacement"};
+inline constexpr AttributeKey<std::string> shift{"heightpack:displacement"};
 // Foam coverage (synth --foam, 0..1) stored beside the heights (pack --foam): "neighbour4" when layer Foam
 // holds it packed as the heights are (Foam.R = F(i,j), Foam.G = F(i+1,j), ...), "plain" when channel Foam
 // holds it unpacked. Absent: the file holds no foam.
 inline constexpr AttributeKey<std::string> foam{"heightpack:foam"};
 // Array textures (KTX2 layerCount, DDS arraySize): the layers' names in order, comma-separated, e.g.
 // "heights,Dx,Dy,Foam" (names in layerName below). Each layer is a whole texture of the file's format,
-// laid out as the file's layout (heights), displacement (Dx, Dy) and foam (Foam) attributes say. A KTX2
+// laid out as the file's layout (heights), shift (Dx, Dy) and foam (Foam) attributes say. A KTX2
 // records it as a key/value; a DDS in its header's record (see dds.cpp); readers report it either way.
 inline constexpr AttributeKey<std::string> layers{"heightpack:layers"};
 // 16-bit normalised textures (KTX2, DDS): value = normalisedOffset + normalisedScale * u / 65535.
@@ -123,8 +123,8 @@ inline constexpr AttributeKey<float> peakPeriod{"heightpack:peakPeriod"};       
 inline constexpr AttributeKey<float> peakWavelength{"heightpack:peakWavelength"};                // m
 inline constexpr AttributeKey<float> steepness{"heightpack:steepness"};                          // Hs / Lp
 inline constexpr AttributeKey<float> foldFraction{"heightpack:foldFraction"};                    // J < 0
-inline constexpr AttributeKey<float> maxDisplacement{"heightpack:maxDisplacement"};              // m
-inline constexpr AttributeKey<float> displacementBound{"heightpack:displacementBound"};          // m
+inline constexpr AttributeKey<float> maxShift{"heightpack:maxDisplacement"};  // m, the largest shift (key as design.md)
+inline constexpr AttributeKey<float> shiftBound{"heightpack:displacementBound"};  // m, its bound
 // Tiled maps.
 inline constexpr AttributeKey<std::string> tileMethod{"heightpack:tileMethod"};
 inline constexpr AttributeKey<std::string> seamsBefore{"heightpack:seamsBefore"};
@@ -137,7 +137,7 @@ inline constexpr AttributeKey<float> threshold{"heightpack:threshold"};
 }  // namespace attr
 
 // The layers heightpack writes into an array texture, in this order when present: the heights, the
-// horizontal displacement's Dx and Dy, the foam coverage (the companions keep their EXR layers' names).
+// shift's Dx and Dy, the foam coverage (the companions keep their EXR layers' names).
 namespace layerName {
 inline constexpr const char* heights = "heights";
 inline constexpr const char* dx = "Dx";
@@ -164,12 +164,6 @@ inline const char* attributeText(Layout layout) {
         case Layout::Xy: return "normalXY";
         default: return nameOf(layout);
     }
-}
-// The layout a header's word names; nullopt for other words (fresnel, synthesised, ...).
-inline std::optional<Layout> layoutFromAttribute(std::string_view text) {
-    for (const EnumName<Layout>& e : NameTable<Layout>::entries)
-        if (text == attributeText(e.value)) return e.value;
-    return std::nullopt;
 }
 
 // A header's attributes as text, in the order the file lists them (a float as %g).

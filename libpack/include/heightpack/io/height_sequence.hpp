@@ -21,7 +21,7 @@ struct SequenceFrame {
     int width = 0, height = 0;  // level 0
     size_t levels = 0;
     int texelType = 0;  // how the frame's texels are stored, a code of the reader's: one GPU array holds all frames
-    bool displacement = false, foam = false;  // holds Dx, Dy; holds foam coverage
+    bool shift = false, foam = false;  // holds Dx, Dy; holds foam coverage
     std::optional<double> loopPeriod;         // what the frame records (heightpack:loopPeriod)
 };
 

@@ -22,7 +22,7 @@
 namespace heightpack {
 
 // What a file holds, from its heightpack:layout word: an image from elsewhere has none.
-enum class TextureKind { Image, Heights, Normals, FresnelRamp, SynthesisedSea, SeamPreview, ViewerCapture };
+enum class TextureKind { Image, Heights, Normals, FresnelRamp, SynthesisedSea, SeamPreview, GridHeights, Screenshot };
 template <>
 struct NameTable<TextureKind> {
     static constexpr EnumName<TextureKind> entries[] = {
@@ -32,7 +32,8 @@ struct NameTable<TextureKind> {
         {TextureKind::FresnelRamp, "fresnel", "a Fresnel ramp from fresnel"},
         {TextureKind::SynthesisedSea, "synthesised", "a sea from synth: heights in metres, maybe Dx, Dy, Foam"},
         {TextureKind::SeamPreview, "seamPreview", "check's seam preview"},
-        {TextureKind::ViewerCapture, "capture", "heightpack-view's grid heights or screenshot"},
+        {TextureKind::GridHeights, "gridHeights", "heightpack-view's grid heights"},
+        {TextureKind::Screenshot, "screenshot", "heightpack-view's screenshot"},
     };
 };
 
@@ -41,7 +42,7 @@ struct NameTable<TextureKind> {
 // (packed) or their one channel (plain, synthesised); empty where the file holds none.
 struct TextureChannels {
     std::vector<int> heights, dx, dy, foam;
-    bool displacement() const { return !dx.empty(); }
+    bool shift() const { return !dx.empty(); }
     bool hasFoam() const { return !foam.empty(); }
 };
 
@@ -50,6 +51,7 @@ struct TextureDescription {
     // Heights: Neighbour4 or Plain; normals: Rgb or Xy; nullopt for other kinds.
     std::optional<Layout> layout;
     Wrap wrap = Wrap::Periodic;       // heightpack:wrap; periodic where the file does not say
+    bool wrapRecorded = false;        // whether it says
     std::optional<Filter> filter;     // the mip filter, where recorded
     // stored = heightOffset + heightScale * value (1 and 0 where not recorded).
     double heightScale = 1.0, heightOffset = 0.0;
@@ -60,7 +62,7 @@ struct TextureDescription {
     // Tile size, height range, and a sequence's loop period (positive) and time.
     MapUnits units;
     // How the companions beside the heights are laid out (heightpack:displacement, heightpack:foam).
-    std::optional<Layout> displacement, foam;
+    std::optional<Layout> shift, foam;
     TextureChannels channels;
     // Half, uint16 and block textures: the worst lookup error of each level, level 0 first
     // (heightpack:lookupError); block textures also the RMS error (rmsError) and, for xy normals, the worst
@@ -79,7 +81,20 @@ struct TextureDescription {
 Result<TextureDescription> describeTexture(const std::string& path, const Attributes& attributes,
                                            const std::vector<std::string>& channelNames, std::string_view sampleType);
 
+// What a heightpack:layout word says: the kind of file, and for heights and normals their Layout.
+struct LayoutWord {
+    TextureKind kind = TextureKind::Image;
+    std::optional<Layout> layout;
+    bool operator==(const LayoutWord&) const = default;
+};
+// The one reading of a layout word (neighbour4, normal, fresnel, grid heights, ...); nullopt for a word
+// heightpack does not write.
+std::optional<LayoutWord> parseLayoutWord(std::string_view word);
 // The layout word heightpack writes for a kind that has no Layout (fresnel, synthesised, ...).
 const char* layoutWord(TextureKind kind);
+// The word for what parseLayoutWord read.
+const char* layoutWord(const LayoutWord& said);
+// The heightpack:layout word of a described file (neighbour4, normal, fresnel, ...); "" for an Image.
+const char* layoutWord(const TextureDescription& texture);
 
 }  // namespace heightpack

@@ -16,9 +16,9 @@ struct TextureStorage {
     // within this many stored units (normal units for normal maps; see chooseStorage in stored_chain.hpp);
     // 0: pixelType as given. The choice is the job's: writers store pixelType and ignore this.
     double tolerance = 0.0;
-    // With a tolerance: the block formats are weighed too, before half and uint16 (bc4 for plain heights,
-    // bc5 for xy normals: a layout the format does not hold passes it over); the first within the tolerance,
-    // the fewest bytes, wins.
+    // With a tolerance: the block formats are weighed too, before half and uint16, fewest bytes first (ASTC
+    // 8x8, 6x6, bc4, ASTC 4x4, bc5; one the layout or the container cannot hold is passed over); the first
+    // within the tolerance wins.
     bool allowBlockCompression = false;
     Compression exrCompression = Compression::Zip;               // EXR outputs
     Supercompression supercompression = Supercompression::None;  // KTX2 outputs; DDS has none

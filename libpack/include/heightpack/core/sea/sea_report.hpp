@@ -1,5 +1,5 @@
 // The numbers an engineer checks a synthesised sea by: wave height from the heights and from the
-// spectrum, peak period and wavelength, steepness, folds, and how far the displacement can move a vertex.
+// spectrum, peak period and wavelength, steepness, folds, and how far the shift can move a vertex.
 #pragma once
 
 #include "heightpack/core/image.hpp"
@@ -22,14 +22,14 @@ SeaStateSummary summariseSeaState(const SpectrumOptions& options, double resolve
 
 // Where a frame's channels are: the heights, Dx (Dy in the next channel), the Jacobian; -1 = absent.
 struct FrameChannels {
-    int heights = 0, displacement = -1, jacobian = -1;
+    int heights = 0, shift = -1, jacobian = -1;
 };
 // The numbers a report takes from one frame; 0 for what its channels do not hold.
 struct FrameNumbers {
     double significantWaveHeight = 0.0;  // 4 x the standard deviation of the heights
     float minHeight = 0.0f, maxHeight = 0.0f;
     double foldFraction = 0.0;         // of texels whose Jacobian is negative: the surface folds there
-    double largestDisplacement = 0.0;  // the largest |choppiness * (Dx, Dy)| of any texel
+    double largestShift = 0.0;  // the largest |choppiness * (Dx, Dy)| of any texel
 };
 // All of them in two passes over the frame, over rows on `threads` threads (0 = all cores), combined in
 // row order: the same numbers whatever the count.
@@ -42,6 +42,6 @@ double significantWaveHeight(const Image& heights, int channel = 0, int threads 
 double foldFraction(const Image& jacobian, int channel = 0, int threads = 1);
 // The longest horizontal move any texel makes: the largest |choppiness * (Dx, Dy)|, Dx in `channel` and
 // Dy in the next.
-double largestDisplacement(const Image& displacement, double choppiness, int channel = 0, int threads = 1);
+double largestShift(const Image& shift, double choppiness, int channel = 0, int threads = 1);
 
 }  // namespace heightpack

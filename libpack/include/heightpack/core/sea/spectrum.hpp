@@ -121,12 +121,12 @@ double angularFrequency(const SpectrumOptions& options, double k);
 // The fields one instant of the sea gives; which of them Ocean::fields computes.
 struct SeaFieldSet {
     bool heights = true;
-    bool displacement = false;  // Dx, Dy per unit of choppiness
+    bool shift = false;  // Dx, Dy per unit of choppiness
     bool jacobian = false;      // J of the horizontal map x -> x + choppiness D
 };
 struct SeaFields {
     Image heights;       // m, one channel
-    Image displacement;  // m per unit of choppiness, two channels (x, y)
+    Image shift;  // m per unit of choppiness, two channels (x, y)
     Image jacobian;      // one channel: (1 + c Dxx)(1 + c Dyy) - c^2 Dxy^2, derivatives taken spectrally
 };
 
@@ -136,7 +136,7 @@ struct SeaFieldTarget {
     int stride = 1;  // floats from one texel to the next: 1 in a plane, the channel count in an interleaved image
 };
 struct SeaFieldTargets {
-    SeaFieldTarget heights, displacementX, displacementY, jacobian;
+    SeaFieldTarget heights, shiftX, shiftY, jacobian;
 };
 
 struct OceanOptions {
@@ -153,10 +153,10 @@ public:
     Ocean(const SpectrumOptions& options, const OceanOptions& how);
     // Heights in metres at time t (seconds), size x size; real by construction (Hermitian spectrum).
     Image heights(double t) const;
-    // Tessendorf's horizontal displacement (choppiness) at time t: two channels, x and y, in metres per
+    // Tessendorf's shift (choppiness) at time t: two channels, x and y, in metres per
     // unit of choppiness, D(k) = i k / |k| h(k): an engine moves each vertex by lambda * D, and a crest
     // draws its neighbours in (a Gerstner wave's sharpening) for positive lambda.
-    Image displacement(double t) const;
+    Image shift(double t) const;
     // Several fields at once, sharing the evolved spectrum; `threads` splits the work (0 = all cores), the
     // result is the same for any count.
     SeaFields fields(double t, const SeaFieldSet& which, double choppiness = 1.0, int threads = 1) const;
@@ -168,7 +168,7 @@ public:
     double resolvedVariance() const { return resolvedVariance_; }
     // A bound on |D| at any point and time, per unit of choppiness: the sum over modes of |h(k, t)|,
     // which is at most |h0(k)| + |h0(-k)| however the phases turn.
-    double displacementBound() const { return displacementBound_; }
+    double shiftBound() const { return shiftBound_; }
     const SpectrumOptions& options() const { return options_; }
 
 private:
@@ -178,7 +178,7 @@ private:
     // that h(k, t) = cos(w t) h(k, 0) - i sin(w t) partner.
     std::vector<std::complex<float>> initial_, partner_;
     double resolvedVariance_ = 0.0;
-    double displacementBound_ = 0.0;
+    double shiftBound_ = 0.0;
 };
 
 }  // namespace heightpack

@@ -1,4 +1,4 @@
-#include "heightpack/bake/pack_displacement.hpp"
+#include "heightpack/bake/pack_shift.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -10,14 +10,14 @@
 
 namespace heightpack {
 
-Result<DisplacementMaps> packDisplacement(Image d, const SourceInfo& source, const PackOptions& options) {
+Result<ShiftMaps> packShift(Image d, const SourceInfo& source, const PackOptions& options) {
     assert(d.channels == 2);
     // The same resample the heights get, so D stays where its heights are.
     auto resized = detail::ensurePowerOfTwo(d, source.path, options.resizeToPowerOfTwo, options.mip);
     if (!resized) return resized.error();
     if (options.scale != 1.0f)
         for (float& v : d.pixels) v *= options.scale;
-    DisplacementMaps maps;
+    ShiftMaps maps;
     maps.plainX = generateMipChain(selectChannels(d, {0}), options.mip);
     maps.plainY = generateMipChain(selectChannels(d, {1}), options.mip);
     if (options.layout == Layout::Neighbour4) {
@@ -27,7 +27,7 @@ Result<DisplacementMaps> packDisplacement(Image d, const SourceInfo& source, con
     return maps;
 }
 
-std::vector<CompanionChain> companionsOf(const DisplacementMaps* d, const std::vector<Image>* foam) {
+std::vector<CompanionChain> companionsOf(const ShiftMaps* d, const std::vector<Image>* foam) {
     std::vector<CompanionChain> companions;
     if (d) companions.insert(companions.end(), {{layerName::dx, &d->plainX}, {layerName::dy, &d->plainY}});
     if (foam) companions.push_back({layerName::foam, foam});

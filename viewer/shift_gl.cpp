@@ -1,4 +1,4 @@
-#include "displacement_gl.hpp"
+#include "shift_gl.hpp"
 
 #include <vector>
 

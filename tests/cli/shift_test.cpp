@@ -1,4 +1,4 @@
-// pack --displacement end to end (issue 15, point 3): Dx, Dy kept beside the heights, bit-exact at level 0,
+// pack --shift end to end (issue 15, point 3): Dx, Dy kept beside the heights, bit-exact at level 0,
 // mip-mapped as the heights are; refused where they cannot be kept; named by manifests and material.json.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -18,7 +18,7 @@ using namespace heightpack::test;
 
 namespace {
 
-// A float EXR with channels Y, Dx, Dy, as synth --displacement writes them.
+// A float EXR with channels Y, Dx, Dy, as synth --shift writes them.
 void writeSea(const std::string& path, const Image& y, const Image& dx, const Image& dy) {
     writeChannels(path, {"Y", "Dx", "Dy"}, {&y, &dx, &dy});
 }
@@ -29,10 +29,10 @@ const Image kDy = randomImage(32, 16, 8, -0.5f, 0.5f);
 
 }  // namespace
 
-TEST(PackDisplacement, KeepsDxDyBitExactAtLevelZeroPackedAsTheHeights) {
+TEST(PackShift, KeepsDxDyBitExactAtLevelZeroPackedAsTheHeights) {
     ScratchDir dir;
     writeSea(dir.file("sea.exr"), kHeights, kDx, kDy);
-    const ProcessResult packed = heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "--wrap", "clamp", "--json",
+    const ProcessResult packed = heightpackRun({"pack", dir.file("sea.exr"), "--shift", "--wrap", "clamp", "--json",
                                       "--emit-plain", dir.file("plain.exr"), "-o", dir.file("sea_packed.exr")});
     ASSERT_EQ(packed.code, 0) << packed.err;
     EXPECT_EQ(nlohmann::json::parse(packed.out)["displacement"], "neighbour4");
@@ -73,10 +73,10 @@ TEST(PackDisplacement, KeepsDxDyBitExactAtLevelZeroPackedAsTheHeights) {
     }
 }
 
-TEST(PackDisplacement, MipLevelsAreTheFiltersOfDxDy) {
+TEST(PackShift, MipLevelsAreTheFiltersOfDxDy) {
     ScratchDir dir;
     writeSea(dir.file("sea.exr"), kHeights, kDx, kDy);
-    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "--filter", "box", "-q", "-o", dir.file("box.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--shift", "--filter", "box", "-q", "-o", dir.file("box.exr")}).code, 0);
     // Box: each texel of level 1 is the mean of the 2x2 below it, computed here from the input.
     const Level one = readLevel(dir.file("box.exr"), 1);
     ASSERT_EQ(one.width, 16);
@@ -90,7 +90,7 @@ TEST(PackDisplacement, MipLevelsAreTheFiltersOfDxDy) {
     }
     // Kaiser: Dx's chain is the chain pack makes of the same values given as heights.
     writeSea(dir.file("dx_as_heights.exr"), kDx, kDy, kDy);
-    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "-q", "-o", dir.file("kaiser.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--shift", "-q", "-o", dir.file("kaiser.exr")}).code, 0);
     ASSERT_EQ(heightpackRun({"pack", dir.file("dx_as_heights.exr"), "-q", "-o", dir.file("dx.exr")}).code, 0);
     for (int mip = 1; mip < 6; ++mip) {
         const Level a = readLevel(dir.file("kaiser.exr"), mip), b = readLevel(dir.file("dx.exr"), mip);
@@ -101,28 +101,28 @@ TEST(PackDisplacement, MipLevelsAreTheFiltersOfDxDy) {
     }
 }
 
-TEST(PackDisplacement, RefusesWhatCannotHoldIt) {
+TEST(PackShift, RefusesWhatCannotHoldIt) {
     ScratchDir dir;
     writeImage(dir.file("painted.png"), makeImage(16, 16, [](int x, int) { return x / 16.0f; }), OIIO::TypeDesc::UINT8);
-    const ProcessResult none = heightpackRun({"pack", dir.file("painted.png"), "--displacement", "-o", dir.file("p.exr")});
+    const ProcessResult none = heightpackRun({"pack", dir.file("painted.png"), "--shift", "-o", dir.file("p.exr")});
     EXPECT_EQ(none.code, 3) << none.err;
     EXPECT_EQ(none.err.rfind("heightpack: error: " + dir.file("painted.png") + ": ", 0), 0u) << none.err;
     EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
-    EXPECT_NE(none.err.find("--displacement"), std::string::npos) << none.err;  // the hint names the way out
+    EXPECT_NE(none.err.find("--shift"), std::string::npos) << none.err;  // the hint names the way out
     // A KTX2 or DDS output holds Dx, Dy as array layers: the input is judged the same way.
     for (const char* output : {"s.ktx2", "s.dds"}) {
-        const ProcessResult gpu = heightpackRun({"pack", dir.file("painted.png"), "--displacement", "-o", dir.file(output)});
+        const ProcessResult gpu = heightpackRun({"pack", dir.file("painted.png"), "--shift", "-o", dir.file(output)});
         EXPECT_EQ(gpu.code, 3) << gpu.err;
         EXPECT_EQ(std::count(gpu.err.begin(), gpu.err.end(), '\n'), 1) << gpu.err;
     }
     EXPECT_EQ(dir.listing(), (std::vector<std::string>{"painted.png"}));
 }
 
-TEST(PackDisplacement, SequencesAndManifestsCarryIt) {
+TEST(PackShift, SequencesAndManifestsCarryIt) {
     ScratchDir dir;
     ASSERT_EQ(heightpackRun({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "32", "--frames", "2", "--loop", "4s",
-                   "--displacement", "-q", "-o", dir.file("sea.exr")}).code, 0);
-    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--displacement", "-q", "-o", dir.file("packed.exr")}).code, 0);
+                   "--shift", "-q", "-o", dir.file("sea.exr")}).code, 0);
+    ASSERT_EQ(heightpackRun({"pack", dir.file("sea.exr"), "--shift", "-q", "-o", dir.file("packed.exr")}).code, 0);
     for (const char* frame : {"packed.0000.exr", "packed.0001.exr"}) {
         auto in = OIIO::ImageInput::open(dir.file(frame));
         ASSERT_TRUE(in) << frame;
@@ -132,7 +132,7 @@ TEST(PackDisplacement, SequencesAndManifestsCarryIt) {
     // NAME.####.EXT, as compositing tools spell a sequence (and the issue's example), is NAME.EXT: the
     // same frames read, the same files written (packed.####.exr is packed.0000.exr ...), byte for byte
     // but for the header's source name.
-    const ProcessResult hashes = heightpackRun({"pack", dir.file("sea.####.exr"), "--displacement", "-q", "-o",
+    const ProcessResult hashes = heightpackRun({"pack", dir.file("sea.####.exr"), "--shift", "-q", "-o",
                                       dir.file("hashes.####.exr")});
     ASSERT_EQ(hashes.code, 0) << hashes.err;
     for (const char* frame : {"0000", "0001"}) {
@@ -155,11 +155,37 @@ TEST(PackDisplacement, SequencesAndManifestsCarryIt) {
         return nlohmann::json::parse(json)["displacement"][0];
     };
     const auto choppy = manifest("choppy", "choppiness = 0.75\n");
-    EXPECT_EQ(choppy["horizontalDisplacement"], true);
+    EXPECT_EQ(choppy["shift"], true);
     EXPECT_EQ(choppy["choppiness"], 0.75);
     EXPECT_EQ(readLevel(dir.file("choppy/sea.0001.exr"), 0).names.size(), 12u);
     const auto flat = manifest("flat", "choppiness = 0\n");
-    EXPECT_FALSE(flat.contains("horizontalDisplacement"));
+    EXPECT_FALSE(flat.contains("shift"));
     EXPECT_FALSE(flat.contains("choppiness"));
     EXPECT_EQ(readLevel(dir.file("flat/sea.0000.exr"), 0).names.size(), 4u);
+}
+
+// --displacement, the flag's name before it was called shift, still asks for the same thing: synth writes
+// channels Dx, Dy with it and pack keeps them, the same bytes as under --shift.
+TEST(PackShift, TheOldFlagNameStillWorks) {
+    ScratchDir dir;
+    for (const char* flag : {"--shift", "--displacement"}) {
+        const std::string name = std::string(flag).substr(2);
+        const ProcessResult synth = heightpackRun({"synth", "--wind", "9m/s", "--tile-size", "32m", "--size", "16", flag,
+                                                   "-q", "-o", dir.file(name + "_sea.exr")});
+        ASSERT_EQ(synth.code, 0) << flag << ": " << synth.err;
+        auto in = OIIO::ImageInput::open(dir.file(name + "_sea.exr"));
+        ASSERT_TRUE(in) << flag;
+        std::vector<std::string> channels;
+        for (const std::string& c : in->spec().channelnames) channels.push_back(c);
+        EXPECT_EQ(channels, (std::vector<std::string>{"Y", "Dx", "Dy"})) << flag;
+    }
+    EXPECT_EQ(readBytes(dir.file("shift_sea.exr")), readBytes(dir.file("displacement_sea.exr")));
+    writeSea(dir.file("sea.exr"), kHeights, kDx, kDy);
+    for (const char* flag : {"--shift", "--displacement"}) {
+        const ProcessResult packed = heightpackRun({"pack", dir.file("sea.exr"), flag, "-q", "-o",
+                                                    dir.file(std::string(flag).substr(2) + ".exr")});
+        ASSERT_EQ(packed.code, 0) << flag << ": " << packed.err;
+        EXPECT_EQ(readLevel(dir.file(std::string(flag).substr(2) + ".exr"), 0).names.size(), 12u) << flag;
+    }
+    EXPECT_EQ(readBytes(dir.file("shift.exr")), readBytes(dir.file("displacement.exr")));
 }

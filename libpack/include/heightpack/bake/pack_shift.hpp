@@ -1,4 +1,4 @@
-// Tessendorf's horizontal displacement (Dx, Dy) carried through `pack`: the same resize, scale, mip filter,
+// Tessendorf's shift (Dx, Dy) carried through `pack`: the same resize, scale, mip filter,
 // wrap and 4-neighbour packing as the heights, so a vertex shader reads D at the texel and level where it
 // reads the height, with the same two lerps.
 #pragma once
@@ -16,16 +16,16 @@ namespace heightpack {
 
 // Dx and Dy, each a one-channel mip chain (level 0 first), and the same levels packed (RGBA: R = D(i,j),
 // G = D(i+1,j), B = D(i,j+1), A = D(i+1,j+1)) when asked for.
-struct DisplacementMaps {
+struct ShiftMaps {
     std::vector<Image> plainX, plainY;
     std::vector<Image> packedX, packedY;
 };
 
-// The displacement d (two channels, x and y, in the source's units) as packHeights makes the heights of
+// The shift d (two channels, x and y, in the source's units) as packHeights makes the heights of
 // the same map: sides resampled to powers of two (when options.resizeToPowerOfTwo, else refused with
 // BadInput naming source.path), times options.scale (D is linear in the heights; the offset does not
 // apply), mip-mapped with options.mip, and packed when options.layout is Neighbour4.
-Result<DisplacementMaps> packDisplacement(Image d, const SourceInfo& source, const PackOptions& options);
+Result<ShiftMaps> packShift(Image d, const SourceInfo& source, const PackOptions& options);
 
 // A chain written beside the heights in the same file (an EXR's further channels, a KTX2's or DDS's
 // further array layers): its layer name (Dx, Dy, Foam: see layerName in attributes.hpp) and its plain
@@ -36,7 +36,7 @@ struct CompanionChain {
 };
 
 // Dx, Dy of d (when given), then foam (when given): the layers, in the order they are written.
-std::vector<CompanionChain> companionsOf(const DisplacementMaps* d, const std::vector<Image>* foam);
+std::vector<CompanionChain> companionsOf(const ShiftMaps* d, const std::vector<Image>* foam);
 
 // The channel names of a packed texture with companions: the heights' R, G, B, A, then each companion's
 // NAME.R, NAME.G, NAME.B, NAME.A, packed as the heights are.

@@ -1,4 +1,4 @@
-#include "heightpack/io/displacement_read.hpp"
+#include "heightpack/io/shift_read.hpp"
 
 
 #include <algorithm>
@@ -14,22 +14,22 @@ namespace heightpack {
 namespace {
 
 // The channels holding D(i,j) of level 0, x then y (R of a packed layer); {-1, -1} when the file has none.
-std::pair<int, int> displacementChannels(const TextureDescription& texture) {
+std::pair<int, int> shiftChannels(const TextureDescription& texture) {
     const TextureChannels& c = texture.channels;
-    return c.displacement() ? std::pair{c.dx.front(), c.dy.front()} : std::pair{-1, -1};
+    return c.shift() ? std::pair{c.dx.front(), c.dy.front()} : std::pair{-1, -1};
 }
 
 }  // namespace
 
-bool hasDisplacement(const std::string& path) {
+bool hasShift(const std::string& path) {
     detail::StderrSilencer quiet(true);
     auto opened = detail::openImage(path, detail::SizeLimits{});
     if (!opened) return false;
     auto texture = detail::describeSpec(path, (*opened)->spec());
-    return texture && displacementChannels(*texture).first >= 0;
+    return texture && shiftChannels(*texture).first >= 0;
 }
 
-Result<Image> loadDisplacement(const std::string& path, const LoadOptions& options) {
+Result<Image> loadShift(const std::string& path, const LoadOptions& options) {
     detail::StderrSilencer quiet(options.silenceDecoderMessages);
     auto opened = detail::openImage(path, detail::sizeLimitsOf(options));
     if (!opened) return opened.error();
@@ -37,13 +37,13 @@ Result<Image> loadDisplacement(const std::string& path, const LoadOptions& optio
     const detail::SourceSpec spec = in.spec();
     auto texture = detail::describeSpec(path, spec);
     if (!texture) return texture.error();
-    const auto [cx, cy] = displacementChannels(*texture);
+    const auto [cx, cy] = shiftChannels(*texture);
     if (cx < 0) {
         std::string list;
         for (const std::string& n : spec.channelnames) list += (list.empty() ? "" : ", ") + n;
-        return withFix(badInput(path, "holds no horizontal displacement (no Dx, Dy channels; it has " + list + ")",
-                                "make the map with its Dx, Dy channels, or leave the displacement out"),
-                       Fix::AddDisplacement);
+        return withFix(badInput(path, "holds no shift (no Dx, Dy channels; it has " + list + ")",
+                                "make the map with its Dx, Dy channels, or leave the shift out"),
+                       Fix::AddShift);
     }
     Image d(spec.width, spec.height, 2);
     std::vector<float> channel(d.texelCount());
@@ -53,7 +53,7 @@ Result<Image> loadDisplacement(const std::string& path, const LoadOptions& optio
         for (size_t i = 0; i < channel.size(); ++i) d.pixels[2 * i + k] = channel[i];
     }
     // A heightpack texture stores scale * D: D follows the heights' scale but not their offset.
-    if (texture->displacement) {
+    if (texture->shift) {
         const double scale = texture->heightScale;
         if (scale != 0.0 && scale != 1.0)
             for (float& v : d.pixels) v = static_cast<float>(v / scale);

@@ -1,5 +1,5 @@
-// The horizontal displacement (Dx, Dy) of a height map, loaded beside its heights: from the Dx, Dy layers of
-// a texture `heightpack pack --displacement` wrote, or packed in memory from a synthesised EXR's Dx, Dy.
+// The shift (Dx, Dy) of a height map, loaded beside its heights: from the Dx, Dy layers of
+// a texture `heightpack pack --shift` wrote, or packed in memory from a synthesised EXR's Dx, Dy.
 #pragma once
 
 #include <string>
@@ -15,12 +15,12 @@ namespace heightpack::view {
 // frame.shiftX / shiftY (packed, per level). An array texture's layers Dx, Dy go as stored (a plain one's
 // packed texel by texel); an EXR's go as floats, from split (its levels split by splitHeightChains).
 // Does nothing for any other file.
-Status takeDisplacement(const std::string& path, const ViewerTexture& file, const HeightChains& split, Wrap wrap,
+Status takeShift(const std::string& path, const ViewerTexture& file, const HeightChains& split, Wrap wrap,
                         HeightFrame& frame);
 
 // For a map packed in memory: when the file at path has Dx, Dy channels, packs them as packHeights packed
 // its heights with the same options, into frame.shiftX / shiftY.
-Status packDisplacementOf(const std::string& path, const LoadOptions& load, const SourceInfo& source,
+Status packShiftOf(const std::string& path, const LoadOptions& load, const SourceInfo& source,
                           const PackOptions& pack, HeightFrame& frame);
 
 }  // namespace heightpack::view

@@ -1,21 +1,21 @@
-#include "scene_displacement.hpp"
+#include "scene_shift.hpp"
 
-#include "heightpack/bake/pack_displacement.hpp"
+#include "heightpack/bake/pack_shift.hpp"
 #include "heightpack/core/pack.hpp"
 #include "heightpack/io/attributes.hpp"
 #include "heightpack/io/height_sequence.hpp"
-#include "heightpack/io/displacement_read.hpp"
+#include "heightpack/io/shift_read.hpp"
 
 namespace heightpack::view {
 
-Status takeDisplacement(const std::string& path, const ViewerTexture& file, const HeightChains& split, Wrap wrap,
+Status takeShift(const std::string& path, const ViewerTexture& file, const HeightChains& split, Wrap wrap,
                         HeightFrame& frame) {
     const TextureDescription& texture = file.description;
-    if (!texture.channels.displacement()) return Done{};
-    const bool packed = texture.displacement == Layout::Neighbour4;
+    if (!texture.channels.shift()) return Done{};
+    const bool packed = texture.shift == Layout::Neighbour4;
     if (!file.layers.empty()) {  // an array texture: its layers Dx, Dy as stored
         const UploadChain *x = file.layer(layerName::dx), *y = file.layer(layerName::dy);
-        if (!x || !y) return badInput(path, "records a displacement but has no layers Dx and Dy", "pack it again");
+        if (!x || !y) return badInput(path, "records a shift but has no layers Dx and Dy", "pack it again");
         frame.shiftX = packed ? *x : packStoredNeighbour4(*x, wrap);
         frame.shiftY = packed ? *y : packStoredNeighbour4(*y, wrap);
         return Done{};
@@ -30,12 +30,12 @@ Status takeDisplacement(const std::string& path, const ViewerTexture& file, cons
     return Done{};
 }
 
-Status packDisplacementOf(const std::string& path, const LoadOptions& load, const SourceInfo& source,
+Status packShiftOf(const std::string& path, const LoadOptions& load, const SourceInfo& source,
                           const PackOptions& pack, HeightFrame& frame) {
-    if (!hasDisplacement(path)) return Done{};
-    auto d = loadDisplacement(path, load);
+    if (!hasShift(path)) return Done{};
+    auto d = loadShift(path, load);
     if (!d) return d.error();
-    auto maps = packDisplacement(std::move(*d), source, pack);
+    auto maps = packShift(std::move(*d), source, pack);
     if (!maps) return maps.error();
     frame.shiftX = storeFloats(maps->packedX);
     frame.shiftY = storeFloats(maps->packedY);

@@ -1,4 +1,4 @@
-// Horizontal displacement on the GPU: every frame's packed Dx, Dy of a map as one array texture (layer
+// Shift on the GPU: every frame's packed Dx, Dy of a map as one array texture (layer
 // 2f Dx, layer 2f + 1 Dy of frame f, RGBA per level as the heights), so a map's shift costs one sampler
 // however many frames it has: the vertex stage of OpenGL 3.3 promises only 16.
 #pragma once
