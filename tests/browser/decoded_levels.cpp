@@ -1,6 +1,6 @@
-// The browser test's reference: every level of a BC4 or BC5 KTX2 as heightpack's reader decodes it
-// (readGpuTexture, whose decode tests/viewer/block_upload_test.cpp holds to Mesa's GPU decoder within
-// 1.5 codes), written as the unorm values a GPU returns, so the page can compare texel by texel.
+// The browser test's reference: every level of a BC4, BC5 or ASTC KTX2 as heightpack's reader decodes it
+// (readGpuTexture, whose BC decode tests/viewer/block_upload_test.cpp holds to Mesa's GPU decoder within
+// 1.5 codes; ASTC: astcenc's decoder, heights as R, normals as R (x) and A (y)), written as the unorm values a GPU returns, so the page can compare texel by texel.
 //   heightpack_decoded_levels FILE.ktx2 OUT.bin
 // OUT.bin: each level's values as little-endian float32, level 0 first, rows top down, channels
 // interleaved. stdout: one JSON line {"width", "height", "channels", "levels", "offset", "scale"}.

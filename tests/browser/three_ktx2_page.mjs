@@ -1,7 +1,8 @@
 // Loads each case of cases.json through three.js's KTX2Loader, draws every mip level into a float render
 // target (textureLod at the texel centres, nearest filtering, so each output pixel is one decoded texel),
-// reads it back and compares it with the reference (heightpack's reader's decode, as unorm values); the
-// report is posted to the test's server (POST /result).
+// reads it back and compares it with the reference (heightpack's reader's decode, as unorm values) and,
+// where the case names one, with a wrong reference (another format's decode of the same map), which the
+// test requires to miss its bound; the report is posted to the test's server (POST /result).
 import * as THREE from 'three';
 import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
 
@@ -75,24 +76,34 @@ async function runCase(renderer, c) {
     texture.minFilter = THREE.NearestMipmapNearestFilter;
     texture.magFilter = THREE.NearestFilter;
     const reference = new Float32Array(await (await fetch(c.reference)).arrayBuffer());
+    const cross = c.crossReference ? new Float32Array(await (await fetch(c.crossReference)).arrayBuffer()) : null;
     const before = messages.length;
     const levels = readLevels(renderer, texture, c.width, c.height, c.levels);
     result.messages = messages.slice(before);
     result.levels = [];
+    // What each read channel (R, G, B, A) is compared with: a channel of the reference, 'one' (reads 1) or
+    // null (not compared). BC4/BC5: R (and G) the reference's channels.
+    const channelMap = c.channelMap ?? [0, 1, 2, 3].map((k) => (k < c.channels ? k : null));
     let offset = 0;
     for (const { w, h, pixels } of levels) {
-        let worst = 0, sum = 0, largestRead = 0;
+        let worst = 0, sum = 0, count = 0, largestRead = 0, crossWorst = 0;
         for (let i = 0; i < w * h; ++i) {
-            for (let ch = 0; ch < c.channels; ++ch) {
-                const d = Math.abs(pixels[i * 4 + ch] - reference[offset + i * c.channels + ch]);
+            for (const [k, source] of channelMap.entries()) {
+                if (source === null) continue;
+                const read = pixels[i * 4 + k];
+                const expected = source === 'one' ? 1 : reference[offset + i * c.channels + source];
+                const d = Math.abs(read - expected);
                 worst = Math.max(worst, d);
+                if (source === 'one') continue;  // the mean is over the map's values alone
                 sum += d;
-                largestRead = Math.max(largestRead, pixels[i * 4 + ch]);
+                ++count;
+                largestRead = Math.max(largestRead, read);
+                if (cross) crossWorst = Math.max(crossWorst, Math.abs(read - cross[offset + i * c.channels + source]));
             }
         }
         offset += w * h * c.channels;
-        result.levels.push({ size: `${w}x${h}`, worstCodes: worst * 255, meanCodes: sum / (w * h * c.channels) * 255,
-            largestRead });
+        result.levels.push({ size: `${w}x${h}`, worstCodes: worst * 255, meanCodes: sum / count * 255, largestRead,
+            crossWorstCodes: cross ? crossWorst * 255 : null });
     }
     texture.dispose();
     loader.dispose();
