@@ -299,6 +299,11 @@ Result<GpuTexture> readKtx2(const std::string& path) {
         t.normalisation = Normalisation{value[0], value[1]};
     }
 
+    if (std::int64_t(t.width) * t.height * layerCount > kMostTexelsReadALevel)
+        return badInput(path, "its level 0 holds " + std::to_string(std::int64_t(t.width) * t.height * layerCount) +
+                                  " texels, more than heightpack reads (" + std::to_string(kMostTexelsReadALevel) +
+                                  ", 16384 x 16384)",
+                        "check that the file is a texture heightpack wrote; its header may be damaged");
     for (int level = 0; level < levels; ++level) {
         const std::uint8_t* e = b.data() + ktx2::kHeaderBytes + 24 * size_t(level);
         const std::uint64_t offset = ktx2::get64(e), length = ktx2::get64(e + 8), raw = ktx2::get64(e + 16);

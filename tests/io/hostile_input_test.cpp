@@ -9,6 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <tuple>
+
+#include <sys/resource.h>
 
 #include "heightpack/io/info.hpp"
 #include "heightpack/io/gpu_texture.hpp"
@@ -116,9 +119,51 @@ TEST_F(HostileHeaders, ATinyFileClaimingAHugeImageIsRefusedFromItsHeader) {
     EXPECT_NE(why.find("bytes can hold"), std::string::npos) << why;
 }
 
+// A KTX2 of one zstd level: vkFormat, side x side, the frame as its only level, raw the level's bytes.
+std::vector<unsigned char> zstdKtx2(uint32_t vkFormat, uint32_t typeSize, uint32_t width, uint32_t height,
+                                    const std::vector<unsigned char>& frame, uint64_t raw) {
+    std::vector<unsigned char> b = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+    auto put32 = [&](uint32_t v) { for (int i = 0; i < 4; ++i) b.push_back((v >> (8 * i)) & 0xff); };
+    auto put64 = [&](uint64_t v) { for (int i = 0; i < 8; ++i) b.push_back((v >> (8 * i)) & 0xff); };
+    for (uint32_t v : {vkFormat, typeSize, width, height, 0u, 0u, 1u, 1u, 2u /* zstd */, 0u, 0u, 0u, 0u}) put32(v);
+    put64(0);
+    put64(0);
+    put64(104);  // the level: after the 80-byte header and the 24-byte index
+    put64(frame.size());
+    put64(raw);
+    b.insert(b.end(), frame.begin(), frame.end());
+    return b;
+}
+
+// `bytes` zero bytes as one zstd frame, streamed (never held whole); its size stated or not.
+std::vector<unsigned char> zstdZeros(uint64_t bytes, bool statesSize) {
+    ZSTD_CCtx* c = ZSTD_createCCtx();
+    if (statesSize) ZSTD_CCtx_setPledgedSrcSize(c, bytes);
+    std::vector<unsigned char> zeros(1 << 20, 0), frame(bytes / 1024 + 4096);
+    ZSTD_outBuffer out{frame.data(), frame.size(), 0};
+    for (uint64_t done = 0; done < bytes;) {
+        const size_t n = size_t(std::min<uint64_t>(zeros.size(), bytes - done));
+        ZSTD_inBuffer in{zeros.data(), n, 0};
+        while (in.pos < in.size) EXPECT_FALSE(ZSTD_isError(ZSTD_compressStream2(c, &out, &in, ZSTD_e_continue)));
+        done += n;
+    }
+    ZSTD_inBuffer end{nullptr, 0, 0};
+    // Without a stated size, the frame is flushed and ended with no content size in its header.
+    while (ZSTD_compressStream2(c, &out, &end, ZSTD_e_end) != 0) {}
+    frame.resize(out.pos);
+    ZSTD_freeCCtx(c);
+    return frame;
+}
+
+long peakResidentKiB() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss;
+}
+
 TEST_F(HostileHeaders, AKtx2LevelClaimingMoreThanItsZstandardFrameCanHoldIsRefusedBeforeItIsAllocated) {
-    // A 65536^2 RGBA float level (64 GiB) whose zstd frame does not state its size (a stream flushed before
-    // its end) and holds 64 bytes: refused from the header, where the level used to be allocated first.
+    // A 16384^2 RGBA float level (4 GiB) whose zstd frame does not state its size and holds 64 bytes:
+    // refused from the header, where the level used to be allocated first.
     std::vector<unsigned char> frame(1024);
     {
         ZSTD_CCtx* c = ZSTD_createCCtx();
@@ -132,22 +177,33 @@ TEST_F(HostileHeaders, AKtx2LevelClaimingMoreThanItsZstandardFrameCanHoldIsRefus
         ZSTD_freeCCtx(c);
     }
     ASSERT_EQ(ZSTD_getFrameContentSize(frame.data(), frame.size()), ZSTD_CONTENTSIZE_UNKNOWN);
-    std::vector<unsigned char> b = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
-    auto put32 = [&](uint32_t v) { for (int i = 0; i < 4; ++i) b.push_back((v >> (8 * i)) & 0xff); };
-    auto put64 = [&](uint64_t v) { for (int i = 0; i < 8; ++i) b.push_back((v >> (8 * i)) & 0xff); };
-    const uint32_t side = 65536;
-    for (uint32_t v : {109u /* R32G32B32A32_SFLOAT */, 4u, side, side, 0u, 0u, 1u, 1u, 2u /* zstd */, 0u, 0u, 0u, 0u}) put32(v);
-    put64(0);
-    put64(0);
-    put64(104);  // the level: after the 80-byte header and the 24-byte index
-    put64(frame.size());
-    put64(uint64_t(side) * side * 16);
-    b.insert(b.end(), frame.begin(), frame.end());
-    writeBytes(dir.file("huge.ktx2"), b);
+    const uint32_t side = 16384;
+    writeBytes(dir.file("huge.ktx2"), zstdKtx2(109 /* R32G32B32A32_SFLOAT */, 4, side, side, frame, uint64_t(side) * side * 16));
     auto texture = readGpuTextureFile(dir.file("huge.ktx2"));
     ASSERT_FALSE(texture);
     EXPECT_EQ(texture.error().kind, ErrorKind::BadInput);
     EXPECT_NE(texture.error().what.find("more than its Zstandard frame can hold"), std::string::npos) << texture.error().what;
+}
+
+TEST_F(HostileHeaders, AFewKilobytesOfZstandardBlocksNeverDecodeToGigabytesOfFloats) {
+    // ASTC 8x8 stores 0.25 bytes a texel and decodes to 4 (a float each), and zeros inflate 32768-fold: a
+    // 4 KB frame that honestly holds a 32768 x 16384 level's 128 MiB of blocks would become 2 GiB of floats.
+    // Refused from the header (more texels than a height map's load takes), before the frame is inflated;
+    // so is the same texels turned on their side in a frame that does not state its size.
+    for (const auto& [width, height, statesSize] : {std::tuple{32768u, 16384u, true}, std::tuple{16384u, 32768u, false}}) {
+        const uint64_t blocks = uint64_t(width / 8) * (height / 8) * 16;
+        const std::vector<unsigned char> frame = zstdZeros(blocks, statesSize);
+        EXPECT_LT(frame.size(), blocks / 16384) << "zeros compress to a few bytes a Zstandard block";
+        const std::string path = dir.file("astc" + std::to_string(width) + ".ktx2");
+        writeBytes(path, zstdKtx2(171 /* ASTC_8x8_UNORM */, 1, width, height, frame, blocks));
+        const long before = peakResidentKiB();
+        auto texture = readGpuTextureFile(path);
+        ASSERT_FALSE(texture) << width;
+        EXPECT_EQ(texture.error().kind, ErrorKind::BadInput);
+        EXPECT_EQ(texture.error().path, path);
+        EXPECT_NE(texture.error().what.find("more than heightpack reads"), std::string::npos) << texture.error().what;
+        EXPECT_LT(peakResidentKiB() - before, 64 * 1024) << "the reader allocated the level before refusing it";
+    }
 }
 
 // Dropping a JPEG's metadata segments changes no pixel: heightpack's heights are OpenImageIO's decode of

@@ -101,8 +101,15 @@ struct GpuTexture {
     TextureDescription description;
 };
 
+// The most texels (width x height x layers) of a KTX2 level readGpuTexture decodes: the limit a height
+// map's load has (LoadOptions::maxTexels), so no map heightpack packs is refused. A Zstandard level can
+// claim 32768 times its bytes, and a block level decodes to 8 to 16 times more in floats: this bounds what
+// a small damaged file makes the reader allocate (a DDS's levels are as long as the file).
+inline constexpr std::int64_t kMostTexelsReadALevel = std::int64_t(1) << 28;
+
 // Reads a KTX2 or DDS file (by extension) that holds one of the formats above. Fails with BadInput
-// naming what is wrong when the file is truncated, corrupt or of another format.
+// naming what is wrong when the file is truncated, corrupt or of another format, or when a KTX2's level
+// holds more than kMostTexelsReadALevel texels.
 Result<GpuTexture> readGpuTexture(const std::string& path);
 
 // The same, as the TextureFile that `info` and the tests read from any texture.
