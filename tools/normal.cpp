@@ -52,8 +52,8 @@ public:
                 ->check(CLI::IsMember(compressionNames()));
         addPixelTypeOption(*cmd, pixelType_, true, &tolerance_,
                            "with --pixel-type auto: the worst lookup error allowed over the chain; a number in normal "
-                           "units (0.001), or a length (1mm, 0.5cm): the tilt a height error that large makes across one "
-                           "texel, length / texel size");
+                           "units (0.001), an angle (0.5deg) between a stored normal and its own, or a length (1mm, "
+                           "0.5cm): the tilt a height error that large makes across one texel, length / texel size");
         addBlockChoiceOption(*cmd, options_.storage.allowBlockCompression);
         addEnumOption(*cmd, "--layout", options_.layout,
                       "rgb: x, y, z; xy: two channels, z rebuilt in the shader as sqrt(1 - x^2 - y^2) (mip-mapped "
@@ -74,6 +74,8 @@ public:
             "  heightpack normal ripple.png --tile-size 8m --height 0.15m --layout xy -o ripple_n.ktx2\n"
             "  heightpack normal ripple.png --tile-size 8m --height 0.15m --pixel-type auto --tolerance 0.001 "
             "-o ripple_n.dds\n"
+            "  heightpack normal ripple.png --tile-size 8m --height 0.15m --layout xy --pixel-type auto "
+            "--allow-block-compression --tolerance 2deg -o ripple_n.ktx2\n"
             "Normals are unit xyz in tangent space, z up; the PNG stores 0.5 + 0.5 n.\n");
         return cmd;
     }
@@ -97,7 +99,7 @@ public:
         if (o.format == NormalFormat::Png8 && pixelType_ != PixelTypeRequest::Float)
             return usage("--pixel-type is for .exr, .ktx2 and .dds outputs; a PNG normal map is 8-bit");
         // Normal maps' errors are in normal units: a plain number is one, a length the job converts.
-        if (const std::string problem = normalTolerance(pixelType_, tolerance_, o.storage.tolerance, o.toleranceMetres);
+        if (const std::string problem = normalTolerance(pixelType_, tolerance_, o.storage, o.toleranceMetres);
             !problem.empty())
             return usage(problem);
         const std::optional<CompressionChoice> compression =
@@ -187,7 +189,9 @@ private:
                        {"channels", channels},
                        {"pixelType", png8 ? nlohmann::json("uint8") : stored["pixelType"]},
                        {"pixelTypeRequested", nameOf(pixelType_)},
-                       {"tolerance", r.tolerance > 0.0 ? nlohmann::json(r.tolerance) : nlohmann::json(nullptr)},
+                       {"tolerance", r.tolerance > 0.0 && !r.toleranceInDegrees ? nlohmann::json(r.tolerance) : nlohmann::json(nullptr)},
+                       {"toleranceDegrees", r.tolerance > 0.0 && r.toleranceInDegrees ? nlohmann::json(r.tolerance) : nlohmann::json(nullptr)},
+                       {"angleError", r.angleError.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.angleError)},
                        {"gpuBytes", png8 ? nlohmann::json(nullptr) : stored["gpuBytes"]},
                        {"lookupError", png8 ? nlohmann::json(nullptr) : stored["lookupError"]},
                        {"levels", stored["levels"]},
@@ -207,6 +211,13 @@ private:
             const std::string stored = channels == 4 ? std::string("rgba (") + nameOf(n.alpha) + " in alpha)"
                                                      : std::string(nameOf(r.layout));
             line << stored << (png8 ? "" : " " + storedChainText(r.pixelType, r.lookupError, 0.0)) << ", ";
+            if (!r.angleError.empty())
+            {
+                line << "worst angle " << std::setprecision(3) << *std::max_element(r.angleError.begin(), r.angleError.end())
+                     << " deg";
+                if (r.toleranceInDegrees) line << " (tolerance " << std::defaultfloat << r.tolerance << std::fixed << " deg)";
+                line << ", ";
+            }
             line << std::setprecision(2) << r.seconds << " s";
             std::cout << line.str() << "\n";
             if (r.resized) std::cout << "  note: " << resizeNote(r.source.width, r.source.height, width, height) << "\n";

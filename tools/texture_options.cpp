@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 
 #include "heightpack/io/texture_write.hpp"
 
@@ -87,18 +88,32 @@ std::string toleranceInStoredUnits(PixelTypeRequest pixelType, const std::string
     if (parseLength(text))
         return "--tolerance '" + text + "' is a length, but without --height there are no metres to convert it from: "
                "give --height, or a number in stored units";
+    if (text.size() > 3 && text.compare(text.size() - 3, 3, "deg") == 0)
+        return "--tolerance '" + text + "' is an angle, which only a normal map's error is measured in: give a length "
+               "with --height, or a number in stored units";
     return "--tolerance '" + text + "' is not a positive number";
 }
 
-std::string normalTolerance(PixelTypeRequest pixelType, const std::string& text, double& normalUnits, double& metres) {
+std::string normalTolerance(PixelTypeRequest pixelType, const std::string& text, TextureStorage& storage, double& metres) {
     metres = 0.0;
-    if (pixelType != PixelTypeRequest::Auto || text.empty() || plainNumber(text)) return toleranceInStoredUnits(pixelType, text, 0.0, normalUnits);
-    normalUnits = 0.0;
+    storage.toleranceInDegrees = false;
+    if (pixelType != PixelTypeRequest::Auto || text.empty() || plainNumber(text))
+        return toleranceInStoredUnits(pixelType, text, 0.0, storage.tolerance);
+    storage.tolerance = 0.0;
+    for (const std::string_view unit : {"deg", "\u00b0"})  // 2deg, 2°
+        if (text.size() > unit.size() && text.compare(text.size() - unit.size(), unit.size(), unit) == 0) {
+            const auto degrees = plainNumber(text.substr(0, text.size() - unit.size()));
+            if (!degrees || *degrees >= 180.0)
+                return "--tolerance '" + text + "' is not an angle between 0 and 180 degrees, like 0.5deg";
+            storage.tolerance = *degrees;
+            storage.toleranceInDegrees = true;
+            return {};
+        }
     if (const auto length = parseLength(text)) {
         metres = *length;
         return {};
     }
-    return "--tolerance '" + text + "' is neither a number (normal units) nor a length like 1mm or 0.5cm";
+    return "--tolerance '" + text + "' is neither a number (normal units), an angle like 0.5deg, nor a length like 1mm or 0.5cm";
 }
 
 PixelType requestedPixelType(PixelTypeRequest pixelType) {

@@ -54,9 +54,11 @@ std::string toleranceInStoredUnits(PixelTypeRequest pixelType, const std::string
                                    double& tolerance);
 
 // --tolerance for a normal map, whose --height is always given: a plain number is in normal units (into
-// normalUnits); a length with a unit (1mm, 0.5cm) is a height error in metres (into metres: the job turns
-// it into normal units, the tilt it makes across one texel). Returns what is wrong, for usage(), or empty.
-std::string normalTolerance(PixelTypeRequest pixelType, const std::string& text, double& normalUnits, double& metres);
+// storage.tolerance); an angle (2deg) the worst angle between a stored normal and its own, in degrees (into
+// storage.tolerance, storage.toleranceInDegrees set); a length with a unit (1mm, 0.5cm) is a height error
+// in metres (into metres: the job turns it into normal units, the tilt it makes across one texel). Returns
+// what is wrong, for usage(), or empty.
+std::string normalTolerance(PixelTypeRequest pixelType, const std::string& text, TextureStorage& storage, double& metres);
 
 // Adds --allow-block-compression, bound to allow: with --pixel-type auto, the block formats are weighed too.
 void addBlockChoiceOption(CLI::App& cmd, bool& allow);

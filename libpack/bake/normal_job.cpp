@@ -177,6 +177,8 @@ Result<NormalReport> makeNormalMap(const std::string& input, const std::string& 
         write.storage.pixelType = storage->pixelType;
         report.pixelType = storage->pixelType;
         report.lookupError = storage->lookupError;
+        report.angleError = storage->angleError;
+        report.toleranceInDegrees = write.storage.toleranceInDegrees;
         const std::vector<ExrAttribute> errors = detail::lookupErrorAttributes(*storage);
         content.attributes.insert(content.attributes.end(), errors.begin(), errors.end());
         if (Status s = writeTexture(*mipMapped, content, write, storage->plan); !s) return s.error();

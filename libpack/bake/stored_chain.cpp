@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <optional>
 
 #include "heightpack/core/lookup_error.hpp"
@@ -10,6 +11,16 @@ namespace heightpack::detail {
 
 double StoredChain::worst() const {
     return lookupError.empty() ? 0.0 : *std::max_element(lookupError.begin(), lookupError.end());
+}
+
+double StoredChain::worstDegrees() const {
+    return angleError.empty() ? 0.0 : *std::max_element(angleError.begin(), angleError.end());
+}
+
+double StoredChain::worstIn(const TextureStorage& storage) const {
+    if (!storage.toleranceInDegrees) return worst();
+    // No angle measured (a chain that is no normal map): nothing shows it within a tolerance in degrees.
+    return angleError.empty() ? std::numeric_limits<double>::infinity() : worstDegrees();
 }
 
 namespace {
@@ -21,6 +32,7 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Cha
     stored.pixelType = type;
     if (type == PixelType::Float) {  // the float chain itself; every container holds it
         stored.lookupError.assign(chains.front()->size(), 0.0);
+        if (options.storage.toleranceInDegrees) stored.angleError = stored.lookupError;
         return stored;
     }
     // The range from the plain chains themselves: the same values as content's, four times fewer than a
@@ -44,6 +56,8 @@ Result<StoredChain> measure(const std::vector<TextureOutput>& outputs, const Cha
         for (size_t level = 0; level < errors.size(); ++level)
             stored.lookupError[level] = std::max(stored.lookupError[level], errors[level]);
     }
+    if (options.storage.toleranceInDegrees)  // a normal map: one chain
+        stored.angleError = worstAngleErrorDegrees(*chains.front(), storage->storeAndReadRow, options.threads);
     return stored;
 }
 
@@ -53,17 +67,30 @@ Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, con
                                   const ChainValues& chains, const TextureWriteOptions& options) {
     const double tolerance = options.storage.tolerance;
     if (!(tolerance > 0.0)) return measure(outputs, content, chains, options, options.storage.pixelType);
-    if (options.storage.allowBlockCompression)
-        // Fewest bytes a texel first: ASTC 8x8 (0.25), 6x6 (0.44), BC4 (0.5, one channel), ASTC 4x4 and BC5 (1).
-        for (const PixelType type : {PixelType::Astc8x8, PixelType::Astc6x6, PixelType::Bc4, PixelType::Astc4x4, PixelType::Bc5}) {
-            auto candidate = measure(outputs, content, chains, options, type);
-            if (candidate && candidate->worst() <= tolerance) return candidate;
+    if (options.storage.allowBlockCompression) {
+        // Fewest bytes a texel first; of those that take as many (ASTC 4x4 and BC5 for xy normals), the
+        // smaller error wins (ASTC 4x4 on a tie).
+        struct Candidate {
+            PixelType type;
+            double bytesPerTexel;
+        };
+        std::optional<StoredChain> within;
+        double withinBytes = 0.0;
+        for (const Candidate c : {Candidate{PixelType::Astc8x8, 16.0 / 64}, Candidate{PixelType::Astc6x6, 16.0 / 36},
+                                  Candidate{PixelType::Bc4, 0.5}, Candidate{PixelType::Astc4x4, 1.0}, Candidate{PixelType::Bc5, 1.0}}) {
+            if (within && c.bytesPerTexel > withinBytes) break;
+            auto candidate = measure(outputs, content, chains, options, c.type);
+            if (!candidate || candidate->worstIn(options.storage) > tolerance) continue;
+            if (!within || candidate->worstIn(options.storage) < within->worstIn(options.storage)) within = std::move(*candidate);
+            withinBytes = c.bytesPerTexel;
         }
+        if (within) return *within;
+    }
     std::optional<StoredChain> best;
     for (const PixelType type : {PixelType::Half, PixelType::Uint16}) {  // two bytes a component
         auto candidate = measure(outputs, content, chains, options, type);
-        if (!candidate || candidate->worst() > tolerance) continue;
-        if (!best || candidate->worst() < best->worst()) best = std::move(*candidate);
+        if (!candidate || candidate->worstIn(options.storage) > tolerance) continue;
+        if (!best || candidate->worstIn(options.storage) < best->worstIn(options.storage)) best = std::move(*candidate);
     }
     if (best) return *best;
     return measure(outputs, content, chains, options, PixelType::Float);

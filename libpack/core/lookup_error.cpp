@@ -9,6 +9,7 @@
 #include <limits>
 #include <mutex>
 
+#include "heightpack/core/normal_angle.hpp"
 #include "heightpack/core/parallel.hpp"
 
 namespace heightpack {
@@ -66,7 +67,48 @@ double levelError(const Image& level, const TexelRowRounding& stored, int thread
     return notFinite ? std::numeric_limits<double>::infinity() : worst;
 }
 
+// The worst angle between level's normals and the same normals through stored, in degrees.
+double levelAngleError(const Image& level, const TexelRowRounding& stored, int threads) {
+    const size_t rowValues = size_t(level.width) * level.channels;
+    const int c = level.channels;
+    double worst = 0.0;
+    std::mutex merge;
+    parallelFor(level.height, threads, [&](int begin, int end) {
+        std::vector<float> readBack(rowValues);
+        double mine = 0.0;
+        for (int y = begin; y < end; ++y) {
+            const float* given = level.row(y);
+            stored(given, rowValues, readBack.data());
+            for (int x = 0; x < level.width; ++x) {
+                const float* g = given + size_t(x) * c;
+                const float* r = readBack.data() + size_t(x) * c;
+                double a[3], b[3];
+                if (c == 2) {
+                    normalFromXy(g[0], g[1], a);
+                    normalFromXy(r[0], r[1], b);
+                } else {
+                    normalFromXyz(g[0], g[1], g[2], a);
+                    normalFromXyz(r[0], r[1], r[2], b);
+                }
+                const double degrees = angleBetween(a, b) * kDegreesPerRadian;
+                // NaN compares false: a non-finite read back is the worst angle there is.
+                mine = std::max(mine, degrees == degrees ? degrees : 180.0);
+            }
+        }
+        std::lock_guard<std::mutex> lock(merge);
+        worst = std::max(worst, mine);  // a maximum: the same whatever the split
+    });
+    return worst;
+}
+
 }  // namespace
+
+std::vector<double> worstAngleErrorDegrees(const std::vector<Image>& chain, const TexelRowRounding& stored, int threads) {
+    std::vector<double> errors;
+    errors.reserve(chain.size());
+    for (const Image& level : chain) errors.push_back(level.channels >= 2 ? levelAngleError(level, stored, threads) : 0.0);
+    return errors;
+}
 
 std::vector<double> worstLookupError(const std::vector<Image>& chain, const TexelRowRounding& stored, int threads) {
     std::vector<double> errors;

@@ -5,36 +5,13 @@
 #include <optional>
 #include <string>
 
+#include "heightpack/core/normal_angle.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "texel_encode.hpp"
 
 namespace heightpack::detail {
 
 namespace {
-
-constexpr double kDegreesPerRadian = 57.29577951308232;
-
-// The unit normal whose x and y are given, z rebuilt as the shader does (x, y past the unit circle: on it).
-void normalOf(double x, double y, double n[3]) {
-    const double rr = x * x + y * y;
-    if (rr <= 1.0) {
-        n[0] = x, n[1] = y, n[2] = std::sqrt(1.0 - rr);
-        return;
-    }
-    const double r = std::sqrt(rr);
-    n[0] = x / r, n[1] = y / r, n[2] = 0.0;
-}
-
-// The angle between unit vectors a and b, 2 asin(|a - b| / 2): from the chord, which (unlike the dot
-// product's acos) keeps its precision at small angles; the series for those is what makes a level's
-// measurement cheap next to its encoding (|a - b| / 2 under 0.1: the next term is below 1e-11 radians).
-double angleBetween(const double a[3], const double b[3]) {
-    const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-    const double h = 0.5 * std::sqrt(dx * dx + dy * dy + dz * dz);
-    if (h >= 0.1) return 2.0 * std::asin(std::min(h, 1.0));
-    const double h2 = h * h;
-    return 2.0 * h * (1.0 + h2 * (1.0 / 6.0 + h2 * (3.0 / 40.0 + h2 * (15.0 / 336.0 + h2 * (105.0 / 3456.0)))));
-}
 
 struct LevelError {
     double worst = 0.0, squares = 0.0, count = 0.0;
@@ -60,8 +37,8 @@ LevelError measure(const Image& given, const Image& decoded, const Normalisation
                 }
                 if (given.channels == 2) {
                     double a[3], b[3];
-                    normalOf(value[0], value[1], a);
-                    normalOf(back[0], back[1], b);
+                    normalFromXy(value[0], value[1], a);
+                    normalFromXy(back[0], back[1], b);
                     const double degrees = angleBetween(a, b) * kDegreesPerRadian;
                     e.worstDegrees = std::max(e.worstDegrees, degrees);
                     e.squareDegrees += degrees * degrees;

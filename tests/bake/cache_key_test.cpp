@@ -129,12 +129,13 @@ TEST(CacheKey, PackOptions) {
 // The storage every job holds: each field that shapes the bytes is in the key of the jobs that hold it,
 // and a zstd level only counts with zstd.
 TEST(CacheKey, EveryStorageFieldIsInTheKey) {
-    EXPECT_EQ(fieldCount<TextureStorage>(), 6u) << "a field was added: add it to this test's list";
+    EXPECT_EQ(fieldCount<TextureStorage>(), 7u) << "a field was added: add it to this test's list";
     const std::vector<std::function<void(TextureStorage&)>> changes = {
         [](TextureStorage& s) { s.exrCompression = Compression::Piz; },
         [](TextureStorage& s) { s.pixelType = PixelType::Half; },
         [](TextureStorage& s) { s.tolerance = 1e-4; },
         [](TextureStorage& s) { s.tolerance = 1e-4, s.allowBlockCompression = true; },
+        [](TextureStorage& s) { s.tolerance = 1e-4, s.toleranceInDegrees = true; },
         [](TextureStorage& s) { s.supercompression = Supercompression::Zstd; },
         [](TextureStorage& s) { s.supercompression = Supercompression::Zstd, s.zstdLevel = 19; },
     };

@@ -9,10 +9,14 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include "heightpack/io/gpu_texture.hpp"
 
 #include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
@@ -141,6 +145,124 @@ TEST(BlockChoice, Bc5IsChosenForXyNormalsWithinTheTolerance) {
     }
 }
 
+namespace {
+
+// The angle in degrees between normals given as x, y (z rebuilt as the shader does: sqrt(1 - x^2 - y^2),
+// or on the horizon past the unit circle), by atan2 of the cross and dot products: another formula than
+// the library's chord.
+double angleDegrees(double ax, double ay, double bx, double by) {
+    auto unit = [](double x, double y, double n[3]) {
+        const double rr = x * x + y * y;
+        const double r = rr > 1.0 ? std::sqrt(rr) : 1.0;
+        n[0] = x / r, n[1] = y / r, n[2] = std::sqrt(std::max(0.0, 1.0 - rr));
+    };
+    double a[3], b[3];
+    unit(ax, ay, a);
+    unit(bx, by, b);
+    const double cross[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    const double sine = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
+    return std::atan2(sine, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * 180.0 / M_PI;
+}
+
+// The worst angle over every level between a stored xy normal map and the float one.
+double worstAngle(const std::string& stored, const std::string& reference) {
+    const auto a = heightpack::readGpuTexture(stored), b = heightpack::readGpuTexture(reference);
+    EXPECT_TRUE(a && b);
+    if (!a || !b) return 0.0;
+    EXPECT_EQ(a->levels.size(), b->levels.size());
+    double worst = 0.0;
+    for (size_t level = 0; level < std::min(a->levels.size(), b->levels.size()); ++level) {
+        const heightpack::Image &s = a->levels[level], &r = b->levels[level];
+        for (int y = 0; y < s.height; ++y)
+            for (int x = 0; x < s.width; ++x)
+                worst = std::max(worst, angleDegrees(s.at(x, y, 0), s.at(x, y, 1), r.at(x, y, 0), r.at(x, y, 1)));
+    }
+    return worst;
+}
+
+}  // namespace
+
+// --tolerance in degrees (issue 39): the type chosen for xy normals is the fewest bytes whose every stored
+// normal lies within that angle of its own, the angle measured here from the files (decoded by the reader,
+// whose BC5 the GPU tests hold to Mesa's) against the float chain: over example and corpus maps at
+// tolerances from a hundredth of a degree to ten, both bc5 and the two-byte types are chosen, never a
+// type past the tolerance, never a larger one when bc5 (or half or uint16) was within it.
+TEST(BlockChoice, AToleranceInDegreesBoundsTheAngleOfEveryStoredNormal) {
+    ScratchDir dir;
+    const std::string src = std::string(HEIGHTPACK_SOURCE_DIR);
+    const std::vector<std::string> maps = {src + "/examples/maps/ripple.png", src + "/examples/maps/choppy.png",
+                                           src + "/examples/maps/swell.png", src + "/tests/corpus/etr_ice.png",
+                                           src + "/tests/corpus/gl117_water1.tga", src + "/tests/corpus/scorched3d_water.jpg",
+                                           src + "/tests/corpus/trigger_alignster_heightmap.jpg"};
+    int blocks = 0, twoBytes = 0, checked = 0;
+    for (const std::string& map : maps) {
+        SCOPED_TRACE(map);
+        const std::vector<std::string> common = {"normal", map, "--tile-size", "8m", "--height", "0.3m", "--layout", "xy",
+                                                 "--channel", "luma", "--resize", "pow2"};
+        auto with = [&](const std::vector<std::string>& extra) { return joined(common, extra); };
+        runJson(with({"--pixel-type", "float", "-o", dir.file("float.dds")}));
+        std::map<std::string, double> angle;  // each type's worst angle, measured here
+        for (const char* type : {"bc5", "half", "uint16"}) {
+            runJson(with({"--pixel-type", type, "-o", dir.file(std::string(type) + ".dds")}));
+            angle[type] = worstAngle(dir.file(std::string(type) + ".dds"), dir.file("float.dds"));
+        }
+        for (const double t : {0.01, 0.5, 2.0, 10.0}) {
+            char tolerance[32];
+            std::snprintf(tolerance, sizeof tolerance, "%gdeg", t);
+            const json picked = runJson(with({"--pixel-type", "auto", "--allow-block-compression", "--tolerance", tolerance,
+                                              "-o", dir.file("picked.dds")}));
+            const std::string type = picked["pixelType"];
+            const double measured = worstAngle(dir.file("picked.dds"), dir.file("float.dds"));
+            EXPECT_LE(measured, t) << tolerance << " " << type;
+            EXPECT_EQ(picked["toleranceDegrees"], t);
+            if (type != "float") {
+                const std::vector<double> levels = picked["angleError"];
+                EXPECT_NEAR(*std::max_element(levels.begin(), levels.end()), measured, 1e-6 + 1e-6 * measured) << type;
+            }
+            if (type == "bc5") {
+                ++blocks;
+            } else {
+                EXPECT_GT(angle["bc5"], t) << tolerance << ": bc5 was within it, " << type << " chosen";
+                if (type == "float") EXPECT_GT(std::min(angle["half"], angle["uint16"]), t) << tolerance;
+                else EXPECT_LE(angle[type], std::min(angle["half"], angle["uint16"])) << tolerance;
+                twoBytes += type == "half" || type == "uint16";
+            }
+            ++checked;
+        }
+    }
+    EXPECT_EQ(checked, int(maps.size()) * 4);
+    EXPECT_GT(blocks, 0);
+    EXPECT_GT(twoBytes, 0);
+}
+
+// Of the two formats of a byte a texel for xy normals (ASTC 4x4 and BC5), the one with the smaller error is
+// chosen when both are within the tolerance and nothing smaller is.
+TEST(BlockChoice, OfTwoFormatsAsLargeTheMoreAccurateIsChosen) {
+    ScratchDir dir;
+    const std::string src = std::string(HEIGHTPACK_SOURCE_DIR);
+    int checked = 0;
+    for (const char* name : {"ripple.png", "choppy.png"}) {
+        SCOPED_TRACE(name);
+        const std::vector<std::string> common = {"normal", src + "/examples/maps/" + name, "--tile-size", "8m",
+                                                 "--height", "0.15m", "--layout", "xy"};
+        std::map<std::string, double> worst;
+        for (const char* type : {"astc-8x8", "astc-6x6", "astc-4x4", "bc5"}) {
+            const json j = runJson(joined(common, {"--pixel-type", type, "-o", dir.file(std::string(type) + ".ktx2")}));
+            const std::vector<double> levels = j["angleError"];
+            worst[type] = *std::max_element(levels.begin(), levels.end());
+        }
+        const double t = std::max(worst["astc-4x4"], worst["bc5"]) * 1.01;
+        if (t >= std::min(worst["astc-8x8"], worst["astc-6x6"])) continue;
+        char tolerance[32];
+        std::snprintf(tolerance, sizeof tolerance, "%.6gdeg", t);
+        const json picked = runJson(joined(common, {"--pixel-type", "auto", "--allow-block-compression", "--tolerance",
+                                                   tolerance, "-o", dir.file("picked.ktx2")}));
+        EXPECT_EQ(picked["pixelType"], worst["bc5"] < worst["astc-4x4"] ? "bc5" : "astc-4x4") << tolerance;
+        ++checked;
+    }
+    EXPECT_GT(checked, 0);
+}
+
 TEST(BlockChoice, MisusedIsAUsageErrorThatWritesNothing) {
     ScratchDir dir;
     writeImage(dir.file("map.png"), makeImage(32, 32, smoothWave), OIIO::TypeDesc::UINT16);
@@ -153,12 +275,20 @@ TEST(BlockChoice, MisusedIsAUsageErrorThatWritesNothing) {
          "-o", dir.file("out.exr")},
         {"normal", dir.file("map.png"), "--tile-size", "8m", "--height", "1m", "--pixel-type", "auto", "--tolerance", "0.01",
          "--allow-block-compression", "-o", out},
+        // an angle past a half turn; a unit that is no angle; an angle for heights.
+        {"normal", dir.file("map.png"), "--tile-size", "8m", "--height", "1m", "--layout", "xy", "--pixel-type", "auto",
+         "--tolerance", "200deg", "--allow-block-compression", "-o", out},
+        {"normal", dir.file("map.png"), "--tile-size", "8m", "--height", "1m", "--layout", "xy", "--pixel-type", "auto",
+         "--tolerance", "2dgr", "--allow-block-compression", "-o", out},
+        {"pack", dir.file("map.png"), "--layout", "plain", "--pixel-type", "auto", "--tolerance", "2deg", "--allow-block-compression",
+         "-o", out},
     };
     for (const auto& args : cases) {
         const ProcessResult r = heightpackRun(args);
         EXPECT_EQ(r.code, 2) << r.err;
         expectOneLineError(r, "");
-        EXPECT_NE(r.err.find("--allow-block-compression"), std::string::npos) << r.err;
+        const bool angle = r.err.find("deg") != std::string::npos || r.err.find("dgr") != std::string::npos;
+        EXPECT_NE(r.err.find(angle ? "--tolerance" : "--allow-block-compression"), std::string::npos) << r.err;
     }
     EXPECT_FALSE(std::filesystem::exists(out));
     EXPECT_FALSE(std::filesystem::exists(dir.file("out.exr")));

@@ -47,9 +47,10 @@ private:
 // are lines of the job's own key (not a nested storage.*), as they were before they were one struct, so
 // existing keys still match; the zstd level likewise only when not the default.
 void putStorage(Key& k, const TextureStorage& s) {
-    static_assert(fieldCount<TextureStorage>() == 6, "TextureStorage changed: put the new field in its key text");
+    static_assert(fieldCount<TextureStorage>() == 7, "TextureStorage changed: put the new field in its key text");
     k.put("compression", s.exrCompression);
     if (s.tolerance > 0.0) k.put("tolerance", s.tolerance);
+    if (s.tolerance > 0.0 && s.toleranceInDegrees) k.put("toleranceInDegrees", true);
     if (s.tolerance > 0.0 && s.allowBlockCompression) k.put("allowBlockCompression", true);
     else if (s.pixelType != PixelType::Float) k.put("pixelType", s.pixelType);
     if (s.supercompression != Supercompression::None) k.put("supercompression", s.supercompression);

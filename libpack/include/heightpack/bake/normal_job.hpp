@@ -64,6 +64,10 @@ struct NormalReport {
     PixelType pixelType = PixelType::Float;  // as written (the choice, with a tolerance); float for a PNG
     std::vector<double> lookupError;         // per level, normal units; empty for a PNG
     double tolerance = 0.0;                  // the pixel type was chosen within this (normal units); 0: given
+    bool toleranceInDegrees = false;         // tolerance is an angle in degrees instead
+    // Per level, the worst angle in degrees between a stored normal and its own: block formats, and any
+    // type chosen within a tolerance in degrees; empty otherwise.
+    std::vector<double> angleError;
 };
 
 // The EXR compression for normals when the caller names none. Float normals are stored uncompressed:

@@ -31,4 +31,12 @@ using TexelRowRounding = std::function<void(const float* values, size_t n, float
 std::vector<double> worstLookupError(const std::vector<Image>& chain, const TexelRowRounding& stored, int threads = 0);
 std::vector<double> worstLookupError(const std::vector<Image>& chain, const TexelRounding& stored, int threads = 0);
 
+// For each level of a normal map's chain, the worst angle in degrees between a texel's normal as stored
+// (every value through `stored`) and as given: two channels are x and y with z rebuilt as the shader does
+// (normalFromXy), three or more x, y, z (normalised; a fourth channel, height or variance, is not a
+// direction). Per texel, not per lookup: a shader renormalises what it filters, so no bilinear mix is
+// bounded by its corners' angles as a value is. A non-finite value counts as 180 degrees. threads: 0 = all
+// cores; the result does not depend on it.
+std::vector<double> worstAngleErrorDegrees(const std::vector<Image>& chain, const TexelRowRounding& stored, int threads = 0);
+
 }  // namespace heightpack

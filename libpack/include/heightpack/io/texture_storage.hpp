@@ -16,9 +16,12 @@ struct TextureStorage {
     // within this many stored units (normal units for normal maps; see chooseStorage in stored_chain.hpp);
     // 0: pixelType as given. The choice is the job's: writers store pixelType and ignore this.
     double tolerance = 0.0;
+    // Normal maps: the tolerance is the worst angle, in degrees, between a texel's stored normal and its
+    // given one (worstAngleErrorDegrees; a block format's decoded texels), rather than stored units.
+    bool toleranceInDegrees = false;
     // With a tolerance: the block formats are weighed too, before half and uint16, fewest bytes first (ASTC
     // 8x8, 6x6, bc4, ASTC 4x4, bc5; one the layout or the container cannot hold is passed over); the first
-    // within the tolerance wins.
+    // within the tolerance wins (of ASTC 4x4 and bc5, which take as many bytes, the more accurate).
     bool allowBlockCompression = false;
     Compression exrCompression = Compression::Zip;               // EXR outputs
     Supercompression supercompression = Supercompression::None;  // KTX2 outputs; DDS has none
