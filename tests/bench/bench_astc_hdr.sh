@@ -24,12 +24,12 @@ trap 'rm -rf "$work"' EXIT
 
 maps=()
 for name in tests/corpus/trigger_grass_heightmap.png tests/corpus/trigger_greenland_heightmap.png \
-  tests/corpus/trigger_mud_heightmap.png tests/corpus/trigger_altitude_heightmap.png tests/corpus/etr_milos_castle_elev.png \
+  tests/corpus/trigger_mud_heightmap.png tests/corpus/trigger_altitude_heightmap.png \
   examples/maps/swell.png examples/maps/choppy.png examples/maps/ripple.png; do
   maps+=("$root/$name")
 done
 for sea in swell choppy ripple; do
-  for cut in 64x64+131+77 64x64+300+310; do
+  for cut in 64x64+131+77 64x64+170+150; do  # inside the 256x256 seas
     oiiotool "$root/examples/maps/$sea.png" --cut "$cut" -o "$work/${sea}_crop_${cut%%+*}_${cut#*+}.png"
     maps+=("$work/${sea}_crop_${cut%%+*}_${cut#*+}.png")
   done
