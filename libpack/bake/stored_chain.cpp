@@ -55,6 +55,8 @@ Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, con
     if (!(tolerance > 0.0)) return measure(outputs, content, chains, options, options.storage.pixelType);
     if (options.storage.allowBlockCompression)
         // Fewest bytes a texel first: ASTC 8x8 (0.25), 6x6 (0.44), BC4 (0.5, one channel), ASTC 4x4 and BC5 (1).
+        // Not ASTC HDR: its worst error over a chain is above LDR's of the same size on every map measured
+        // (docs/formats.md, "ASTC HDR"), so it would never be chosen.
         for (const PixelType type : {PixelType::Astc8x8, PixelType::Astc6x6, PixelType::Bc4, PixelType::Astc4x4, PixelType::Bc5}) {
             auto candidate = measure(outputs, content, chains, options, type);
             if (candidate && candidate->worst() <= tolerance) return candidate;
