@@ -136,7 +136,7 @@ EngineVerdict godot(FileContainer c, TexelFormat t, bool mipmappedExr, bool png1
             if (isRgtc(t))
                 return verdict(EngineSupport::Loads, std::string("its ") + name + " loader keeps the BC4/BC5 (RGTC) blocks and the file's mip levels");
             if (isAstcHdr(t))
-                return verdict(EngineSupport::Refuses, "its KTX2 loader reads ASTC 4x4 and 8x8 UNORM only (no SFLOAT, HDR, format)",
+                return verdict(EngineSupport::Refuses, "its KTX2 loader reads UNORM ASTC (4x4, 8x8) only, no SFLOAT (HDR) format",
                                "KTX2 ASTC 4x4 or 8x8 (LDR)");
             if (pixelTypeOf(t) == PixelType::Astc6x6)
                 return verdict(EngineSupport::Refuses, "its KTX2 loader reads ASTC 4x4 and 8x8 only", "KTX2 ASTC 4x4 or 8x8");
