@@ -16,9 +16,10 @@ namespace heightpack::cli {
 void addPixelTypeOption(CLI::App& cmd, PixelTypeRequest& pixelType, bool withAuto, std::string* tolerance,
                         const std::string& toleranceHelp, std::vector<PixelTypeRequest> offered) {
     if (offered.empty())
-        offered = {PixelTypeRequest::Float,   PixelTypeRequest::Half,    PixelTypeRequest::Uint16,
-                   PixelTypeRequest::Bc4,     PixelTypeRequest::Bc5,     PixelTypeRequest::Astc4x4,
-                   PixelTypeRequest::Astc6x6, PixelTypeRequest::Astc8x8};
+        offered = {PixelTypeRequest::Float,      PixelTypeRequest::Half,       PixelTypeRequest::Uint16,
+                   PixelTypeRequest::Bc4,        PixelTypeRequest::Bc5,        PixelTypeRequest::Astc4x4,
+                   PixelTypeRequest::Astc6x6,    PixelTypeRequest::Astc8x8,    PixelTypeRequest::AstcHdr4x4,
+                   PixelTypeRequest::AstcHdr6x6, PixelTypeRequest::AstcHdr8x8};
     if (withAuto) offered.push_back(PixelTypeRequest::Auto);
     std::string help;
     for (const PixelTypeRequest r : offered) help += (help.empty() ? "" : "; ") + std::string(nameOf(r)) + ": " + describe(r);
@@ -125,6 +126,9 @@ PixelType requestedPixelType(PixelTypeRequest pixelType) {
         case PixelTypeRequest::Astc4x4: return PixelType::Astc4x4;
         case PixelTypeRequest::Astc6x6: return PixelType::Astc6x6;
         case PixelTypeRequest::Astc8x8: return PixelType::Astc8x8;
+        case PixelTypeRequest::AstcHdr4x4: return PixelType::AstcHdr4x4;
+        case PixelTypeRequest::AstcHdr6x6: return PixelType::AstcHdr6x6;
+        case PixelTypeRequest::AstcHdr8x8: return PixelType::AstcHdr8x8;
         case PixelTypeRequest::Float:
         case PixelTypeRequest::Auto: break;  // auto: judged as float, which every container holds, until the job chooses
     }
@@ -215,6 +219,9 @@ std::string blockLayoutProblem(PixelType type, Layout layout) {
         return "--pixel-type " + name + " cannot hold the neighbour4 layout: each copy of a shared height would "
                "decode differently and the lookup would show seams (write --layout plain and filter in hardware, or "
                "view it with --lookup gather)";
+    if (isAstcHdrType(type) && layout != Layout::Plain)
+        return "--pixel-type " + name + " stores plain heights (--layout plain): HDR blocks hold one channel (for xy "
+               "normals write --pixel-type astc-" + name.substr(9) + ")";
     if (isAstcType(type) && layout != Layout::Plain && layout != Layout::Xy)
         return "--pixel-type " + name + " stores plain heights (--layout plain) or xy normals (--layout xy)";
     if (type == PixelType::Bc4 && layout != Layout::Plain)

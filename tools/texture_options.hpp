@@ -19,7 +19,7 @@ namespace heightpack {
 
 namespace cli {
 // What --pixel-type asks for: one of the pixel types, or auto (pack and normal choose within --tolerance).
-enum class PixelTypeRequest { Float, Half, Uint16, Bc4, Bc5, Astc4x4, Astc6x6, Astc8x8, Auto };
+enum class PixelTypeRequest { Float, Half, Uint16, Bc4, Bc5, Astc4x4, Astc6x6, Astc8x8, AstcHdr4x4, AstcHdr6x6, AstcHdr8x8, Auto };
 }  // namespace cli
 
 template <>
@@ -34,6 +34,9 @@ struct NameTable<cli::PixelTypeRequest> {
         {R::Astc4x4, "astc-4x4", "ASTC 4x4 blocks: plain heights (--layout plain) or xy normals (--layout xy), 1 byte a texel; .ktx2 only"},
         {R::Astc6x6, "astc-6x6", "ASTC 6x6 blocks, as astc-4x4 at 0.44 byte a texel; .ktx2 only"},
         {R::Astc8x8, "astc-8x8", "ASTC 8x8 blocks, as astc-4x4 at 0.25 byte a texel; .ktx2 only"},
+        {R::AstcHdr4x4, "astc-hdr-4x4", "ASTC HDR 4x4 blocks (decoded as half floats): plain heights (--layout plain), 1 byte a texel; .ktx2 only"},
+        {R::AstcHdr6x6, "astc-hdr-6x6", "ASTC HDR 6x6 blocks, as astc-hdr-4x4 at 0.44 byte a texel; .ktx2 only"},
+        {R::AstcHdr8x8, "astc-hdr-8x8", "ASTC HDR 8x8 blocks, as astc-hdr-4x4 at 0.25 byte a texel; .ktx2 only"},
         {R::Auto, "auto", "the fewest bytes whose worst lookup error is within --tolerance"},
     };
 };

@@ -172,6 +172,11 @@ int draw(ViewerOptions& o, Scene& scene, const ContextInfo& context, GLFWwindow*
                     "GL_KHR_texture_compression_astc_ldr",
                     "write it with heightpack as bc4 (heights) or bc5 (normals), or view it where the driver has ASTC",
                     ExitCode::NoOpenGL);
+    if (const std::string hdr = astcHdrPath(scene); !hdr.empty() && !contextTakesAstcHdr())
+        return fail(hdr + ": holds ASTC HDR blocks and this " + context.platform + " context offers no "
+                    "GL_KHR_texture_compression_astc_hdr",
+                    "write it with heightpack as astc-4x4/6x6/8x8 (LDR) or bc4, or view it where the driver has ASTC HDR",
+                    ExitCode::NoOpenGL);
     if (const std::string problem = renderer.upload(scene); !problem.empty())
         return fail(problem, "use a sequence of fewer frames", ExitCode::BadInput);
     if (isGather(o.settings.lookup) && !renderer.gatherAvailable()) {

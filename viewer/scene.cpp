@@ -149,6 +149,13 @@ std::string astcPath(const Scene& scene) {
     return {};
 }
 
+std::string astcHdrPath(const Scene& scene) {
+    for (const HeightLayer& layer : scene.layers)
+        for (const HeightFrame& frame : layer.frames)
+            if (frame.plain.isAstcHdr()) return layer.path;
+    return {};  // normals are never HDR
+}
+
 Result<NormalMap> loadNormalMap(const std::string& path) {
     auto file = readViewerTexture(path);
     if (!file) return file.error();

@@ -81,6 +81,8 @@ Result<Scene> loadScene(const SceneFiles& files);
 // The first file of the scene that holds ASTC blocks (heights or normals), or empty: a context without
 // ASTC cannot draw it.
 std::string astcPath(const Scene& scene);
+// The first layer whose chains hold ASTC HDR blocks, or "" (they also need the HDR profile).
+std::string astcHdrPath(const Scene& scene);
 
 // Modification times of the files, to reload what changed on disk.
 std::vector<std::filesystem::file_time_type> fileTimes(const SceneFiles& files);

@@ -14,14 +14,17 @@ struct GlFormat {
     GLenum internal, format, type;
 };
 
-// ASTC's GL formats (GL_KHR_texture_compression_astc_ldr): RGBA blocks of one size.
+// ASTC's GL formats (GL_KHR_texture_compression_astc_ldr): RGBA blocks of one size, LDR or HDR alike.
 constexpr GLenum kAstc4x4 = 0x93B0, kAstc6x6 = 0x93B4, kAstc8x8 = 0x93B7;
 
 GLenum blockInternalFormat(const UploadChain& chain) {
     switch (pixelTypeOf(chain.blockFormat)) {
-        case PixelType::Astc4x4: return kAstc4x4;
-        case PixelType::Astc6x6: return kAstc6x6;
-        case PixelType::Astc8x8: return kAstc8x8;
+        case PixelType::Astc4x4:
+        case PixelType::AstcHdr4x4: return kAstc4x4;
+        case PixelType::Astc6x6:
+        case PixelType::AstcHdr6x6: return kAstc6x6;
+        case PixelType::Astc8x8:
+        case PixelType::AstcHdr8x8: return kAstc8x8;
         default: return chain.channels == 1 ? GLenum(GL_COMPRESSED_RED_RGTC1) : GLenum(GL_COMPRESSED_RG_RGTC2);
     }
 }
@@ -141,15 +144,22 @@ GLuint uploadStoredArray(const std::vector<const UploadChain*>& chains, bool lin
     return texture;
 }
 
-bool contextTakesAstc() {
+namespace {
+
+bool contextHasExtension(std::string_view wanted) {
     GLint count = 0;
     glGetIntegerv(GL_NUM_EXTENSIONS, &count);
     for (GLint i = 0; i < count; ++i) {
         const auto* name = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
-        if (name && std::string_view(name) == "GL_KHR_texture_compression_astc_ldr") return true;
+        if (name && std::string_view(name) == wanted) return true;
     }
     return false;
 }
+
+}  // namespace
+
+bool contextTakesAstc() { return contextHasExtension("GL_KHR_texture_compression_astc_ldr"); }
+bool contextTakesAstcHdr() { return contextHasExtension("GL_KHR_texture_compression_astc_hdr"); }
 
 long long textureBytes(GLuint texture, GLenum target) {
     if (!texture) return 0;

@@ -27,8 +27,11 @@ GLuint uploadFloatChain(const std::vector<Image>& levels, bool linear, Wrap wrap
 // one sampler, so the vertex stage's samplers do not grow with the frames it blends.
 GLuint uploadStoredArray(const std::vector<const UploadChain*>& chains, bool linear, Wrap wrap);
 
-// Whether the current context takes ASTC blocks (GL_KHR_texture_compression_astc_ldr).
+// Whether the current context takes ASTC blocks (GL_KHR_texture_compression_astc_ldr), and HDR ones
+// (GL_KHR_texture_compression_astc_hdr: the same GL formats, whose HDR blocks an LDR-only decoder shows
+// in its error colour).
 bool contextTakesAstc();
+bool contextTakesAstcHdr();
 
 // Bytes of every level (and layer) of the texture, from the sizes and component bits GL reports for it
 // (so a format a driver widened on upload would show here). target: GL_TEXTURE_2D or GL_TEXTURE_2D_ARRAY.

@@ -25,6 +25,7 @@ struct UploadChain {
 
     bool isBlock() const { return kind == ComponentKind::Block; }
     bool isAstc() const { return isBlock() && isAstcFormat(blockFormat); }
+    bool isAstcHdr() const { return isBlock() && isAstcHdrType(pixelTypeOf(blockFormat)); }
     // Texel chains only: a block chain has no bytes of its own per texel.
     int bytesPerTexel() const { return channels * (kind == ComponentKind::Float32 ? 4 : 2); }
     int levelWidth(int level) const { return width >> level > 0 ? width >> level : 1; }

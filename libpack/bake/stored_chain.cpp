@@ -69,7 +69,8 @@ Result<StoredChain> chooseStorage(const std::vector<TextureOutput>& outputs, con
     if (!(tolerance > 0.0)) return measure(outputs, content, chains, options, options.storage.pixelType);
     if (options.storage.allowBlockCompression) {
         // Fewest bytes a texel first; of those that take as many (ASTC 4x4 and BC5 for xy normals), the
-        // smaller error wins (ASTC 4x4 on a tie).
+        // smaller error wins (ASTC 4x4 on a tie). Not ASTC HDR: its worst error over a chain is above LDR's
+        // of the same size on every map measured (docs/formats.md, "ASTC HDR"), so it would never be chosen.
         struct Candidate {
             PixelType type;
             double bytesPerTexel;

@@ -25,10 +25,13 @@ struct ContextFree {
 };
 using Context = std::unique_ptr<astcenc_context, ContextFree>;
 
+// HDR colour with LDR alpha: heights are luminance and alpha stays 1, which the HDR luminance modes imply.
+astcenc_profile profileOf(BlockFormat format) { return isAstcHdr(format) ? ASTCENC_PRF_HDR_RGB_LDR_A : ASTCENC_PRF_LDR; }
+
 Context makeContext(BlockFormat format, unsigned flags, unsigned threads) {
     const unsigned side = unsigned(blockSide(format));
     astcenc_config config;
-    if (astcenc_config_init(ASTCENC_PRF_LDR, side, side, 1, kAstcQuality, flags, &config) != ASTCENC_SUCCESS)
+    if (astcenc_config_init(profileOf(format), side, side, 1, kAstcQuality, flags, &config) != ASTCENC_SUCCESS)
         return nullptr;
     astcenc_context* context = nullptr;
     if (astcenc_context_alloc(&config, threads, &context) != ASTCENC_SUCCESS) return nullptr;

@@ -63,6 +63,9 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
                                       int threads) {
     const BlockFormat format = blockFormatOf(plan.format);
     const int channels = isAstc(format) ? plan.format.channels : blockChannels(format);
+    if (isAstcHdr(format) && plan.sourceChannels != 1)
+        return cannotWrite(path, "ASTC HDR holds one channel (plain heights), this texture has " + std::to_string(plan.sourceChannels),
+                           "store plain heights in ASTC HDR, or xy normals in LDR ASTC");
     if (isAstc(format) && plan.sourceChannels != channels)
         return cannotWrite(path, "ASTC holds one channel (plain heights) or two (xy normals), this texture has " +
                                      std::to_string(plan.sourceChannels),

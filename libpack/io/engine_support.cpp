@@ -15,6 +15,7 @@ bool isFloat(TexelFormat t) {
 bool isUnorm16(TexelFormat t) { return texelFormatInfo(t).kind == ComponentKind::Unorm16; }
 bool isRgtc(TexelFormat t) { return t == TexelFormat::Bc4Unorm || t == TexelFormat::Bc5Unorm; }
 bool isAstc(TexelFormat t) { return isAstcType(pixelTypeOf(t)); }
+bool isAstcHdr(TexelFormat t) { return isAstcHdrType(pixelTypeOf(t)); }
 
 // The same channels in half floats, which every engine that reads KTX2 or DDS floats loads.
 std::string halfOf(TexelFormat t, const char* container) {
@@ -38,8 +39,13 @@ EngineVerdict threeJs(FileContainer c, TexelFormat t, bool mipmappedExr, bool pn
                                "KTX2Loader uploads the blocks as stored, mip levels and all, where the WebGL context has "
                                "EXT_texture_compression_rgtc (desktop GPUs; few phones)",
                                halfOf(t, "KTX2"));
-            if (pixelTypeOf(t) == PixelType::Astc8x8)
+            if (pixelTypeOf(t) == PixelType::Astc8x8 || pixelTypeOf(t) == PixelType::AstcHdr8x8)
                 return verdict(EngineSupport::Refuses, "KTX2Loader's format map has ASTC 4x4 and 6x6 only", "KTX2 ASTC 6x6 or 4x4");
+            if (isAstcHdr(t))
+                return verdict(EngineSupport::Partial,
+                               "KTX2Loader uploads the SFLOAT blocks as stored (half-float type), decoded as HDR only where "
+                               "WEBGL_compressed_texture_astc lists the hdr profile (an LDR-only decoder shows its error colour)",
+                               "KTX2 ASTC 4x4 or 6x6 (LDR)");
             if (isAstc(t))
                 return verdict(EngineSupport::Partial,
                                "KTX2Loader uploads the blocks as stored, mip levels and all, where the WebGL context has "
@@ -129,6 +135,9 @@ EngineVerdict godot(FileContainer c, TexelFormat t, bool mipmappedExr, bool png1
             if (isFloat(t)) return verdict(EngineSupport::Loads, std::string("its ") + name + " loader keeps the format and the file's mip levels");
             if (isRgtc(t))
                 return verdict(EngineSupport::Loads, std::string("its ") + name + " loader keeps the BC4/BC5 (RGTC) blocks and the file's mip levels");
+            if (isAstcHdr(t))
+                return verdict(EngineSupport::Refuses, "its KTX2 loader reads UNORM ASTC (4x4, 8x8) only, no SFLOAT (HDR) format",
+                               "KTX2 ASTC 4x4 or 8x8 (LDR)");
             if (pixelTypeOf(t) == PixelType::Astc6x6)
                 return verdict(EngineSupport::Refuses, "its KTX2 loader reads ASTC 4x4 and 8x8 only", "KTX2 ASTC 4x4 or 8x8");
             if (isAstc(t))

@@ -29,10 +29,13 @@ std::vector<std::uint8_t> astcDataFormatDescriptor(BlockFormat format) {
     ktx2::put32(out, (side - 1) | (side - 1) << 8);   // texelBlockDimension (stored minus one)
     ktx2::put32(out, 16);                             // bytesPlane0
     ktx2::put32(out, 0);
-    ktx2::put32(out, 127u << 16);  // bitOffset 0, bitLength 128 - 1, channel 0 (KHR_DF_CHANNEL_ASTC_DATA)
-    ktx2::put32(out, 0);           // samplePosition0..3
-    ktx2::put32(out, 0);           // sampleLower
-    ktx2::put32(out, 0xFFFFFFFFu); // sampleUpper
+    // bitOffset 0, bitLength 128 - 1, channel 0 (KHR_DF_CHANNEL_ASTC_DATA); HDR (SFLOAT) with the FLOAT and
+    // SIGNED qualifiers and -1.0f..1.0f as bounds, as KTX-Software's createDFDCompressed writes them.
+    const bool hdr = isAstcHdr(format);
+    ktx2::put32(out, 127u << 16 | (hdr ? 0xC0u << 24 : 0u));
+    ktx2::put32(out, 0);                             // samplePosition0..3
+    ktx2::put32(out, hdr ? 0xBF800000u : 0u);        // sampleLower
+    ktx2::put32(out, hdr ? 0x3F800000u : 0xFFFFFFFFu);  // sampleUpper
     return out;
 }
 

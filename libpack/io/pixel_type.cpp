@@ -13,7 +13,7 @@ namespace heightpack {
 namespace {
 
 // Vulkan and DXGI codes from the Vulkan registry and Microsoft's DXGI_FORMAT enumeration.
-constexpr std::array<TexelFormatInfo, 18> kFormats = {{
+constexpr std::array<TexelFormatInfo, 21> kFormats = {{
     {TexelFormat::Rgba32F, 4, ComponentKind::Float32, 109, 2, "VK_FORMAT_R32G32B32A32_SFLOAT",
      "DXGI_FORMAT_R32G32B32A32_FLOAT"},
     {TexelFormat::Rgba16F, 4, ComponentKind::Float16, 97, 10, "VK_FORMAT_R16G16B16A16_SFLOAT",
@@ -36,6 +36,10 @@ constexpr std::array<TexelFormatInfo, 18> kFormats = {{
     {TexelFormat::Astc6x6Rg, 2, ComponentKind::Block, 165, 0, "VK_FORMAT_ASTC_6x6_UNORM_BLOCK", ""},
     {TexelFormat::Astc8x8R, 1, ComponentKind::Block, 171, 0, "VK_FORMAT_ASTC_8x8_UNORM_BLOCK", ""},
     {TexelFormat::Astc8x8Rg, 2, ComponentKind::Block, 171, 0, "VK_FORMAT_ASTC_8x8_UNORM_BLOCK", ""},
+    // VK_EXT_texture_compression_astc_hdr (core in Vulkan 1.3 without the suffix).
+    {TexelFormat::AstcHdr4x4R, 1, ComponentKind::Block, 1000066000, 0, "VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK_EXT", ""},
+    {TexelFormat::AstcHdr6x6R, 1, ComponentKind::Block, 1000066004, 0, "VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK_EXT", ""},
+    {TexelFormat::AstcHdr8x8R, 1, ComponentKind::Block, 1000066007, 0, "VK_FORMAT_ASTC_8x8_SFLOAT_BLOCK_EXT", ""},
 }};
 
 }  // namespace
@@ -72,6 +76,9 @@ TexelFormat texelFormatFor(int channels, PixelType type) {
     if (type == PixelType::Astc4x4) return channels == 1 ? TexelFormat::Astc4x4R : TexelFormat::Astc4x4Rg;
     if (type == PixelType::Astc6x6) return channels == 1 ? TexelFormat::Astc6x6R : TexelFormat::Astc6x6Rg;
     if (type == PixelType::Astc8x8) return channels == 1 ? TexelFormat::Astc8x8R : TexelFormat::Astc8x8Rg;
+    if (type == PixelType::AstcHdr4x4) return TexelFormat::AstcHdr4x4R;
+    if (type == PixelType::AstcHdr6x6) return TexelFormat::AstcHdr6x6R;
+    if (type == PixelType::AstcHdr8x8) return TexelFormat::AstcHdr8x8R;
     switch (channels) {
         case 1:
             return type == PixelType::Float  ? TexelFormat::R32F
@@ -105,6 +112,9 @@ PixelType pixelTypeOf(TexelFormat format) {
         case TexelFormat::Astc6x6Rg: return PixelType::Astc6x6;
         case TexelFormat::Astc8x8R:
         case TexelFormat::Astc8x8Rg: return PixelType::Astc8x8;
+        case TexelFormat::AstcHdr4x4R: return PixelType::AstcHdr4x4;
+        case TexelFormat::AstcHdr6x6R: return PixelType::AstcHdr6x6;
+        case TexelFormat::AstcHdr8x8R: return PixelType::AstcHdr8x8;
         default: return PixelType::Float;
     }
 }
@@ -112,9 +122,12 @@ PixelType pixelTypeOf(TexelFormat format) {
 BlockShape blockShapeOf(TexelFormat format) {
     switch (pixelTypeOf(format)) {
         case PixelType::Bc5: return {4, 16};
-        case PixelType::Astc4x4: return {4, 16};
-        case PixelType::Astc6x6: return {6, 16};
-        case PixelType::Astc8x8: return {8, 16};
+        case PixelType::Astc4x4:
+        case PixelType::AstcHdr4x4: return {4, 16};
+        case PixelType::Astc6x6:
+        case PixelType::AstcHdr6x6: return {6, 16};
+        case PixelType::Astc8x8:
+        case PixelType::AstcHdr8x8: return {8, 16};
         default: return {4, 8};
     }
 }

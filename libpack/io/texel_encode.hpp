@@ -47,6 +47,9 @@ inline BlockFormat blockFormatOf(const TexelFormatInfo& format) {
         case TexelFormat::Astc6x6Rg: return BlockFormat::Astc6x6;
         case TexelFormat::Astc8x8R:
         case TexelFormat::Astc8x8Rg: return BlockFormat::Astc8x8;
+        case TexelFormat::AstcHdr4x4R: return BlockFormat::AstcHdr4x4;
+        case TexelFormat::AstcHdr6x6R: return BlockFormat::AstcHdr6x6;
+        case TexelFormat::AstcHdr8x8R: return BlockFormat::AstcHdr8x8;
         default: return BlockFormat::Bc5;
     }
 }

@@ -58,6 +58,11 @@ TEST(EngineSupport, EveryFormatHeightpackWritesGetsTheDocumentedVerdictPerEngine
         {false, Layout::Plain, PixelType::Astc4x4, "a4.ktx2", "ktx2 VK_FORMAT_ASTC_4x4_UNORM_BLOCK", {Partial, Refuses, Refuses, Refuses, Loads}},
         {false, Layout::Plain, PixelType::Astc6x6, "a6.ktx2", "ktx2 VK_FORMAT_ASTC_6x6_UNORM_BLOCK", {Partial, Refuses, Refuses, Refuses, Refuses}},
         {true, Layout::Xy, PixelType::Astc8x8, "a8.ktx2", "ktx2 VK_FORMAT_ASTC_8x8_UNORM_BLOCK", {Refuses, Refuses, Refuses, Refuses, Loads}},
+        // ASTC HDR (SFLOAT): three.js r180's KTX2Loader maps 4x4 and 6x6 (half-float type; HDR where the context's
+        // ASTC extension lists the hdr profile); Godot's KTX2 loader has no SFLOAT ASTC case.
+        {false, Layout::Plain, PixelType::AstcHdr4x4, "h4.ktx2", "ktx2 VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK_EXT", {Partial, Refuses, Refuses, Refuses, Refuses}},
+        {false, Layout::Plain, PixelType::AstcHdr6x6, "h6.ktx2", "ktx2 VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK_EXT", {Partial, Refuses, Refuses, Refuses, Refuses}},
+        {false, Layout::Plain, PixelType::AstcHdr8x8, "h8.ktx2", "ktx2 VK_FORMAT_ASTC_8x8_SFLOAT_BLOCK_EXT", {Refuses, Refuses, Refuses, Refuses, Refuses}},
     };
     const Engine engines[] = {Engine::ThreeJs, Engine::Babylon, Engine::Unreal, Engine::Unity, Engine::Godot};
     for (const Case& c : cases) {

@@ -153,7 +153,8 @@ cat >"$out/fuzz_material/small.json" <<'JSON'
 JSON
 ls -l "$out"/*
 
-# fuzz_gpu_texture: KTX2 (float; uint16 with zstd; BC4, BC5; ASTC heights 6x6 and normals 4x4) and DDS (half;
+# fuzz_gpu_texture: KTX2 (float; uint16 with zstd; BC4, BC5; ASTC heights 6x6 and normals 4x4; ASTC HDR heights
+# 4x4) and DDS (half;
 # uint16 normals; BC4, BC5) of an 8x8 16-bit map, as
 # heightpack writes them (HEIGHTPACK: the binary, ../../build/heightpack by default).
 hp=${HEIGHTPACK:-../../build/heightpack}
@@ -171,3 +172,4 @@ oiiotool --pattern noise:type=uniform 8x8 1 -d uint16 -o "$tmp/m.png"
 "$hp" pack "$tmp/m.png" -q --layout plain --pixel-type astc-6x6 -o "$out/fuzz_gpu_texture/plain_astc6.ktx2"
 "$hp" normal "$tmp/m.png" -q --tile-size 8m --height 1m --layout xy --pixel-type astc-4x4 \
   -o "$out/fuzz_gpu_texture/normal_astc4.ktx2"
+"$hp" pack "$tmp/m.png" -q --layout plain --pixel-type astc-hdr-4x4 -o "$out/fuzz_gpu_texture/plain_astc_hdr4.ktx2"

@@ -55,6 +55,9 @@ const vk = {
   // ASTC: RGBA in every block; which channels hold values the file's KTXswizzle says.
   157: ['VK_FORMAT_ASTC_4x4_UNORM_BLOCK', 'astc4', 4], 165: ['VK_FORMAT_ASTC_6x6_UNORM_BLOCK', 'astc6', 4],
   171: ['VK_FORMAT_ASTC_8x8_UNORM_BLOCK', 'astc8', 4],
+  // ASTC HDR (VK_EXT_texture_compression_astc_hdr): the same blocks, decoded as half floats.
+  1000066000: ['VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK_EXT', 'astc4', 4], 1000066004: ['VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK_EXT', 'astc6', 4],
+  1000066007: ['VK_FORMAT_ASTC_8x8_SFLOAT_BLOCK_EXT', 'astc8', 4],
 };
 const dxgi = {
   R32G32B32A32_FLOAT: ['f32', 4], R16G16B16A16_FLOAT: ['f16', 4], R16G16B16A16_UNORM: ['unorm16', 4],

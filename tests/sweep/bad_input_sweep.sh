@@ -99,8 +99,10 @@ damage seq.0000.exr loopx.exr 's/(heightpack:loopPeriod\0float\0....)..../${1}\0
 # Block streams cut short (issue 39): BC4 heights in KTX2 and DDS, the level data ending mid-block.
 "$HP" pack good.png -o bc4.ktx2 --layout plain --pixel-type bc4 -q || exit 2
 "$HP" pack good.png -o bc4.dds --layout plain --pixel-type bc4 -q || exit 2
-for f in bc4.ktx2 bc4.dds; do head -c $(( $(stat -c %s "$f") - 13 )) "$f" > "cut$f"; done
-DAMAGED=(layoutx.ktx2 scalex.ktx2 wrapx.ktx2 layoutx.exr filterx.exr loopx.exr cutbc4.ktx2 cutbc4.dds)
+# ASTC HDR heights in KTX2, cut short the same way.
+"$HP" pack good.png -o hdr.ktx2 --layout plain --pixel-type astc-hdr-6x6 -q || exit 2
+for f in bc4.ktx2 bc4.dds hdr.ktx2; do head -c $(( $(stat -c %s "$f") - 13 )) "$f" > "cut$f"; done
+DAMAGED=(layoutx.ktx2 scalex.ktx2 wrapx.ktx2 layoutx.exr filterx.exr loopx.exr cutbc4.ktx2 cutbc4.dds cuthdr.ktx2)
 # Outputs that must not be replaced.
 printf 'old' > readonly.exr; chmod 444 readonly.exr
 printf 'old' > target.exr; ln -s target.exr link.exr
@@ -190,6 +192,9 @@ expect pack 2 "" good.png -o out.ktx2 --pixel-type auto --tolerance 1mm
 expect pack 2 "" good.png -o out.ktx2 --pixel-type auto --tolerance 0 --height 2m
 expect pack 2 "" good.png -o out.ktx2 --layout plain --emit-plain plain.ktx2
 expect pack 2 "" good.png -o out.ktx2 --layout rgb
+# ASTC HDR holds plain heights in KTX2 only (issue 39).
+expect pack 2 out.dds good.png -o out.dds --layout plain --pixel-type astc-hdr-4x4
+expect pack 2 "" good.png -o out.ktx2 --pixel-type astc-hdr-8x8
 
 # ---- normal ----
 N=(--tile-size 8m --height 1m)
@@ -197,6 +202,7 @@ for f in "${BAD_MAPS[@]}" "${HEIGHT_ONLY[@]}" odd.pfm; do expect normal 3 "$f" "
 expect normal 2 "" good.png --tile-size 8m --height 1e300 -o out.exr
 expect normal 2 "" good.png "${N[@]}" --layout xy --height-in-alpha -o out.ktx2
 expect normal 2 "" good.png "${N[@]}" --pixel-type auto --tolerance 1furlong -o out.ktx2
+expect normal 2 "" good.png "${N[@]}" --layout xy --pixel-type astc-hdr-6x6 -o out.ktx2
 # Words a new user gets wrong (issue 35): a misspelt option, an option given twice; a manifest is no texture.
 expect normal 2 "--tilesize" good.png --tilesize 8m --height 1m -o out.exr
 expect pack 2 "--filtr" good.png --filtr lanczos3 -o out.exr

@@ -13,15 +13,20 @@ namespace heightpack {
 
 // BC4: one channel, 8 bytes a block; BC5: two channels, each a BC4 block, 16 bytes a block.
 // ASTC: one channel (plain heights, stored as luminance RRR1) or two (xy normals, stored as x in RGB and y
-// in alpha, astcenc's normal-map mode), 16 bytes a block of 4x4, 6x6 or 8x8 texels.
-enum class BlockFormat { Bc4, Bc5, Astc4x4, Astc6x6, Astc8x8 };
+// in alpha, astcenc's normal-map mode), 16 bytes a block of 4x4, 6x6 or 8x8 texels. AstcHdr: the same
+// sizes in ASTC's HDR profile (decoded as half floats), one channel only (plain heights).
+enum class BlockFormat { Bc4, Bc5, Astc4x4, Astc6x6, Astc8x8, AstcHdr4x4, AstcHdr6x6, AstcHdr8x8 };
 inline bool isAstc(BlockFormat format) { return format != BlockFormat::Bc4 && format != BlockFormat::Bc5; }
+inline bool isAstcHdr(BlockFormat format) {
+    return format == BlockFormat::AstcHdr4x4 || format == BlockFormat::AstcHdr6x6 || format == BlockFormat::AstcHdr8x8;
+}
 // BC4 and BC5 only (an ASTC block holds whichever the image has).
 inline int blockChannels(BlockFormat format) { return format == BlockFormat::Bc4 ? 1 : 2; }
 inline int blockBytes(BlockFormat format) { return format == BlockFormat::Bc4 ? 8 : 16; }
 // A block's width and height in texels.
 inline int blockSide(BlockFormat format) {
-    return format == BlockFormat::Astc6x6 ? 6 : format == BlockFormat::Astc8x8 ? 8 : 4;
+    if (format == BlockFormat::Astc6x6 || format == BlockFormat::AstcHdr6x6) return 6;
+    return format == BlockFormat::Astc8x8 || format == BlockFormat::AstcHdr8x8 ? 8 : 4;
 }
 // The bytes of a width x height image: whole blocks, a block's texels past the image padding it (a level
 // smaller than a block is one block).

@@ -33,7 +33,9 @@ std::optional<Container> containerForPath(const std::string& path);
 //   * u, u the decoded unorm), each level's decoded error recorded.
 //   Astc4x4, Astc6x6, Astc8x8: ASTC LDR blocks of that many texels in 16 bytes (KTX2 only), one channel
 //   (plain heights) or two (xy normals), normalised and measured as BC4/BC5 are.
-enum class PixelType { Float, Half, Uint16, Bc4, Bc5, Astc4x4, Astc6x6, Astc8x8 };
+//   AstcHdr4x4, AstcHdr6x6, AstcHdr8x8: the same sizes in ASTC's HDR profile (VK_FORMAT_ASTC_*_SFLOAT_BLOCK,
+//   decoded as half floats), plain heights only, normalised and measured as the LDR ones.
+enum class PixelType { Float, Half, Uint16, Bc4, Bc5, Astc4x4, Astc6x6, Astc8x8, AstcHdr4x4, AstcHdr6x6, AstcHdr8x8 };
 template <>
 struct NameTable<PixelType> {
     static constexpr EnumName<PixelType> entries[] = {
@@ -45,6 +47,9 @@ struct NameTable<PixelType> {
         {PixelType::Astc4x4, "astc-4x4", "ASTC 4x4 blocks (plain heights or xy normals, KTX2), 1 byte a texel"},
         {PixelType::Astc6x6, "astc-6x6", "ASTC 6x6 blocks (plain heights or xy normals, KTX2), 0.44 byte a texel"},
         {PixelType::Astc8x8, "astc-8x8", "ASTC 8x8 blocks (plain heights or xy normals, KTX2), 0.25 byte a texel"},
+        {PixelType::AstcHdr4x4, "astc-hdr-4x4", "ASTC HDR 4x4 blocks (plain heights, KTX2), 1 byte a texel"},
+        {PixelType::AstcHdr6x6, "astc-hdr-6x6", "ASTC HDR 6x6 blocks (plain heights, KTX2), 0.44 byte a texel"},
+        {PixelType::AstcHdr8x8, "astc-hdr-8x8", "ASTC HDR 8x8 blocks (plain heights, KTX2), 0.25 byte a texel"},
     };
 };
 inline const char* pixelTypeName(PixelType type) { return nameOf(type); }
@@ -53,17 +58,21 @@ inline std::optional<PixelType> parsePixelType(std::string_view name) { return p
 // The texel formats heightpack writes into KTX2 and DDS, with their Vulkan and DXGI codes. Rg16Snorm is
 // read only: the format xy normals in uint16 had before they were normalised like every other uint16.
 // An ASTC size is one Vulkan format holding one channel (R: heights as luminance) or two (Rg: x in RGB, y
-// in alpha); a KTX2 says which by its KTXswizzle ("r001", "ra01"), as a loader needs to know.
+// in alpha); a KTX2 says which by its KTXswizzle ("r001", "ra01"), as a loader needs to know. An ASTC HDR
+// size (SFLOAT) holds one channel only.
 enum class TexelFormat {
     Rgba32F, Rgba16F, Rgba16Unorm, Rg32F, Rg16F, Rg16Unorm, Rg16Snorm, R32F, R16F, R16Unorm, Bc4Unorm, Bc5Unorm,
-    Astc4x4R, Astc4x4Rg, Astc6x6R, Astc6x6Rg, Astc8x8R, Astc8x8Rg
+    Astc4x4R, Astc4x4Rg, Astc6x6R, Astc6x6Rg, Astc8x8R, Astc8x8Rg, AstcHdr4x4R, AstcHdr6x6R, AstcHdr8x8R
 };
 
 // Block: blocks of texels (BC4, BC5: 4x4 in 8 bytes a channel; ASTC: 16 bytes), written and read a whole
 // level at a time.
 enum class ComponentKind { Float32, Float16, Unorm16, Snorm16, Block };
+inline bool isAstcHdrType(PixelType type) {
+    return type == PixelType::AstcHdr4x4 || type == PixelType::AstcHdr6x6 || type == PixelType::AstcHdr8x8;
+}
 inline bool isAstcType(PixelType type) {
-    return type == PixelType::Astc4x4 || type == PixelType::Astc6x6 || type == PixelType::Astc8x8;
+    return type == PixelType::Astc4x4 || type == PixelType::Astc6x6 || type == PixelType::Astc8x8 || isAstcHdrType(type);
 }
 inline bool isBlockType(PixelType type) { return type == PixelType::Bc4 || type == PixelType::Bc5 || isAstcType(type); }
 
@@ -89,10 +98,11 @@ std::optional<TexelFormat> texelFormatFromDxgi(std::uint32_t dxgiFormat);
 // into a four-channel format with alpha 1, since no GPU format listed here has three 16-bit channels.
 // uint16 is unsigned normalised for any channel count (xy normals too), to the range the writer records.
 // bc4 and bc5 give their one format whatever the count (the planner refuses a count that differs); ASTC
-// its R format for one channel, Rg for any other (refused by the planner unless two).
+// its R format for one channel, Rg for any other (refused by the planner unless two); ASTC HDR its one
+// format (the planner refuses any count but one).
 TexelFormat texelFormatFor(int channels, PixelType type);
 PixelType pixelTypeOf(TexelFormat format);
-// A block format's block: its side in texels and its bytes (BC4: 4, 8; BC5: 4, 16; ASTC NxN: N, 16).
+// A block format's block: its side in texels and its bytes (BC4: 4, 8; BC5: 4, 16; ASTC NxN, LDR or HDR: N, 16).
 struct BlockShape {
     int side = 4, bytes = 8;
 };
