@@ -369,3 +369,26 @@ TEST(ManifestBlocks, ImpossiblePairsAreRefusedAtParseTimeWithNothingWritten) {
         EXPECT_FALSE(std::filesystem::exists(dir.file("out"))) << "nothing written";
     }
 }
+
+// A choppy sea (Dx, Dy and foam beside the heights) in the plain layout and a block format: its file holds
+// them as further layers, and material.json says so, as it does for a packed one.
+TEST(ManifestBlocks, PlainChoppyMapsRecordTheirShiftAndFoam) {
+    ScratchDir dir;
+    std::ofstream(dir.file("m.toml"), std::ios::binary)
+        << "format = 1\nname = \"sea\"\n[defaults]\ncontainer = \"ktx2\"\n"
+           "[[displacement]]\nname = \"packed\"\ntile_size = 64.0\nchoppiness = 0.8\npixel_type = \"half\"\n"
+           "[displacement.synth]\nwind = 10.0\nsize = 64\nshift = true\nfoam = true\n"
+           "[[displacement]]\nname = \"plain\"\ntile_size = 64.0\nchoppiness = 0.8\nlayout = \"plain\"\npixel_type = \"bc4\"\n"
+           "[displacement.synth]\nwind = 10.0\nsize = 64\nshift = true\nfoam = true\n";
+    const ProcessResult r = heightpackRun({"build", dir.file("m.toml"), "-o", dir.file("out"), "--quiet"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json material = readJson(dir.file("out/material.json"));
+    for (const std::string name : {"packed", "plain"}) {
+        const json& d = material["displacement"][name == "packed" ? 0 : 1];
+        EXPECT_EQ(d["layout"], name == "packed" ? "neighbour4" : "plain");
+        EXPECT_EQ(d.value("shift", false), true) << name;
+        EXPECT_EQ(d.value("choppiness", 0.0), 0.8) << name;
+        EXPECT_EQ(d.value("foam", false), true) << name;
+    }
+    EXPECT_EQ(material["displacement"][1]["texture"]["pixelType"], "bc4");
+}
