@@ -23,9 +23,9 @@ namespace {
 // the type that fits this one.
 std::string layoutFix(PixelType type, Layout layout) {
     if (layout == Layout::Neighbour4)
-        return "set layout = \"plain\" beside it (the viewer filters plain heights in hardware), or pixel_type = "
-               "\"half\" or \"uint16\" to keep the packed layout";
-    if (layout == Layout::Rgb) return "set layout = \"xy\" beside it (the shader rebuilds z)";
+        return "set layout = \"plain\" beside it, which the viewer filters in hardware; or pixel_type = \"half\" or "
+               "\"uint16\" to keep the packed layout";
+    if (layout == Layout::Rgb) return "set layout = \"xy\" beside it; the shader rebuilds z";
     if (type == PixelType::Bc4) return "for xy normals set pixel_type = \"bc5\"";
     return "for plain heights set pixel_type = \"bc4\"";
 }
