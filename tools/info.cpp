@@ -114,10 +114,13 @@ private:
         return std::string(text, end);
     }
 
-    static std::string textureText(const MaterialTexture& t) {
+    // layout: the map's, where it has one (heights, normals).
+    static std::string textureText(const MaterialTexture& t, std::optional<Layout> layout = std::nullopt) {
         std::string text = t.file + ", " + std::to_string(t.width) + "x" + std::to_string(t.height) + ", " +
                            std::to_string(t.levels) + (t.levels == 1 ? " level" : " levels");
-        return t.frames > 1 ? text + ", " + std::to_string(t.frames) + " frames" : text;
+        if (t.frames > 1) text += ", " + std::to_string(t.frames) + " frames";
+        if (layout) text += std::string(", ") + nameOf(*layout);
+        return text + ", " + pixelTypeName(t.pixelType.value_or(PixelType::Float));
     }
 
     void printMaterial(const MaterialDescription& m) const {
@@ -133,10 +136,10 @@ private:
             if (d.loopPeriod > 0) p += ", loop " + number(d.loopPeriod) + " s";
             if (d.shift) p += ", choppiness " + number(d.choppiness);
             if (d.foam) p += ", foam layer";
-            row("displacement '" + d.name + "'", textureText(d.texture), p);
+            row("displacement '" + d.name + "'", textureText(d.texture, d.layout), p);
         }
         if (const auto& n = m.normals)
-            row("normals '" + n->name + "'", textureText(n->texture),
+            row("normals '" + n->name + "'", textureText(n->texture, n->layout),
                 "tile " + number(n->tileSize) + " m, height " + number(n->heightRange) + " m, " + nameOf(n->convention) +
                     ", alpha " + nameOf(n->alpha) + ", " + std::to_string(n->octaves.size()) +
                     (n->octaves.size() == 1 ? " octave" : " octaves"));

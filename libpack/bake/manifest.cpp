@@ -105,26 +105,30 @@ MapSettings ManifestParser::settings(Section& s, const MapSettings& base) {
     return out;
 }
 
-// pixel_type (float, half, uint16, or auto with tolerance) into out, over what out holds already
-// (the defaults). A table that names a type of its own drops an inherited tolerance.
-void ManifestParser::pixelType(Section& s, MapSettings& out, bool autoAllowed) {
-    const std::string choices = std::string("float, half, uint16") + (autoAllowed ? ", auto" : "");
+// pixel_type (float, half, uint16, a block format, or auto with tolerance and allow_block_compression)
+// into out, over what out holds already (the defaults). A table that names a type of its own drops an
+// inherited tolerance and allow_block_compression. Whether a block format suits the map's layout and
+// container is judged once both are known (blockFits, manifest_blocks.cpp).
+void ManifestParser::pixelType(Section& s, MapSettings& out, bool mipChain) {
+    const std::string choices =
+        std::string("float, half, uint16") + (mipChain ? ", bc4, bc5, astc-4x4, astc-6x6, astc-8x8, auto" : "");
     if (const auto type = s.text("pixel_type")) {
-        if (*type == "auto" && autoAllowed) {
+        out.storage.allowBlockCompression = false;
+        if (*type == "auto" && mipChain) {
             if (!s.find("tolerance"))
                 throw s.error("pixel_type", "is \"auto\", which needs a tolerance",
                               "add tolerance = the worst lookup error allowed, in stored units (normal units "
                               "for normals), such as 0.0005");
             out.storage.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
+            out.storage.allowBlockCompression = s.boolean("allow_block_compression").value_or(false);
             return;
         }
         const auto parsed = parseName<PixelType>(*type);
         if (!parsed) throw s.error("pixel_type", "is '" + shorten(*type) + "', but must be one of: " + choices);
-        // Block formats need a layout of their own (plain heights, xy normals), which a manifest's maps
-        // do not choose yet: heightpack pack and normal write them.
-        if (isBlockType(*parsed))
-            throw s.error("pixel_type", "is '" + shorten(*type) + "', a block format a manifest does not write yet",
-                          "set one of: " + choices + ", or write it with heightpack pack or normal");
+        // A ramp is one level of a few hundred texels, read at any angle: blocks would only blur it.
+        if (isBlockType(*parsed) && !mipChain)
+            throw s.error("pixel_type", "is '" + shorten(*type) + "', a block format, which is for mip-mapped maps",
+                          "set one of: " + choices);
         out.storage.pixelType = *parsed;
         out.storage.tolerance = 0.0;
     }
@@ -133,6 +137,13 @@ void ManifestParser::pixelType(Section& s, MapSettings& out, bool autoAllowed) {
             throw s.error("tolerance", "is given, but pixel_type is not \"auto\"",
                           "set pixel_type = \"auto\" beside it, or remove it");
         out.storage.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
+    }
+    if (!mipChain) return;
+    if (const auto allow = s.boolean("allow_block_compression")) {
+        if (!(out.storage.tolerance > 0.0))
+            throw s.error("allow_block_compression", "is given, but pixel_type is not \"auto\"",
+                          "set pixel_type = \"auto\" and a tolerance beside it, or remove it");
+        out.storage.allowBlockCompression = *allow;
     }
 }
 

@@ -12,7 +12,7 @@ namespace {
 // The map settings: [defaults], and every table with a source.
 std::vector<std::string_view> withSettings(std::vector<std::string_view> keys) {
     for (std::string_view k : {"wrap", "filter", "compression", "resize", "channel", "container", "pixel_type",
-                               "tolerance", "tileable"})
+                               "tolerance", "allow_block_compression", "tileable"})
         keys.push_back(k);
     return keys;
 }
@@ -25,13 +25,13 @@ const std::vector<std::string_view>& keysOf(ManifestTable table) {
     static const std::vector<std::string_view> defaults = withSettings({});
     static const std::vector<std::string_view> displacement =
         withSettings({"name", "source", "synth", "output", "tile_size", "scroll", "amplitude", "height_scale",
-                      "height_offset", "choppiness", "foam"});
+                      "height_offset", "choppiness", "foam", "layout"});
     static const std::vector<std::string_view> synth = {
         "spectrum", "wind",  "direction", "fetch",  "gamma",        "spreading",      "spreading_s",
         "depth",    "swell", "size",      "seed",   "loop",         "frames",         "shift",
         "displacement", "foam",     "foam_threshold",     "foam_decay", "foam_build_up", "cascades"};
     static const std::vector<std::string_view> normals = withSettings(
-        {"name", "source", "output", "tile_size", "height", "kernel", "convention", "alpha", "octave"});
+        {"name", "source", "output", "tile_size", "height", "kernel", "convention", "alpha", "octave", "layout"});
     static const std::vector<std::string_view> octave = {"tile_size", "scroll", "strength"};
     static const std::vector<std::string_view> fresnel = {"name", "output", "container", "pixel_type", "tolerance", "ior",
                                                           "model", "index",  "size",      "deep",       "shallow"};

@@ -38,9 +38,18 @@ public:
 
 private:
     MapSettings settings(Section& s, const MapSettings& base);
-    // pixel_type (float, half, uint16, or auto with tolerance) into out, over what out holds already
-    // (the defaults). A table that names a type of its own drops an inherited tolerance.
-    void pixelType(Section& s, MapSettings& out, bool autoAllowed);
+    // pixel_type (float, half, uint16, a block format, or auto with tolerance and allow_block_compression)
+    // into out, over what out holds already (the defaults). A table that names a type of its own drops an
+    // inherited tolerance and allow_block_compression. mipChain: false for a ramp, which takes neither
+    // auto nor a block format.
+    void pixelType(Section& s, MapSettings& out, bool mipChain);
+    // The layout key of a [[displacement]] (heights: neighbour4, plain) or [normals] (rgb, xy) table.
+    Layout layout(Section& s, bool heights);
+    // Whether settings' pixel type (or, under auto, allow_block_compression) suits a map of this layout in
+    // its container: a block format holds plain heights or xy normals (bc4 one channel, bc5 two), never
+    // the neighbour4 layout, and goes into a KTX2 (ASTC) or a KTX2 or DDS (BC), never an EXR. Refused with
+    // the key that asks for it, or the table's line when it comes from [defaults].
+    void blockFits(Section& s, const MapSettings& settings, Layout layout);
     // The name, source, output and map settings of an asset made from a file.
     // synthesised: the asset has no source file, only an output.
     SourcedAsset sourced(Section& s, const std::string& name, bool sourceRequired = true, bool synthesised = false);

@@ -26,6 +26,8 @@ std::vector<DisplacementAsset> ManifestParser::displacement(Section& s) {
         throw s.missing("source", "give source = a map's path, or a [displacement.synth] table to synthesise the sea;");
     static_cast<SourcedAsset&>(d) = sourced(s, d.layer.name, true, synth != nullptr);
     d.layer.tileSize = s.number("tile_size", std::nullopt, 0, kMaxTileSize, true);
+    d.layer.layout = layout(s, true);
+    blockFits(s, d.settings, d.layer.layout);
     if (synth) {
         Section t(*synth, s.prefix() + ".synth", path_, ManifestTable::Synth);
         d.synth = detail::parseSynthSource(t, d.layer.tileSize);
@@ -109,6 +111,12 @@ NormalAsset ManifestParser::normals(Section& s) {
     n.kernel = s.choice("kernel", NormalOptions{}.kernel);
     n.layer.convention = s.choice("convention", NormalOptions{}.convention);
     n.layer.alpha = s.choice("alpha", NormalOptions{}.alpha);
+    n.layer.layout = layout(s, false);
+    if (n.layer.layout == Layout::Xy && n.layer.alpha != NormalAlpha::None)
+        throw s.error("layout", "is \"xy\", two channels, which leave no alpha for alpha = \"" +
+                                    std::string(nameOf(n.layer.alpha)) + "\"",
+                      "set alpha = \"none\", or layout = \"rgb\"");
+    blockFits(s, n.settings, n.layer.layout);
     if (const toml::node* octaves = s.find("octave")) {
         const toml::array* a = octaves->as_array();
         if (!a || !a->is_array_of_tables() || a->empty() || a->size() > 4)
@@ -134,11 +142,12 @@ FresnelAsset ManifestParser::fresnel(Section& s) {
     FresnelAsset f;
     f.line = s.line();
     f.layer.name = assetName(s, "fresnel");
-    // A ramp takes the defaults' container and pixel type, or its own; "auto" is for mip chains, so
-    // a ramp under auto defaults stays float.
+    // A ramp takes the defaults' container and pixel type, or its own; "auto" and the block formats are
+    // for mip chains, so a ramp under such defaults stays float.
     MapSettings ramp;
     ramp.container = defaults_.container;
-    ramp.storage.pixelType = defaults_.storage.tolerance > 0.0 ? PixelType::Float : defaults_.storage.pixelType;
+    const bool chainOnly = defaults_.storage.tolerance > 0.0 || isBlockType(defaults_.storage.pixelType);
+    ramp.storage.pixelType = chainOnly ? PixelType::Float : defaults_.storage.pixelType;
     if (s.find("container")) ramp.container = s.choice("container", Container::Exr);
     pixelType(s, ramp, false);
     f.output = output(s, f.layer.name, ramp);
@@ -172,6 +181,7 @@ FoamAsset ManifestParser::foam(Section& s) {
     SourcedAsset texture = sourced(s, f.layer.name, false);
     if (!texture.source.empty()) {
         if (texture.frames.size() > 1) throw s.error("source", "names a sequence; foam is one texture");
+        blockFits(s, texture.settings, Layout::Plain);  // a foam texture is a plain chain
         f.texture = std::move(texture);
     }
     s.finish();

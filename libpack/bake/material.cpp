@@ -108,7 +108,7 @@ std::string materialJson(const MaterialDescription& m) {
                 {"generator", m.generator}, {"manifest", m.manifest}};
     Json layers = Json::array();
     for (const DisplacementLayer& d : m.displacement) {
-        Json j = {{"name", d.name},         {"texture", textureJson(d.texture)}, {"layout", "neighbour4"},
+        Json j = {{"name", d.name},         {"texture", textureJson(d.texture)}, {"layout", nameOf(d.layout)},
                   {"wrap", nameOf(d.wrap)}, {"filter", nameOf(d.filter)},                {"heightScale", d.heightScale},
                   {"heightOffset", d.heightOffset}, {"tileSize", d.tileSize},    {"scroll", pairJson(d.scroll)},
                   {"amplitude", d.amplitude}};
@@ -127,9 +127,14 @@ std::string materialJson(const MaterialDescription& m) {
         Json octaves = Json::array();
         for (const NormalOctave& o : n.octaves)
             octaves.push_back({{"tileSize", o.tileSize}, {"scroll", pairJson(o.scroll)}, {"strength", o.strength}});
-        doc["normals"] = {{"name", n.name},           {"texture", textureJson(n.texture)}, {"convention", nameOf(n.convention)},
-                          {"alpha", nameOf(n.alpha)},         {"tileSize", n.tileSize},            {"heightRange", n.heightRange},
-                          {"octaves", std::move(octaves)}};
+        Json j = {{"name", n.name}, {"texture", textureJson(n.texture)}};
+        if (n.layout != Layout::Rgb) j["layout"] = nameOf(n.layout);  // only xy: older files keep their bytes
+        j["convention"] = nameOf(n.convention);
+        j["alpha"] = nameOf(n.alpha);
+        j["tileSize"] = n.tileSize;
+        j["heightRange"] = n.heightRange;
+        j["octaves"] = std::move(octaves);
+        doc["normals"] = std::move(j);
     }
     if (m.fresnel) {
         const FresnelLayer& f = *m.fresnel;
@@ -181,6 +186,9 @@ Result<MaterialDescription> readMaterial(const std::string& path) {
             DisplacementLayer d;
             d.name = r.text(j, "name", w);
             d.texture = r.texture(j, w);
+            // A height layout; neighbour4 where a hand-written file leaves it out.
+            d.layout = j.contains("layout") ? r.choice<Layout>(j, "layout", w) : Layout::Neighbour4;
+            if (!isHeightLayout(d.layout)) throw r.missing(w + "layout (neighbour4 or plain)");
             d.wrap = r.choice<Wrap>(j, "wrap", w);
             d.filter = r.choice<Filter>(j, "filter", w);
             d.heightScale = r.number(j, "heightScale", w);
@@ -209,6 +217,8 @@ Result<MaterialDescription> readMaterial(const std::string& path) {
             NormalLayer n;
             n.name = r.text(j, "name", "normals.");
             n.texture = r.texture(j, "normals.");
+            n.layout = j.contains("layout") ? r.choice<Layout>(j, "layout", "normals.") : Layout::Rgb;
+            if (isHeightLayout(n.layout)) throw r.missing("normals.layout (rgb or xy)");
             n.convention = r.choice<NormalConvention>(j, "convention", "normals.");
             n.alpha = r.choice<NormalAlpha>(j, "alpha", "normals.");
             n.tileSize = r.number(j, "tileSize", "normals.");

@@ -26,8 +26,9 @@ Result<MaterialTexture> describeTexture(const std::string& folder, const std::st
     const TextureDescription& described = layout->description;
     if (described.pixelType != PixelType::Float) t.pixelType = described.pixelType;
     if (loopPeriod) *loopPeriod = described.units.loopPeriod.value_or(0.0);
-    if (shift) *shift = described.shift == Layout::Neighbour4;
-    if (foam) *foam = described.foam == Layout::Neighbour4;
+    // Dx, Dy and foam are laid out as the heights are: packed beside packed heights, plain beside plain.
+    if (shift) *shift = described.shift.has_value();
+    if (foam) *foam = described.foam.has_value();
     return t;
 }
 

@@ -30,12 +30,14 @@ MaterialDescription sampleMaterial() {
     d.displacement.push_back(a);
     DisplacementLayer b = a;
     b.name = "seq";
-    b.texture = {"seq.exr", 64, 64, 7, 12, PixelType::Uint16};
+    b.texture = {"seq.ktx2", 64, 64, 7, 12, PixelType::Bc4};
+    b.layout = Layout::Plain;
     b.loopPeriod = 2.5;
     d.displacement.push_back(b);
     NormalLayer n;
     n.name = "ripple_n";
-    n.texture = {"ripple_n.exr", 128, 128, 8, 1, std::nullopt};
+    n.texture = {"ripple_n.ktx2", 128, 128, 8, 1, PixelType::Bc5};
+    n.layout = Layout::Xy;
     n.tileSize = 8.0;
     n.heightRange = 0.05;
     n.octaves = {{8.0, {0.02, 0.01}, 1.0}, {2.0, {-0.05, 0.03}, 0.35}};
@@ -78,10 +80,14 @@ TEST(Material, WrittenThenReadIsTheSameMaterial) {
     EXPECT_EQ(back->displacement[0].texture.height, 256);
     EXPECT_EQ(back->displacement[0].texture.levels, 10);
     EXPECT_EQ(back->displacement[1].texture.frames, 12);
-    EXPECT_EQ(back->displacement[1].texture.pixelType, PixelType::Uint16);
+    EXPECT_EQ(back->displacement[1].texture.pixelType, PixelType::Bc4);
+    EXPECT_EQ(back->displacement[0].layout, Layout::Neighbour4);
+    EXPECT_EQ(back->displacement[1].layout, Layout::Plain);
     EXPECT_FALSE(back->displacement[0].texture.pixelType);  // float: not written
     EXPECT_EQ(back->displacement[1].loopPeriod, 2.5);
     ASSERT_TRUE(back->normals);
+    EXPECT_EQ(back->normals->layout, Layout::Xy);
+    EXPECT_EQ(back->normals->texture.pixelType, PixelType::Bc5);
     ASSERT_EQ(back->normals->octaves.size(), 2u);
     EXPECT_EQ(back->normals->octaves[1].strength, 0.35);
     EXPECT_EQ(back->normals->octaves[1].scroll, d.normals->octaves[1].scroll);
@@ -132,7 +138,10 @@ TEST(Material, BadFilesAreBadInputNamingTheFile) {
         [&] { std::string t = good; return t.replace(t.find("heightpack-material"), 19, "something-else-here"); }(),
         [&] { std::string t = good; return t.replace(t.find("\"version\": 1"), 12, "\"version\": 99"); }(),
         "{\"schema\": \"heightpack-material\", \"version\": 1}",
-        [&] { std::string t = good; return t.replace(t.find("\"uint16\""), 8, "\"int8\""); }(),
+        [&] { std::string t = good; return t.replace(t.find("\"bc4\""), 5, "\"int8\""); }(),
+        // A layout of the other kind of map: heights are neighbour4 or plain, normals rgb or xy.
+        [&] { std::string t = good; return t.replace(t.find("\"plain\""), 7, "\"xy\""); }(),
+        [&] { std::string t = good; return t.replace(t.find("\"xy\""), 4, "\"plain\""); }(),
     };
     for (const std::string& text : bad) {
         auto m = readText(dir, text);

@@ -162,6 +162,9 @@ TEST(FirstHour, InfoDescribesAMaterialAndPointsAManifestAtBuild) {
     for (const auto& d : file["displacement"]) {
         const std::string line = lineOf("displacement", d);
         EXPECT_NE(line.find(size(d["texture"])), std::string::npos) << line;
+        // The layout and what the texels are stored as (float where material.json names no type).
+        EXPECT_NE(line.find(", " + d["layout"].get<std::string>() + ", " + d["texture"].value("pixelType", "float") + ";"),
+                  std::string::npos) << line;
         EXPECT_NE(line.find("tile " + shown(d["tileSize"]) + " m"), std::string::npos) << line;
         EXPECT_NE(line.find("amplitude " + shown(d["amplitude"]) + " m"), std::string::npos) << line;
         EXPECT_NE(line.find("scroll " + shown(d["scroll"][0]) + "," + shown(d["scroll"][1])), std::string::npos) << line;

@@ -90,6 +90,8 @@ amplitude = 2
 height_scale = -1
 height_offset = 0.5
 filter = "triangle"
+layout = "plain"
+allow_block_compression = true
 [normals]
 source = "seq.png"
 tile_size = 4

@@ -365,6 +365,13 @@ bad_manifest 3 "@:" "$(manifest maps_a.png "$(printf '\n[[displacement]]\nname =
 bad_manifest 3 "@:2" "$(printf 'format = 1\nname = "a b/c"\n[[displacement]]\nsource = "maps_a.png"\ntile_size = 8.0\n')"
 bad_manifest 3 "@:8" "$(manifest maps_a.png 'tile_sise = 3.0')"
 bad_manifest 3 "@:8" "$(manifest maps_a.png 'channel = "auto"')"
+# Block formats (issue 39) where they cannot be: the packed layout, an EXR, ASTC in a DDS, bc5 for heights.
+bad_manifest 3 "@:9" "$(manifest maps_a.png "$(printf 'container = "ktx2"\npixel_type = "bc4"')")"
+bad_manifest 3 "@:9" "$(manifest maps_a.png "$(printf 'layout = "plain"\npixel_type = "bc4"')")"
+bad_manifest 3 "@:10" "$(manifest maps_a.png "$(printf 'layout = "plain"\ncontainer = "dds"\npixel_type = "astc-4x4"')")"
+bad_manifest 3 "@:10" "$(manifest maps_a.png "$(printf 'layout = "plain"\ncontainer = "dds"\npixel_type = "bc5"')")"
+bad_manifest 3 "@:8" "$(manifest maps_a.png 'layout = "xy"')"
+bad_manifest 3 "@:11" "$(manifest maps_a.png "$(printf 'container = "ktx2"\npixel_type = "auto"\ntolerance = 0.01\nallow_block_compression = true')")"
 bad_manifest 3 "cut.png" "$(manifest cut.png '')"
 bad_manifest 3 "seqfifo.0001.png" "$(manifest seqfifo.png '')"
 bad_manifest 3 "nan.pfm" "$(manifest nan.pfm '')"

@@ -2,6 +2,8 @@
 // draws, within what its type can hold, from textures that keep that type on the GPU; and the gather
 // lookup draws what the packed lookup and hardware bilinear filtering draw.
 #include <gtest/gtest.h>
+
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include <fstream>
@@ -253,4 +255,37 @@ TEST(ViewerFormats, OpensAMaterialWhoseTexturesAreKtx2AndDds) {
     const Difference d = compare(screenshot(dir, "exr.png", exr), screenshot(dir, "gpu.png", gpu), 0);
     EXPECT_LE(d.max, 1);
     EXPECT_LT(d.fractionOver, 0.05);
+}
+
+// A manifest's block formats (issue 39): plain heights in bc4 (astc-6x6) and xy normals in bc5 (astc-6x6),
+// built by heightpack build, draw the picture of the same material with float plain heights and xy normals,
+// far closer than the picture of another sea; heights read as packed, or not read, would draw another sea.
+TEST(ViewerFormats, AManifestsBlockCompressedMaterialDrawsItsFloatPicture) {
+    ScratchDir dir;
+    auto material = [&](const std::string& name, const std::string& heights, const std::string& normals,
+                        const std::string& source = "swell.png") {
+        std::ofstream(dir.file(name + ".toml"))
+            << "format = 1\nname = \"m\"\n[defaults]\ncontainer = \"ktx2\"\n[[displacement]]\nname = \"swell\"\nsource = \""
+            << kExamples << source << "\"\ntile_size = 40.0\namplitude = 2.0\nlayout = \"plain\"\n" << heights << "\n"
+            << "[normals]\nsource = \"" << kExamples << "ripple.png\"\ntile_size = 8.0\nheight = 0.05\nlayout = \"xy\"\n"
+            << normals << "\n";
+        heightpackMustRun("build", {dir.file(name + ".toml"), "-o", dir.file(name)});
+        return std::vector<std::string>{dir.file(name + "/material.json"), "--size", "160x90", "--time", "5", "--camera",
+                                        "0,0,6,30,-15", "--grid", "128", "--segments", "128"};
+    };
+    const Picture floats = screenshot(dir, "float.png", material("float", "", ""));
+    // Another sea under the same normals: how far apart pictures of different heights are.
+    const Picture other = screenshot(dir, "other.png", material("other", "", "", "choppy.png"));
+    const Difference waves = compare(floats, other, 8);
+    EXPECT_GT(waves.fractionOver, 0.2) << "the heights show in the picture";
+    for (const auto& [heights, normals] : {std::pair{"bc4", "bc5"}, std::pair{"astc-6x6", "astc-6x6"}}) {
+        SCOPED_TRACE(heights);
+        const Picture blocks = screenshot(dir, std::string(heights) + ".png",
+                                          material(heights, std::string("pixel_type = \"") + heights + "\"",
+                                                   std::string("pixel_type = \"") + normals + "\""));
+        const Difference d = compare(floats, blocks, 8);
+        std::printf("%s heights, %s normals: %.4f of pixels differ by more than 8 from the float picture (max %d); "
+                    "another sea: %.4f\n", heights, normals, d.fractionOver, d.max, waves.fractionOver);
+        EXPECT_LT(d.fractionOver, 0.25 * waves.fractionOver) << "max " << d.max;
+    }
 }

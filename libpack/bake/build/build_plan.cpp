@@ -99,6 +99,7 @@ NormalJobOptions normalOptions(const NormalAsset& n, const std::string& version)
     job.filter = n.settings.filter;
     job.resizeToPowerOfTwo = n.settings.resize;
     job.storage = n.settings.storage;
+    job.layout = n.layer.layout;
     job.version = version;
     return job;
 }
@@ -202,6 +203,7 @@ std::vector<Step> planSteps(const Manifest& m, const std::string& version) {
         PackOptions pack = packOptions(d.settings, version);
         pack.scale = static_cast<float>(d.layer.heightScale);
         pack.offset = static_cast<float>(d.layer.heightOffset);
+        pack.layout = d.layer.layout;
         // Dx, Dy (and foam) go wherever the output's container puts them: an EXR's further channels, a
         // KTX2's or DDS's further array layers.
         if (d.synth) {

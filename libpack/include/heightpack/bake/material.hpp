@@ -10,6 +10,7 @@
 
 #include "heightpack/core/fresnel.hpp"
 #include "heightpack/core/image.hpp"
+#include "heightpack/core/layout.hpp"
 #include "heightpack/core/mip.hpp"
 #include "heightpack/core/normal.hpp"
 #include "heightpack/core/result.hpp"
@@ -29,15 +30,18 @@ struct MaterialTexture {
     int height = 0;
     int levels = 0;
     int frames = 1;
-    // What the texels are stored as, where the file says and it is not float (half, uint16, bc4, bc5):
-    // what a loader must upload them as, and what their recorded error budget belongs to.
+    // What the texels are stored as, where the file says and it is not float (half, uint16, bc4, bc5,
+    // astc-NxN): what a loader must upload them as, and what their recorded error budget belongs to.
     std::optional<PixelType> pixelType;
 };
 
 // One height map of the sum H(x, y, t) = sum_i amplitude_i * h_i(x / tileSize_i + scroll_i * t).
 struct DisplacementLayer {
     std::string name;
-    MaterialTexture texture;           // neighbour4 packed RGBA32F
+    MaterialTexture texture;           // the heights, in layout
+    // Neighbour4: each texel holds its height and three neighbours' (one fetch per lookup). Plain: one
+    // channel, filtered in hardware; the one a block format (texture.pixelType bc4, astc-NxN) holds.
+    Layout layout = Layout::Neighbour4;
     Wrap wrap = Wrap::Periodic;
     Filter filter = Filter::Kaiser;
     double heightScale = 1.0;          // stored = heightOffset + heightScale * painted value
@@ -64,7 +68,10 @@ struct NormalOctave {
 
 struct NormalLayer {
     std::string name;
-    MaterialTexture texture;           // RGB(A) float normals, one per mip level
+    MaterialTexture texture;           // normals, one per mip level, in layout
+    // Rgb: x, y, z (and alpha). Xy: x and y alone, z = sqrt(1 - x^2 - y^2) rebuilt by the shader; the one
+    // a block format (bc5, astc-NxN) holds.
+    Layout layout = Layout::Rgb;
     NormalConvention convention = NormalConvention::OpenGL;  // opengl or directx (green flipped)
     NormalAlpha alpha = NormalAlpha::None;                   // none, height or variance
     double tileSize = 8.0;             // metres the map spans when its slopes were measured
