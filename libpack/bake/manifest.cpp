@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <set>
+#include <string_view>
 
 #include "heightpack/bake/synth_job.hpp"
 #include "heightpack/core/sea/cascades.hpp"
@@ -111,15 +113,16 @@ MapSettings ManifestParser::settings(Section& s, const MapSettings& base) {
 // container is judged once both are known (blockFits, manifest_blocks.cpp).
 void ManifestParser::pixelType(Section& s, MapSettings& out, bool mipChain) {
     const std::string choices =
-        std::string("float, half, uint16") + (mipChain ? ", bc4, bc5, astc-4x4, astc-6x6, astc-8x8, auto" : "");
+        std::string("float, half, uint16") +
+        (mipChain ? ", bc4, bc5, astc-4x4, astc-6x6, astc-8x8, astc-hdr-4x4, astc-hdr-6x6, astc-hdr-8x8, auto" : "");
     if (const auto type = s.text("pixel_type")) {
         out.storage.allowBlockCompression = false;
         if (*type == "auto" && mipChain) {
             if (!s.find("tolerance"))
                 throw s.error("pixel_type", "is \"auto\", which needs a tolerance",
                               "add tolerance = the worst lookup error allowed, in stored units (normal units "
-                              "for normals), such as 0.0005");
-            out.storage.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
+                              "for normals, or an angle such as \"2deg\"), such as 0.0005");
+            tolerance(s, out.storage);
             out.storage.allowBlockCompression = s.boolean("allow_block_compression").value_or(false);
             return;
         }
@@ -136,7 +139,7 @@ void ManifestParser::pixelType(Section& s, MapSettings& out, bool mipChain) {
         if (!(out.storage.tolerance > 0.0))  // neither here nor in [defaults] is the type "auto"
             throw s.error("tolerance", "is given, but pixel_type is not \"auto\"",
                           "set pixel_type = \"auto\" beside it, or remove it");
-        out.storage.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
+        tolerance(s, out.storage);
     }
     if (!mipChain) return;
     if (const auto allow = s.boolean("allow_block_compression")) {
@@ -145,6 +148,25 @@ void ManifestParser::pixelType(Section& s, MapSettings& out, bool mipChain) {
                           "set pixel_type = \"auto\" and a tolerance beside it, or remove it");
         out.storage.allowBlockCompression = *allow;
     }
+}
+
+// tolerance: a number in stored units; in [normals] also an angle, "2deg": the worst between a stored
+// normal and its own (heightpack normal --tolerance 2deg).
+void ManifestParser::tolerance(Section& s, TextureStorage& storage) {
+    storage.toleranceInDegrees = false;
+    const toml::node* n = s.find("tolerance");
+    if (n && n->is_string() && s.kind() == ManifestTable::Normals) {
+        const std::string text = n->value<std::string>().value_or("");
+        char* end = nullptr;
+        const double degrees = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || std::string_view(end) != "deg" || !(degrees > 0.0 && degrees < 180.0))
+            throw s.error("tolerance", "is '" + shorten(text) + "', but must be a number (normal units) or an angle "
+                                       "between 0 and 180 degrees such as \"2deg\"");
+        storage.tolerance = degrees;
+        storage.toleranceInDegrees = true;
+        return;
+    }
+    storage.tolerance = s.number("tolerance", std::nullopt, 0.0, 1e6, true);
 }
 
 // The name, source, output and map settings of an asset made from a file.

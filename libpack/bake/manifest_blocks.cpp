@@ -26,7 +26,7 @@ std::string layoutFix(PixelType type, Layout layout) {
         return "set layout = \"plain\" beside it, which the viewer filters in hardware; or pixel_type = \"half\" or "
                "\"uint16\" to keep the packed layout";
     if (layout == Layout::Rgb) return "set layout = \"xy\" beside it; the shader rebuilds z";
-    if (type == PixelType::Bc4) return "for xy normals set pixel_type = \"bc5\"";
+    if (type == PixelType::Bc4 || isAstcHdrType(type)) return "for xy normals set pixel_type = \"bc5\" or an LDR \"astc-NxN\"";
     return "for plain heights set pixel_type = \"bc4\"";
 }
 
@@ -38,6 +38,7 @@ std::string layoutProblem(PixelType type, Layout layout) {
     if (layout == Layout::Rgb) return "a block format holds xy normals (two channels), not rgb";
     if (type == PixelType::Bc4 && layout != Layout::Plain) return "bc4 holds one channel: plain heights";
     if (type == PixelType::Bc5 && layout != Layout::Xy) return "bc5 holds two channels: xy normals";
+    if (isAstcHdrType(type) && layout != Layout::Plain) return "ASTC HDR holds one channel: plain heights";
     return {};
 }
 

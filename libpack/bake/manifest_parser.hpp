@@ -43,6 +43,7 @@ private:
     // inherited tolerance and allow_block_compression. mipChain: false for a ramp, which takes neither
     // auto nor a block format.
     void pixelType(Section& s, MapSettings& out, bool mipChain);
+    void tolerance(Section& s, TextureStorage& storage);
     // The layout key of a [[displacement]] (heights: neighbour4, plain) or [normals] (rgb, xy) table.
     Layout layout(Section& s, bool heights);
     // Whether settings' pixel type (or, under auto, allow_block_compression) suits a map of this layout in

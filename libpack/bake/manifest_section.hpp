@@ -48,6 +48,7 @@ public:
 
     int line() const { return std::max(1, lineOf(table_)); }
     const std::string& prefix() const { return prefix_; }
+    ManifestTable kind() const { return kind_; }
     std::string key(const std::string& k) const { return shorten(prefix_.empty() ? k : prefix_ + "." + k); }
 
     // The error at line: with a hint of its own, or without one pointing at the reference.

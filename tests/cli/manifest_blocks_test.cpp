@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "heightpack/bake/material_sampler.hpp"
+#include "heightpack/io/gpu_texture.hpp"
 #include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
@@ -287,6 +288,47 @@ TEST(ManifestBlocks, AutoChoosesABlockFormatExactlyWithinTheTolerance) {
                 EXPECT_EQ(type, readJson(plainAuto + "/material.json")["displacement"][0]["texture"].value("pixelType", "float"));
                 passedOver += type != "bc4";
             }
+        }
+    }
+    EXPECT_EQ(chosen, 3);
+    EXPECT_EQ(passedOver, 3);
+}
+
+// [normals] tolerance = "Xdeg" chooses as normal --tolerance Xdeg does: in a DDS (bc5 its one block format
+// for normals) bc5 at 1.1 times bc5's worst angle, measured here from the decoded file against the float
+// build, and another type at 0.9 times; every stored normal lies within the angle either way.
+TEST(ManifestBlocks, NormalsTakeAToleranceInDegrees) {
+    ScratchDir dir;
+    int chosen = 0, passedOver = 0;
+    for (const std::string& map : kMaps) {
+        SCOPED_TRACE(map);
+        auto text = [&](const std::string& storage) {
+            return "format = 1\nname = \"sea\"\n[defaults]\ntileable = false\ncontainer = \"dds\"\n"
+                   "[[displacement]]\nname = \"swell\"\nsource = \"" + corpus(map) + "\"\ntile_size = 64.0\n"
+                   "[normals]\nsource = \"" + corpus(map) + "\"\ntile_size = 8.0\nheight = 0.5\nlayout = \"xy\"\n" + storage + "\n";
+        };
+        const std::string floats = buildMaterial(dir, "float", text(""));
+        auto worstAngle = [&](const std::string& path) {
+            const auto stored = readGpuTexture(path), given = readGpuTexture(floats + "/normals.dds");
+            EXPECT_TRUE(stored && given);
+            double worst = 0.0;
+            for (size_t l = 0; stored && given && l < stored->levels.size(); ++l)
+                for (int y = 0; y < stored->levels[l].height; ++y)
+                    for (int x = 0; x < stored->levels[l].width; ++x)
+                        worst = std::max(worst, angleDegrees(stored->levels[l].at(x, y, 0), stored->levels[l].at(x, y, 1),
+                                                             given->levels[l].at(x, y, 0), given->levels[l].at(x, y, 1)));
+            return worst;
+        };
+        const double bc5 = worstAngle(buildMaterial(dir, "bc5", text("pixel_type = \"bc5\"")) + "/normals.dds");
+        ASSERT_GT(bc5, 0.0);
+        for (const double factor : {0.9, 1.1}) {
+            char tolerance[64];
+            std::snprintf(tolerance, sizeof tolerance, "tolerance = \"%.6gdeg\"", bc5 * factor);
+            const std::string picked = buildMaterial(dir, "picked", text(std::string("pixel_type = \"auto\"\n") + tolerance +
+                                                                         "\nallow_block_compression = true"));
+            const std::string type = readJson(picked + "/material.json")["normals"]["texture"].value("pixelType", "float");
+            EXPECT_LE(worstAngle(picked + "/normals.dds"), bc5 * factor) << type;
+            (factor > 1.0 ? chosen : passedOver) += (type == "bc5") == (factor > 1.0);
         }
     }
     EXPECT_EQ(chosen, 3);
