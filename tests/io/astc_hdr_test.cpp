@@ -75,13 +75,13 @@ Image astcencHdrDecode(const ScratchDir& dir, const std::string& blocksHex, int 
     return out;
 }
 
-// The family: the corpus's height maps, the example seas, two 64x64 crops of the seas (cut by oiiotool)
+// The family: the corpus's height maps, choppy and ripple whole, two 64x64 crops of swell and choppy (cut by oiiotool)
 // and analytic fields (a smooth wave, a steep periodic ridge, fine noise over a slow swell), as 16-bit PNGs.
 std::vector<std::string> hdrFamily(const ScratchDir& dir) {
     const std::string root = HEIGHTPACK_SOURCE_DIR;
     std::vector<std::string> maps;
     for (const char* name : {"tests/corpus/trigger_grass_heightmap.png", "tests/corpus/trigger_greenland_heightmap.png",
-                             "tests/corpus/trigger_mud_heightmap.png", "examples/maps/swell.png", "examples/maps/choppy.png",
+                             "tests/corpus/trigger_mud_heightmap.png", "examples/maps/choppy.png",
                              "examples/maps/ripple.png"})
         maps.push_back(root + "/" + name);
     for (const char* sea : {"swell", "choppy"}) {
@@ -202,7 +202,7 @@ TEST(AstcHdrFormats, AstcencDecodesHdrHeightsWithinTheRecordedErrorOverTheFamily
         }
     }
     std::printf("G and B differ from R by up to %.3g of the range\n", greenBlueSpread);
-    EXPECT_EQ(maps, 11);
+    EXPECT_EQ(maps, 10);
     EXPECT_GE(levelsJudged, 200);
 }
 
