@@ -1,9 +1,11 @@
 // Planning a block-compressed chain: the blocks are encoded once, when the plan is made, so the error
 // they decode with is known before anything is written and the writer stores exactly what was measured.
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "heightpack/core/parallel.hpp"
 #include "texel_encode.hpp"
@@ -41,32 +43,61 @@ struct LevelError {
     double worstDegrees = 0.0, squareDegrees = 0.0;
 };
 
-// The error decoded (offset + scale * unorm) makes against given, row by row on all threads, summed in
-// row order so the sums are the same on any thread count.
-LevelError measure(const Image& given, const Image& decoded, const Normalisation& n, int threads) {
-    std::vector<LevelError> rows(static_cast<size_t>(given.height));
-    parallelFor(given.height, threads, [&](int begin, int end) {
-        for (int y = begin; y < end; ++y) {
-            LevelError& e = rows[size_t(y)];
-            for (int x = 0; x < given.width; ++x) {
-                double value[2] = {0, 0}, back[2] = {0, 0};
-                for (int c = 0; c < given.channels; ++c) {
-                    value[c] = given.at(x, y, c);
-                    back[c] = double(n.offset) + double(n.scale) * double(decoded.at(x, y, c));
-                    const double d = std::fabs(back[c] - value[c]);
-                    e.worst = std::max(e.worst, d);
-                    e.squares += d * d;
-                    e.count += 1.0;
-                }
-                if (given.channels == 2) {
-                    double a[3], b[3];
-                    normalOf(value[0], value[1], a);
-                    normalOf(back[0], back[1], b);
-                    const double degrees = angleBetween(a, b) * kDegreesPerRadian;
-                    e.worstDegrees = std::max(e.worstDegrees, degrees);
-                    e.squareDegrees += degrees * degrees;
-                }
+// The error of `decoded` (offset + scale * unorm) against `given`, one row of `width` texels, added to e.
+void measureRow(const float* given, const float* decoded, int width, int channels, const Normalisation& n, LevelError& e) {
+    for (int x = 0; x < width; ++x) {
+        double value[2] = {0, 0}, back[2] = {0, 0};
+        for (int c = 0; c < channels; ++c) {
+            value[c] = given[x * channels + c];
+            back[c] = double(n.offset) + double(n.scale) * double(decoded[x * channels + c]);
+            const double d = std::fabs(back[c] - value[c]);
+            e.worst = std::max(e.worst, d);
+            e.squares += d * d;
+            e.count += 1.0;
+        }
+        if (channels == 2) {
+            double a[3], b[3];
+            normalOf(value[0], value[1], a);
+            normalOf(back[0], back[1], b);
+            const double degrees = angleBetween(a, b) * kDegreesPerRadian;
+            e.worstDegrees = std::max(e.worstDegrees, degrees);
+            e.squareDegrees += degrees * degrees;
+        }
+    }
+}
+
+// The error the level's blocks decode with against its values, a row of blocks at a time on all threads:
+// the values refilled and the blocks decoded a band at a time (no second and third copy of the level),
+// the rows' sums added in row order so they are the same on any thread count. ASTC is decoded whole first
+// (astcenc decodes an image, not a block).
+LevelError measureLevel(const ChainToWrite& content, int layer, int level, int w, int h, const std::vector<std::uint8_t>& blocks,
+                        BlockFormat format, int channels, const Normalisation& n, int threads) {
+    std::vector<LevelError> rows(static_cast<size_t>(h));
+    const int side = blockSide(format), down = (h + side - 1) / side, across = (w + side - 1) / side;
+    const std::optional<Image> whole = isAstc(format) ? std::optional(decodeBlocks(blocks.data(), w, h, format, channels))
+                                                      : std::nullopt;
+    parallelFor(down, threads, [&](int begin, int end) {
+        std::vector<float> given(size_t(side) * size_t(w) * size_t(channels)), decoded(given.size());
+        for (int by = begin; by < end; ++by) {
+            const int y0 = by * side, bandRows = std::min(side, h - y0);
+            fillLayerRows(content, layer, level, y0, bandRows, given.data());
+            const float* back = decoded.data();
+            if (whole) {
+                back = whole->row(y0);
+            } else {
+                float v[16];
+                for (int bx = 0; bx < across; ++bx)
+                    for (int c = 0; c < channels; ++c) {
+                        decodeBc4Block(blocks.data() + (size_t(by) * size_t(across) + size_t(bx)) * size_t(blockBytes(format)) + size_t(c) * 8, v);
+                        for (int i = 0; i < 16; ++i) {
+                            const int x = bx * 4 + i % 4, y = i / 4;
+                            if (x < w && y < bandRows) decoded[(size_t(y) * size_t(w) + size_t(x)) * size_t(channels) + size_t(c)] = v[i];
+                        }
+                    }
             }
+            const size_t rowValues = size_t(w) * size_t(channels);
+            for (int r = 0; r < bandRows; ++r)
+                measureRow(given.data() + size_t(r) * rowValues, back + size_t(r) * rowValues, w, channels, n, rows[size_t(y0 + r)]);
         }
     });
     LevelError total;
@@ -104,11 +135,12 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
     for (int layer = 0; layer < content.layerCount(); ++layer)
         for (int level = 0; level < plan.levels; ++level) {
             const int w = mipLevelSide(content.width, level), h = mipLevelSide(content.height, level);
-            Image given(w, h, channels);
-            fillLayerRows(content, layer, level, 0, h, given.pixels.data());
-            for (const float v : given.pixels)
+            // The level's values in the blocks' units, converted where they are filled: measureLevel fills
+            // them again, a band at a time, rather than keeping a second copy of the level.
+            Image unorm(w, h, channels);
+            fillLayerRows(content, layer, level, 0, h, unorm.pixels.data());
+            for (const float v : unorm.pixels)
                 if (!std::isfinite(v)) return nonFiniteLevel(path, level);
-            Image unorm = given;
             for (float& v : unorm.pixels) v = float((double(v) - n.offset) / n.scale);
             // Two channels are xy normals: chosen together by the angle, in the normal's units (ASTC by
             // astcenc's normal-map mode).
@@ -117,8 +149,7 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
             out.images.push_back(encodeBlocks(unorm, format, threads, normals));
             if (out.images.back().size() != blockImageBytes(w, h, format))
                 return Error{ErrorKind::Internal, path, "internal error: the ASTC encoder failed", "please report this"};
-            const Image decoded = decodeBlocks(out.images.back().data(), w, h, format, channels);
-            const LevelError e = measure(given, decoded, n, threads);
+            const LevelError e = measureLevel(content, layer, level, w, h, out.images.back(), format, channels, n, threads);
             LevelError& sum = errors[size_t(level)];
             sum.worst = std::max(sum.worst, e.worst);
             sum.squares += e.squares;
