@@ -138,9 +138,14 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
         }
         return a <= b ? std::pair{a, b} : std::pair{b, a};
     };
-    // Each pair tried is added to out; the one of least squared error is kept in best.
-    Tried best;
+    // Each pair tried is added to out; the one of least squared error is kept in best. The last pair
+    // scored is kept too: the window around the fit starts at it, and scores are not worked out twice.
+    Tried best, last{-1, -1};
     bool any = false;
+    auto scored = [&](int e0, int e1) {
+        if (e0 != last.e0 || e1 != last.e1) last = score(rows, e0, e1);
+        return last;
+    };
     // Every pair within r of (c0, c1) but those within skipR of (skip0, skip1), a window already tried.
     auto around = [&](int c0, int c1, int r, int skip0, int skip1, int skipR) {
         for (int d0 = -r; d0 <= r; ++d0)
@@ -150,7 +155,7 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
                 if (std::abs(a - skip0) <= skipR && std::abs(b - skip1) <= skipR) continue;
                 const auto [e0, e1] = ordered(a, b);
                 if (e0 < 0 || !worthScoring(rows, e0, e1, out)) continue;
-                const Tried t = score(rows, e0, e1);
+                const Tried t = scored(e0, e1);
                 out.add(t);
                 if (!any || t.error < best.error) best = t, any = true;
             }
@@ -159,7 +164,8 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
     if (eightValues && hiCode == loCode) hiCode < 255 ? ++hiCode : --loCode;
     around(hiCode, loCode, window.range, -99, -99, 0);  // the range's ends: what bounds the worst error
     if (!any) return;
-    // Least squares from the best codes so far, until the rounded endpoints stop moving.
+    // Least squares from the best codes so far, until the rounded endpoints stop moving. A round that
+    // does not improve on best ends it: the next would fit the same codes to the same endpoints.
     int e0 = best.e0, e1 = best.e1;
     for (int round = 0; round < 3; ++round) {
         double a, b;
@@ -167,9 +173,10 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
         const auto [n0, n1] = ordered(toEndpoint(a), toEndpoint(b));
         if (n0 < 0 || (n0 == e0 && n1 == e1)) break;
         e0 = n0, e1 = n1;
-        if (!worthScoring(rows, e0, e1, out)) continue;
-        const Tried t = score(rows, e0, e1);
-        if (t.error < best.error) best = t;
+        if (!worthScoring(rows, e0, e1, out)) break;
+        const Tried t = scored(e0, e1);
+        if (!(t.error < best.error)) break;
+        best = t;
     }
     // The window around the fit, less what the first window tried (in either order of the endpoints).
     if (eightValues ? e0 > e1 : e0 <= e1)
