@@ -140,7 +140,7 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
     };
     // Each pair tried is added to out; the one of least squared error is kept in best. The last pair
     // scored is kept too: the window around the fit starts at it, and scores are not worked out twice.
-    Tried best, last{-1, -1};
+    Tried best{}, last{-1, -1, 0.0f, 0.0f};
     bool any = false;
     auto scored = [&](int e0, int e1) {
         if (e0 != last.e0 || e1 != last.e1) last = score(rows, e0, e1);
