@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <utility>
 
 namespace heightpack::bc4 {
@@ -138,9 +139,14 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
         }
         return a <= b ? std::pair{a, b} : std::pair{b, a};
     };
-    // Each pair tried is added to out; the one of least squared error is kept in best.
-    Tried best;
+    // Each pair tried is added to out; the one of least squared error is kept in best. The last pair
+    // scored is kept too: the window around the fit starts at it, and scores are not worked out twice.
+    Tried best{}, last{-1, -1, 0.0f, 0.0f};
     bool any = false;
+    auto scored = [&](int e0, int e1) {
+        if (e0 != last.e0 || e1 != last.e1) last = score(rows, e0, e1);
+        return last;
+    };
     // Every pair within r of (c0, c1) but those within skipR of (skip0, skip1), a window already tried.
     auto around = [&](int c0, int c1, int r, int skip0, int skip1, int skipR) {
         for (int d0 = -r; d0 <= r; ++d0)
@@ -150,7 +156,7 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
                 if (std::abs(a - skip0) <= skipR && std::abs(b - skip1) <= skipR) continue;
                 const auto [e0, e1] = ordered(a, b);
                 if (e0 < 0 || !worthScoring(rows, e0, e1, out)) continue;
-                const Tried t = score(rows, e0, e1);
+                const Tried t = scored(e0, e1);
                 out.add(t);
                 if (!any || t.error < best.error) best = t, any = true;
             }
@@ -159,7 +165,8 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
     if (eightValues && hiCode == loCode) hiCode < 255 ? ++hiCode : --loCode;
     around(hiCode, loCode, window.range, -99, -99, 0);  // the range's ends: what bounds the worst error
     if (!any) return;
-    // Least squares from the best codes so far, until the rounded endpoints stop moving.
+    // Least squares from the best codes so far, until the rounded endpoints stop moving. A round that
+    // does not improve on best ends it: the next would fit the same codes to the same endpoints.
     int e0 = best.e0, e1 = best.e1;
     for (int round = 0; round < 3; ++round) {
         double a, b;
@@ -167,9 +174,10 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
         const auto [n0, n1] = ordered(toEndpoint(a), toEndpoint(b));
         if (n0 < 0 || (n0 == e0 && n1 == e1)) break;
         e0 = n0, e1 = n1;
-        if (!worthScoring(rows, e0, e1, out)) continue;
-        const Tried t = score(rows, e0, e1);
-        if (t.error < best.error) best = t;
+        if (!worthScoring(rows, e0, e1, out)) break;
+        const Tried t = scored(e0, e1);
+        if (!(t.error < best.error)) break;
+        best = t;
     }
     // The window around the fit, less what the first window tried (in either order of the endpoints).
     if (eightValues ? e0 > e1 : e0 <= e1)
@@ -219,32 +227,29 @@ const Tried& leastError(const Candidates& c) {
 }
 
 std::array<std::uint8_t, 16> codesOf(const float v[16], int e0, int e1, float decoded[16]) {
-    static constexpr std::uint8_t kEightOrder[8] = {0, 2, 3, 4, 5, 6, 7, 1};  // code at each step from e0
-    static constexpr std::uint8_t kSixOrder[6] = {0, 2, 3, 4, 5, 1};
     const bool eight = e0 > e1;
-    const std::uint8_t* order = eight ? kEightOrder : kSixOrder;
     const float steps = eight ? 7.0f : 5.0f;
     const float r0 = kTables.unit[e0], perStep = steps * kTables.perCode[e1 - e0 + 255];
     const Lanes at0 = splat(r0), step = splat((kTables.unit[e1] - r0) / steps), n = splat(steps), zero = splat(0.0f);
+    const IntLanes none{0, 0, 0, 0}, one{1, 1, 1, 1}, six{6, 6, 6, 6}, seven{7, 7, 7, 7};
     const Rows rows(v);
     std::array<std::uint8_t, 16> codes{};
     for (int r = 0; r < 4; ++r) {
         const Lanes x = rows.row[r];
         const Lanes k = roundUp(min(max((x - at0) * perStep, zero), n));
         Lanes value = at0 + k * step;
-        // The six-value mode's fixed 0 when nearer, then its 1 when nearer still.
-        Lanes toZero = zero, toOne = zero;
+        // The code at step k from e0: 0 at e0, 1 at e1, k + 1 between (both modes).
+        const IntLanes steps = __builtin_convertvector(k, IntLanes);
+        IntLanes code = steps == none ? none : k == n ? one : steps + one;
         if (!eight) {
+            // The six-value mode's fixed 0 (code 6) when nearer, then its 1 (code 7) when nearer still.
             const Lanes d = abs(x - value);
-            toZero = x < d ? splat(1.0f) : zero;
-            toOne = (1.0f - x) < min(d, x) ? splat(1.0f) : zero;
-            value = toOne > 0.0f ? splat(1.0f) : toZero > 0.0f ? zero : value;
+            const IntLanes toZero = x < d, toOne = (1.0f - x) < min(d, x);
+            value = toOne ? splat(1.0f) : toZero ? zero : value;
+            code = toOne ? seven : toZero ? six : code;
         }
-        for (int i = 0; i < 4; ++i) {
-            const std::uint8_t code = toOne[i] > 0.0f ? 7 : toZero[i] > 0.0f ? 6 : order[int(k[i])];
-            codes[size_t(4 * r + i)] = code;
-            if (decoded) decoded[4 * r + i] = value[i];
-        }
+        for (int i = 0; i < 4; ++i) codes[size_t(4 * r + i)] = std::uint8_t(code[i]);
+        if (decoded) std::memcpy(decoded + 4 * r, &value, sizeof value);
     }
     return codes;
 }

@@ -10,10 +10,11 @@
 namespace heightpack::bc4 {
 
 // An endpoint pair tried (e0 > e1: eight interpolated values; e0 <= e1: six with 0 and 1), the squared
-// error of the block's values decoded with it and the worst.
+// error of the block's values decoded with it and the worst. No member initialisers: a block's
+// Candidates would otherwise write all 96 before trying a few.
 struct Tried {
-    int e0 = 0, e1 = 0;
-    float error = 0.0f, worst = 0.0f;
+    int e0, e1;
+    float error, worst;
 };
 
 // The pairs tried for a block, in the order tried, and the least worst error among them. With

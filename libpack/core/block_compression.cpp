@@ -41,15 +41,15 @@ constexpr float kWorstAngleWeight = 4.0f;
 
 // A channel's `count` candidates of least squared error (the first tried of equals first), with
 // their codes and their 16 decoded values as normal components: offset + scale * u.
-struct JointFit {
-    const bc4::Tried* tried = nullptr;
-    std::array<std::uint8_t, 16> codes{};
+struct JointFit {  // no member initialisers: a block makes 16 and fills one or a few
+    const bc4::Tried* tried;
+    std::array<std::uint8_t, 16> codes;
     lanes::Lanes component[4];
 };
 
 int leastSquaredFits(const float v[16], const bc4::Candidates& c, const NormalUnits& units, int count, JointFit out[kThoroughJointFits]) {
     const float offset = float(units.offset), scale = float(units.scale);
-    std::array<int, 96> order{};
+    std::array<int, 96> order;  // the first c.count filled
     for (int i = 0; i < c.count; ++i) order[size_t(i)] = i;
     const int n = std::min(c.count, count);
     std::partial_sort(order.begin(), order.begin() + n, order.begin() + c.count, [&](int a, int b) {

@@ -1,7 +1,9 @@
 #include "heightpack/core/normal.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <vector>
 
 #include "heightpack/core/parallel.hpp"
 
@@ -55,37 +57,57 @@ void crossWeights(SlopeKernel kernel, double& side, double& centre) {
 
 }  // namespace
 
-Image computeSlopes(const Image& heights, double texelX, double texelY, const NormalOptions& options) {
-    assert(heights.channels == 1);
-    const int w = heights.width, h = heights.height;
-    Image slopes(w, h, 2);
-    double side = 0, centre = 1;
-    crossWeights(options.kernel, side, centre);
-    const Wrap wrap = options.wrap;
-    const DifferenceTaps tx = differenceTaps(w, wrap), ty = differenceTaps(h, wrap);
-    // Across-direction neighbours (the smoothing taps) follow the wrap mode like every other tap.
-    const double scaleX = options.heightRange / texelX, scaleY = options.heightRange / texelY;
-    parallelFor(h, options.threads, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-            const float* rows[3] = {heights.row(wrapIndex(y - 1, h, wrap)), heights.row(y),
-                                    heights.row(wrapIndex(y + 1, h, wrap))};
-            const float* up = heights.row(ty.minus[y]);
-            const float* down = heights.row(ty.plus[y]);
-            const double invY = ty.inverseSpan[y];
-            float* out = slopes.row(y);
-            for (int x = 0; x < w; ++x) {
-                const int xm = tx.minus[x], xp = tx.plus[x];
-                double dx = centre * (double(rows[1][xp]) - rows[1][xm]);
-                double dy = centre * (double(down[x]) - up[x]);
-                if (side != 0.0) {
-                    const int xl = wrapIndex(x - 1, w, wrap), xr = wrapIndex(x + 1, w, wrap);
-                    dx += side * ((double(rows[0][xp]) - rows[0][xm]) + (double(rows[2][xp]) - rows[2][xm]));
-                    dy += side * ((double(down[xl]) - up[xl]) + (double(down[xr]) - up[xr]));
-                }
-                out[2 * x] = static_cast<float>(dx * tx.inverseSpan[x] * scaleX);
-                out[2 * x + 1] = static_cast<float>(dy * invY * scaleY);
+namespace {
+
+// The slopes of a height image, a row at a time: computeSlopes keeps them all, the normals use each row
+// as it is made (a 4096^2 level's slopes are 128 MB that are written once and read once).
+class SlopeRows {
+public:
+    SlopeRows(const Image& heights, double texelX, double texelY, const NormalOptions& options)
+        : heights_(heights), wrap_(options.wrap), tx_(differenceTaps(heights.width, options.wrap)),
+          ty_(differenceTaps(heights.height, options.wrap)), scaleX_(options.heightRange / texelX),
+          scaleY_(options.heightRange / texelY) {
+        assert(heights.channels == 1);
+        crossWeights(options.kernel, side_, centre_);
+    }
+
+    // Row y's slopes, x then y for each texel, into out (2 * width floats).
+    void row(int y, float* out) const {
+        const int w = heights_.width, h = heights_.height;
+        // Across-direction neighbours (the smoothing taps) follow the wrap mode like every other tap.
+        const float* rows[3] = {heights_.row(wrapIndex(y - 1, h, wrap_)), heights_.row(y), heights_.row(wrapIndex(y + 1, h, wrap_))};
+        const float* up = heights_.row(ty_.minus[y]);
+        const float* down = heights_.row(ty_.plus[y]);
+        const double invY = ty_.inverseSpan[y];
+        for (int x = 0; x < w; ++x) {
+            const int xm = tx_.minus[x], xp = tx_.plus[x];
+            double dx = centre_ * (double(rows[1][xp]) - rows[1][xm]);
+            double dy = centre_ * (double(down[x]) - up[x]);
+            if (side_ != 0.0) {
+                const int xl = wrapIndex(x - 1, w, wrap_), xr = wrapIndex(x + 1, w, wrap_);
+                dx += side_ * ((double(rows[0][xp]) - rows[0][xm]) + (double(rows[2][xp]) - rows[2][xm]));
+                dy += side_ * ((double(down[xl]) - up[xl]) + (double(down[xr]) - up[xr]));
             }
+            out[2 * x] = static_cast<float>(dx * tx_.inverseSpan[x] * scaleX_);
+            out[2 * x + 1] = static_cast<float>(dy * invY * scaleY_);
         }
+    }
+
+private:
+    const Image& heights_;
+    Wrap wrap_;
+    DifferenceTaps tx_, ty_;
+    double scaleX_, scaleY_;
+    double side_ = 0.0, centre_ = 1.0;
+};
+
+}  // namespace
+
+Image computeSlopes(const Image& heights, double texelX, double texelY, const NormalOptions& options) {
+    const SlopeRows slopeRows(heights, texelX, texelY, options);
+    Image slopes(heights.width, heights.height, 2);
+    parallelFor(heights.height, options.threads, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) slopeRows.row(y, slopes.row(y));
     });
     return slopes;
 }
@@ -104,25 +126,29 @@ namespace {
 
 Image normalsWithAlpha(const Image& heights, double texelX, double texelY, const NormalOptions& options,
                        const Image* moment) {
-    const Image slopes = computeSlopes(heights, texelX, texelY, options);
+    const SlopeRows slopeRows(heights, texelX, texelY, options);
     const int channels = options.alpha == NormalAlpha::None ? 3 : 4;
     Image normals(heights.width, heights.height, channels);
     // The surface z = h(x, y) has normal (-dh/dx, -dh/dy_up, 1). Rows run down the image, so the slope
     // toward the top is -dh/dy_down: OpenGL's green is +dh/dy_down; DirectX negates it.
     const double green = options.convention == NormalConvention::OpenGL ? 1.0 : -1.0;
     parallelFor(heights.height, options.threads, [&](int y0, int y1) {
-        const size_t end = size_t(y1) * heights.width;
-        for (size_t i = size_t(y0) * heights.width; i < end; ++i) {
-            const double sx = slopes.pixels[2 * i], sy = slopes.pixels[2 * i + 1];
-            const double inv = 1.0 / std::sqrt(sx * sx + sy * sy + 1.0);
-            float* n = &normals.pixels[i * channels];
-            n[0] = static_cast<float>(-sx * inv);
-            n[1] = static_cast<float>(green * sy * inv);
-            n[2] = static_cast<float>(inv);
-            if (options.alpha == NormalAlpha::Height) n[3] = heights.pixels[i];
-            if (options.alpha == NormalAlpha::SlopeVariance)
-                n[3] = moment ? static_cast<float>(std::max(0.0, double(moment->pixels[i]) - (sx * sx + sy * sy)))
-                              : 0.0f;
+        std::vector<float> slopes(2 * size_t(heights.width));
+        for (int y = y0; y < y1; ++y) {
+            slopeRows.row(y, slopes.data());
+            for (int x = 0; x < heights.width; ++x) {
+                const size_t i = size_t(y) * size_t(heights.width) + size_t(x);
+                const double sx = slopes[2 * size_t(x)], sy = slopes[2 * size_t(x) + 1];
+                const double inv = 1.0 / std::sqrt(sx * sx + sy * sy + 1.0);
+                float* n = &normals.pixels[i * channels];
+                n[0] = static_cast<float>(-sx * inv);
+                n[1] = static_cast<float>(green * sy * inv);
+                n[2] = static_cast<float>(inv);
+                if (options.alpha == NormalAlpha::Height) n[3] = heights.pixels[i];
+                if (options.alpha == NormalAlpha::SlopeVariance)
+                    n[3] = moment ? static_cast<float>(std::max(0.0, double(moment->pixels[i]) - (sx * sx + sy * sy)))
+                                  : 0.0f;
+            }
         }
     });
     return normals;

@@ -1,9 +1,15 @@
 // Planning a block-compressed chain: the blocks are encoded once, when the plan is made, so the error
 // they decode with is known before anything is written and the writer stores exactly what was measured.
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "heightpack/core/normal_angle.hpp"
 #include "heightpack/core/parallel.hpp"
@@ -13,37 +19,109 @@ namespace heightpack::detail {
 
 namespace {
 
+// Two texels at a time (GCC's vector extension: SSE2 on x86-64, plain code elsewhere): each lane takes
+// the same operations in the same order as one texel would, so the figures are those of texel-by-texel code.
+using Pair = double __attribute__((vector_size(16)));
+
+Pair sqrtOf(Pair a) {
+#if defined(__SSE2__)
+    return Pair(_mm_sqrt_pd(__m128d(a)));
+#else
+    return Pair{std::sqrt(a[0]), std::sqrt(a[1])};
+#endif
+}
+
+// The unit normals whose x and y are given, z rebuilt as the shader does (x, y past the unit circle: on it).
+void normalsOf(Pair x, Pair y, Pair n[3]) {
+    const Pair rr = x * x + y * y, zero{0.0, 0.0};
+    const auto inside = rr <= 1.0;
+    n[0] = x, n[1] = y, n[2] = sqrtOf(inside ? 1.0 - rr : zero);
+    if (inside[0] && inside[1]) return;  // nearly always: no square root and division more
+    const Pair r = sqrtOf(rr);
+    n[0] = inside ? x : x / r, n[1] = inside ? y : y / r;
+}
+
+// The angles between the normals of (ax, ay) and of (bx, by), 2 asin(|a - b| / 2): from the chord, which
+// (unlike the dot product's acos) keeps its precision at small angles; the series for those is what makes
+// a level's measurement cheap next to its encoding (|a - b| / 2 under 0.1: the next term is below 1e-11
+// radians).
+Pair anglesBetween(Pair ax, Pair ay, Pair bx, Pair by) {
+    Pair a[3], b[3];
+    normalsOf(ax, ay, a);
+    normalsOf(bx, by, b);
+    const Pair dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    const Pair h = 0.5 * sqrtOf(dx * dx + dy * dy + dz * dz), h2 = h * h;
+    Pair angle = 2.0 * h * (1.0 + h2 * (1.0 / 6.0 + h2 * (3.0 / 40.0 + h2 * (15.0 / 336.0 + h2 * (105.0 / 3456.0)))));
+    for (int i = 0; i < 2; ++i)
+        if (h[i] >= 0.1) angle[i] = 2.0 * std::asin(std::min(h[i], 1.0));
+    return angle;
+}
+
 struct LevelError {
     double worst = 0.0, squares = 0.0, count = 0.0;
     double worstDegrees = 0.0, squareDegrees = 0.0;
 };
 
-// The error decoded (offset + scale * unorm) makes against given, row by row on all threads, summed in
-// row order so the sums are the same on any thread count.
-LevelError measure(const Image& given, const Image& decoded, const Normalisation& n, int threads) {
-    std::vector<LevelError> rows(static_cast<size_t>(given.height));
-    parallelFor(given.height, threads, [&](int begin, int end) {
-        for (int y = begin; y < end; ++y) {
-            LevelError& e = rows[size_t(y)];
-            for (int x = 0; x < given.width; ++x) {
-                double value[2] = {0, 0}, back[2] = {0, 0};
-                for (int c = 0; c < given.channels; ++c) {
-                    value[c] = given.at(x, y, c);
-                    back[c] = double(n.offset) + double(n.scale) * double(decoded.at(x, y, c));
-                    const double d = std::fabs(back[c] - value[c]);
-                    e.worst = std::max(e.worst, d);
-                    e.squares += d * d;
-                    e.count += 1.0;
-                }
-                if (given.channels == 2) {
-                    double a[3], b[3];
-                    normalFromXy(value[0], value[1], a);
-                    normalFromXy(back[0], back[1], b);
-                    const double degrees = angleBetween(a, b) * kDegreesPerRadian;
-                    e.worstDegrees = std::max(e.worstDegrees, degrees);
-                    e.squareDegrees += degrees * degrees;
-                }
+// The error of `decoded` (offset + scale * unorm) against `given`, one row of `width` texels, added to e
+// texel by texel: two channels are a normal's x and y, whose angle is measured too.
+void measureRow(const float* given, const float* decoded, int width, int channels, const Normalisation& n, LevelError& e) {
+    const double offset = n.offset, scale = n.scale;
+    auto add = [&](double d) {
+        e.worst = std::max(e.worst, d);
+        e.squares += d * d;
+        e.count += 1.0;
+    };
+    if (channels == 1) {
+        for (int x = 0; x < width; ++x) add(std::fabs((offset + scale * double(decoded[x])) - double(given[x])));
+        return;
+    }
+    for (int x = 0; x < width; x += 2) {
+        const int x1 = std::min(x + 1, width - 1);  // a row's odd last texel in both lanes, counted once
+        const Pair gx{given[2 * x], given[2 * x1]}, gy{given[2 * x + 1], given[2 * x1 + 1]};
+        const Pair bx = offset + scale * Pair{decoded[2 * x], decoded[2 * x1]};
+        const Pair by = offset + scale * Pair{decoded[2 * x + 1], decoded[2 * x1 + 1]};
+        const Pair degrees = anglesBetween(gx, gy, bx, by) * kDegreesPerRadian;
+        for (int i = 0; i <= x1 - x; ++i) {
+            add(std::fabs(bx[i] - gx[i]));
+            add(std::fabs(by[i] - gy[i]));
+            e.worstDegrees = std::max(e.worstDegrees, degrees[i]);
+            e.squareDegrees += degrees[i] * degrees[i];
+        }
+    }
+}
+
+// The error the level's blocks decode with against its values, a row of blocks at a time on all threads:
+// the values refilled and the blocks decoded a band at a time (no second and third copy of the level),
+// the rows' sums added in row order so they are the same on any thread count. ASTC is decoded whole first
+// (astcenc decodes an image, not a block).
+LevelError measureLevel(const ChainToWrite& content, int layer, int level, int w, int h, const std::vector<std::uint8_t>& blocks,
+                        BlockFormat format, int channels, const Normalisation& n, int threads) {
+    std::vector<LevelError> rows(static_cast<size_t>(h));
+    const int side = blockSide(format), down = (h + side - 1) / side, across = (w + side - 1) / side;
+    const std::optional<Image> whole = isAstc(format) ? std::optional(decodeBlocks(blocks.data(), w, h, format, channels))
+                                                      : std::nullopt;
+    parallelFor(down, threads, [&](int begin, int end) {
+        std::vector<float> given(size_t(side) * size_t(w) * size_t(channels)), decoded(given.size());
+        for (int by = begin; by < end; ++by) {
+            const int y0 = by * side, bandRows = std::min(side, h - y0);
+            fillLayerRows(content, layer, level, y0, bandRows, given.data());
+            const float* back = decoded.data();
+            if (whole) {
+                back = whole->row(y0);
+            } else {
+                float v[16];
+                for (int bx = 0; bx < across; ++bx)
+                    for (int c = 0; c < channels; ++c) {
+                        decodeBc4Block(blocks.data() + (size_t(by) * size_t(across) + size_t(bx)) * size_t(blockBytes(format)) + size_t(c) * 8, v);
+                        for (int i = 0; i < 16; ++i) {
+                            const int x = bx * 4 + i % 4, y = i / 4;
+                            if (x < w && y < bandRows) decoded[(size_t(y) * size_t(w) + size_t(x)) * size_t(channels) + size_t(c)] = v[i];
+                        }
+                    }
             }
+            const size_t rowValues = size_t(w) * size_t(channels);
+            for (int r = 0; r < bandRows; ++r)
+                measureRow(given.data() + size_t(r) * rowValues, back + size_t(r) * rowValues, w, channels, n, rows[size_t(y0 + r)]);
         }
     });
     LevelError total;
@@ -84,11 +162,12 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
     for (int layer = 0; layer < content.layerCount(); ++layer)
         for (int level = 0; level < plan.levels; ++level) {
             const int w = mipLevelSide(content.width, level), h = mipLevelSide(content.height, level);
-            Image given(w, h, channels);
-            fillLayerRows(content, layer, level, 0, h, given.pixels.data());
-            for (const float v : given.pixels)
+            // The level's values in the blocks' units, converted where they are filled: measureLevel fills
+            // them again, a band at a time, rather than keeping a second copy of the level.
+            Image unorm(w, h, channels);
+            fillLayerRows(content, layer, level, 0, h, unorm.pixels.data());
+            for (const float v : unorm.pixels)
                 if (!std::isfinite(v)) return nonFiniteLevel(path, level);
-            Image unorm = given;
             for (float& v : unorm.pixels) v = float((double(v) - n.offset) / n.scale);
             // Two channels are xy normals: chosen together by the angle, in the normal's units (ASTC by
             // astcenc's normal-map mode).
@@ -97,8 +176,7 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
             out.images.push_back(encodeBlocks(unorm, format, threads, normals));
             if (out.images.back().size() != blockImageBytes(w, h, format))
                 return Error{ErrorKind::Internal, path, "internal error: the ASTC encoder failed", "please report this"};
-            const Image decoded = decodeBlocks(out.images.back().data(), w, h, format, channels);
-            const LevelError e = measure(given, decoded, n, threads);
+            const LevelError e = measureLevel(content, layer, level, w, h, out.images.back(), format, channels, n, threads);
             LevelError& sum = errors[size_t(level)];
             sum.worst = std::max(sum.worst, e.worst);
             sum.squares += e.squares;

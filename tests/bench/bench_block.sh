@@ -9,7 +9,11 @@
 #     bc4 and uint16, and `nvcompress -bc4` (load, its own mips, encode, write) of the same 8-bit PNG, and
 #     `normal --layout xy` in bc5 against `nvcompress -bc5` of an RG PNG; libsquish's of the same PNGs
 #     (tests/bench/squish_chain.cpp: load, 2x2 box mips, encode on one thread, write); medians of RUNS, wall
-#     and CPU;
+#     and CPU. The whole commands do different work around the encoding (heightpack makes the normals from
+#     the heights, filters its mips with a wider kernel and measures each level's decoded error; the others
+#     read an RG image and box-filter it), so the "encode" rows take from each block run the same tool's
+#     run without the encoding: heightpack's uint16 output of the same chain, `nvcompress -rgb`, squish_chain
+#     raw (differences of the medians);
 #  4. ASTC 4x4, 6x6, 8x8 against ARM's astcenc command line at the same preset (-medium) on the same
 #     SIZE x SIZE 8-bit map: level 0's worst and RMS error (units of the map's 0..1 values), both files'
 #     blocks decoded by `astcenc -dl`, and the encode time (heightpack: the whole chain; astcenc: level 0).
@@ -55,22 +59,43 @@ echo "3. encode time of a ${size}x${size} chain, $(nproc) cores, median of $runs
 oiiotool --pattern noise:type=gaussian:mean=0.5:stddev=0.15 "${size}x${size}" 1 --blur 9x9 --ch 0 -d uint8 -o "$work/map.png"
 oiiotool "$work/map.png" "$work/map.png" --chappend --ch 0,1,0 -d uint8 -o "$work/rg.png"
 printf '%-34s %10s %10s\n' run wall cpu
+# row KEY NAME COMMAND...: the medians of RUNS runs of COMMAND, printed and kept as wall_KEY and cpu_KEY.
+declare -A wall_of cpu_of
 row() {
-  local name=$1
-  shift
+  local key=$1 name=$2
+  shift 2
   : >"$work/log"
   for ((i = 0; i < runs; i++)); do measure "$work/log" "$@"; done
   read -r wall cpu _ < <(medians "$work/log")
+  wall_of[$key]=$wall cpu_of[$key]=$cpu
   printf '%-34s %10s %10s\n' "$name" "$wall" "$cpu"
 }
-row "heightpack pack uint16" "$hp" pack "$work/map.png" --layout plain --pixel-type uint16 --quiet -o "$work/u.ktx2"
-row "heightpack pack bc4" "$hp" pack "$work/map.png" --layout plain --pixel-type bc4 --quiet -o "$work/b.ktx2"
-row "nvcompress -bc4" nvcompress -bc4 "$work/map.png" "$work/nv4.dds"
-row "squish bc4 (one thread)" "$squish" bc4 "$work/map.png" "$work/sq4.bin"
-row "heightpack normal xy bc5" "$hp" normal "$work/map.png" --tile-size 8m --height 0.5m --layout xy --pixel-type bc5 \
+# encode NAME WITH WITHOUT: the difference of two rows' medians, the encoding's own time.
+encode() {
+  printf '%-34s %10s %10s\n' "$1" "$(awk -v a="${wall_of[$2]}" -v b="${wall_of[$3]}" 'BEGIN { printf "%.2f", a - b }')" \
+    "$(awk -v a="${cpu_of[$2]}" -v b="${cpu_of[$3]}" 'BEGIN { printf "%.2f", a - b }')"
+}
+row hu "heightpack pack uint16" "$hp" pack "$work/map.png" --layout plain --pixel-type uint16 --quiet -o "$work/u.ktx2"
+row h4 "heightpack pack bc4" "$hp" pack "$work/map.png" --layout plain --pixel-type bc4 --quiet -o "$work/b.ktx2"
+row nr "nvcompress -rgb" nvcompress -rgb "$work/map.png" "$work/nvr.dds"
+row n4 "nvcompress -bc4" nvcompress -bc4 "$work/map.png" "$work/nv4.dds"
+row sr "squish raw (no encoding)" "$squish" raw "$work/map.png" "$work/sqr.bin"
+row s4 "squish bc4 (one thread)" "$squish" bc4 "$work/map.png" "$work/sq4.bin"
+row hnu "heightpack normal xy uint16" "$hp" normal "$work/map.png" --tile-size 8m --height 0.5m --layout xy \
+  --pixel-type uint16 --quiet -o "$work/nu.ktx2"
+row hn5 "heightpack normal xy bc5" "$hp" normal "$work/map.png" --tile-size 8m --height 0.5m --layout xy --pixel-type bc5 \
   --quiet -o "$work/n.ktx2"
-row "nvcompress -bc5" nvcompress -bc5 "$work/rg.png" "$work/nv5.dds"
-row "squish bc5 (one thread)" "$squish" bc5 "$work/rg.png" "$work/sq5.bin"
+row nrr "nvcompress -rgb (RG image)" nvcompress -rgb "$work/rg.png" "$work/nvrr.dds"
+row n5 "nvcompress -bc5" nvcompress -bc5 "$work/rg.png" "$work/nv5.dds"
+row srr "squish raw (RG image)" "$squish" raw "$work/rg.png" "$work/sqrr.bin"
+row s5 "squish bc5 (one thread)" "$squish" bc5 "$work/rg.png" "$work/sq5.bin"
+echo "encode alone (block run less the same tool's run without encoding):"
+encode "  heightpack bc4 (- uint16)" h4 hu
+encode "  nvcompress -bc4 (- -rgb)" n4 nr
+encode "  squish bc4 (- raw)" s4 sr
+encode "  heightpack bc5 (- uint16)" hn5 hnu
+encode "  nvcompress -bc5 (- -rgb)" n5 nrr
+encode "  squish bc5 (- raw)" s5 srr
 
 echo
 echo "4. ASTC against astcenc -cl ... -medium on the same ${size}x${size} map (level 0, decoded by astcenc -dl;"

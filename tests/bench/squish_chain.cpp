@@ -1,7 +1,9 @@
 // libsquish's BC4 or BC5 of a whole mip chain, as bench_block.sh times nvcompress's: load an 8-bit image,
 // make its chain with a 2x2 box filter (nvcompress's default), encode every level, write the blocks.
-//   heightpack_squish_chain bc4|bc5 IN.png OUT.bin
-// BC4 takes the image's first channel, BC5 its first two. libsquish encodes on one thread.
+//   heightpack_squish_chain bc4|bc5|raw IN.png OUT.bin
+// BC4 takes the image's first channel, BC5 its first two. libsquish encodes on one thread. raw does all
+// but the encoding (it writes each level's RGBA texels): bench_block.sh takes its time from bc4's and
+// bc5's for the encoding's own.
 #include <squish.h>
 
 #include <OpenImageIO/imageio.h>
@@ -12,11 +14,12 @@
 #include <vector>
 
 int main(int argc, char** argv) {
-    if (argc != 4 || (std::string(argv[1]) != "bc4" && std::string(argv[1]) != "bc5")) {
-        std::fprintf(stderr, "usage: heightpack_squish_chain bc4|bc5 IN.png OUT.bin\n");
+    const std::string mode = argc == 4 ? argv[1] : "";
+    if (mode != "bc4" && mode != "bc5" && mode != "raw") {
+        std::fprintf(stderr, "usage: heightpack_squish_chain bc4|bc5|raw IN.png OUT.bin\n");
         return 2;
     }
-    const bool bc5 = std::string(argv[1]) == "bc5";
+    const bool bc5 = mode == "bc5", raw = mode == "raw";
     auto in = OIIO::ImageInput::open(argv[2]);
     if (!in) {
         std::fprintf(stderr, "heightpack_squish_chain: cannot read %s\n", argv[2]);
@@ -44,9 +47,13 @@ int main(int argc, char** argv) {
     }
     std::vector<unsigned char> blocks;
     for (;;) {
-        blocks.resize(size_t(squish::GetStorageRequirements(width, height, flags)));
-        squish::CompressImage(rgba.data(), width, height, blocks.data(), flags);
-        std::fwrite(blocks.data(), 1, blocks.size(), out);
+        if (raw) {
+            std::fwrite(rgba.data(), 1, rgba.size(), out);
+        } else {
+            blocks.resize(size_t(squish::GetStorageRequirements(width, height, flags)));
+            squish::CompressImage(rgba.data(), width, height, blocks.data(), flags);
+            std::fwrite(blocks.data(), 1, blocks.size(), out);
+        }
         if (width == 1 && height == 1) break;
         const int w = std::max(1, width / 2), h = std::max(1, height / 2);
         std::vector<squish::u8> next(size_t(w) * h * 4);
