@@ -113,8 +113,7 @@ MapSettings ManifestParser::settings(Section& s, const MapSettings& base) {
 // container is judged once both are known (blockFits, manifest_blocks.cpp).
 void ManifestParser::pixelType(Section& s, MapSettings& out, bool mipChain) {
     const std::string choices =
-        std::string("float, half, uint16") +
-        (mipChain ? ", bc4, bc5, astc-4x4, astc-6x6, astc-8x8, astc-hdr-4x4, astc-hdr-6x6, astc-hdr-8x8, auto" : "");
+        mipChain ? joinedNames<PixelType>() + ", auto" : std::string("float, half, uint16");
     if (const auto type = s.text("pixel_type")) {
         out.storage.allowBlockCompression = false;
         if (*type == "auto" && mipChain) {

@@ -67,7 +67,7 @@ TEST(ManifestContainers, UnknownValuesAndContradictionsAreManifestErrors) {
     };
     const Case cases[] = {
         {kHead + "[defaults]\ncontainer = \"png\"\n" + kSwell, "'defaults.container' is 'png', but must be one of: exr, ktx2, dds"},
-        {kHead + kSwell + "pixel_type = \"int8\"\n", "float, half, uint16, bc4, bc5, astc-4x4, astc-6x6, astc-8x8, auto"},
+        {kHead + kSwell + "pixel_type = \"int8\"\n", "float, half, uint16, bc4, bc5, astc-4x4, astc-6x6, astc-8x8, astc-hdr-4x4, astc-hdr-6x6, astc-hdr-8x8, auto"},
         {kHead + kSwell + "pixel_type = \"auto\"\n", "needs a tolerance"},
         {kHead + kSwell + "tolerance = 0.01\n", "pixel_type is not \"auto\""},
         {kHead + kSwell + "pixel_type = \"auto\"\ntolerance = -1.0\n", "tolerance"},
