@@ -22,6 +22,7 @@
 #include "heightpack/bake/material_sampler.hpp"
 #include "heightpack/io/gpu_texture.hpp"
 #include "support/heightpack_process.hpp"
+#include "support/block_oracles.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -35,67 +36,6 @@ const std::vector<std::string> kMaps = {"trigger_mud_heightmap.png", "trigger_gr
 
 std::string corpus(const std::string& name) { return std::string(HEIGHTPACK_SOURCE_DIR) + "/tests/corpus/" + name; }
 
-bool astcencInstalled() { return runProcess({"sh", "-c", "command -v astcenc"}).code == 0; }
-
-std::vector<unsigned char> hexBytes(const std::string& hex) {
-    std::vector<unsigned char> out;
-    for (size_t i = 0; i + 1 < hex.size(); i += 2) out.push_back((unsigned char)std::stoi(hex.substr(i, 2), nullptr, 16));
-    return out;
-}
-
-std::vector<double> numberList(const std::string& text) {
-    std::vector<double> out;
-    for (size_t at = 0; at < text.size();) {
-        const size_t comma = std::min(text.find(',', at), text.size());
-        out.push_back(std::stod(text.substr(at, comma - at)));
-        at = comma + 1;
-    }
-    return out;
-}
-
-// RGTC blocks decoded from the specification's table: channel c of texel (x, y) as a unorm in [0, 1],
-// `channels` (1: BC4, 2: BC5) per texel.
-Image rgtcDecode(const std::vector<unsigned char>& blocks, int width, int height, int channels) {
-    Image out(width, height, channels);
-    const int blockSize = 8 * channels, across = (width + 3) / 4;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            for (int c = 0; c < channels; ++c) {
-                const unsigned char* b = blocks.data() + size_t((y / 4) * across + x / 4) * blockSize + 8 * c;
-                std::uint64_t bits = 0;
-                for (int i = 5; i >= 0; --i) bits = bits * 256 + b[2 + i];
-                const int code = int((bits >> (3 * (4 * (y % 4) + x % 4))) & 7);
-                const double r0 = b[0], r1 = b[1];
-                double v;
-                if (code == 0) v = r0;
-                else if (code == 1) v = r1;
-                else if (b[0] > b[1]) v = ((8 - code) * r0 + (code - 1) * r1) / 7;
-                else if (code < 6) v = ((6 - code) * r0 + (code - 1) * r1) / 5;
-                else v = code == 6 ? 0.0 : 255.0;
-                out.at(x, y, c) = float(v / 255.0);
-            }
-    return out;
-}
-
-// astcenc -dl of one level's blocks (ARM's .astc header, then the blocks): RGBA in [0, 1] as its EXR holds
-// them (half: values within 2^-12).
-Image astcencDecode(const ScratchDir& dir, const std::string& blocksHex, int side, int width, int height) {
-    std::vector<unsigned char> file = {0x13, 0xAB, 0xA1, 0x5C, (unsigned char)side, (unsigned char)side, 1};
-    for (const int v : {width, height, 1})
-        for (int i = 0; i < 3; ++i) file.push_back((unsigned char)(v >> (8 * i)));
-    const std::vector<unsigned char> blocks = hexBytes(blocksHex);
-    file.insert(file.end(), blocks.begin(), blocks.end());
-    writeBytes(dir.file("level.astc"), file);
-    const ProcessResult r = runProcess({"astcenc", "-dl", dir.file("level.astc"), dir.file("level.exr"), "-silent"});
-    EXPECT_EQ(r.code, 0) << r.err << r.out;
-    auto in = OIIO::ImageInput::open(dir.file("level.exr"));
-    EXPECT_TRUE(in) << "astcenc wrote no EXR";
-    if (!in) return {};
-    const OIIO::ImageSpec& spec = in->spec();
-    Image out(spec.width, spec.height, spec.nchannels);
-    EXPECT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()));
-    return out;
-}
 constexpr double kHalfRounding = 1.0 / 4096.0;
 
 double angleDegrees(double x0, double y0, double x1, double y1) {
@@ -149,6 +89,7 @@ Decoded decodeBlocks(const ScratchDir& dir, const std::string& file, const std::
                 for (int c = 0; c < channels; ++c) unorm.pixels[t * channels + c] = rgba.pixels[t * 4 + (c == 0 ? 0 : 3)];
         } else {
             unorm = rgtcDecode(hexBytes(level["blocks"]), width, height, channels);
+            for (float& v : unorm.pixels) v /= 255.0f;
         }
         for (float& v : unorm.pixels) v = float(offset + scale * v);
         d.levels.push_back(std::move(unorm));

@@ -15,6 +15,7 @@
 
 #include "heightpack/io/gpu_texture.hpp"
 #include "support/heightpack_process.hpp"
+#include "support/block_oracles.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -24,8 +25,6 @@ using nlohmann::json;
 // A named namespace: the suites are compiled as one unity file, beside block_format_test's helpers.
 namespace astc_test {
 
-bool astcencInstalled() { return runProcess({"sh", "-c", "command -v astcenc"}).code == 0; }
-
 struct AstcSize {
     const char* pixelType;
     int side;
@@ -34,43 +33,6 @@ struct AstcSize {
 constexpr AstcSize kSizes[] = {{"astc-4x4", 4, "VK_FORMAT_ASTC_4x4_UNORM_BLOCK"},
                                {"astc-6x6", 6, "VK_FORMAT_ASTC_6x6_UNORM_BLOCK"},
                                {"astc-8x8", 8, "VK_FORMAT_ASTC_8x8_UNORM_BLOCK"}};
-
-std::vector<unsigned char> hexBytes(const std::string& hex) {
-    std::vector<unsigned char> out;
-    for (size_t i = 0; i + 1 < hex.size(); i += 2) out.push_back((unsigned char)std::stoi(hex.substr(i, 2), nullptr, 16));
-    return out;
-}
-
-std::vector<double> numberList(const std::string& text) {
-    std::vector<double> out;
-    for (size_t at = 0; at < text.size();) {
-        const size_t comma = std::min(text.find(',', at), text.size());
-        out.push_back(std::stod(text.substr(at, comma - at)));
-        at = comma + 1;
-    }
-    return out;
-}
-
-// astcenc -dl of one level's blocks, put in an .astc file (ARM's header: magic 0x5CA1AB13, the block's
-// dimensions, the image's as 24-bit words, then the blocks): RGBA as astcenc writes it into an EXR (half).
-Image astcencDecode(const ScratchDir& dir, const std::string& blocksHex, int side, int width, int height) {
-    std::vector<unsigned char> file = {0x13, 0xAB, 0xA1, 0x5C, (unsigned char)side, (unsigned char)side, 1};
-    for (const int v : {width, height, 1})
-        for (int i = 0; i < 3; ++i) file.push_back((unsigned char)(v >> (8 * i)));
-    const std::vector<unsigned char> blocks = hexBytes(blocksHex);
-    file.insert(file.end(), blocks.begin(), blocks.end());
-    writeBytes(dir.file("level.astc"), file);
-    const ProcessResult r = runProcess({"astcenc", "-dl", dir.file("level.astc"), dir.file("level.exr"), "-silent"});
-    EXPECT_EQ(r.code, 0) << r.err << r.out;
-    auto in = OIIO::ImageInput::open(dir.file("level.exr"));
-    EXPECT_TRUE(in) << "astcenc wrote no EXR";
-    if (!in) return {};
-    const OIIO::ImageSpec& spec = in->spec();
-    EXPECT_EQ(spec.nchannels, 4);
-    Image out(spec.width, spec.height, spec.nchannels);
-    EXPECT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()));
-    return out;
-}
 
 // The family's maps, each packed as they are (heightpack reads the PNG).
 std::vector<std::string> familyMaps() {

@@ -17,6 +17,7 @@
 
 #include "heightpack/io/gpu_texture.hpp"
 #include "support/heightpack_process.hpp"
+#include "support/block_oracles.hpp"
 #include "support/test_support.hpp"
 
 using namespace heightpack;
@@ -26,8 +27,6 @@ using nlohmann::json;
 // A named namespace: the suites are compiled as one unity file, beside astc_format_test's helpers.
 namespace astc_hdr_test {
 
-bool astcencHdrInstalled() { return runProcess({"sh", "-c", "command -v astcenc"}).code == 0; }
-
 struct HdrSize {
     const char* pixelType;
     int side;
@@ -36,44 +35,6 @@ struct HdrSize {
 constexpr HdrSize kHdrSizes[] = {{"astc-hdr-4x4", 4, "VK_FORMAT_ASTC_4x4_SFLOAT_BLOCK_EXT"},
                                  {"astc-hdr-6x6", 6, "VK_FORMAT_ASTC_6x6_SFLOAT_BLOCK_EXT"},
                                  {"astc-hdr-8x8", 8, "VK_FORMAT_ASTC_8x8_SFLOAT_BLOCK_EXT"}};
-
-std::vector<unsigned char> bytesOfHex(const std::string& hex) {
-    std::vector<unsigned char> out;
-    for (size_t i = 0; i + 1 < hex.size(); i += 2) out.push_back((unsigned char)std::stoi(hex.substr(i, 2), nullptr, 16));
-    return out;
-}
-
-std::vector<double> numbersOf(const std::string& text) {
-    std::vector<double> out;
-    for (size_t at = 0; at < text.size();) {
-        const size_t comma = std::min(text.find(',', at), text.size());
-        out.push_back(std::stod(text.substr(at, comma - at)));
-        at = comma + 1;
-    }
-    return out;
-}
-
-// astcenc -dh of one level's blocks in an .astc file (ARM's header: magic 0x5CA1AB13, the block's
-// dimensions, the image's as 24-bit words, then the blocks): RGBA as astcenc writes it into an EXR. The
-// HDR decode is a half float per channel, which the EXR holds as it is.
-Image astcencHdrDecode(const ScratchDir& dir, const std::string& blocksHex, int side, int width, int height) {
-    std::vector<unsigned char> file = {0x13, 0xAB, 0xA1, 0x5C, (unsigned char)side, (unsigned char)side, 1};
-    for (const int v : {width, height, 1})
-        for (int i = 0; i < 3; ++i) file.push_back((unsigned char)(v >> (8 * i)));
-    const std::vector<unsigned char> blocks = bytesOfHex(blocksHex);
-    file.insert(file.end(), blocks.begin(), blocks.end());
-    writeBytes(dir.file("level.astc"), file);
-    const ProcessResult r = runProcess({"astcenc", "-dh", dir.file("level.astc"), dir.file("level.exr"), "-silent"});
-    EXPECT_EQ(r.code, 0) << r.err << r.out;
-    auto in = OIIO::ImageInput::open(dir.file("level.exr"));
-    EXPECT_TRUE(in) << "astcenc wrote no EXR";
-    if (!in) return {};
-    const OIIO::ImageSpec& spec = in->spec();
-    EXPECT_EQ(spec.nchannels, 4);
-    Image out(spec.width, spec.height, spec.nchannels);
-    EXPECT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()));
-    return out;
-}
 
 // The family: the corpus's height maps, choppy and ripple whole, two 64x64 crops of swell and choppy (cut by oiiotool)
 // and analytic fields (a smooth wave, a steep periodic ridge, fine noise over a slow swell), as 16-bit PNGs.
@@ -153,7 +114,7 @@ TEST(AstcHdrFormats, KtxHoldsEveryLevelAsSfloatBlocks) {
 // endpoint modes for a grey block, whose G and B then differ from R (printed, not judged). The comparison
 // with LDR at the same bytes is tests/bench/bench_astc_hdr.sh's.
 TEST(AstcHdrFormats, AstcencDecodesHdrHeightsWithinTheRecordedErrorOverTheFamily) {
-    if (!independentReaderInstalled() || !astcencHdrInstalled())
+    if (!independentReaderInstalled() || !astcencInstalled())
         HEIGHTPACK_WITHOUT_ORACLE("ktx-parse or astcenc is not installed: run scripts/test.sh");
     ScratchDir dir;
     int levelsJudged = 0, maps = 0;
@@ -170,15 +131,15 @@ TEST(AstcHdrFormats, AstcencDecodesHdrHeightsWithinTheRecordedErrorOverTheFamily
             const json j = readIndependently(dir.file("a.ktx2"));
             const double offset = std::stod(j["keyValues"]["heightpack:normalisedOffset"].get<std::string>());
             const double scale = std::stod(j["keyValues"]["heightpack:normalisedScale"].get<std::string>());
-            const std::vector<double> worst = numbersOf(j["keyValues"]["heightpack:lookupError"]);
-            const std::vector<double> rms = numbersOf(j["keyValues"]["heightpack:rmsError"]);
+            const std::vector<double> worst = numberList(j["keyValues"]["heightpack:lookupError"]);
+            const std::vector<double> rms = numberList(j["keyValues"]["heightpack:rmsError"]);
             ASSERT_EQ(j["levels"].size(), floats->levels.size());
             ASSERT_EQ(worst.size(), floats->levels.size());
             // Both decoders give the block's half floats: only float arithmetic on the way back differs.
             const double slack = scale * 1e-6 + 1e-6;
             for (size_t level = 0; level < floats->levels.size(); ++level) {
                 const Image& given = floats->levels[level];
-                const Image decoded = astcencHdrDecode(dir, j["levels"][level]["blocks"], size.side, given.width, given.height);
+                const Image decoded = astcencDecode(dir, j["levels"][level]["blocks"], size.side, given.width, given.height, AstcProfile::Hdr);
                 ASSERT_EQ(decoded.width, given.width);
                 ASSERT_EQ(decoded.height, given.height);
                 double most = 0.0, squares = 0.0, notOpaque = 0.0;
