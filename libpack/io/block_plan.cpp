@@ -45,7 +45,7 @@ void normalsOf(Pair x, Pair y, Pair n[3]) {
 // (unlike the dot product's acos) keeps its precision at small angles; the series for those is what makes
 // a level's measurement cheap next to its encoding (|a - b| / 2 under 0.1: the next term is below 1e-11
 // radians).
-Pair anglesBetween(Pair ax, Pair ay, Pair bx, Pair by) {
+[[gnu::always_inline]] inline Pair anglesBetween(Pair ax, Pair ay, Pair bx, Pair by) {
     Pair a[3], b[3];
     normalsOf(ax, ay, a);
     normalsOf(bx, by, b);
