@@ -21,12 +21,14 @@ using namespace lanes;
 
 // A block's values as rows of lanes, each value's distance to the nearer of 0 and 1, and their range.
 struct Block {
-    Lanes row[4], toFixed[4];
+    Lanes row[4], toFixed[4], scaled[4];  // scaled: in 0..255 units, as least squares fits them
     float lo = 1.0f, hi = 0.0f;
     explicit Block(const float v[16]) {
         const Rows rows(v);
-        for (int r = 0; r < 4; ++r) row[r] = rows.row[r], toFixed[r] = min(row[r], 1.0f - row[r]);
-        for (int i = 0; i < 16; ++i) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+        for (int r = 0; r < 4; ++r) row[r] = rows.row[r], toFixed[r] = min(row[r], 1.0f - row[r]), scaled[r] = row[r] * 255.0f;
+        // A tree of four-lane minima and maxima: no chain of 16 (the least and largest do not depend on order).
+        lo = smallest(min(min(min(row[0], row[1]), min(row[2], row[3])), splat(1.0f)));
+        hi = largest(max(max(max(row[0], row[1]), max(row[2], row[3])), splat(0.0f)));
     }
 };
 
@@ -81,33 +83,75 @@ bool worthScoring(const Block& v, int e0, int e1, const Candidates& out) {
     return !out.onlyChoosable || worstBound(v, e0, e1) <= out.leastWorst + kWorstSlack + 1e-6f;
 }
 
-// The endpoints (in 0..255 units, unrounded) that fit v best by least squares for the codes that e0, e1
-// give them (as score assigns them; the six-value mode's fixed 0 and 1 take no part).
+// The least-squares fit of a block's values (in 0..255 units) to the codes that e0, e1 give them (as score
+// assigns them, but through its own reciprocal of the pair's span; the six-value mode's fixed 0 and 1
+// take no part): where a row goes along the pair, and the sums of its weights and values.
+struct FitAlong {
+    bool eight;
+    Lanes at0, at1, n, inv, perStep;
+    FitAlong(int e0, int e1) {
+        const float r0 = kTables.unit[e0], r1 = kTables.unit[e1];  // e / 255.0f
+        eight = e0 > e1;
+        const float steps = eight ? 7.0f : 5.0f;
+        at0 = splat(r0), at1 = splat(r1), n = splat(steps), inv = splat(eight ? 1.0f / 7.0f : 1.0f / 5.0f);
+        perStep = splat(e0 == e1 ? 0.0f : steps / (r1 - r0));
+    }
+};
+struct FitSums {
+    float aa, ab, bb, av, bv;
+};
+
+// Row r of v (at `along` from e0) added to the sums aa, ab, bb, av, bv (in that order in sums).
+inline void addFitRow(const FitAlong& f, const Block& v, int r, Lanes along, Lanes sums[5]) {
+    const Lanes x = v.row[r], zero = splat(0.0f);
+    const Lanes k = roundUp(min(max(along * f.perStep, zero), f.n));
+    Lanes w = k * f.inv, u = 1.0f - w;
+    if (!f.eight) {
+        const auto interpolated = abs(x - (f.at0 * (f.n - k) + f.at1 * k) * f.inv) <= v.toFixed[r];
+        w = interpolated ? w : zero, u = interpolated ? u : zero;
+    }
+    sums[0] += u * u, sums[1] += u * w, sums[2] += w * w, sums[3] += u * v.scaled[r], sums[4] += w * v.scaled[r];
+}
+
+FitSums summed(const Lanes sums[5]) { return {sum(sums[0]), sum(sums[1]), sum(sums[2]), sum(sums[3]), sum(sums[4])}; }
+
+// The fitted endpoints (0..255 units, unrounded), or false when the codes give no fit.
+bool solve(const FitSums& s, double& a, double& b) {
+    const float det = s.aa * s.bb - s.ab * s.ab;
+    if (det <= 1e-4f * s.aa * s.bb) return false;  // all texels at one weight, but for rounding
+    const float inverse = 1.0f / det;
+    a = (s.av * s.bb - s.bv * s.ab) * inverse;
+    b = (s.bv * s.aa - s.av * s.ab) * inverse;
+    return true;
+}
+
 bool leastSquares(const Block& v, int e0, int e1, double& a, double& b) {
-    const float r0 = float(e0) / 255.0f, r1 = float(e1) / 255.0f;
+    const FitAlong f(e0, e1);
+    Lanes sums[5] = {};
+    for (int r = 0; r < 4; ++r) addFitRow(f, v, r, v.row[r] - f.at0, sums);
+    return solve(summed(sums), a, b);
+}
+
+// score and the least-squares sums of the same pair in one pass over the values (each with its own
+// operations, so both are exactly theirs): the search fits each pair it keeps as best.
+Tried scoreAndFit(const Block& v, int e0, int e1, FitSums& fit) {
     const bool eight = e0 > e1;
     const float steps = eight ? 7.0f : 5.0f;
-    const float perStep = e0 == e1 ? 0.0f : steps / (r1 - r0);
-    const Lanes at0 = splat(r0), at1 = splat(r1), n = splat(steps), inv = splat(1.0f / steps), zero = splat(0.0f);
-    Lanes aa = zero, ab = zero, bb = zero, av = zero, bv = zero;
-    for (const Lanes& x : v.row) {
-        const Lanes k = roundUp(min(max((x - at0) * perStep, zero), n));
-        Lanes w = k * inv, u = 1.0f - w;
-        if (!eight) {
-            const Lanes d = abs(x - (at0 * (n - k) + at1 * k) * inv);
-            const auto interpolated = d <= min(x, 1.0f - x);
-            w = interpolated ? w : zero, u = interpolated ? u : zero;
-        }
-        const Lanes scaled = x * 255.0f;
-        aa += u * u, ab += u * w, bb += w * w, av += u * scaled, bv += w * scaled;
+    const float r0 = kTables.unit[e0], perStep = steps * kTables.perCode[e1 - e0 + 255];
+    const Lanes at0 = splat(r0), step = splat((kTables.unit[e1] - r0) / steps), n = splat(steps), zero = splat(0.0f);
+    const FitAlong f(e0, e1);
+    Lanes squares = zero, worst = zero, sums[5] = {};
+    for (int r = 0; r < 4; ++r) {
+        const Lanes x = v.row[r], along = x - at0;
+        const Lanes k = roundUp(min(max(along * perStep, zero), n));
+        Lanes d = abs(x - (at0 + k * step));
+        if (!eight) d = min(d, v.toFixed[r]);
+        squares += d * d;
+        worst = max(worst, d);
+        addFitRow(f, v, r, along, sums);
     }
-    const float saa = sum(aa), sab = sum(ab), sbb = sum(bb), sav = sum(av), sbv = sum(bv);
-    const float det = saa * sbb - sab * sab;
-    if (det <= 1e-4f * saa * sbb) return false;  // all texels at one weight, but for rounding
-    const float inverse = 1.0f / det;
-    a = (sav * sbb - sbv * sab) * inverse;
-    b = (sbv * saa - sav * sab) * inverse;
-    return true;
+    fit = summed(sums);
+    return {e0, e1, sum(squares), largest(worst)};
 }
 
 // How far from the range's ends, and from the least-squares fit, the endpoint pairs tried go, in codes,
@@ -122,14 +166,16 @@ int toEndpoint(double x) { return x >= 0.0 ? int(std::min(x, 255.0) + 0.5) : 0; 
 // The candidates of one mode: eight values (e0 > e1) or six with 0 and 1 (e0 <= e1). Every pair within
 // window.range of the values' range (the six-value mode's without those nearer 0 or 1 than to it), and
 // within window.fit of the least-squares endpoints for the best codes of those.
-void fitMode(const float v[16], const Block& rows, bool eightValues, Windows window, Candidates& out) {
+void fitMode(const Block& rows, bool eightValues, Windows window, Candidates& out) {
     float lo = rows.lo, hi = rows.hi;
     if (!eightValues) {
         // Values close to 0 or 1 can take the fixed codes: the endpoints then span the rest.
-        float innerLo = 1.0f, innerHi = 0.0f;
-        for (int i = 0; i < 16; ++i)
-            if (v[i] > 0.5f / 255.0f && v[i] < 254.5f / 255.0f) innerLo = std::min(innerLo, v[i]), innerHi = std::max(innerHi, v[i]);
-        if (innerLo <= innerHi) lo = innerLo, hi = innerHi;
+        Lanes innerLo = splat(1.0f), innerHi = splat(0.0f);
+        for (const Lanes& x : rows.row) {
+            const auto inner = x > 0.5f / 255.0f && x < 254.5f / 255.0f;
+            innerLo = min(innerLo, inner ? x : splat(1.0f)), innerHi = max(innerHi, inner ? x : splat(0.0f));
+        }
+        if (smallest(innerLo) <= largest(innerHi)) lo = smallest(innerLo), hi = largest(innerHi);
     }
     auto ordered = [&](int a, int b) {
         // Eight values need e0 > e1: the larger endpoint first; six need e0 <= e1.
@@ -141,10 +187,15 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
     };
     // Each pair tried is added to out; the one of least squared error is kept in best. The last pair
     // scored is kept too: the window around the fit starts at it, and scores are not worked out twice.
+    // With it, the least-squares sums of the last pair when it was scored with them (withSums).
     Tried best{}, last{-1, -1, 0.0f, 0.0f};
-    bool any = false;
-    auto scored = [&](int e0, int e1) {
-        if (e0 != last.e0 || e1 != last.e1) last = score(rows, e0, e1);
+    FitSums lastFit{};
+    bool any = false, lastHasFit = false;
+    auto scored = [&](int e0, int e1, bool withSums) {
+        if (e0 != last.e0 || e1 != last.e1) {
+            last = withSums ? scoreAndFit(rows, e0, e1, lastFit) : score(rows, e0, e1);
+            lastHasFit = withSums;
+        }
         return last;
     };
     // Every pair within r of (c0, c1) but those within skipR of (skip0, skip1), a window already tried.
@@ -156,7 +207,7 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
                 if (std::abs(a - skip0) <= skipR && std::abs(b - skip1) <= skipR) continue;
                 const auto [e0, e1] = ordered(a, b);
                 if (e0 < 0 || !worthScoring(rows, e0, e1, out)) continue;
-                const Tried t = scored(e0, e1);
+                const Tried t = scored(e0, e1, r == 0);  // a window of one: least squares starts from it
                 out.add(t);
                 if (!any || t.error < best.error) best = t, any = true;
             }
@@ -170,12 +221,14 @@ void fitMode(const float v[16], const Block& rows, bool eightValues, Windows win
     int e0 = best.e0, e1 = best.e1;
     for (int round = 0; round < 3; ++round) {
         double a, b;
-        if (!leastSquares(rows, best.e0, best.e1, a, b)) break;
+        const bool fitted = lastHasFit && best.e0 == last.e0 && best.e1 == last.e1 ? solve(lastFit, a, b)
+                                                                                 : leastSquares(rows, best.e0, best.e1, a, b);
+        if (!fitted) break;
         const auto [n0, n1] = ordered(toEndpoint(a), toEndpoint(b));
         if (n0 < 0 || (n0 == e0 && n1 == e1)) break;
         e0 = n0, e1 = n1;
         if (!worthScoring(rows, e0, e1, out)) break;
-        const Tried t = scored(e0, e1);
+        const Tried t = scored(e0, e1, true);
         if (!(t.error < best.error)) break;
         best = t;
     }
@@ -202,10 +255,10 @@ std::array<float, 8> palette(int e0, int e1) {
 void search(const float v[16], bool thorough, Candidates& out) {
     const Block rows(v);
     const Windows window = thorough ? kThorough : kQuick;
-    fitMode(v, rows, true, window, out);
+    fitMode(rows, true, window, out);
     // The six-value mode's fixed 0 and 1 help a block with values near them; elsewhere its five steps
     // between the endpoints are coarser than the eight-value mode's seven, and it is not tried.
-    if (rows.lo < 16.0f / 255.0f || rows.hi > 239.0f / 255.0f || out.count == 0) fitMode(v, rows, false, window, out);
+    if (rows.lo < 16.0f / 255.0f || rows.hi > 239.0f / 255.0f || out.count == 0) fitMode(rows, false, window, out);
 }
 
 const Tried& choose(const Candidates& c) {

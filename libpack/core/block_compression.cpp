@@ -50,12 +50,16 @@ struct JointFit {  // no member initialisers: a block makes 16 and fills one or 
 int leastSquaredFits(const float v[16], const bc4::Candidates& c, const NormalUnits& units, int count, JointFit out[kThoroughJointFits]) {
     const float offset = float(units.offset), scale = float(units.scale);
     std::array<int, 96> order;  // the first c.count filled
-    for (int i = 0; i < c.count; ++i) order[size_t(i)] = i;
     const int n = std::min(c.count, count);
-    std::partial_sort(order.begin(), order.begin() + n, order.begin() + c.count, [&](int a, int b) {
-        const float ea = c.tried[size_t(a)].error, eb = c.tried[size_t(b)].error;
-        return ea < eb || (ea == eb && a < b);
-    });
+    if (n == 1) {
+        order[0] = int(&bc4::leastError(c) - c.tried.data());  // the same first of equals
+    } else {
+        for (int i = 0; i < c.count; ++i) order[size_t(i)] = i;
+        std::partial_sort(order.begin(), order.begin() + n, order.begin() + c.count, [&](int a, int b) {
+            const float ea = c.tried[size_t(a)].error, eb = c.tried[size_t(b)].error;
+            return ea < eb || (ea == eb && a < b);
+        });
+    }
     for (int i = 0; i < n; ++i) {
         JointFit& f = out[i];
         f.tried = &c.tried[size_t(order[size_t(i)])];
@@ -153,6 +157,8 @@ float encodeBc5Block(const float x[16], const float y[16], const NormalUnits& un
     // A pair stops being summed once what it has is no less than the best cost: the rest only adds.
     float best = 1e30f, bestWorst = 0.0f;
     int bi = 0, bj = 0;
+    // One pair (quickly): nothing to beat, and no early end to check for.
+    const bool several = nx * ny > 1;
     for (int i = 0; i < nx; ++i)
         for (int j = 0; j < ny; ++j) {
             Lanes sumChord = splat(0.0f), worst = splat(0.0f);
@@ -163,7 +169,7 @@ float encodeBc5Block(const float x[16], const float y[16], const NormalUnits& un
                 const Lanes chord = sqrt(dx * dx + dy * dy + dz * dz);
                 sumChord += chord;
                 worst = max(worst, chord);
-                beaten = sum(sumChord) + kWorstAngleWeight * largest(worst) >= best;
+                beaten = several && sum(sumChord) + kWorstAngleWeight * largest(worst) >= best;
             }
             if (beaten) continue;
             best = sum(sumChord) + kWorstAngleWeight * largest(worst);

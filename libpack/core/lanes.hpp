@@ -29,6 +29,7 @@ inline Lanes sqrt(Lanes a) {
 // The lanes' sum in a fixed order, and their largest.
 inline float sum(Lanes a) { return (a[0] + a[1]) + (a[2] + a[3]); }
 inline float largest(Lanes a) { return std::max(std::max(a[0], a[1]), std::max(a[2], a[3])); }
+inline float smallest(Lanes a) { return std::min(std::min(a[0], a[1]), std::min(a[2], a[3])); }
 
 // A block's 16 values (texel (x, y) at 4y + x) as four rows of four lanes.
 struct Rows {

@@ -45,7 +45,7 @@ void normalsOf(Pair x, Pair y, Pair n[3]) {
 // (unlike the dot product's acos) keeps its precision at small angles; the series for those is what makes
 // a level's measurement cheap next to its encoding (|a - b| / 2 under 0.1: the next term is below 1e-11
 // radians).
-Pair anglesBetween(Pair ax, Pair ay, Pair bx, Pair by) {
+[[gnu::always_inline]] inline Pair anglesBetween(Pair ax, Pair ay, Pair bx, Pair by) {
     Pair a[3], b[3];
     normalsOf(ax, ay, a);
     normalsOf(bx, by, b);
@@ -75,18 +75,34 @@ void measureRow(const float* given, const float* decoded, int width, int channel
         for (int x = 0; x < width; ++x) add(std::fabs((offset + scale * double(decoded[x])) - double(given[x])));
         return;
     }
-    for (int x = 0; x < width; x += 2) {
-        const int x1 = std::min(x + 1, width - 1);  // a row's odd last texel in both lanes, counted once
-        const Pair gx{given[2 * x], given[2 * x1]}, gy{given[2 * x + 1], given[2 * x1 + 1]};
-        const Pair bx = offset + scale * Pair{decoded[2 * x], decoded[2 * x1]};
-        const Pair by = offset + scale * Pair{decoded[2 * x + 1], decoded[2 * x1 + 1]};
-        const Pair degrees = anglesBetween(gx, gy, bx, by) * kDegreesPerRadian;
-        for (int i = 0; i <= x1 - x; ++i) {
+    // Texels (x, x + 1) in a and (x + 2, x + 3) in b: the two pairs' square roots overlap; added in
+    // texel order, as below.
+    auto addPair = [&](Pair gx, Pair gy, Pair bx, Pair by, Pair degrees, int lanes) {
+        for (int i = 0; i < lanes; ++i) {
             add(std::fabs(bx[i] - gx[i]));
             add(std::fabs(by[i] - gy[i]));
             e.worstDegrees = std::max(e.worstDegrees, degrees[i]);
             e.squareDegrees += degrees[i] * degrees[i];
         }
+    };
+    int x = 0;
+    for (; x + 4 <= width; x += 4) {
+        const float* g = given + 2 * x;
+        const float* d = decoded + 2 * x;
+        const Pair gxa{g[0], g[2]}, gya{g[1], g[3]}, gxb{g[4], g[6]}, gyb{g[5], g[7]};
+        const Pair bxa = offset + scale * Pair{d[0], d[2]}, bya = offset + scale * Pair{d[1], d[3]};
+        const Pair bxb = offset + scale * Pair{d[4], d[6]}, byb = offset + scale * Pair{d[5], d[7]};
+        const Pair degreesA = anglesBetween(gxa, gya, bxa, bya) * kDegreesPerRadian;
+        const Pair degreesB = anglesBetween(gxb, gyb, bxb, byb) * kDegreesPerRadian;
+        addPair(gxa, gya, bxa, bya, degreesA, 2);
+        addPair(gxb, gyb, bxb, byb, degreesB, 2);
+    }
+    for (; x < width; x += 2) {
+        const int x1 = std::min(x + 1, width - 1);  // a row's odd last texel in both lanes, counted once
+        const Pair gx{given[2 * x], given[2 * x1]}, gy{given[2 * x + 1], given[2 * x1 + 1]};
+        const Pair bx = offset + scale * Pair{decoded[2 * x], decoded[2 * x1]};
+        const Pair by = offset + scale * Pair{decoded[2 * x + 1], decoded[2 * x1 + 1]};
+        addPair(gx, gy, bx, by, anglesBetween(gx, gy, bx, by) * kDegreesPerRadian, x1 - x + 1);
     }
 }
 
@@ -166,9 +182,10 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
             // them again, a band at a time, rather than keeping a second copy of the level.
             Image unorm(w, h, channels);
             fillLayerRows(content, layer, level, 0, h, unorm.pixels.data());
-            for (const float v : unorm.pixels)
+            for (float& v : unorm.pixels) {  // one pass: a non-finite value ends it, and the level is not kept
                 if (!std::isfinite(v)) return nonFiniteLevel(path, level);
-            for (float& v : unorm.pixels) v = float((double(v) - n.offset) / n.scale);
+                v = float((double(v) - n.offset) / n.scale);
+            }
             // Two channels are xy normals: chosen together by the angle, in the normal's units (ASTC by
             // astcenc's normal-map mode).
             const std::optional<NormalUnits> normals =
