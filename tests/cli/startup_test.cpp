@@ -53,7 +53,7 @@ std::string ownErrors(const std::string& err) {
 
 TEST(Startup, PngExrKtx2AndDdsMapNoOpenImageIO) {
 #ifdef HEIGHTPACK_OIIO_AT_START
-    GTEST_SKIP() << "a fuzz build maps OpenImageIO at start-up (libpack/CMakeLists.txt)";
+    GTEST_SKIP() << "a sanitizer build maps OpenImageIO at start-up (libpack/CMakeLists.txt)";
 #endif
     ScratchDir dir;
     const std::string png = dir.file("map.png");
