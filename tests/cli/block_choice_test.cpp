@@ -16,8 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "heightpack/io/gpu_texture.hpp"
-
+#include "support/block_oracles.hpp"
 #include "support/heightpack_process.hpp"
 #include "support/test_support.hpp"
 
@@ -145,43 +144,6 @@ TEST(BlockChoice, Bc5IsChosenForXyNormalsWithinTheTolerance) {
     }
 }
 
-namespace {
-
-// The angle in degrees between normals given as x, y (z rebuilt as the shader does: sqrt(1 - x^2 - y^2),
-// or on the horizon past the unit circle), by atan2 of the cross and dot products: another formula than
-// the library's chord.
-double angleDegrees(double ax, double ay, double bx, double by) {
-    auto unit = [](double x, double y, double n[3]) {
-        const double rr = x * x + y * y;
-        const double r = rr > 1.0 ? std::sqrt(rr) : 1.0;
-        n[0] = x / r, n[1] = y / r, n[2] = std::sqrt(std::max(0.0, 1.0 - rr));
-    };
-    double a[3], b[3];
-    unit(ax, ay, a);
-    unit(bx, by, b);
-    const double cross[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    const double sine = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
-    return std::atan2(sine, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * 180.0 / M_PI;
-}
-
-// The worst angle over every level between a stored xy normal map and the float one.
-double worstAngle(const std::string& stored, const std::string& reference) {
-    const auto a = heightpack::readGpuTexture(stored), b = heightpack::readGpuTexture(reference);
-    EXPECT_TRUE(a && b);
-    if (!a || !b) return 0.0;
-    EXPECT_EQ(a->levels.size(), b->levels.size());
-    double worst = 0.0;
-    for (size_t level = 0; level < std::min(a->levels.size(), b->levels.size()); ++level) {
-        const heightpack::Image &s = a->levels[level], &r = b->levels[level];
-        for (int y = 0; y < s.height; ++y)
-            for (int x = 0; x < s.width; ++x)
-                worst = std::max(worst, angleDegrees(s.at(x, y, 0), s.at(x, y, 1), r.at(x, y, 0), r.at(x, y, 1)));
-    }
-    return worst;
-}
-
-}  // namespace
-
 // --tolerance in degrees (issue 39): the type chosen for xy normals is the fewest bytes whose every stored
 // normal lies within that angle of its own, the angle measured here from the files (decoded by the reader,
 // whose BC5 the GPU tests hold to Mesa's) against the float chain: over example and corpus maps at
@@ -204,7 +166,7 @@ TEST(BlockChoice, AToleranceInDegreesBoundsTheAngleOfEveryStoredNormal) {
         std::map<std::string, double> angle;  // each type's worst angle, measured here
         for (const char* type : {"bc5", "half", "uint16"}) {
             runJson(with({"--pixel-type", type, "-o", dir.file(std::string(type) + ".dds")}));
-            angle[type] = worstAngle(dir.file(std::string(type) + ".dds"), dir.file("float.dds"));
+            angle[type] = worstXyAngleDegrees(dir.file(std::string(type) + ".dds"), dir.file("float.dds"));
         }
         for (const double t : {0.01, 0.5, 2.0, 10.0}) {
             char tolerance[32];
@@ -212,7 +174,7 @@ TEST(BlockChoice, AToleranceInDegreesBoundsTheAngleOfEveryStoredNormal) {
             const json picked = runJson(with({"--pixel-type", "auto", "--allow-block-compression", "--tolerance", tolerance,
                                               "-o", dir.file("picked.dds")}));
             const std::string type = picked["pixelType"];
-            const double measured = worstAngle(dir.file("picked.dds"), dir.file("float.dds"));
+            const double measured = worstXyAngleDegrees(dir.file("picked.dds"), dir.file("float.dds"));
             EXPECT_LE(measured, t) << tolerance << " " << type;
             EXPECT_EQ(picked["toleranceDegrees"], t);
             if (type != "float") {

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+
+#include "heightpack/io/gpu_texture.hpp"
 
 namespace heightpack::test {
 
@@ -65,6 +68,40 @@ Image astcencDecode(const ScratchDir& dir, const std::string& blocksHex, int sid
     Image out(spec.width, spec.height, spec.nchannels);
     EXPECT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()));
     return out;
+}
+
+namespace {
+
+double xyAngleDegrees(double ax, double ay, double bx, double by) {
+    auto unit = [](double x, double y, double n[3]) {
+        const double rr = x * x + y * y;
+        const double r = rr > 1.0 ? std::sqrt(rr) : 1.0;
+        n[0] = x / r, n[1] = y / r, n[2] = std::sqrt(std::max(0.0, 1.0 - rr));
+    };
+    double a[3], b[3];
+    unit(ax, ay, a);
+    unit(bx, by, b);
+    const double cross[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    const double sine = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
+    return std::atan2(sine, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * 180.0 / M_PI;
+}
+
+}  // namespace
+
+double worstXyAngleDegrees(const std::string& stored, const std::string& reference) {
+    const auto a = readGpuTexture(stored), b = readGpuTexture(reference);
+    EXPECT_TRUE(a) << stored;
+    EXPECT_TRUE(b) << reference;
+    if (!a || !b) return 0.0;
+    EXPECT_EQ(a->levels.size(), b->levels.size());
+    double worst = 0.0;
+    for (size_t level = 0; level < std::min(a->levels.size(), b->levels.size()); ++level) {
+        const Image &s = a->levels[level], &r = b->levels[level];
+        for (int y = 0; y < s.height; ++y)
+            for (int x = 0; x < s.width; ++x)
+                worst = std::max(worst, xyAngleDegrees(s.at(x, y, 0), s.at(x, y, 1), r.at(x, y, 0), r.at(x, y, 1)));
+    }
+    return worst;
 }
 
 }  // namespace heightpack::test

@@ -29,4 +29,10 @@ enum class AstcProfile { Ldr, Hdr };
 Image astcencDecode(const ScratchDir& dir, const std::string& blocksHex, int side, int width, int height,
                     AstcProfile profile = AstcProfile::Ldr);
 
+// The worst angle in degrees, over every texel of every level, between the xy normals of two KTX2 or DDS
+// files as heightpack's reader decodes them (z rebuilt as the shader does: sqrt(1 - x^2 - y^2), or on the
+// horizon past the unit circle), by atan2 of the cross and dot products: another formula than the
+// library's chord.
+double worstXyAngleDegrees(const std::string& stored, const std::string& reference);
+
 }  // namespace heightpack::test

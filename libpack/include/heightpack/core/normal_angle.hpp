@@ -1,5 +1,6 @@
 // The angle between two normals as a shader sees them: the measure of a normal map's stored error in
-// degrees (block formats' decoded texels, half and uint16 texels under --tolerance in degrees).
+// degrees for half and uint16 texels (worstAngleErrorDegrees). Block formats' decoded texels are measured
+// by the same formulas two texels at a time (io/block_plan.cpp), which keeps to this one's operations.
 #pragma once
 
 #include <algorithm>
