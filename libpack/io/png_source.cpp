@@ -2,13 +2,16 @@
 // (png_fast.hpp) and presented as OpenImageIO 2.4 presents them (channel Y, colour space sRGB, each text
 // chunk an attribute in file order), so a process that reads only such PNGs never loads the format module.
 // Anything else (colour, alpha, a palette, a chunk OpenImageIO turns into attributes of its own, a text key
-// it renames, a damaged chunk) is left to OpenImageIO, and so is data that does not inflate: what a bad
+// it renames or decodes, a damaged chunk) is left to OpenImageIO, and so is data that does not inflate: what a bad
 // file is told stays the same.
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "format_module_loader.hpp"
@@ -31,6 +34,27 @@ SourceAttribute pngTextAttribute(std::string name, std::string text) {
     a.hasNumber = !a.text.empty() && end == a.text.c_str() + a.text.size();
     a.number = a.hasNumber ? v : 0.0f;
     return a;
+}
+
+bool sameIgnoringCase(std::string_view a, std::string_view b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+               return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+           });
+}
+
+// Whether OpenImageIO makes the text chunk key = value an attribute of that name and text, after those
+// before it (`so far`): not a key it renames or decodes (a description, author, title, XMP or Exif), not a
+// name already there (it would replace that one in place, ignoring case), not text libpng cuts at a NUL,
+// and within what libpng keeps (keys of 1 to 79 bytes; a few chunks of modest size). oiiotool's Software
+// and Exif:ImageHistory are kept, so the maps it writes are read here.
+bool keptAsWritten(const std::string& key, const std::string& value, const std::vector<SourceAttribute>& soFar) {
+    constexpr size_t kMostTextChunks = 64, kLongestText = 1 << 16;
+    if (key.empty() || key.size() > 79 || value.size() > kLongestText || soFar.size() > kMostTextChunks) return false;
+    if (value.find('\0') != std::string::npos) return false;
+    for (const char* special : {"Description", "Author", "Title", "XML:com.adobe.xmp", "Raw profile type exif",
+                                "oiio:UnassociatedAlpha"})
+        if (sameIgnoringCase(key, special)) return false;
+    return std::none_of(soFar.begin(), soFar.end(), [&](const SourceAttribute& a) { return sameIgnoringCase(a.name, key); });
 }
 
 class PngSource final : public ImageSource {
@@ -64,8 +88,9 @@ public:
                 const size_t keyLength = strnlen(text, length);
                 if (keyLength == length) return false;
                 const std::string key(text, keyLength);
-                if (key.rfind("heightpack:", 0) != 0 && key != "wrapmodes") return false;
-                spec_.extra_attribs.push_back(pngTextAttribute(key, std::string(text + keyLength + 1, length - keyLength - 1)));
+                std::string value(text + keyLength + 1, length - keyLength - 1);
+                if (!keptAsWritten(key, value, spec_.extra_attribs)) return false;
+                spec_.extra_attribs.push_back(pngTextAttribute(key, std::move(value)));
             } else if (type == "oFFs") {
                 if (seenData) return false;  // the image's offset, which OpenImageIO keeps out of the attributes
             } else if (type == "IDAT") {

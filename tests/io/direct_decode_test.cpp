@@ -15,6 +15,7 @@
 #include <OpenEXR/ImfVecAttribute.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <random>
 #include <string>
@@ -224,6 +225,72 @@ TEST(DirectDecode, GreyPngFamilyMatchesOpenImageIO) {
         expectSameSpec(direct->spec(), oiio->spec(), path);
         expectSameImage(*direct, *oiio, path);
     }
+}
+
+// Text chunks as other tools write them (oiiotool's Software and Exif:ImageHistory, free keys, numbers),
+// and those OpenImageIO renames, decodes or merges (Description, Author, Title, XMP, Exif, a key again in
+// another case, one of its own names): each file is read directly exactly as OpenImageIO reads it, or
+// left to it; the plain keys are always read directly.
+TEST(DirectDecode, GreyPngTextChunksMatchOpenImageIOOrAreLeftToIt) {
+    ScratchDir dir;
+    std::mt19937 rng(11);
+    const std::vector<std::pair<std::string, bool>> keys = {  // the key, and whether OpenImageIO keeps it as written
+        {"Software", true}, {"Exif:ImageHistory", true}, {"Comment", true}, {"Source", true}, {"heightpack:layout", true},
+        {"Copyright", true}, {"Creation Time", true}, {"Description", false}, {"author", false}, {"Title", false},
+        {"XML:com.adobe.xmp", false}, {"Raw profile type exif", false}, {"oiio:ColorSpace", false},
+        {"oiio:UnassociatedAlpha", false}};
+    const std::vector<std::string> values = {"OpenImageIO 2.4.7.1 : oiiotool --pattern noise 64x64 1 -o map.png", "42", "-1.5e3",
+                                             "", "Gaussian noise, blurred", "1 2"};
+    int direct = 0;
+    for (int i = 0; i < 120; ++i) {
+        const int width = 1 + int(rng() % 40), height = 1 + int(rng() % 40), bits = rng() % 2 ? 8 : 16;
+        std::vector<std::pair<std::string, std::string>> text;
+        bool plain = true;
+        for (size_t n = rng() % 4; n > 0; --n) {
+            auto [key, kept] = keys[rng() % keys.size()];
+            if (rng() % 5 == 0) std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return char(std::toupper(c)); });
+            for (const auto& [earlier, value] : text) kept = kept && !std::equal(key.begin(), key.end(), earlier.begin(), earlier.end(),
+                                                                        [](char a, char b) { return std::tolower(a) == std::tolower(b); });
+            plain = plain && kept;
+            text.emplace_back(key, values[rng() % values.size()]);
+        }
+        const std::string path = dir.file("text" + std::to_string(i) + ".png");
+        const std::vector<unsigned char> bytes = detail::encodeGreyPng(randomImage(width, height, unsigned(i)), bits, text, 1);
+        auto oiio = throughModule("png", bytes, path);
+        ASSERT_TRUE(oiio);
+        auto fast = detail::openPngDirectly(bytes, path);
+        if (plain) {
+            EXPECT_TRUE(fast) << path << " has only keys OpenImageIO keeps as written";
+        }
+        if (!fast) continue;
+        ++direct;
+        expectSameSpec(fast->spec(), oiio->spec(), path);
+        expectSameImage(*fast, *oiio, path);
+    }
+    EXPECT_GE(direct, 40);
+}
+
+// A map as oiiotool writes it (OpenImageIO's own PNG writer: an oFFs chunk, then Software and
+// Exif:ImageHistory) is read without the format module, as the module reads it.
+TEST(DirectDecode, OiiotoolPngIsReadDirectly) {
+    ScratchDir dir;
+    const std::string path = dir.file("oiiotool.png");
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(33, 17, 1, OIIO::TypeDesc::UINT8);
+    spec.attribute("Software", "OpenImageIO 2.4.7.1 : oiiotool --pattern noise 33x17 1 -d uint8 -o oiiotool.png");
+    spec.attribute("Exif:ImageHistory", "oiiotool --pattern noise 33x17 1 -d uint8 -o oiiotool.png");
+    const Image values = randomImage(33, 17, 3);
+    ASSERT_TRUE(out->open(path, spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, values.pixels.data()));
+    ASSERT_TRUE(out->close());
+    const std::vector<unsigned char> bytes = readBytes(path);
+    auto fast = detail::openPngDirectly(bytes, path);
+    ASSERT_TRUE(fast);
+    auto oiio = throughModule("png", bytes, path);
+    ASSERT_TRUE(oiio);
+    expectSameSpec(fast->spec(), oiio->spec(), path);
+    expectSameImage(*fast, *oiio, path);
 }
 
 TEST(DirectDecode, PngOutsideTheGreyFamilyIsLeftToOpenImageIO) {
