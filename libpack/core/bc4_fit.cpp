@@ -154,12 +154,11 @@ Tried scoreAndFit(const Block& v, int e0, int e1, FitSums& fit) {
     return {e0, e1, sum(squares), largest(worst)};
 }
 
-// How far from the range's ends, and from the least-squares fit, the endpoint pairs tried go, in codes,
-// searching quickly and thoroughly.
+// How far from the range's ends, and from the least-squares fit, the endpoint pairs tried go, in codes.
 struct Windows {
     int range, fit;
 };
-constexpr Windows kQuick{0, 0}, kThorough{1, 2};
+constexpr Windows kThorough{1, 2};
 
 int toEndpoint(double x) { return x >= 0.0 ? int(std::min(x, 255.0) + 0.5) : 0; }  // NaN: 0
 
@@ -252,9 +251,9 @@ std::array<float, 8> palette(int e0, int e1) {
     return p;
 }
 
-void search(const float v[16], bool thorough, Candidates& out) {
+void search(const float v[16], Candidates& out) {
     const Block rows(v);
-    const Windows window = thorough ? kThorough : kQuick;
+    const Windows window = kThorough;
     fitMode(rows, true, window, out);
     // The six-value mode's fixed 0 and 1 help a block with values near them; elsewhere its five steps
     // between the endpoints are coarser than the eight-value mode's seven, and it is not tried.
@@ -269,13 +268,6 @@ const Tried& choose(const Candidates& c) {
         const Tried& t = c.tried[size_t(i)];
         if (t.worst <= leastWorst + kWorstSlack && (!best || t.error < best->error)) best = &t;
     }
-    return *best;
-}
-
-const Tried& leastError(const Candidates& c) {
-    const Tried* best = &c.tried[0];
-    for (int i = 1; i < c.count; ++i)
-        if (c.tried[size_t(i)].error < best->error) best = &c.tried[size_t(i)];
     return *best;
 }
 

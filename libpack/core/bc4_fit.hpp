@@ -32,18 +32,14 @@ struct Candidates {
 // The 8 decoded values of endpoints e0, e1 (codes 0..7), as the specification's table computes them.
 std::array<float, 8> palette(int e0, int e1);
 
-// Tries endpoint pairs for the values v (in [0, 1]) into out: around the values' range and around the
-// least-squares fit to them, in the eight-value mode and, for blocks with values near 0 or 1, the six.
-// Quickly: the range's ends and the pairs within a code of the fit; thoroughly: within a code of the
-// range's ends and two of the fit.
-void search(const float v[16], bool thorough, Candidates& out);
+// Tries endpoint pairs for the values v (in [0, 1]) into out, thoroughly (the quick pass is
+// bc4_quick.hpp's): within a code of the values' range and within two of the least-squares fit to them,
+// in the eight-value mode and, for blocks with values near 0 or 1, the six.
+void search(const float v[16], Candidates& out);
 
 // The pair with the smallest squared error among those whose worst error is within a quarter code of
 // the smallest worst; the first of equals.
 const Tried& choose(const Candidates& c);
-
-// The pair of least squared error; the first of equals.
-const Tried& leastError(const Candidates& c);
 
 // Each value's code: its nearest entry of the palette of e0, e1; with decoded, the values they decode to.
 std::array<std::uint8_t, 16> codesOf(const float v[16], int e0, int e1, float decoded[16] = nullptr);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "bc4_fit.hpp"
+#include "bc4_quick.hpp"
 #include "heightpack/core/astc_compression.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "lanes.hpp"
@@ -15,25 +16,23 @@ namespace heightpack {
 
 namespace {
 
-// A block encoded quickly keeps its pair of least squared error (the RMS); thoroughly, the pair choose
-// takes (the worst error first). Returns the block's worst error.
-float encodeBc4Block(const float v[16], bool thorough, std::uint8_t* out) {
+// A block's pair in the thorough pass: the one choose takes (the worst error first).
+void encodeBc4Block(const float v[16], std::uint8_t* out) {
     float clamped[16];
     for (int i = 0; i < 16; ++i) clamped[i] = std::clamp(v[i], 0.0f, 1.0f);
     bc4::Candidates candidates;
-    candidates.onlyChoosable = thorough;
-    bc4::search(clamped, thorough, candidates);
-    const bc4::Tried& best = thorough ? bc4::choose(candidates) : bc4::leastError(candidates);
+    candidates.onlyChoosable = true;
+    bc4::search(clamped, candidates);
+    const bc4::Tried& best = bc4::choose(candidates);
     bc4::writeBlock(best.e0, best.e1, bc4::codesOf(clamped, best.e0, best.e1), out);
-    return best.worst;
 }
 
 // BC5 normals: each channel's candidates of least squared error, paired by the decoded normal's angle.
 // Not only those within a quarter code of the channel's least worst: a steep normal's rebuilt z turns a
 // small error in x or y into a large angle, so the worst angle is not where either channel's worst error is.
-// 8 a channel when thorough: 16 brings the family's worst angles down by another 4% in twice the time.
-// Quickly, each channel's least squared error alone (its medians stay below nvcompress's and squish's).
-constexpr int kThoroughJointFits = 8, kQuickJointFits = 1;
+// 8 a channel: 16 brings the family's worst angles down by another 4% in twice the time. (The quick pass
+// takes each channel's least squared error alone: its medians stay below nvcompress's and squish's.)
+constexpr int kJointFits = 8;
 // The pair's cost: the block's summed angle (as the chord between the unit normals) plus 4 times its
 // worst, which on the family of tests/io/block_format_test.cpp lowers the worst angles without raising
 // the medians.
@@ -47,19 +46,15 @@ struct JointFit {  // no member initialisers: a block makes 16 and fills one or 
     lanes::Lanes component[4];
 };
 
-int leastSquaredFits(const float v[16], const bc4::Candidates& c, const NormalUnits& units, int count, JointFit out[kThoroughJointFits]) {
+int leastSquaredFits(const float v[16], const bc4::Candidates& c, const NormalUnits& units, int count, JointFit out[kJointFits]) {
     const float offset = float(units.offset), scale = float(units.scale);
     std::array<int, 96> order;  // the first c.count filled
     const int n = std::min(c.count, count);
-    if (n == 1) {
-        order[0] = int(&bc4::leastError(c) - c.tried.data());  // the same first of equals
-    } else {
-        for (int i = 0; i < c.count; ++i) order[size_t(i)] = i;
-        std::partial_sort(order.begin(), order.begin() + n, order.begin() + c.count, [&](int a, int b) {
-            const float ea = c.tried[size_t(a)].error, eb = c.tried[size_t(b)].error;
-            return ea < eb || (ea == eb && a < b);
-        });
-    }
+    for (int i = 0; i < c.count; ++i) order[size_t(i)] = i;
+    std::partial_sort(order.begin(), order.begin() + n, order.begin() + c.count, [&](int a, int b) {
+        const float ea = c.tried[size_t(a)].error, eb = c.tried[size_t(b)].error;
+        return ea < eb || (ea == eb && a < b);
+    });
     for (int i = 0; i < n; ++i) {
         JointFit& f = out[i];
         f.tried = &c.tried[size_t(order[size_t(i)])];
@@ -95,8 +90,8 @@ constexpr float kComponentWeight = 3.0f;
 // The pair of codes (x's and y's) whose decoded normal is nearest the given one, for each texel whose
 // angle decides the block's worst: the pair need not be each channel's nearest value, since a steep
 // normal's rebuilt z weighs x and y together. A texel's angle never grows; the other texels keep the
-// channels' nearest values. 64 pairs a texel: for thorough blocks only. Returns the block's worst chord.
-float jointCodes(const float ux[16], const float uy[16], JointFit& fx, JointFit& fy, const Normals given[4], const NormalUnits& units) {
+// channels' nearest values. 64 pairs a texel: for thorough blocks only.
+void jointCodes(const float ux[16], const float uy[16], JointFit& fx, JointFit& fy, const Normals given[4], const NormalUnits& units) {
     const std::array<float, 8> px = bc4::palette(fx.tried->e0, fx.tried->e1), py = bc4::palette(fy.tried->e0, fy.tried->e1);
     const float offset = float(units.offset), scale = float(units.scale);
     float xs[8], ys[8];
@@ -114,7 +109,6 @@ float jointCodes(const float ux[16], const float uy[16], JointFit& fx, JointFit&
         worst = std::max(worst, chords[t]);
     }
     const float deciding = kJointShare * kJointShare * worst;
-    worst = 0.0f;
     for (int t = 0; t < 16; ++t) {
         if (chords[t] >= deciding) {
             // Of the pairs no farther in angle, the one of least chord plus kComponentWeight times the
@@ -131,34 +125,28 @@ float jointCodes(const float ux[16], const float uy[16], JointFit& fx, JointFit&
                     const float c = squaredChord(t, xs[a], ys[b]);
                     if (c > limit) continue;
                     const float j = cost(c, a, b);
-                    if (j < least) least = j, chords[t] = c, fx.codes[size_t(t)] = std::uint8_t(a), fy.codes[size_t(t)] = std::uint8_t(b);
+                    if (j < least) least = j, fx.codes[size_t(t)] = std::uint8_t(a), fy.codes[size_t(t)] = std::uint8_t(b);
                 }
         }
-        worst = std::max(worst, chords[t]);
     }
-    return std::sqrt(worst);
 }
 
-// Returns the block's worst chord.
-float encodeBc5Block(const float x[16], const float y[16], const NormalUnits& units, bool thorough, std::uint8_t* out) {
+void encodeBc5Block(const float x[16], const float y[16], const NormalUnits& units, std::uint8_t* out) {
     using namespace lanes;
     float cx[16], cy[16];
     for (int i = 0; i < 16; ++i) cx[i] = std::clamp(x[i], 0.0f, 1.0f), cy[i] = std::clamp(y[i], 0.0f, 1.0f);
     bc4::Candidates candX, candY;
-    bc4::search(cx, thorough, candX);
-    bc4::search(cy, thorough, candY);
-    JointFit fx[kThoroughJointFits], fy[kThoroughJointFits];
-    const int fits = thorough ? kThoroughJointFits : kQuickJointFits;
-    const int nx = leastSquaredFits(cx, candX, units, fits, fx), ny = leastSquaredFits(cy, candY, units, fits, fy);
+    bc4::search(cx, candX);
+    bc4::search(cy, candY);
+    JointFit fx[kJointFits], fy[kJointFits];
+    const int nx = leastSquaredFits(cx, candX, units, kJointFits, fx), ny = leastSquaredFits(cy, candY, units, kJointFits, fy);
     const float offset = float(units.offset), scale = float(units.scale);
     Normals given[4];
     const Rows gx(cx), gy(cy);
     for (int r = 0; r < 4; ++r) given[r] = rebuilt(offset + scale * gx.row[r], offset + scale * gy.row[r]);
     // A pair stops being summed once what it has is no less than the best cost: the rest only adds.
-    float best = 1e30f, bestWorst = 0.0f;
+    float best = 1e30f;
     int bi = 0, bj = 0;
-    // One pair (quickly): nothing to beat, and no early end to check for.
-    const bool several = nx * ny > 1;
     for (int i = 0; i < nx; ++i)
         for (int j = 0; j < ny; ++j) {
             Lanes sumChord = splat(0.0f), worst = splat(0.0f);
@@ -169,17 +157,33 @@ float encodeBc5Block(const float x[16], const float y[16], const NormalUnits& un
                 const Lanes chord = sqrt(dx * dx + dy * dy + dz * dz);
                 sumChord += chord;
                 worst = max(worst, chord);
-                beaten = several && sum(sumChord) + kWorstAngleWeight * largest(worst) >= best;
+                beaten = sum(sumChord) + kWorstAngleWeight * largest(worst) >= best;
             }
             if (beaten) continue;
             best = sum(sumChord) + kWorstAngleWeight * largest(worst);
-            bestWorst = largest(worst);
             bi = i, bj = j;
         }
-    if (thorough) bestWorst = jointCodes(cx, cy, fx[bi], fy[bj], given, units);
+    jointCodes(cx, cy, fx[bi], fy[bj], given, units);
     bc4::writeBlock(fx[bi].tried->e0, fx[bi].tried->e1, fx[bi].codes, out);
     bc4::writeBlock(fy[bj].tried->e0, fy[bj].tried->e1, fy[bj].codes, out + 8);
-    return bestWorst;
+}
+
+// The worst chord of a quick BC5 block (lane of the channels' quick searches): the decoded normals
+// against the given ones, z rebuilt.
+float quickWorstChord(const bc4::QuickBlocks channel[2], int lane, const NormalUnits& units) {
+    using namespace lanes;
+    const float offset = float(units.offset), scale = float(units.scale);
+    float given[2][16], decoded[2][16];
+    for (int c = 0; c < 2; ++c)
+        for (int t = 0; t < 16; ++t) given[c][t] = channel[c].value[t][lane], decoded[c][t] = offset + scale * channel[c].decoded[t][lane];
+    const Rows gx(given[0]), gy(given[1]), dx(decoded[0]), dy(decoded[1]);
+    Lanes worst = splat(0.0f);
+    for (int r = 0; r < 4; ++r) {
+        const Normals g = rebuilt(offset + scale * gx.row[r], offset + scale * gy.row[r]), n = rebuilt(dx.row[r], dy.row[r]);
+        const Lanes ex = n.x - g.x, ey = n.y - g.y, ez = n.z - g.z;
+        worst = max(worst, sqrt(ex * ex + ey * ey + ez * ez));
+    }
+    return largest(worst);
 }
 
 // Every block is encoded quickly, then again thoroughly those whose worst error (chord for normals) is
@@ -202,32 +206,53 @@ std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, i
     const int across = (image.width + 3) / 4, down = (image.height + 3) / 4;
     std::vector<std::uint8_t> out(blockImageBytes(image.width, image.height, format));
     std::vector<float> worst(size_t(across) * size_t(down));
-    // Block (bx, by) encoded into out; its worst error into worst.
-    auto encode = [&](int bx, int by, bool thorough) {
+    // Quickly: eight blocks of a row of blocks side by side (bc4_quick.hpp; past the row's end, its last
+    // block again). A block's texels past the image repeat its edge texels.
+    parallelFor(down, threads, [&](int begin, int end) {
+        bc4::QuickBlocks quick[2];
+        for (int by = begin; by < end; ++by)
+            for (int bx = 0; bx < across; bx += bc4::kQuickBlocks) {
+                for (int lane = 0; lane < bc4::kQuickBlocks; ++lane)
+                    for (int t = 0; t < 16; ++t) {
+                        const int x = std::min(std::min(bx + lane, across - 1) * 4 + t % 4, image.width - 1);
+                        const int y = std::min(by * 4 + t / 4, image.height - 1);
+                        for (int c = 0; c < channels; ++c) quick[c].value[t][lane] = std::clamp(image.at(x, y, c), 0.0f, 1.0f);
+                    }
+                for (int c = 0; c < channels; ++c) bc4::quickSearch(quick[c]);
+                for (int lane = 0; lane < bc4::kQuickBlocks && bx + lane < across; ++lane) {
+                    const size_t at = size_t(by) * size_t(across) + size_t(bx + lane);
+                    worst[at] = 0.0f;
+                    for (int c = 0; c < channels; ++c) {
+                        std::array<std::uint8_t, 16> codes;
+                        for (int t = 0; t < 16; ++t) codes[size_t(t)] = quick[c].code[t][lane];
+                        bc4::writeBlock(quick[c].e0[lane], quick[c].e1[lane], codes, out.data() + at * size_t(bytes) + size_t(c) * 8);
+                        worst[at] = std::max(worst[at], quick[c].worst[lane]);
+                    }
+                    if (channels == 2 && normals) worst[at] = quickWorstChord(quick, lane, *normals);
+                }
+            }
+    });
+    // Thoroughly: block (bx, by) encoded again into out.
+    auto encode = [&](int bx, int by) {
         float v[16], w[16];
         for (int i = 0; i < 16; ++i) {
             const int x = std::min(bx * 4 + i % 4, image.width - 1), y = std::min(by * 4 + i / 4, image.height - 1);
             v[i] = image.at(x, y, 0);
             if (channels == 2) w[i] = image.at(x, y, 1);
         }
-        const size_t at = size_t(by) * size_t(across) + size_t(bx);
-        std::uint8_t* block = out.data() + at * size_t(bytes);
+        std::uint8_t* block = out.data() + (size_t(by) * size_t(across) + size_t(bx)) * size_t(bytes);
         if (channels == 2 && normals) {
-            worst[at] = encodeBc5Block(v, w, *normals, thorough, block);
+            encodeBc5Block(v, w, *normals, block);
         } else {
-            worst[at] = encodeBc4Block(v, thorough, block);
-            if (channels == 2) worst[at] = std::max(worst[at], encodeBc4Block(w, thorough, block + 8));
+            encodeBc4Block(v, block);
+            if (channels == 2) encodeBc4Block(w, block + 8);
         }
     };
-    parallelFor(down, threads, [&](int begin, int end) {
-        for (int by = begin; by < end; ++by)
-            for (int bx = 0; bx < across; ++bx) encode(bx, by, false);
-    });
     const float threshold = kThoroughShare * *std::max_element(worst.begin(), worst.end());
     parallelFor(down, threads, [&](int begin, int end) {
         for (int by = begin; by < end; ++by)
             for (int bx = 0; bx < across; ++bx)
-                if (worst[size_t(by) * size_t(across) + size_t(bx)] >= threshold) encode(bx, by, true);
+                if (worst[size_t(by) * size_t(across) + size_t(bx)] >= threshold) encode(bx, by);
     });
     return out;
 }

@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <random>
 
+#include "bc4_quick.hpp"
 #include "heightpack/core/block_compression.hpp"
 #include "support/test_support.hpp"
 
@@ -111,4 +114,53 @@ TEST(BlockCompression, SameBytesOnAnyThreadCountAndPaddedEdges) {
         for (size_t i = 0; i < in.pixels.size(); ++i) ours += std::pow(back.pixels[i] - in.pixels[i], 2);
         EXPECT_LE(ours, minMaxSquaredError(in)) << int(f);
     }
+}
+
+// The quick pass's eight blocks side by side (bc4_quick.hpp) over families of blocks: spread, narrow,
+// near 0 and 1 (the six-value mode), exactly 0 and 1, flat, two-valued. Whatever the instruction set
+// (AVX2 here where the processor has it, against the four-lane code every processor runs), every output
+// is the same bit for bit; each block's recorded codes decode (decodeBc4Block, the specification's
+// table) to the recorded values, within their recorded squared and worst error; and the pair is never
+// worse than the plainest encoder's, the values' extremes rounded to codes (minMaxSquaredError's).
+TEST(BlockCompression, QuickSearchIsTheSameOnEveryInstructionSetAndWithinWhatItRecords) {
+    std::mt19937 random(29);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    int blocks = 0, sixValueBlocks = 0;
+    for (int group = 0; group < 3000; ++group) {
+        bc4::QuickBlocks fast, portable;
+        for (int lane = 0; lane < bc4::kQuickBlocks; ++lane) {
+            const int family = (group * bc4::kQuickBlocks + lane) % 6;
+            const float centre = unit(random), spread = family == 1 ? 0.02f * unit(random) : unit(random);
+            for (int t = 0; t < 16; ++t) {
+                float v = centre + spread * (unit(random) - 0.5f);
+                if (family == 2) v = unit(random) < 0.5f ? 0.03f * unit(random) : 1.0f - 0.03f * unit(random);
+                if (family == 3) v = unit(random) < 0.3f ? float(random() % 2) : v;
+                if (family == 4) v = centre;
+                if (family == 5) v = t % 3 ? centre : centre * 0.5f;
+                fast.value[t][lane] = std::clamp(v, 0.0f, 1.0f);
+            }
+        }
+        portable = fast;
+        bc4::quickSearch(fast);
+        bc4::quickSearchPortable(portable);
+        ASSERT_EQ(std::memcmp(&fast, &portable, sizeof fast), 0) << "group " << group;
+        for (int lane = 0; lane < bc4::kQuickBlocks; ++lane, ++blocks) {
+            int codes[16];
+            Image values(4, 4, 1);
+            for (int t = 0; t < 16; ++t) codes[t] = fast.code[t][lane], values.pixels[size_t(t)] = fast.value[t][lane];
+            float decoded[16];
+            decodeBc4Block(block(fast.e0[lane], fast.e1[lane], codes).data(), decoded);
+            double squares = 0.0, worst = 0.0;
+            for (int t = 0; t < 16; ++t) {
+                EXPECT_NEAR(decoded[t], fast.decoded[t][lane], 1e-6) << "group " << group << " lane " << lane;
+                const double d = std::fabs(double(decoded[t]) - values.pixels[size_t(t)]);
+                squares += d * d, worst = std::max(worst, d);
+            }
+            EXPECT_NEAR(squares, fast.error[lane], 1e-5) << "group " << group << " lane " << lane;
+            EXPECT_NEAR(worst, fast.worst[lane], 1e-6) << "group " << group << " lane " << lane;
+            EXPECT_LE(squares, minMaxSquaredError(values) + 1e-5) << "group " << group << " lane " << lane;
+            sixValueBlocks += fast.e0[lane] <= fast.e1[lane];
+        }
+    }
+    EXPECT_GT(sixValueBlocks, blocks / 20);  // the families reach both modes
 }

@@ -1,0 +1,184 @@
+// Eight blocks side by side (see bc4_quick.hpp): a lane per block, the texels a loop. One function
+// template holds the whole search, instantiated for four lanes (SSE2 or plain code, run twice) and for
+// eight (AVX2, where the processor has it): each lane takes the same operations in the same order in
+// both, and no fused multiply-add (AVX2 alone does not enable FMA), so a block's bytes do not depend on
+// which runs. Vectors never cross a call (everything, its lambdas too, is inlined into the two entry
+// points), so how an AVX vector would be passed does not matter (GCC's and Clang's -Wpsabi).
+#include "bc4_quick.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "lanes.hpp"
+
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace heightpack::bc4 {
+
+namespace quick {
+
+// The search for lanes first .. first + W - 1 of b, W the lanes of V (float) and I (int), every step on
+// all lanes at once: an endpoint code's value e / 255 and 255 / (e1 - e0) are divided out as a table of
+// them would hold them, a fit rounded to codes as int(min(x, 255) + 0.5) in double would round it.
+template <class V, class I>
+[[gnu::always_inline]] inline void searchLanes(QuickBlocks& b, int first) {
+    constexpr int W = int(sizeof(V) / sizeof(float));
+    const V zero{}, one = zero + 1.0f;
+    const I none{}, codeOne = none + 1;
+    auto anyOf = [](I mask) {
+        for (int l = 0; l < W; ++l)
+            if (mask[l]) return true;
+        return false;
+    };
+    V x[16], toFixed[16], scaled[16], lo = one, hi = zero;
+    for (int t = 0; t < 16; ++t) {
+        std::memcpy(&x[t], &b.value[t][first], sizeof(V));
+        const V rest = 1.0f - x[t];
+        toFixed[t] = x[t] < rest ? x[t] : rest;  // the distance to the nearer of 0 and 1
+        scaled[t] = x[t] * 255.0f;               // 0..255 units, as least squares fits them
+        lo = x[t] < lo ? x[t] : lo, hi = x[t] > hi ? x[t] : hi;
+    }
+    // Code x in 0..255 units (NaN and below 0: 0): halves up, as int(x + 0.5) in exact arithmetic.
+    auto toEndpoint = [&](V units) {
+        units = units >= zero ? (units < 255.0f ? units : zero + 255.0f) : zero;
+        const I whole = __builtin_convertvector(units, I);
+        return whole - (units - __builtin_convertvector(whole, V) >= 0.5f);
+    };
+    // Each lane's best so far: eight-value mode first, then six-value where it is smaller (equals: eight).
+    I bestE0 = none, bestE1 = none;
+    V bestError = zero, bestWorst = zero;
+    for (int mode = 0; mode < 2; ++mode) {
+        const bool eight = mode == 0;
+        V modeLo = lo, modeHi = hi;
+        I tried = none - 1;
+        if (!eight) {
+            // The six-value mode's fixed 0 and 1 help blocks with values near them; elsewhere its five steps
+            // between the endpoints are coarser than the eight-value mode's seven. Values close to 0 or 1
+            // take the fixed codes: the endpoints then span the rest.
+            tried = lo < 16.0f / 255.0f || hi > 239.0f / 255.0f;
+            if (!anyOf(tried)) break;
+            V innerLo = one, innerHi = zero;
+            for (int t = 0; t < 16; ++t) {
+                const auto inner = x[t] > 0.5f / 255.0f && x[t] < 254.5f / 255.0f;
+                innerLo = inner && x[t] < innerLo ? x[t] : innerLo;
+                innerHi = inner && x[t] > innerHi ? x[t] : innerHi;
+            }
+            const auto someInner = innerLo <= innerHi;
+            modeLo = someInner ? innerLo : modeLo, modeHi = someInner ? innerHi : modeHi;
+        }
+        // The pair of codes a, b in the mode's order: eight values need e0 > e1 (equal codes: not valid),
+        // six need e0 <= e1.
+        I e0, e1, valid;
+        auto order = [&](I a, I c) {
+            const I larger = a > c ? a : c, smaller = a > c ? c : a;
+            e0 = eight ? larger : smaller, e1 = eight ? smaller : larger;
+            valid = eight ? a != c : none - 1;
+        };
+        // The range's ends, then least squares from the best pair while the rounded fit moves and improves.
+        I hiCode = toEndpoint(modeHi * 255.0f), loCode = toEndpoint(modeLo * 255.0f);
+        if (eight) {
+            const I same = hiCode == loCode, top = hiCode == 255;
+            hiCode = same && !top ? hiCode + 1 : hiCode, loCode = same && top ? loCode - 1 : loCode;
+        }
+        order(hiCode, loCode);
+        I active = none - 1, modeE0 = e0, modeE1 = e1;
+        const float steps = eight ? 7.0f : 5.0f;
+        const V n = zero + steps, inv = zero + (eight ? 1.0f / 7.0f : 1.0f / 5.0f);
+        V modeError = zero, modeWorst = zero, fit[5] = {};  // of the best pair, and its least-squares sums
+        for (int round = -1; round < 3; ++round) {
+            if (round >= 0) {
+                // The least-squares endpoints (0..255 units) for the best pair's codes.
+                const V det = fit[0] * fit[2] - fit[1] * fit[1];
+                const I fitted = !(det <= 1e-4f * fit[0] * fit[2]);  // not all texels at one weight, but for rounding
+                const V inverse = 1.0f / det;
+                const V a = (fit[3] * fit[2] - fit[4] * fit[1]) * inverse, c = (fit[4] * fit[0] - fit[3] * fit[1]) * inverse;
+                const I was0 = e0, was1 = e1;
+                order(toEndpoint(a), toEndpoint(c));
+                active = active && fitted && valid && (e0 != was0 || e1 != was1);
+                if (!anyOf(active)) break;
+            }
+            // Each lane's pair scored: a value's nearest interpolated entry is its rounded position along
+            // the pair, or in the six-value mode the fixed 0 or 1 when nearer; the least-squares sums of
+            // the weights of e0 and e1 (u, w) and of the values, over the interpolated texels.
+            const V at0 = __builtin_convertvector(e0, V) / 255.0f, at1 = __builtin_convertvector(e1, V) / 255.0f;
+            const I span = e1 - e0;
+            const V step = (at1 - at0) / steps;
+            const V perStep = steps * (span == none ? zero : 255.0f / __builtin_convertvector(span, V));
+            V squares = zero, worst = zero, sums[5] = {};
+            for (int t = 0; t < 16; ++t) {
+                V k = (x[t] - at0) * perStep;
+                k = k > zero ? k : zero;
+                k = k < n ? k : n;
+                k = __builtin_convertvector(__builtin_convertvector(k + 0.5f, I), V);
+                const V off = x[t] - (at0 + k * step);
+                V d = off > -off ? off : -off;
+                V w = k * inv, u = 1.0f - w;
+                if (!eight) {
+                    const auto interpolated = d <= toFixed[t];
+                    d = interpolated ? d : toFixed[t];
+                    w = interpolated ? w : zero, u = interpolated ? u : zero;
+                }
+                squares += d * d;
+                worst = d > worst ? d : worst;
+                sums[0] += u * u, sums[1] += u * w, sums[2] += w * w, sums[3] += u * scaled[t], sums[4] += w * scaled[t];
+            }
+            const I keep = round < 0 ? none - 1 : active && squares < modeError;
+            active = active && keep;
+            modeError = keep ? squares : modeError, modeWorst = keep ? worst : modeWorst;
+            modeE0 = keep ? e0 : modeE0, modeE1 = keep ? e1 : modeE1;
+            for (int s = 0; s < 5; ++s) fit[s] = keep ? sums[s] : fit[s];
+        }
+        const I take = eight ? none - 1 : tried && modeError < bestError;
+        bestE0 = take ? modeE0 : bestE0, bestE1 = take ? modeE1 : bestE1;
+        bestError = take ? modeError : bestError, bestWorst = take ? modeWorst : bestWorst;
+    }
+    // The chosen pairs' codes and decoded values: code 0 at e0, 1 at e1, k + 1 between (both modes); in the
+    // six-value mode 6 for the fixed 0 and 7 for the fixed 1 where nearer.
+    const I six = bestE0 <= bestE1, span = bestE1 - bestE0;
+    const V steps = six ? zero + 5.0f : zero + 7.0f;
+    const V at0 = __builtin_convertvector(bestE0, V) / 255.0f, at1 = __builtin_convertvector(bestE1, V) / 255.0f;
+    const V step = (at1 - at0) / steps, perStep = steps * (span == none ? zero : 255.0f / __builtin_convertvector(span, V));
+    std::memcpy(&b.e0[first], &bestE0, sizeof bestE0);
+    std::memcpy(&b.e1[first], &bestE1, sizeof bestE1);
+    std::memcpy(&b.error[first], &bestError, sizeof bestError);
+    std::memcpy(&b.worst[first], &bestWorst, sizeof bestWorst);
+    for (int t = 0; t < 16; ++t) {
+        V k = (x[t] - at0) * perStep;
+        k = k > zero ? k : zero;
+        k = k < steps ? k : steps;
+        k = __builtin_convertvector(__builtin_convertvector(k + 0.5f, I), V);
+        V value = at0 + k * step;
+        const I stepsAlong = __builtin_convertvector(k, I);
+        I code = stepsAlong == none ? none : k == steps ? codeOne : stepsAlong + codeOne;
+        const V off = x[t] - value, d = off > -off ? off : -off;
+        const I toZero = six & (x[t] < d), toOne = six & ((1.0f - x[t]) < (d < x[t] ? d : x[t]));
+        value = toOne ? one : toZero ? zero : value;
+        code = toOne ? none + 7 : toZero ? none + 6 : code;
+        std::memcpy(&b.decoded[t][first], &value, sizeof value);
+        for (int l = 0; l < W; ++l) b.code[t][first + l] = std::uint8_t(code[l]);
+    }
+}
+
+}  // namespace quick
+
+[[gnu::flatten]] void quickSearchPortable(QuickBlocks& blocks) {
+    for (int first = 0; first < kQuickBlocks; first += 4) quick::searchLanes<lanes::Lanes, lanes::IntLanes>(blocks, first);
+}
+
+#if defined(__x86_64__)
+using Lanes8 = float __attribute__((vector_size(32)));
+using IntLanes8 = int __attribute__((vector_size(32)));
+[[gnu::flatten, gnu::target("avx2")]] static void quickSearchAvx2(QuickBlocks& blocks) {
+    quick::searchLanes<Lanes8, IntLanes8>(blocks, 0);
+}
+#endif
+
+void quickSearch(QuickBlocks& blocks) {
+#if defined(__x86_64__)
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) return quickSearchAvx2(blocks);
+#endif
+    quickSearchPortable(blocks);
+}
+
+}  // namespace heightpack::bc4

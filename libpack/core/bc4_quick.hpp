@@ -1,0 +1,32 @@
+// The quick pass of the BC4 encoder (block_compression.cpp): eight blocks' endpoint searches side by side,
+// one block a vector lane, so a search's per-pair setup (table lookups, divisions) and its texel loops are
+// shared by eight blocks. The thorough pass (bc4_fit.hpp) takes the few blocks that decide the worst error.
+#pragma once
+
+#include <cstdint>
+
+namespace heightpack::bc4 {
+
+constexpr int kQuickBlocks = 8;
+
+// Eight blocks of one channel, texel t (texel (x, y) at 4y + x) of block `lane` at [t][lane]. In: values in
+// [0, 1]. Out: each block's endpoints, codes, decoded values, and squared and worst error.
+struct QuickBlocks {
+    float value[16][kQuickBlocks];
+    int e0[kQuickBlocks], e1[kQuickBlocks];
+    std::uint8_t code[16][kQuickBlocks];
+    float decoded[16][kQuickBlocks];
+    float error[kQuickBlocks], worst[kQuickBlocks];
+};
+
+// Each block's pair of least squared error among: in the eight-value mode, the pair at the values' range
+// and the least-squares fits from it (while they improve, at most three); in the six-value mode (for
+// blocks with values within 16 codes of 0 or 1) the same from the range of the values not at 0 or 1.
+// Each lane's results depend on its block alone, in the same operations on any instruction set (AVX2
+// where the processor has it, SSE2 or plain code otherwise), so the bytes are the same everywhere.
+void quickSearch(QuickBlocks& blocks);
+
+// The same without AVX2 (four lanes at a time): what quickSearch does on processors without it.
+void quickSearchPortable(QuickBlocks& blocks);
+
+}  // namespace heightpack::bc4
