@@ -25,7 +25,7 @@ template <class V, class I>
     constexpr int W = int(sizeof(V) / sizeof(float));
     const V zero{}, one = zero + 1.0f;
     const I none{}, codeOne = none + 1;
-    auto anyOf = [](I mask) {
+    auto anyOf = [](const I& mask) {
         for (int l = 0; l < W; ++l)
             if (mask[l]) return true;
         return false;
@@ -39,8 +39,8 @@ template <class V, class I>
         lo = x[t] < lo ? x[t] : lo, hi = x[t] > hi ? x[t] : hi;
     }
     // Code x in 0..255 units (NaN and below 0: 0): halves up, as int(x + 0.5) in exact arithmetic.
-    auto toEndpoint = [&](V units) {
-        units = units >= zero ? (units < 255.0f ? units : zero + 255.0f) : zero;
+    auto toEndpoint = [&](const V& x255) {
+        const V units = x255 >= zero ? (x255 < 255.0f ? x255 : zero + 255.0f) : zero;
         const I whole = __builtin_convertvector(units, I);
         return whole - (units - __builtin_convertvector(whole, V) >= 0.5f);
     };
@@ -69,7 +69,7 @@ template <class V, class I>
         // The pair of codes a, b in the mode's order: eight values need e0 > e1 (equal codes: not valid),
         // six need e0 <= e1.
         I e0, e1, valid;
-        auto order = [&](I a, I c) {
+        auto order = [&](const I& a, const I& c) {
             const I larger = a > c ? a : c, smaller = a > c ? c : a;
             e0 = eight ? larger : smaller, e1 = eight ? smaller : larger;
             valid = eight ? a != c : none - 1;
