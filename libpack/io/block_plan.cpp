@@ -7,103 +7,123 @@
 #include <string>
 #include <vector>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "heightpack/core/normal_angle.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "texel_encode.hpp"
 
+// Vectors of four doubles pass between NormalRow's inlined functions only (see there).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace heightpack::detail {
 
 namespace {
 
-// Two texels at a time (GCC's vector extension: SSE2 on x86-64, plain code elsewhere): each lane takes
-// the same operations in the same order as one texel would, so the figures are those of texel-by-texel code.
+// Two or four texels at a time (GCC's vector extension: SSE2, or AVX2 where the processor has it, plain
+// code elsewhere): each lane takes the same operations in the same order as one texel would (square roots
+// are exact, and no multiply-add is fused), so the figures are those of texel-by-texel code on any of them.
 using Pair = double __attribute__((vector_size(16)));
-
-Pair sqrtOf(Pair a) {
-#if defined(__SSE2__)
-    return Pair(_mm_sqrt_pd(__m128d(a)));
-#else
-    return Pair{std::sqrt(a[0]), std::sqrt(a[1])};
-#endif
-}
-
-// The unit normals whose x and y are given, z rebuilt as the shader does (x, y past the unit circle: on it).
-void normalsOf(Pair x, Pair y, Pair n[3]) {
-    const Pair rr = x * x + y * y, zero{0.0, 0.0};
-    const auto inside = rr <= 1.0;
-    n[0] = x, n[1] = y, n[2] = sqrtOf(inside ? 1.0 - rr : zero);
-    if (inside[0] && inside[1]) return;  // nearly always: no square root and division more
-    const Pair r = sqrtOf(rr);
-    n[0] = inside ? x : x / r, n[1] = inside ? y : y / r;
-}
-
-// The angles between the normals of (ax, ay) and of (bx, by), 2 asin(|a - b| / 2): from the chord, which
-// (unlike the dot product's acos) keeps its precision at small angles; the series for those is what makes
-// a level's measurement cheap next to its encoding (|a - b| / 2 under 0.1: the next term is below 1e-11
-// radians).
-[[gnu::always_inline]] inline Pair anglesBetween(Pair ax, Pair ay, Pair bx, Pair by) {
-    Pair a[3], b[3];
-    normalsOf(ax, ay, a);
-    normalsOf(bx, by, b);
-    const Pair dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-    const Pair h = 0.5 * sqrtOf(dx * dx + dy * dy + dz * dz), h2 = h * h;
-    Pair angle = 2.0 * h * (1.0 + h2 * (1.0 / 6.0 + h2 * (3.0 / 40.0 + h2 * (15.0 / 336.0 + h2 * (105.0 / 3456.0)))));
-    for (int i = 0; i < 2; ++i)
-        if (h[i] >= 0.1) angle[i] = 2.0 * std::asin(std::min(h[i], 1.0));
-    return angle;
-}
+using Quad = double __attribute__((vector_size(32)));
 
 struct LevelError {
     double worst = 0.0, squares = 0.0, count = 0.0;
     double worstDegrees = 0.0, squareDegrees = 0.0;
 };
 
+// The measure of one row of normals, W texels (D's lanes) at a time. Everything is inlined into the two
+// entry points below, so no vector crosses a call.
+template <class D>
+struct NormalRow {
+    static constexpr int W = int(sizeof(D) / sizeof(double));
+
+    [[gnu::always_inline]] static D sqrtOf(const D& a) {
+        D r;
+        for (int i = 0; i < W; ++i) r[i] = std::sqrt(a[i]);
+        return r;
+    }
+
+    // The unit normals whose x and y are given, z rebuilt as the shader does (x, y past the unit circle: on it).
+    [[gnu::always_inline]] static void normalsOf(const D& x, const D& y, D n[3]) {
+        const D rr = x * x + y * y, zero{};
+        const auto inside = rr <= 1.0;
+        n[0] = x, n[1] = y, n[2] = sqrtOf(inside ? 1.0 - rr : zero);
+        bool all = true;
+        for (int i = 0; i < W; ++i) all = all && inside[i];
+        if (all) return;  // nearly always: no square root and division more
+        const D r = sqrtOf(rr);
+        n[0] = inside ? x : x / r, n[1] = inside ? y : y / r;
+    }
+
+    // The angles between the normals of (ax, ay) and of (bx, by), 2 asin(|a - b| / 2): from the chord, which
+    // (unlike the dot product's acos) keeps its precision at small angles; the series for those is what
+    // makes a level's measurement cheap next to its encoding (|a - b| / 2 under 0.1: the next term is below
+    // 1e-11 radians).
+    [[gnu::always_inline]] static D anglesBetween(const D& ax, const D& ay, const D& bx, const D& by) {
+        D a[3], b[3];
+        normalsOf(ax, ay, a);
+        normalsOf(bx, by, b);
+        const D dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+        const D h = 0.5 * sqrtOf(dx * dx + dy * dy + dz * dz), h2 = h * h;
+        D angle = 2.0 * h * (1.0 + h2 * (1.0 / 6.0 + h2 * (3.0 / 40.0 + h2 * (15.0 / 336.0 + h2 * (105.0 / 3456.0)))));
+        for (int i = 0; i < W; ++i)
+            if (h[i] >= 0.1) angle[i] = 2.0 * std::asin(std::min(h[i], 1.0));
+        return angle;
+    }
+
+    // The error of `decoded` (offset + scale * unorm) against `given`, one row of `width` xy normals, added
+    // to e texel by texel: each component's error, then the normal's angle.
+    [[gnu::always_inline]] static void measure(const float* given, const float* decoded, int width, const Normalisation& n, LevelError& e) {
+        const double offset = n.offset, scale = n.scale;
+        for (int x = 0; x < width; x += W) {
+            D gx, gy, bx, by;
+            for (int i = 0; i < W; ++i) {
+                const int at = std::min(x + i, width - 1);  // a row's last texels in the spare lanes, counted once
+                gx[i] = given[2 * at], gy[i] = given[2 * at + 1];
+                bx[i] = offset + scale * double(decoded[2 * at]), by[i] = offset + scale * double(decoded[2 * at + 1]);
+            }
+            const D degrees = anglesBetween(gx, gy, bx, by) * kDegreesPerRadian;
+            for (int i = 0; i < std::min(W, width - x); ++i) {
+                for (const double d : {std::fabs(bx[i] - gx[i]), std::fabs(by[i] - gy[i])}) {
+                    e.worst = std::max(e.worst, d);
+                    e.squares += d * d;
+                    e.count += 1.0;
+                }
+                e.worstDegrees = std::max(e.worstDegrees, degrees[i]);
+                e.squareDegrees += degrees[i] * degrees[i];
+            }
+        }
+    }
+};
+
+[[gnu::flatten]] void measureNormalRowPortable(const float* given, const float* decoded, int width, const Normalisation& n, LevelError& e) {
+    NormalRow<Pair>::measure(given, decoded, width, n, e);
+}
+
+#if defined(__x86_64__)
+[[gnu::flatten, gnu::target("avx2")]] void measureNormalRowAvx2(const float* given, const float* decoded, int width, const Normalisation& n,
+                                                              LevelError& e) {
+    NormalRow<Quad>::measure(given, decoded, width, n, e);
+}
+#endif
+
 // The error of `decoded` (offset + scale * unorm) against `given`, one row of `width` texels, added to e
 // texel by texel: two channels are a normal's x and y, whose angle is measured too.
 void measureRow(const float* given, const float* decoded, int width, int channels, const Normalisation& n, LevelError& e) {
-    const double offset = n.offset, scale = n.scale;
-    auto add = [&](double d) {
-        e.worst = std::max(e.worst, d);
-        e.squares += d * d;
-        e.count += 1.0;
-    };
     if (channels == 1) {
-        for (int x = 0; x < width; ++x) add(std::fabs((offset + scale * double(decoded[x])) - double(given[x])));
+        const double offset = n.offset, scale = n.scale;
+        for (int x = 0; x < width; ++x) {
+            const double d = std::fabs((offset + scale * double(decoded[x])) - double(given[x]));
+            e.worst = std::max(e.worst, d);
+            e.squares += d * d;
+            e.count += 1.0;
+        }
         return;
     }
-    // Texels (x, x + 1) in a and (x + 2, x + 3) in b: the two pairs' square roots overlap; added in
-    // texel order, as below.
-    auto addPair = [&](Pair gx, Pair gy, Pair bx, Pair by, Pair degrees, int lanes) {
-        for (int i = 0; i < lanes; ++i) {
-            add(std::fabs(bx[i] - gx[i]));
-            add(std::fabs(by[i] - gy[i]));
-            e.worstDegrees = std::max(e.worstDegrees, degrees[i]);
-            e.squareDegrees += degrees[i] * degrees[i];
-        }
-    };
-    int x = 0;
-    for (; x + 4 <= width; x += 4) {
-        const float* g = given + 2 * x;
-        const float* d = decoded + 2 * x;
-        const Pair gxa{g[0], g[2]}, gya{g[1], g[3]}, gxb{g[4], g[6]}, gyb{g[5], g[7]};
-        const Pair bxa = offset + scale * Pair{d[0], d[2]}, bya = offset + scale * Pair{d[1], d[3]};
-        const Pair bxb = offset + scale * Pair{d[4], d[6]}, byb = offset + scale * Pair{d[5], d[7]};
-        const Pair degreesA = anglesBetween(gxa, gya, bxa, bya) * kDegreesPerRadian;
-        const Pair degreesB = anglesBetween(gxb, gyb, bxb, byb) * kDegreesPerRadian;
-        addPair(gxa, gya, bxa, bya, degreesA, 2);
-        addPair(gxb, gyb, bxb, byb, degreesB, 2);
-    }
-    for (; x < width; x += 2) {
-        const int x1 = std::min(x + 1, width - 1);  // a row's odd last texel in both lanes, counted once
-        const Pair gx{given[2 * x], given[2 * x1]}, gy{given[2 * x + 1], given[2 * x1 + 1]};
-        const Pair bx = offset + scale * Pair{decoded[2 * x], decoded[2 * x1]};
-        const Pair by = offset + scale * Pair{decoded[2 * x + 1], decoded[2 * x1 + 1]};
-        addPair(gx, gy, bx, by, anglesBetween(gx, gy, bx, by) * kDegreesPerRadian, x1 - x + 1);
-    }
+#if defined(__x86_64__)
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) return measureNormalRowAvx2(given, decoded, width, n, e);
+#endif
+    measureNormalRowPortable(given, decoded, width, n, e);
 }
 
 // The error the level's blocks decode with against its values, a row of blocks at a time on all threads:
