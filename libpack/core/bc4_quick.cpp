@@ -7,6 +7,7 @@
 #include "bc4_quick.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "lanes.hpp"
@@ -159,6 +160,37 @@ template <class V, class I>
     }
 }
 
+// quickWorstChords for lanes first .. first + W - 1.
+template <class V>
+[[gnu::always_inline]] inline void chordLanes(const QuickBlocks& bx, const QuickBlocks& by, float offset, float scale, float* worstOut, int first) {
+    constexpr int W = int(sizeof(V) / sizeof(float));
+    const V zero{};
+    auto sqrtOf = [](const V& a) {
+        V r;
+        for (int l = 0; l < W; ++l) r[l] = std::sqrt(a[l]);
+        return r;
+    };
+    auto rebuilt = [&](const V& x, const V& y, V n[3]) {
+        const V rr = x * x + y * y, rest = 1.0f - rr;
+        const V s = rr > 1.0f ? 1.0f / sqrtOf(rr) : zero + 1.0f;
+        n[0] = x * s, n[1] = y * s, n[2] = sqrtOf(rest > zero ? rest : zero);
+    };
+    V worst = zero;
+    for (int t = 0; t < 16; ++t) {
+        V gx, gy, dx, dy, g[3], d[3];
+        std::memcpy(&gx, &bx.value[t][first], sizeof gx);
+        std::memcpy(&gy, &by.value[t][first], sizeof gy);
+        std::memcpy(&dx, &bx.decoded[t][first], sizeof dx);
+        std::memcpy(&dy, &by.decoded[t][first], sizeof dy);
+        rebuilt(offset + scale * gx, offset + scale * gy, g);
+        rebuilt(offset + scale * dx, offset + scale * dy, d);
+        const V ex = d[0] - g[0], ey = d[1] - g[1], ez = d[2] - g[2];
+        const V chord = sqrtOf(ex * ex + ey * ey + ez * ez);
+        worst = worst > chord ? worst : chord;
+    }
+    std::memcpy(worstOut + first, &worst, sizeof worst);
+}
+
 }  // namespace quick
 
 [[gnu::flatten]] void quickSearchPortable(QuickBlocks& blocks) {
@@ -172,6 +204,25 @@ using IntLanes8 = int __attribute__((vector_size(32)));
     quick::searchLanes<Lanes8, IntLanes8>(blocks, 0);
 }
 #endif
+
+[[gnu::flatten]] void quickChordsPortable(const QuickBlocks& x, const QuickBlocks& y, float offset, float scale, float* worst) {
+    for (int first = 0; first < kQuickBlocks; first += 4) quick::chordLanes<lanes::Lanes>(x, y, offset, scale, worst, first);
+}
+
+#if defined(__x86_64__)
+[[gnu::flatten, gnu::target("avx2")]] static void quickChordsAvx2(const QuickBlocks& x, const QuickBlocks& y, float offset, float scale,
+                                                                 float* worst) {
+    quick::chordLanes<Lanes8>(x, y, offset, scale, worst, 0);
+}
+#endif
+
+void quickWorstChords(const QuickBlocks& x, const QuickBlocks& y, float offset, float scale, float worst[kQuickBlocks]) {
+#if defined(__x86_64__)
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2) return quickChordsAvx2(x, y, offset, scale, worst);
+#endif
+    quickChordsPortable(x, y, offset, scale, worst);
+}
 
 void quickSearch(QuickBlocks& blocks) {
 #if defined(__x86_64__)

@@ -29,4 +29,9 @@ void quickSearch(QuickBlocks& blocks);
 // The same without AVX2 (four lanes at a time): what quickSearch does on processors without it.
 void quickSearchPortable(QuickBlocks& blocks);
 
+// BC5 normals: each block's worst chord between the unit normals of the given x, y (offset + scale *
+// value) and of the decoded ones, z rebuilt as a shader does (x, y past the unit circle: on it); the
+// same operations as block_compression.cpp's thorough pass measures a texel with.
+void quickWorstChords(const QuickBlocks& x, const QuickBlocks& y, float offset, float scale, float worst[kQuickBlocks]);
+
 }  // namespace heightpack::bc4

@@ -168,24 +168,6 @@ void encodeBc5Block(const float x[16], const float y[16], const NormalUnits& uni
     bc4::writeBlock(fy[bj].tried->e0, fy[bj].tried->e1, fy[bj].codes, out + 8);
 }
 
-// The worst chord of a quick BC5 block (lane of the channels' quick searches): the decoded normals
-// against the given ones, z rebuilt.
-float quickWorstChord(const bc4::QuickBlocks channel[2], int lane, const NormalUnits& units) {
-    using namespace lanes;
-    const float offset = float(units.offset), scale = float(units.scale);
-    float given[2][16], decoded[2][16];
-    for (int c = 0; c < 2; ++c)
-        for (int t = 0; t < 16; ++t) given[c][t] = channel[c].value[t][lane], decoded[c][t] = offset + scale * channel[c].decoded[t][lane];
-    const Rows gx(given[0]), gy(given[1]), dx(decoded[0]), dy(decoded[1]);
-    Lanes worst = splat(0.0f);
-    for (int r = 0; r < 4; ++r) {
-        const Normals g = rebuilt(offset + scale * gx.row[r], offset + scale * gy.row[r]), n = rebuilt(dx.row[r], dy.row[r]);
-        const Lanes ex = n.x - g.x, ey = n.y - g.y, ez = n.z - g.z;
-        worst = max(worst, sqrt(ex * ex + ey * ey + ez * ez));
-    }
-    return largest(worst);
-}
-
 // Every block is encoded quickly, then again thoroughly those whose worst error (chord for normals) is
 // within this share of the image's worst: the few blocks that decide the worst error reported for the
 // image get the search that lowers it, the rest keep their smaller squared error.
@@ -219,6 +201,8 @@ std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, i
                         for (int c = 0; c < channels; ++c) quick[c].value[t][lane] = std::clamp(image.at(x, y, c), 0.0f, 1.0f);
                     }
                 for (int c = 0; c < channels; ++c) bc4::quickSearch(quick[c]);
+                float chords[bc4::kQuickBlocks];
+                if (channels == 2 && normals) bc4::quickWorstChords(quick[0], quick[1], float(normals->offset), float(normals->scale), chords);
                 for (int lane = 0; lane < bc4::kQuickBlocks && bx + lane < across; ++lane) {
                     const size_t at = size_t(by) * size_t(across) + size_t(bx + lane);
                     worst[at] = 0.0f;
@@ -228,7 +212,7 @@ std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, i
                         bc4::writeBlock(quick[c].e0[lane], quick[c].e1[lane], codes, out.data() + at * size_t(bytes) + size_t(c) * 8);
                         worst[at] = std::max(worst[at], quick[c].worst[lane]);
                     }
-                    if (channels == 2 && normals) worst[at] = quickWorstChord(quick, lane, *normals);
+                    if (channels == 2 && normals) worst[at] = chords[lane];
                 }
             }
     });

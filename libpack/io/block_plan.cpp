@@ -201,11 +201,17 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
             // The level's values in the blocks' units, converted where they are filled: measureLevel fills
             // them again, a band at a time, rather than keeping a second copy of the level.
             Image unorm(w, h, channels);
-            fillLayerRows(content, layer, level, 0, h, unorm.pixels.data());
-            for (float& v : unorm.pixels) {  // one pass: a non-finite value ends it, and the level is not kept
-                if (!std::isfinite(v)) return nonFiniteLevel(path, level);
-                v = float((double(v) - n.offset) / n.scale);
-            }
+            const size_t rowValues = size_t(w) * size_t(channels);
+            std::vector<char> finite(static_cast<size_t>(h));
+            parallelFor(h, threads, [&](int a, int b) {
+                float* values = unorm.pixels.data() + size_t(a) * rowValues;
+                fillLayerRows(content, layer, level, a, b - a, values);
+                for (float* row = values; row < values + size_t(b - a) * rowValues; row += rowValues) {
+                    finite[size_t(a + (row - values) / std::ptrdiff_t(rowValues))] = allFinite(row, rowValues);
+                    for (float* v = row; v < row + rowValues; ++v) *v = float((double(*v) - n.offset) / n.scale);
+                }
+            });
+            if (std::find(finite.begin(), finite.end(), 0) != finite.end()) return nonFiniteLevel(path, level);
             // Two channels are xy normals: chosen together by the angle, in the normal's units (ASTC by
             // astcenc's normal-map mode).
             const std::optional<NormalUnits> normals =

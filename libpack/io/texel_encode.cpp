@@ -28,16 +28,6 @@ void putLe(std::uint8_t* dst, T value) {
     std::memcpy(dst, &value, sizeof value);  // every target heightpack builds for is little-endian
 }
 
-// Whether every value is finite, by their exponent bits (a test that vectorises).
-bool allFinite(const float* v, size_t n) {
-    std::uint32_t infinite = 0;
-    for (size_t i = 0; i < n; ++i) {
-        std::uint32_t bits;
-        std::memcpy(&bits, v + i, sizeof bits);
-        infinite |= std::uint32_t((bits & 0x7f800000u) == 0x7f800000u);
-    }
-    return infinite == 0;
-}
 
 // Encodes texels of `from` floats each into `to` components of type T (an RGB texel gets alpha 1).
 template <class T, class Code>
@@ -144,6 +134,16 @@ void encodeRow(const EncodePlan& plan, const float* in, size_t texels, std::uint
 void fillLayerRows(const ChainToWrite& content, int layer, int level, int y0, int rows, float* dst) {
     if (content.layerNames.empty()) content.fillRows(level, y0, rows, dst);
     else content.fillLayerRows(layer, level, y0, rows, dst);
+}
+
+bool allFinite(const float* v, size_t n) {
+    std::uint32_t infinite = 0;
+    for (size_t i = 0; i < n; ++i) {
+        std::uint32_t bits;
+        std::memcpy(&bits, v + i, sizeof bits);
+        infinite |= std::uint32_t((bits & 0x7f800000u) == 0x7f800000u);
+    }
+    return infinite == 0;
 }
 
 Error nonFiniteLevel(const std::string& path, int level) {

@@ -30,6 +30,9 @@ struct FileCloser {
 };
 
 
+// Whether every value is finite, by their exponent bits (a test that vectorises).
+bool allFinite(const float* v, size_t n);
+
 // The internal error for a level holding a non-finite value (the loader refuses them; a writer never
 // stores one).
 Error nonFiniteLevel(const std::string& path, int level);
