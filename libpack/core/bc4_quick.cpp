@@ -39,6 +39,8 @@ template <class V, class I>
         scaled[t] = x[t] * 255.0f;               // 0..255 units, as least squares fits them
         lo = x[t] < lo ? x[t] : lo, hi = x[t] > hi ? x[t] : hi;
     }
+    V sumScaled = zero;
+    for (int t = 0; t < 16; ++t) sumScaled += scaled[t];
     // Code x in 0..255 units (NaN and below 0: 0): halves up, as int(x + 0.5) in exact arithmetic.
     auto toEndpoint = [&](const V& x255) {
         const V units = x255 >= zero ? (x255 < 255.0f ? x255 : zero + 255.0f) : zero;
@@ -84,28 +86,35 @@ template <class V, class I>
         order(hiCode, loCode);
         I active = none - 1, modeE0 = e0, modeE1 = e1;
         const float steps = eight ? 7.0f : 5.0f;
-        const V n = zero + steps, inv = zero + (eight ? 1.0f / 7.0f : 1.0f / 5.0f);
-        V modeError = zero, modeWorst = zero, fit[5] = {};  // of the best pair, and its least-squares sums
+        const V n = zero + steps;
+        // Of the best pair: its errors, and the sums its least-squares fit needs over the interpolated
+        // texels (k steps from e0 of n, value s in 0..255 units): their count, the sums of k, k^2, k s and s.
+        V modeError = zero, modeWorst = zero, fit[5] = {};
         for (int round = -1; round < 3; ++round) {
             if (round >= 0) {
-                // The least-squares endpoints (0..255 units) for the best pair's codes.
-                const V det = fit[0] * fit[2] - fit[1] * fit[1];
-                const I fitted = !(det <= 1e-4f * fit[0] * fit[2]);  // not all texels at one weight, but for rounding
-                const V inverse = 1.0f / det;
-                const V a = (fit[3] * fit[2] - fit[4] * fit[1]) * inverse, c = (fit[4] * fit[0] - fit[3] * fit[1]) * inverse;
+                // The least-squares endpoints (0..255 units) for the best pair's codes: with weights
+                // (n - k) / n of e0 and k / n of e1, the normal equations times n^2 have whole-number
+                // coefficients (exact in floats): sum (n - k)^2, sum (n - k) k, sum k^2.
+                const V count = fit[0], sumK = fit[1], sumKK = fit[2], sumKS = fit[3], sumS = fit[4];
+                const V aa = count * (n * n) - 2.0f * n * sumK + sumKK, ab = n * sumK - sumKK, bb = sumKK;
+                const V as = n * sumS - sumKS, bs = sumKS;
+                const V det = aa * bb - ab * ab;
+                const I fitted = det > 0.0f;  // not all texels at one weight
+                const V scale = n / det;
+                const V a = (as * bb - bs * ab) * scale, c = (bs * aa - as * ab) * scale;
                 const I was0 = e0, was1 = e1;
                 order(toEndpoint(a), toEndpoint(c));
                 active = active && fitted && valid && (e0 != was0 || e1 != was1);
                 if (!anyOf(active)) break;
             }
             // Each lane's pair scored: a value's nearest interpolated entry is its rounded position along
-            // the pair, or in the six-value mode the fixed 0 or 1 when nearer; the least-squares sums of
-            // the weights of e0 and e1 (u, w) and of the values, over the interpolated texels.
+            // the pair (k steps from e0), or in the six-value mode the fixed 0 or 1 when nearer; the
+            // least-squares sums over the interpolated texels.
             const V at0 = __builtin_convertvector(e0, V) / 255.0f, at1 = __builtin_convertvector(e1, V) / 255.0f;
             const I span = e1 - e0;
             const V step = (at1 - at0) / steps;
             const V perStep = steps * (span == none ? zero : 255.0f / __builtin_convertvector(span, V));
-            V squares = zero, worst = zero, sums[5] = {};
+            V squares = zero, worst = zero, sums[5] = {zero + 16.0f, zero, zero, zero, sumScaled};
             for (int t = 0; t < 16; ++t) {
                 V k = (x[t] - at0) * perStep;
                 k = k > zero ? k : zero;
@@ -113,15 +122,16 @@ template <class V, class I>
                 k = __builtin_convertvector(__builtin_convertvector(k + 0.5f, I), V);
                 const V off = x[t] - (at0 + k * step);
                 V d = off > -off ? off : -off;
-                V w = k * inv, u = 1.0f - w;
                 if (!eight) {
                     const auto interpolated = d <= toFixed[t];
                     d = interpolated ? d : toFixed[t];
-                    w = interpolated ? w : zero, u = interpolated ? u : zero;
+                    // The texels at the fixed 0 and 1 out of the fit's sums.
+                    sums[0] -= interpolated ? zero : one, sums[4] -= interpolated ? zero : scaled[t];
+                    k = interpolated ? k : zero;
                 }
                 squares += d * d;
                 worst = d > worst ? d : worst;
-                sums[0] += u * u, sums[1] += u * w, sums[2] += w * w, sums[3] += u * scaled[t], sums[4] += w * scaled[t];
+                sums[1] += k, sums[2] += k * k, sums[3] += k * scaled[t];
             }
             const I keep = round < 0 ? none - 1 : active && squares < modeError;
             active = active && keep;
