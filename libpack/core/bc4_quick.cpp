@@ -33,7 +33,15 @@ template <class V, class I>
     };
     V x[16], toFixed[16], scaled[16], lo = one, hi = zero;
     for (int t = 0; t < 16; ++t) {
-        std::memcpy(&x[t], &b.value[t][first], sizeof(V));
+        if (b.source[0]) {
+            // Lane by lane from the image (which scalar stores, just before, could not pass to one load).
+            const float* texel = b.source[t / 4] + (t % 4) * b.step;
+            for (int l = 0; l < W; ++l) x[t][l] = texel[(first + l) * 4 * b.step];
+        } else {
+            std::memcpy(&x[t], &b.value[t][first], sizeof(V));
+        }
+        x[t] = x[t] < zero ? zero : x[t] > one ? one : x[t];  // as std::clamp (NaN stays)
+        std::memcpy(&b.value[t][first], &x[t], sizeof(V));
         const V rest = 1.0f - x[t];
         toFixed[t] = x[t] < rest ? x[t] : rest;  // the distance to the nearer of 0 and 1
         scaled[t] = x[t] * 255.0f;               // 0..255 units, as least squares fits them

@@ -9,9 +9,14 @@ namespace heightpack::bc4 {
 
 constexpr int kQuickBlocks = 8;
 
-// Eight blocks of one channel, texel t (texel (x, y) at 4y + x) of block `lane` at [t][lane]. In: values in
-// [0, 1]. Out: each block's endpoints, codes, decoded values, and squared and worst error.
+// Eight blocks of one channel, texel t (texel (x, y) at 4y + x) of block `lane` at [t][lane]. In: the
+// values (clamped to [0, 1] here), or where source[0] is set, eight blocks side by side in an image: the
+// block row's four rows from the first block's first texel of the channel, `step` floats from texel to
+// texel (its channels); they are then read from there into value. Out: each block's endpoints, codes,
+// decoded values, and squared and worst error.
 struct QuickBlocks {
+    const float* source[4] = {};
+    int step = 1;
     float value[16][kQuickBlocks];
     int e0[kQuickBlocks], e1[kQuickBlocks];
     std::uint8_t code[16][kQuickBlocks];

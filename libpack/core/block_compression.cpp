@@ -194,12 +194,19 @@ std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, i
         bc4::QuickBlocks quick[2];
         for (int by = begin; by < end; ++by)
             for (int bx = 0; bx < across; bx += bc4::kQuickBlocks) {
-                for (int lane = 0; lane < bc4::kQuickBlocks; ++lane)
-                    for (int t = 0; t < 16; ++t) {
-                        const int x = std::min(std::min(bx + lane, across - 1) * 4 + t % 4, image.width - 1);
-                        const int y = std::min(by * 4 + t / 4, image.height - 1);
-                        for (int c = 0; c < channels; ++c) quick[c].value[t][lane] = std::clamp(image.at(x, y, c), 0.0f, 1.0f);
-                    }
+                // Eight whole blocks inside the image are read from it; at its edges, texel by texel.
+                const bool inside = (bx + bc4::kQuickBlocks) * 4 <= image.width && by * 4 + 4 <= image.height;
+                for (int c = 0; c < channels; ++c) {
+                    quick[c].step = channels;
+                    for (int r = 0; r < 4; ++r) quick[c].source[r] = inside ? &image.pixels[(size_t(by * 4 + r) * size_t(image.width) + size_t(bx * 4)) * size_t(channels) + size_t(c)] : nullptr;
+                }
+                if (!inside)
+                    for (int lane = 0; lane < bc4::kQuickBlocks; ++lane)
+                        for (int t = 0; t < 16; ++t) {
+                            const int x = std::min(std::min(bx + lane, across - 1) * 4 + t % 4, image.width - 1);
+                            const int y = std::min(by * 4 + t / 4, image.height - 1);
+                            for (int c = 0; c < channels; ++c) quick[c].value[t][lane] = image.at(x, y, c);
+                        }
                 for (int c = 0; c < channels; ++c) bc4::quickSearch(quick[c]);
                 float chords[bc4::kQuickBlocks];
                 if (channels == 2 && normals) bc4::quickWorstChords(quick[0], quick[1], float(normals->offset), float(normals->scale), chords);
