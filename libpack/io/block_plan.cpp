@@ -197,12 +197,15 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
     BlockLevels out;
     out.levels = plan.levels;
     std::vector<LevelError> errors(static_cast<size_t>(plan.levels));
+    Image unorm;
     for (int layer = 0; layer < content.layerCount(); ++layer)
         for (int level = 0; level < plan.levels; ++level) {
             const int w = mipLevelSide(content.width, level), h = mipLevelSide(content.height, level);
             // The level's values in the blocks' units, converted where they are filled: measureLevel fills
-            // them again, a band at a time, rather than keeping a second copy of the level.
-            Image unorm(w, h, channels);
+            // them again, a band at a time, rather than keeping a second copy of the level. One buffer for
+            // every level (each fills all it uses): level 0's pages are not zeroed and mapped again.
+            unorm.width = w, unorm.height = h, unorm.channels = channels;
+            unorm.pixels.resize(size_t(w) * size_t(h) * size_t(channels));
             const size_t rowValues = size_t(w) * size_t(channels);
             std::vector<char> finite(static_cast<size_t>(h));
             parallelFor(h, threads, [&](int a, int b) {
