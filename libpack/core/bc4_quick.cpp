@@ -34,7 +34,8 @@ template <class V, class I>
     V x[16], toFixed[16], scaled[16], lo = one, hi = zero;
     for (int t = 0; t < 16; ++t) {
         if (b.source[0]) {
-            // Lane by lane from the image (which scalar stores, just before, could not pass to one load).
+            // Lane by lane from the image: a copy stored texel by texel just before would stall the vector
+            // load (a processor does not forward eight stores to one load).
             const float* texel = b.source[t / 4] + (t % 4) * b.step;
             for (int l = 0; l < W; ++l) x[t][l] = texel[(first + l) * 4 * b.step];
         } else {
