@@ -9,8 +9,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <map>
+#include <memory>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "heightpack/io/attributes.hpp"
@@ -30,25 +33,47 @@ float valueAt(int layer, int level, int x, int y, int c) {
                            std::cos(0.005 * x * (c + 1) - 0.011 * y));
 }
 
-ChainToWrite content(int width, int height, int channels, int layers) {
+// Every level of every layer of a chain, computed once from valueAt: the writer's fills and the serial
+// encoding below read the same values, and the twelve files of a case (containers x pixel types x
+// thread counts) do not each take the sines again.
+struct BandChainValues {
+    int width = 0, height = 0, channels = 0, levels = 0;
+    std::vector<std::vector<float>> images;  // [layer * levels + level], rows of side(width) * channels floats
+
+    BandChainValues(int w, int h, int c, int layers) : width(w), height(h), channels(c) {
+        while ((w >> levels) > 0 || (h >> levels) > 0) ++levels;
+        for (int layer = 0; layer < layers; ++layer)
+            for (int level = 0; level < levels; ++level) {
+                const int lw = side(w, level), lh = side(h, level);
+                std::vector<float> image(size_t(lw) * lh * c);
+                float* dst = image.data();
+                for (int y = 0; y < lh; ++y)
+                    for (int x = 0; x < lw; ++x)
+                        for (int ch = 0; ch < c; ++ch) *dst++ = valueAt(layer, level, x, y, ch);
+                images.push_back(std::move(image));
+            }
+    }
+    void fill(int layer, int level, int y0, int rows, float* dst) const {
+        const size_t row = size_t(side(width, level)) * channels;
+        const std::vector<float>& image = images.at(size_t(layer) * levels + level);
+        std::copy_n(image.begin() + std::ptrdiff_t(row * y0), row * rows, dst);
+    }
+};
+
+ChainToWrite bandChain(const std::shared_ptr<const BandChainValues>& values, int layers) {
     ChainToWrite c;
-    c.width = width;
-    c.height = height;
+    c.width = values->width;
+    c.height = values->height;
+    const int channels = values->channels;
     c.channelNames.assign(size_t(channels), "");
     for (int i = 0; i < channels; ++i) c.channelNames[size_t(i)] = std::string(1, "RGBA"[i]);
-    const auto fill = [width, channels](int layer, int level, int y0, int rows, float* dst) {
-        const int w = side(width, level);
-        for (int y = y0; y < y0 + rows; ++y)
-            for (int x = 0; x < w; ++x)
-                for (int ch = 0; ch < channels; ++ch) *dst++ = valueAt(layer, level, x, y, ch);
-    };
     if (layers > 1) {
         // Layers a DDS can record: heights, then Dx and Dy, then Foam.
         c.layerNames = layers == 4 ? std::vector<std::string>{"heights", "Dx", "Dy", "Foam"}
                                    : std::vector<std::string>{"heights", "Foam"};
-        c.fillLayerRows = fill;
+        c.fillLayerRows = [values](int layer, int level, int y0, int rows, float* dst) { values->fill(layer, level, y0, rows, dst); };
     } else {
-        c.fillRows = [fill](int level, int y0, int rows, float* dst) { fill(0, level, y0, rows, dst); };
+        c.fillRows = [values](int level, int y0, int rows, float* dst) { values->fill(0, level, y0, rows, dst); };
     }
     // The layout pack would record for such texels (four channels are packed heights), so a reader that
     // holds the header to its schema reads the file.
@@ -94,6 +119,23 @@ std::vector<std::uint8_t> encoded(const ChainToWrite& c, int layer, int level, P
     return out;
 }
 
+// encoded() of a case's layers and levels, each computed once: the two containers and the two thread
+// counts hold the same encoded images wherever the pixel type and the normalisation read back are the same.
+class SerialImages {
+public:
+    explicit SerialImages(const ChainToWrite& c) : c_(c) {}
+    const std::vector<std::uint8_t>& of(int layer, int level, PixelType type, const Normalisation& n) {
+        const auto key = std::make_tuple(layer, level, static_cast<int>(type), n.offset, n.scale);
+        auto found = images_.find(key);
+        if (found == images_.end()) found = images_.emplace(key, encoded(c_, layer, level, type, n)).first;
+        return found->second;
+    }
+
+private:
+    const ChainToWrite& c_;
+    std::map<std::tuple<int, int, int, float, float>, std::vector<std::uint8_t>> images_;
+};
+
 std::uint64_t le64(const std::vector<unsigned char>& b, size_t at) {
     std::uint64_t v = 0;
     for (int i = 7; i >= 0; --i) v = v << 8 | b.at(at + size_t(i));
@@ -103,14 +145,14 @@ std::uint64_t le64(const std::vector<unsigned char>& b, size_t at) {
 // The whole file a serial writer gives: the file's own header (checked elsewhere against independent
 // readers), then the levels in the container's order.
 std::vector<unsigned char> serialFile(const std::vector<unsigned char>& file, bool ktx2, const ChainToWrite& c,
-                                      PixelType type, const Normalisation& n, int levels) {
+                                      PixelType type, const Normalisation& n, int levels, SerialImages& images) {
     const int layers = c.layerCount();
     std::vector<unsigned char> expected;
     if (!ktx2) {
         expected.assign(file.begin(), file.begin() + std::min<size_t>(file.size(), 4 + 124 + 20));
         for (int layer = 0; layer < layers; ++layer)
             for (int level = 0; level < levels; ++level) {
-                const auto bytes = encoded(c, layer, level, type, n);
+                const std::vector<std::uint8_t>& bytes = images.of(layer, level, type, n);
                 expected.insert(expected.end(), bytes.begin(), bytes.end());
             }
         return expected;
@@ -125,7 +167,7 @@ std::vector<unsigned char> serialFile(const std::vector<unsigned char>& file, bo
         expected.resize((expected.size() + alignment - 1) / alignment * alignment, 0);
         EXPECT_EQ(le64(file, 80 + 24 * size_t(level)), expected.size()) << "level " << level << "'s offset";
         for (int layer = 0; layer < layers; ++layer) {
-            const auto bytes = encoded(c, layer, level, type, n);
+            const std::vector<std::uint8_t>& bytes = images.of(layer, level, type, n);
             expected.insert(expected.end(), bytes.begin(), bytes.end());
         }
     }
@@ -143,10 +185,10 @@ TEST(BandWrite, FilesHoldTheLevelsAsASerialWriterLaysThemOut) {
     // bands end mid-level; one channel, two levels only; an array of two layers one texel wide.
     const Case cases[] = {{1000, 301, 4, 4, 0}, {777, 523, 3, 1, 0}, {1531, 999, 1, 1, 2}, {1, 37, 4, 2, 0}};
     for (const Case& k : cases) {
-        const ChainToWrite c = content(k.width, k.height, k.channels, k.layers);
-        int levels = 1;
-        while ((k.width >> levels) > 0 || (k.height >> levels) > 0) ++levels;
-        if (k.levels > 0) levels = k.levels;
+        const auto values = std::make_shared<const BandChainValues>(k.width, k.height, k.channels, k.layers);
+        const ChainToWrite c = bandChain(values, k.layers);
+        SerialImages images(c);
+        const int levels = k.levels > 0 ? k.levels : values->levels;
         for (const char* ext : {".ktx2", ".dds"}) {
             for (PixelType type : {PixelType::Float, PixelType::Half, PixelType::Uint16}) {
                 for (int threads : {1, 3}) {
@@ -164,7 +206,7 @@ TEST(BandWrite, FilesHoldTheLevelsAsASerialWriterLaysThemOut) {
                     ASSERT_EQ(read->normalisation.has_value(), type == PixelType::Uint16);
                     const Normalisation n = read->normalisation.value_or(Normalisation{});
                     const std::vector<unsigned char> file = readBytes(path);
-                    const std::vector<unsigned char> expected = serialFile(file, ktx2, c, type, n, levels);
+                    const std::vector<unsigned char> expected = serialFile(file, ktx2, c, type, n, levels, images);
                     ASSERT_EQ(file.size(), expected.size());
                     // The first differing byte, rather than two files' worth of bytes, when they differ.
                     const auto diff = std::mismatch(file.begin(), file.end(), expected.begin());
