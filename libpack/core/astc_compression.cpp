@@ -61,7 +61,7 @@ float unit(float v) { return v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v; }
 
 }  // namespace
 
-std::vector<std::uint8_t> encodeAstc(const Image& image, BlockFormat format, int threads, bool normalMap) {
+std::vector<std::uint8_t> encodeAstc(ImageView image, BlockFormat format, int threads, bool normalMap) {
     const int side = blockSide(format);
     const int across = (image.width + side - 1) / side, down = (image.height + side - 1) / side;
     const unsigned workers = unsigned(std::max(1, resolveThreadCount(threads)));  // the same for every level

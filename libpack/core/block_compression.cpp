@@ -182,7 +182,7 @@ void decodeBc4Block(const std::uint8_t* block, float values[16]) {
     for (int i = 0; i < 16; ++i) values[i] = p[size_t((bits >> (3 * i)) & 7)];
 }
 
-std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, int threads, std::optional<NormalUnits> normals) {
+std::vector<std::uint8_t> encodeBlocks(ImageView image, BlockFormat format, int threads, std::optional<NormalUnits> normals) {
     if (isAstc(format)) return encodeAstc(image, format, threads, normals.has_value());
     const int channels = blockChannels(format), bytes = blockBytes(format);
     const int across = (image.width + 3) / 4, down = (image.height + 3) / 4;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -197,19 +198,19 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
     BlockLevels out;
     out.levels = plan.levels;
     std::vector<LevelError> errors(static_cast<size_t>(plan.levels));
-    Image unorm;
+    std::unique_ptr<float[]> unorm;  // level 0's size: every level after it is smaller
     for (int layer = 0; layer < content.layerCount(); ++layer)
         for (int level = 0; level < plan.levels; ++level) {
             const int w = mipLevelSide(content.width, level), h = mipLevelSide(content.height, level);
             // The level's values in the blocks' units, converted where they are filled: measureLevel fills
             // them again, a band at a time, rather than keeping a second copy of the level. One buffer for
-            // every level (each fills all it uses): level 0's pages are not zeroed and mapped again.
-            unorm.width = w, unorm.height = h, unorm.channels = channels;
-            unorm.pixels.resize(size_t(w) * size_t(h) * size_t(channels));
+            // every level (each fills all it uses), not zeroed first: its pages are first written, and
+            // mapped, on all threads.
             const size_t rowValues = size_t(w) * size_t(channels);
+            if (!unorm) unorm.reset(new float[rowValues * size_t(h)]);
             std::vector<char> finite(static_cast<size_t>(h));
             parallelFor(h, threads, [&](int a, int b) {
-                float* values = unorm.pixels.data() + size_t(a) * rowValues;
+                float* values = unorm.get() + size_t(a) * rowValues;
                 fillLayerRows(content, layer, level, a, b - a, values);
                 for (float* row = values; row < values + size_t(b - a) * rowValues; row += rowValues) {
                     finite[size_t(a + (row - values) / std::ptrdiff_t(rowValues))] = allFinite(row, rowValues);
@@ -221,7 +222,7 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
             // astcenc's normal-map mode).
             const std::optional<NormalUnits> normals =
                 channels == 2 ? std::optional(NormalUnits{n.offset, n.scale}) : std::nullopt;
-            out.images.push_back(encodeBlocks(unorm, format, threads, normals));
+            out.images.push_back(encodeBlocks(ImageView(unorm.get(), w, h, channels), format, threads, normals));
             if (out.images.back().size() != blockImageBytes(w, h, format))
                 return Error{ErrorKind::Internal, path, "internal error: the ASTC encoder failed", "please report this"};
             const LevelError e = measureLevel(content, layer, level, w, h, out.images.back(), format, channels, n, threads);

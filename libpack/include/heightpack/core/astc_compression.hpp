@@ -19,7 +19,7 @@ inline constexpr float kAstcQuality = 60.0f;
 // channels as a normal's x and y, astcenc weighing the angle. Texels past the image repeat its edge.
 // `threads` threads (0: all cores) work on each band of block rows; astcenc codes each block on its own,
 // so the bytes do not depend on it.
-std::vector<std::uint8_t> encodeAstc(const Image& image, BlockFormat format, int threads, bool normalMap);
+std::vector<std::uint8_t> encodeAstc(ImageView image, BlockFormat format, int threads, bool normalMap);
 
 // Decodes ASTC blocks of format into a width x height image of `channels` channels (1: R; 2: R and A),
 // each value the decoded UNORM16 / 65535 as astcenc's decoder gives it (HDR: the decoded half float).

@@ -52,7 +52,7 @@ inline size_t blockImageBytes(int width, int height, BlockFormat format) {
 struct NormalUnits {
     double offset = 0.0, scale = 1.0;
 };
-std::vector<std::uint8_t> encodeBlocks(const Image& image, BlockFormat format, int threads = 0,
+std::vector<std::uint8_t> encodeBlocks(ImageView image, BlockFormat format, int threads = 0,
                                        std::optional<NormalUnits> normals = std::nullopt);
 
 // Decodes blocks into a width x height image, by the specification's rules: RED_0 = red_0 / 255, the

@@ -67,6 +67,22 @@ private:
     }
 };
 
+// Texels held elsewhere (row by row, channels interleaved, as an Image holds them), read only: what a
+// function that only reads an image takes, so a caller's own buffer serves as well as an Image.
+struct ImageView {
+    const float* pixels = nullptr;
+    int width = 0, height = 0, channels = 1;
+
+    ImageView() = default;
+    ImageView(const float* p, int w, int h, int c) : pixels(p), width(w), height(h), channels(c) {}
+    ImageView(const Image& image) : ImageView(image.pixels.data(), image.width, image.height, image.channels) {}  // NOLINT: implicit
+
+    float at(int x, int y, int c = 0) const {
+        assert(x >= 0 && x < width && y >= 0 && y < height && c >= 0 && c < channels);
+        return pixels[(static_cast<size_t>(y) * width + x) * channels + c];
+    }
+};
+
 // The image with rows and columns swapped (one channel): its columns become rows that read contiguously.
 // threads: 0 = all cores; the result does not depend on it.
 Image transposed(const Image& image, int threads = 1);
