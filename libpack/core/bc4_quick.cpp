@@ -217,6 +217,12 @@ template <class V>
 }
 
 #if defined(__x86_64__)
+// Whether the processor runs AVX2 (asked once).
+static bool hasAvx2() {
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    return avx2;
+}
+
 using Lanes8 = float __attribute__((vector_size(32)));
 using IntLanes8 = int __attribute__((vector_size(32)));
 [[gnu::flatten, gnu::target("avx2")]] static void quickSearchAvx2(QuickBlocks& blocks) {
@@ -224,7 +230,7 @@ using IntLanes8 = int __attribute__((vector_size(32)));
 }
 #endif
 
-[[gnu::flatten]] void quickChordsPortable(const QuickBlocks& x, const QuickBlocks& y, float offset, float scale, float* worst) {
+[[gnu::flatten]] void quickWorstChordsPortable(const QuickBlocks& x, const QuickBlocks& y, float offset, float scale, float worst[kQuickBlocks]) {
     for (int first = 0; first < kQuickBlocks; first += 4) quick::chordLanes<lanes::Lanes>(x, y, offset, scale, worst, first);
 }
 
@@ -237,16 +243,14 @@ using IntLanes8 = int __attribute__((vector_size(32)));
 
 void quickWorstChords(const QuickBlocks& x, const QuickBlocks& y, float offset, float scale, float worst[kQuickBlocks]) {
 #if defined(__x86_64__)
-    static const bool avx2 = __builtin_cpu_supports("avx2");
-    if (avx2) return quickChordsAvx2(x, y, offset, scale, worst);
+    if (hasAvx2()) return quickChordsAvx2(x, y, offset, scale, worst);
 #endif
-    quickChordsPortable(x, y, offset, scale, worst);
+    quickWorstChordsPortable(x, y, offset, scale, worst);
 }
 
 void quickSearch(QuickBlocks& blocks) {
 #if defined(__x86_64__)
-    static const bool avx2 = __builtin_cpu_supports("avx2");
-    if (avx2) return quickSearchAvx2(blocks);
+    if (hasAvx2()) return quickSearchAvx2(blocks);
 #endif
     quickSearchPortable(blocks);
 }

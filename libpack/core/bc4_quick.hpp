@@ -39,4 +39,7 @@ void quickSearchPortable(QuickBlocks& blocks);
 // same operations as block_compression.cpp's thorough pass measures a texel with.
 void quickWorstChords(const QuickBlocks& x, const QuickBlocks& y, float offset, float scale, float worst[kQuickBlocks]);
 
+// The same without AVX2: what quickWorstChords does on processors without it.
+void quickWorstChordsPortable(const QuickBlocks& x, const QuickBlocks& y, float offset, float scale, float worst[kQuickBlocks]);
+
 }  // namespace heightpack::bc4

@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-
 #include "heightpack/core/normal_angle.hpp"
 #include "heightpack/core/parallel.hpp"
 #include "texel_encode.hpp"
@@ -210,10 +209,10 @@ Result<BlockLevels> encodeBlockLevels(const std::string& path, const ChainToWrit
             if (!unorm) unorm.reset(new float[rowValues * size_t(h)]);
             std::vector<char> finite(static_cast<size_t>(h));
             parallelFor(h, threads, [&](int a, int b) {
-                float* values = unorm.get() + size_t(a) * rowValues;
-                fillLayerRows(content, layer, level, a, b - a, values);
-                for (float* row = values; row < values + size_t(b - a) * rowValues; row += rowValues) {
-                    finite[size_t(a + (row - values) / std::ptrdiff_t(rowValues))] = allFinite(row, rowValues);
+                fillLayerRows(content, layer, level, a, b - a, unorm.get() + size_t(a) * rowValues);
+                for (int r = a; r < b; ++r) {
+                    float* row = unorm.get() + size_t(r) * rowValues;
+                    finite[size_t(r)] = allFinite(row, rowValues);
                     for (float* v = row; v < row + rowValues; ++v) *v = float((double(*v) - n.offset) / n.scale);
                 }
             });

@@ -119,7 +119,8 @@ TEST(BlockCompression, SameBytesOnAnyThreadCountAndPaddedEdges) {
 // The quick pass's eight blocks side by side (bc4_quick.hpp) over families of blocks: spread, narrow,
 // near 0 and 1 (the six-value mode), exactly 0 and 1, flat, two-valued. Whatever the instruction set
 // (AVX2 here where the processor has it, against the four-lane code every processor runs) and wherever
-// the values are read from (a copy, or an image's channel), every output is the same bit for bit; each block's recorded codes decode (decodeBc4Block, the specification's
+// the values are read from (a copy, or an image's channel), every output, BC5's worst chords too, is the
+// same bit for bit; each block's recorded codes decode (decodeBc4Block, the specification's
 // table) to the recorded values, within their recorded squared and worst error; and the pair is never
 // worse than the plainest encoder's, the values' extremes rounded to codes (minMaxSquaredError's).
 TEST(BlockCompression, QuickSearchIsTheSameOnEveryInstructionSetAndWithinWhatItRecords) {
@@ -158,6 +159,13 @@ TEST(BlockCompression, QuickSearchIsTheSameOnEveryInstructionSetAndWithinWhatItR
         ASSERT_TRUE(same(fast.value, fromImage.value) && same(fast.e0, fromImage.e0) && same(fast.e1, fromImage.e1) &&
                     same(fast.code, fromImage.code) && same(fast.worst, fromImage.worst))
             << "group " << group << " read from an image";
+        // BC5's worst chords (x from this group, y its block order reversed) on both instruction sets.
+        bc4::QuickBlocks y = fast;
+        for (int t = 0; t < 16; ++t) std::reverse(y.decoded[t], y.decoded[t] + bc4::kQuickBlocks);
+        float chords[bc4::kQuickBlocks], portableChords[bc4::kQuickBlocks];
+        bc4::quickWorstChords(fast, y, -1.0f, 2.0f, chords);
+        bc4::quickWorstChordsPortable(fast, y, -1.0f, 2.0f, portableChords);
+        ASSERT_EQ(std::memcmp(chords, portableChords, sizeof chords), 0) << "group " << group << " chords";
         for (int lane = 0; lane < bc4::kQuickBlocks; ++lane, ++blocks) {
             int codes[16];
             Image values(4, 4, 1);
