@@ -64,46 +64,62 @@ std::optional<InputFormat> sniff(const std::string& path, const std::vector<unsi
 
 // ---- JPEG: marker segments --------------------------------------------------------------------------
 
-// Copies a JPEG up to its first scan keeping only the segments libjpeg needs to decode (frame, tables,
-// restart interval, JFIF's APP0 and Adobe's APP14, which says how colours were transformed), then the
-// scans as they are. OpenImageIO 2.4 parses EXIF (APP1), ICC (APP2) and IPTC (APP13) itself, and its IPTC
-// parser reads past its buffer on a crafted segment; heights need none of them.
+// Copies a JPEG without the segments heights do not need: before the first scan only the ones libjpeg
+// needs to decode (frame, tables, restart interval, JFIF's APP0 and Adobe's APP14, which says how colours
+// were transformed) are kept; after it everything is kept but the metadata segments between scans, which
+// libjpeg saves for OpenImageIO too when it reads a progressive file's every scan on opening it.
+// OpenImageIO 2.4 parses EXIF (APP1), ICC (APP2) and IPTC (APP13) itself, and its IPTC parser reads past
+// its buffer on a crafted segment; heights need none of them.
 Status stripJpegMetadata(const std::string& path, std::vector<unsigned char>& bytes) {
     const size_t n = bytes.size();
     std::vector<unsigned char> out(bytes.begin(), bytes.begin() + 2);  // SOI
     size_t at = 2;
+    bool inScans = false;
     const auto damaged = [&](const std::string& what) {
         return badInput(path, "is a damaged JPEG: " + what, "export it again");
     };
+    const auto copy = [&](size_t from, size_t to) { out.insert(out.end(), bytes.begin() + from, bytes.begin() + to); };
+    const auto finish = [&] {
+        bytes = std::move(out);
+        return Status(Done{});
+    };
     while (true) {
-        // Markers are found exactly as libjpeg's next_marker finds them, so that the segments dropped here
-        // are the ones it would have read: bytes before a 0xFF are skipped (a file that decodes elsewhere
-        // decodes here), then fill bytes, and a 0xFF 0x00 is no marker at all: the search goes on.
+        // Markers are found exactly as libjpeg's next_marker (and its entropy decoder, inside a scan) finds
+        // them, so that the segments dropped here are the ones it would have read: bytes before a 0xFF are
+        // skipped (a file that decodes elsewhere decodes here) or, in the scans, are the coded data; then
+        // fill bytes; a 0xFF 0x00 is no marker at all: the search goes on.
+        const size_t from = at;
         while (at < n && bytes[at] != 0xFF) ++at;
+        if (inScans) copy(from, at);
+        const size_t markerAt = at;
         while (at < n && bytes[at] == 0xFF) ++at;  // fill bytes
-        if (at >= n) return damaged("it ends before its first scan");
+        if (at >= n) {
+            if (!inScans) return damaged("it ends before its first scan");
+            copy(markerAt, n);
+            return finish();
+        }
         const unsigned marker = bytes[at++];
-        if (marker == 0x00) continue;
-        const bool standalone = marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8);
+        const bool standalone = marker == 0x00 || marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8);
         if (standalone) {
-            out.push_back(0xFF), out.push_back(static_cast<unsigned char>(marker));
+            if (inScans) copy(markerAt, at);
+            else if (marker != 0x00) out.push_back(0xFF), out.push_back(static_cast<unsigned char>(marker));
             continue;
         }
-        if (marker == 0xD9) return damaged("it ends before its first scan");
+        if (marker == 0xD9) {  // end of image: libjpeg reads nothing after it
+            if (!inScans) return damaged("it ends before its first scan");
+            copy(markerAt, n);
+            return finish();
+        }
         if (at + 2 > n) return damaged("a marker segment runs past the end of the file");
         const size_t length = size_t(bytes[at]) << 8 | bytes[at + 1];
         if (length < 2 || at + length > n) return damaged("a marker segment runs past the end of the file");
         const bool metadata = (marker >= 0xE1 && marker <= 0xEF && marker != 0xEE) || marker == 0xFE;
         if (!metadata) {
             out.push_back(0xFF), out.push_back(static_cast<unsigned char>(marker));
-            out.insert(out.end(), bytes.begin() + at, bytes.begin() + at + length);
+            copy(at, at + length);
         }
         at += length;
-        if (marker == 0xDA) {  // start of scan: the entropy-coded data and everything after, as they are
-            out.insert(out.end(), bytes.begin() + at, bytes.end());
-            bytes = std::move(out);
-            return Done{};
-        }
+        if (marker == 0xDA) inScans = true;  // start of scan: its coded data follows
     }
 }
 

@@ -13,6 +13,7 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfTiledOutputFile.h>
 #include <OpenEXR/ImfVecAttribute.h>
+#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cctype>

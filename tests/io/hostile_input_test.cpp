@@ -34,8 +34,9 @@ TEST(HostileInput, EveryFuzzFindingIsRefusedNamingTheFileOrLoadsWhole) {
         if (e.path().extension() == ".md") continue;
         auto heights = loadHeightMap(path);
         auto texture = readTextureFile(path);
-        if (e.path().filename() == "iptc_overflow.jpg") {
-            // Its malformed IPTC segment is dropped before OpenImageIO parses it; the pixels are fine.
+        if (e.path().filename() == "iptc_overflow.jpg" || e.path().filename() == "iptc_between_scans.jpg") {
+            // Their malformed IPTC segments (before the first scan; between a progressive file's scans) are
+            // dropped before OpenImageIO parses them; the pixels are fine.
             ASSERT_TRUE(heights) << heights.error().what;
             EXPECT_EQ(heights->heights.width, 8);
             for (float v : heights->heights.pixels) EXPECT_TRUE(std::isfinite(v) && v >= 0 && v <= 1);
@@ -206,29 +207,81 @@ TEST_F(HostileHeaders, AFewKilobytesOfZstandardBlocksNeverDecodeToGigabytesOfFlo
     }
 }
 
-// Dropping a JPEG's metadata segments changes no pixel: heightpack's heights are OpenImageIO's decode of
-// the same file, for JPEGs with EXIF and comments as oiiotool and cameras write them.
-TEST_F(HostileHeaders, JpegsLoadTheSamePixelsWithoutTheirMetadata) {
-    for (int quality : {50, 95}) {
-        const std::string path = dir.file("q" + std::to_string(quality) + ".jpg");
-        const Image source = randomImage(48, 40, quality);
-        auto out = OIIO::ImageOutput::create(path);
-        OIIO::ImageSpec spec(48, 40, 1, OIIO::TypeDesc::UINT8);
-        spec.attribute("CompressionQuality", quality);
-        spec.attribute("ImageDescription", "a comment that becomes a COM segment");
-        spec.attribute("Exif:ImageHistory", "an EXIF field in APP1");
-        spec.attribute("IPTC:Caption", "an IPTC caption in APP13");
-        ASSERT_TRUE(out->open(path, spec));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, source.pixels.data()));
-        out->close();
-        auto in = OIIO::ImageInput::open(path);
-        ASSERT_TRUE(in);
-        std::vector<float> reference(48 * 40);
-        ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, reference.data()));
-        auto loaded = loadHeightMap(path);
-        ASSERT_TRUE(loaded) << loaded.error().what;
-        EXPECT_EQ(loaded->heights.pixels, reference) << quality;
+// The segments a file holds, each as [0xFF, marker, ...] up to the next marker, the scans' coded data
+// with the segment it follows: enough to put a segment between a progressive file's scans.
+std::vector<size_t> markerOffsetsAfterFirstScan(const std::vector<unsigned char>& b) {
+    std::vector<size_t> at;
+    bool inScans = false;
+    for (size_t i = 2; i + 1 < b.size(); ++i) {
+        if (b[i] != 0xFF || b[i + 1] == 0x00 || b[i + 1] == 0xFF || (b[i + 1] >= 0xD0 && b[i + 1] <= 0xD7)) continue;
+        if (inScans) at.push_back(i);
+        if (b[i + 1] == 0xDA) inScans = true;
+        if (b[i + 1] != 0xD9) i += 1 + (size_t(b[i + 2]) << 8 | b[i + 3]);
     }
+    return at;
+}
+
+std::vector<unsigned char> segment(unsigned char marker, const std::string& payload) {
+    std::vector<unsigned char> s = {0xFF, marker, static_cast<unsigned char>((payload.size() + 2) >> 8),
+                                    static_cast<unsigned char>(payload.size() + 2)};
+    s.insert(s.end(), payload.begin(), payload.end());
+    return s;
+}
+
+std::vector<float> decodedByOpenImageIO(const std::string& path, int width, int height) {
+    auto in = OIIO::ImageInput::open(path);
+    std::vector<float> pixels(size_t(width) * height);
+    if (!in || !in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, pixels.data())) pixels.clear();
+    return pixels;
+}
+
+// Dropping a JPEG's metadata segments changes no pixel: heightpack's heights are OpenImageIO's decode of
+// the same file, for baseline and progressive JPEGs with EXIF, IPTC and comments as oiiotool and cameras
+// write them, and for progressive ones with a comment and an IPTC segment between every two scans (where
+// libjpeg saves them for OpenImageIO too: the file that made its IPTC parser overflow again had one there).
+TEST_F(HostileHeaders, JpegsLoadTheSamePixelsWithoutTheirMetadata) {
+    // A Photoshop resource block holding one IPTC record (2:120, the caption) of 7 bytes, sizes as written.
+    static const char kIptc[] = "Photoshop 3.0\0" "8BIM\x04\x04\0\0\0\0\0\x0C" "\x1C\x02\x78\0\x07" "caption";
+    const std::string iptc(kIptc, sizeof kIptc - 1);
+    int betweenScans = 0;
+    for (int progressive : {0, 1}) {
+        for (int quality : {50, 95}) {
+            const std::string path = dir.file("q" + std::to_string(quality) + "p" + std::to_string(progressive) + ".jpg");
+            const Image source = randomImage(48, 40, quality + progressive);
+            auto out = OIIO::ImageOutput::create(path);
+            OIIO::ImageSpec spec(48, 40, 1, OIIO::TypeDesc::UINT8);
+            spec.attribute("CompressionQuality", quality);
+            spec.attribute("jpeg:progressive", progressive);
+            spec.attribute("ImageDescription", "a comment that becomes a COM segment");
+            spec.attribute("Exif:ImageHistory", "an EXIF field in APP1");
+            spec.attribute("IPTC:Caption", "an IPTC caption in APP13");
+            ASSERT_TRUE(out->open(path, spec));
+            ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, source.pixels.data()));
+            out->close();
+            const std::vector<float> reference = decodedByOpenImageIO(path, 48, 40);
+            ASSERT_FALSE(reference.empty()) << path;
+            auto loaded = loadHeightMap(path);
+            ASSERT_TRUE(loaded) << loaded.error().what;
+            EXPECT_EQ(loaded->heights.pixels, reference) << path;
+            if (!progressive) continue;
+
+            std::vector<unsigned char> bytes = readBytes(path);
+            const std::vector<size_t> offsets = markerOffsetsAfterFirstScan(bytes);
+            ASSERT_GE(offsets.size(), 4u) << "a progressive file has several scans";
+            std::vector<unsigned char> inserted = segment(0xFE, "a comment between scans");
+            const std::vector<unsigned char> app13 = segment(0xED, iptc);
+            inserted.insert(inserted.end(), app13.begin(), app13.end());
+            for (auto at = offsets.rbegin(); at != offsets.rend(); ++at, ++betweenScans)
+                bytes.insert(bytes.begin() + std::ptrdiff_t(*at), inserted.begin(), inserted.end());
+            const std::string between = dir.file("between" + std::to_string(quality) + ".jpg");
+            writeBytes(between, bytes);
+            EXPECT_EQ(decodedByOpenImageIO(between, 48, 40), reference) << "the segments change nothing OpenImageIO decodes";
+            auto loadedBetween = loadHeightMap(between);
+            ASSERT_TRUE(loadedBetween) << loadedBetween.error().what;
+            EXPECT_EQ(loadedBetween->heights.pixels, reference) << between;
+        }
+    }
+    EXPECT_GE(betweenScans, 8);
 }
 
 }  // namespace
