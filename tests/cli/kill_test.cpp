@@ -8,6 +8,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -161,11 +162,15 @@ TEST_P(KillTest, EveryFileIsOldOrNewAndTheNextRunLeavesNoTemporary) {
     int killedWhileRunning = 0;
     constexpr int kKills = 8;
     // Kills until kKills have landed while the command ran (a kill after it finished proves nothing; under
-    // load a run's length varies, so a late delay is tried again, shorter), each followed by a whole run.
+    // load a run's length varies, so after a late delay the next are drawn from before it), each followed
+    // by a whole run.
+    long latest = took.count() * 9 / 10;
     for (int k = 0; k < 3 * kKills && killedWhileRunning < kKills; ++k) {
         restore(out, old);
-        const std::chrono::microseconds delay(std::uniform_int_distribution<long>(0, took.count() * 9 / 10)(random));
-        killedWhileRunning += runAndKill(after, delay);
+        const std::chrono::microseconds delay(std::uniform_int_distribution<long>(0, latest)(random));
+        const bool landed = runAndKill(after, delay);
+        killedWhileRunning += landed;
+        if (!landed) latest = std::max(1L, delay.count() * 9 / 10);
         const Snapshot killed = snapshot(out);
         for (const auto& [name, bytes] : killed) {
             const auto o = old.find(name), n = fresh.find(name);
