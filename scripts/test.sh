@@ -20,6 +20,10 @@ if [ "${1:-}" = "--sanitize" ]; then
   # way, never less: what third-party libraries keep in theirs is suppressed in lsan.supp.
   export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0:use_tls=0"
   jobs=2
+  # The README walk, Bazel's, the HTTP cache server tests and three.js in Chromium (labels walk, bazel,
+  # server and browser) are left out here: what they add is other programs (Bazel, nginx, Chromium, Mesa's
+  # shader compiler) driving the same commands, and this build does not build their programs.
+  labels=(-LE 'walk|bazel|server|browser')
 else
   dir=build-test
   # The benchmark programs are not tests: .ci/run builds them after this, outside the loop's four minutes.
@@ -27,15 +31,12 @@ else
   # One test more than the two cores: the viewer, kill and signal tests wait on Xvfb, timers and other
   # processes for part of their time (170 s against 180 s at -j 2 on two cores).
   jobs=3
+  labels=()
 fi
 cmake -S . -B "$dir" -G Ninja -DHEIGHTPACK_WERROR=ON "${flags[@]}"
 cmake --build "$dir"
 # The tests' independent KTX2 reader and three.js (whose KTX2Loader the browser test runs), pinned, into the
 # build folder (never needed to build or run).
 npm install --prefix "$dir/npm" --no-save --no-audit --no-fund ktx-parse@2.0.0 three@0.180.0 >/dev/null
-# Every test. The sanitizer run leaves out the README walk, Bazel's, the HTTP cache server tests and
-# three.js in Chromium (labels walk, bazel, server and browser): what they add is other programs (Bazel,
-# nginx, Chromium, Mesa's shader compiler) driving the same commands, and it does not build their programs.
-labels=()
-if [ "$dir" = build-asan ]; then labels=(-LE 'walk|bazel|server|browser'); fi
+# Every test (under the sanitizers, all but the labels above).
 ctest --test-dir "$dir" --output-on-failure -j "$jobs" "${labels[@]}"
